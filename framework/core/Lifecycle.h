@@ -1,0 +1,66 @@
+#pragma once
+// What the framework hands to components during initialisation, preparation
+// and after the run. The runtime implements these; components only see them.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "framework/core/ChannelHub.h"
+#include "framework/logs/EventLog.h"
+#include "framework/logs/HapticFrameLog.h"
+
+namespace trephine {
+
+class Component;
+class BaseField;
+
+class InitContext {
+ public:
+  virtual ~InitContext() = default;
+  // Report a problem at the component's element, or at a field's value.
+  virtual void error(const Component& component, std::string message) = 0;
+  virtual void error(const BaseField& field, std::string message) = 0;
+  virtual uint64_t seed() const = 0;          // the run's seed (--seed)
+  virtual bool isRealtime() const = 0;
+  virtual ChannelHub& channels() = 0;
+  virtual EventLog& events() = 0;
+  // The haptic frame log written to trace.csv. One component per scene may
+  // claim it (the force renderer); a second claim is reported as an error.
+  virtual HapticFrameLog* claimHapticLog(const Component& component) = 0;
+};
+
+// Known once every component is initialised: how long the run is.
+struct RunPlan {
+  double duration = 1.0;    // s of simulated time
+  bool realtime = false;
+  uint64_t seed = 0;
+  // Number of calls a component of `rateHz` receives in this run.
+  uint64_t callsAt(double rateHz) const;
+};
+
+class FinishContext {
+ public:
+  FinishContext(std::filesystem::path outputDirectory, double simulatedTime)
+      : m_outputDirectory(std::move(outputDirectory)), m_simulatedTime(simulatedTime) {}
+  // Empty when the run writes no files (tests, validate).
+  const std::filesystem::path& outputDirectory() const { return m_outputDirectory; }
+  double simulatedTime() const { return m_simulatedTime; }
+  void addOutput(const Component& component, std::string fileName);
+  void error(const Component& component, std::string message);
+
+  struct Output {
+    std::string component;
+    std::string file;
+  };
+  const std::vector<Output>& outputs() const { return m_outputs; }
+  const std::vector<std::string>& errors() const { return m_errors; }
+
+ private:
+  std::filesystem::path m_outputDirectory;
+  double m_simulatedTime;
+  std::vector<Output> m_outputs;
+  std::vector<std::string> m_errors;
+};
+
+}  // namespace trephine

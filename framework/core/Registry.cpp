@@ -1,0 +1,46 @@
+#include "framework/core/Registry.h"
+
+#include "framework/core/Component.h"
+
+namespace trephine {
+
+std::optional<std::string> Registry::add(ComponentEntry entry) {
+  if (const ComponentEntry* existing = find(entry.type)) {
+    return "component '" + entry.type + "' is registered by both plugin '" + existing->plugin +
+           "' and plugin '" + entry.plugin + "'";
+  }
+  std::string key = entry.type;
+  m_entries.emplace(std::move(key), std::move(entry));
+  return std::nullopt;
+}
+
+const ComponentEntry* Registry::find(std::string_view type) const {
+  const auto it = m_entries.find(type);
+  return it == m_entries.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> Registry::typeNames() const {
+  std::vector<std::string> names;
+  for (const auto& [name, entry] : m_entries) names.push_back(name);
+  return names;
+}
+
+std::vector<const ComponentEntry*> Registry::entries() const {
+  std::vector<const ComponentEntry*> list;
+  for (const auto& [name, entry] : m_entries) list.push_back(&entry);
+  return list;
+}
+
+std::unique_ptr<Component> Registry::create(std::string_view type) const {
+  const ComponentEntry* entry = find(type);
+  if (!entry) return nullptr;
+  auto component = entry->create();
+  component->attach(nullptr, entry->type);
+  return component;
+}
+
+void PluginRegistrar::addEntry(ComponentEntry entry) {
+  if (auto error = m_registry.add(std::move(entry))) m_errors.push_back(*error);
+}
+
+}  // namespace trephine

@@ -1,0 +1,67 @@
+#include "framework/devices/HapticDevice.h"
+
+#include <fstream>
+
+#include "framework/core/Lifecycle.h"
+#include "framework/devices/DeviceStream.h"
+#include "framework/logs/EventLog.h"
+
+namespace trephine {
+
+void HapticDevice::prepare(const RunPlan& plan) {
+  m_recorded.assign(d_record.value() ? plan.callsAt(rateHz()) : 0, DeviceSample{});
+  m_recordedSize = 0;
+}
+
+void HapticDevice::tick(const TickContext& context) {
+  const DeviceSample raw = readSample(context.t);
+  ++m_samples;
+  if (m_recordedSize < m_recorded.size()) m_recorded[m_recordedSize++] = raw;
+
+  const SampleVerdict verdict = m_filter.check(raw, d_maxSpeed.value(), context.dt);
+  if (verdict != SampleVerdict::Accepted) {
+    // Hold the last valid pose; the velocity of a held pose is zero.
+    if (verdict == SampleVerdict::NonFinite) {
+      ++m_rejectedNonFinite;
+    } else {
+      ++m_rejectedJump;
+    }
+    if (context.events)
+      context.events->log(context.t, "device_rejected", verdict == SampleVerdict::NonFinite ? "non_finite" : "jump", this);
+    m_state.velocity.setZero();
+    return;
+  }
+  const DeviceSample previous = m_filter.last();
+  const bool hadPrevious = m_filter.hasLast();
+  m_filter.accept(raw);
+  m_state.velocity = hadPrevious && raw.t > previous.t ? Vec3((raw.position - previous.position) / (raw.t - previous.t))
+                                                        : Vec3::Zero();
+  m_state.t = raw.t;
+  m_state.pose.position = raw.position;
+  m_state.pose.orientation = raw.orientation.normalized();
+  m_state.buttons = raw.buttons;
+  m_state.valid = true;
+}
+
+void HapticDevice::finish(FinishContext& context) {
+  if (!d_record.value() || context.outputDirectory().empty()) return;
+  std::string p = path().substr(1);
+  for (char& c : p)
+    if (c == '/') c = '-';
+  const std::string name = "device-" + p + ".csv";
+  std::ofstream out(context.outputDirectory() / name);
+  writeDeviceStream(out, m_recorded, m_recordedSize);
+  if (!out) {
+    context.error(*this, "cannot write " + name);
+    return;
+  }
+  context.addOutput(*this, name);
+}
+
+void HapticDevice::reportCounters(std::vector<Counter>& counters) const {
+  counters.push_back({"samples", static_cast<double>(m_samples)});
+  counters.push_back({"rejected_non_finite", static_cast<double>(m_rejectedNonFinite)});
+  counters.push_back({"rejected_jump", static_cast<double>(m_rejectedJump)});
+}
+
+}  // namespace trephine

@@ -1,0 +1,64 @@
+#pragma once
+// A haptic device as the simulation sees it: each tick it reads a raw sample
+// (position mm, orientation, buttons), rejects what cannot be a real hand
+// motion (NaN, Inf, a jump faster than `maxSpeed`), holds the last valid pose
+// when it rejects one, and records the raw stream so the run can be replayed
+// exactly with a ReplayDevice. Force goes back through applyForce().
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "framework/core/Component.h"
+#include "framework/devices/DevicePoseFilter.h"
+#include "framework/devices/DeviceSample.h"
+
+namespace trephine {
+
+struct DeviceState {
+  double t = 0;                  // s, time of the last accepted sample
+  Pose pose;                     // X_WD, mm
+  Vec3 velocity = Vec3::Zero();  // mm/s, from the last two accepted poses
+  uint32_t buttons = 0;
+  bool valid = false;            // false until a first sample was accepted
+};
+
+class HapticDevice : public Component {
+ public:
+  static constexpr std::string_view kTypeName = "HapticDevice";
+
+  const DeviceState& state() const { return m_state; }
+  // The force the simulation sends to the hand (N, world frame). A hardware
+  // device forwards it; simulated devices keep it for inspection.
+  virtual void applyForce(const Vec3& force_N) { m_commandedForce = force_N; }
+  const Vec3& commandedForce() const { return m_commandedForce; }
+
+  void prepare(const RunPlan& plan) override;
+  void tick(const TickContext& context) final;
+  void finish(FinishContext& context) override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+
+  // Samples received and rejected so far.
+  uint64_t samples() const { return m_samples; }
+  uint64_t rejectedNonFinite() const { return m_rejectedNonFinite; }
+  uint64_t rejectedJump() const { return m_rejectedJump; }
+
+ protected:
+  // The raw device reading at time t (s). Must not allocate or throw.
+  virtual DeviceSample readSample(double t) = 0;
+
+  RateField d_rate{this, 1000.0, "Rate at which the device is read"};
+  Field<double> d_maxSpeed{this, "maxSpeed", 5000.0,
+                           {.help = "Fastest plausible motion; a faster jump is rejected and the last pose held",
+                            .unit = "mm/s", .min = 0.0, .minExclusive = true}};
+  Field<bool> d_record{this, "record", true, {.help = "Write the raw device stream to device-<path>.csv"}};
+
+ private:
+  DeviceState m_state;
+  Vec3 m_commandedForce = Vec3::Zero();
+  DevicePoseFilter m_filter;
+  std::vector<DeviceSample> m_recorded;  // preallocated in prepare()
+  size_t m_recordedSize = 0;
+  uint64_t m_samples = 0, m_rejectedNonFinite = 0, m_rejectedJump = 0;
+};
+
+}  // namespace trephine

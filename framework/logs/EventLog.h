@@ -1,0 +1,40 @@
+#pragma once
+// Run-time events (a rejected device sample, a deadline miss, a drilled-through
+// plate) recorded from any thread without allocating or locking: a fixed array
+// and an atomic cursor. Events past the capacity are counted, not stored.
+#include <atomic>
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace trephine {
+
+struct Event {
+  double t = 0;                // s, simulation time
+  const char* kind = "";      // static string, e.g. "device_rejected"
+  const char* detail = "";    // static string, e.g. "non_finite"
+  const void* source = nullptr;  // the component that logged it (resolved to a path when written)
+  double value = 0;            // optional figure, unit given by the kind
+};
+
+class EventLog {
+ public:
+  explicit EventLog(size_t capacity = 4096) : m_events(capacity) {}
+
+  void log(double t, const char* kind, const char* detail, const void* source, double value = 0) {
+    const size_t index = m_next.fetch_add(1, std::memory_order_relaxed);
+    if (index < m_events.size()) m_events[index] = Event{t, kind, detail, source, value};
+  }
+
+  // Read after the logging threads have stopped.
+  size_t size() const { return std::min(m_next.load(), m_events.size()); }
+  size_t dropped() const { return m_next.load() > m_events.size() ? m_next.load() - m_events.size() : 0; }
+  const Event& operator[](size_t i) const { return m_events[i]; }
+
+ private:
+  std::vector<Event> m_events;
+  std::atomic<size_t> m_next{0};
+};
+
+}  // namespace trephine

@@ -1,0 +1,56 @@
+#include "framework/runtime/Recorder.h"
+
+#include <fstream>
+
+#include "framework/core/Lifecycle.h"
+#include "framework/core/Strings.h"
+
+namespace trephine {
+
+void Recorder::init(InitContext& context) {
+  m_columns = l_source->sampleColumns();
+  if (m_columns.size() > kMaxSampleValues) {
+    context.error(*this, "source publishes " + std::to_string(m_columns.size()) + " values, at most " +
+                             std::to_string(kMaxSampleValues) + " are supported");
+    m_columns.resize(kMaxSampleValues);
+  }
+  m_reader = context.channels().subscribe<Sample>(*l_source, kSampleChannel);
+}
+
+void Recorder::prepare(const RunPlan& plan) { m_rows.resize(plan.callsAt(rateHz())); }
+
+void Recorder::tick(const TickContext& context) {
+  m_reader->fetch();
+  if (m_size < m_rows.size()) m_rows[m_size++] = Row{context.t, m_reader->read()};
+}
+
+void Recorder::finish(FinishContext& context) {
+  if (context.outputDirectory().empty()) return;
+  std::string name = d_file.value();
+  if (name.empty()) {
+    std::string p = path().substr(1);
+    for (char& c : p)
+      if (c == '/') c = '-';
+    name = "recording-" + p + ".csv";
+  }
+  std::ofstream out(context.outputDirectory() / name);
+  out << "t,source_t";
+  for (const std::string& c : m_columns) out << "," << c;
+  out << "\n";
+  for (size_t i = 0; i < m_size; ++i) {
+    out << formatDouble(m_rows[i].t) << "," << formatDouble(m_rows[i].sample.t);
+    for (size_t k = 0; k < m_columns.size(); ++k) out << "," << formatDouble(m_rows[i].sample.values[k]);
+    out << "\n";
+  }
+  if (!out) {
+    context.error(*this, "cannot write " + (context.outputDirectory() / name).string());
+    return;
+  }
+  context.addOutput(*this, name);
+}
+
+void Recorder::reportCounters(std::vector<Counter>& counters) const {
+  counters.push_back({"rows", static_cast<double>(m_size)});
+}
+
+}  // namespace trephine

@@ -1,0 +1,212 @@
+#include "framework/runtime/RunOutputs.h"
+
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include "framework/core/Strings.h"
+#include "framework/runtime/JsonWriter.h"
+#include "framework/runtime/Simulation.h"
+
+namespace trephine {
+
+namespace {
+
+void writeTiming(JsonWriter& json, const TimingHistogram& histogram) {
+  const TimingSummary s = histogram.summary();
+  json.beginObject();
+  json.field("p50", s.p50).field("p90", s.p90).field("p99", s.p99).field("max", s.max).field("mean", s.mean);
+  json.endObject();
+}
+
+std::string rateKey(double hz) { return formatDouble(hz); }
+
+// Component path for an event's source pointer.
+std::string sourcePath(const Simulation& simulation, const void* source) {
+  for (const Component* c : simulation.scene().components())
+    if (c == source) return c->path();
+  return "";
+}
+
+void writeHaptics(JsonWriter& json, const Simulation& simulation) {
+  const HapticStats s = simulation.hapticLog().stats();
+  json.key("haptics").beginObject();
+  json.field("source", simulation.hapticLogOwner() ? simulation.hapticLogOwner()->path() : std::string());
+  json.field("frames", s.frames).field("contact_frames", s.contactFrames);
+  json.key("force_N").beginObject().field("max", s.forceMax).field("mean", s.forceMean).endObject();
+  json.key("force_step_N").beginObject().field("max", s.forceStepMax).field("p99", s.forceStepP99).endObject();
+  json.key("penetration_mm").beginObject().field("max", s.penetrationMax).field("mean", s.penetrationMean).endObject();
+  json.field("nan_frames", s.nanFrames).field("proxy_inside_frames", s.proxyInsideFrames);
+  json.field("dropped_frames", s.droppedFrames);
+  json.endObject();
+}
+
+}  // namespace
+
+void writeSummaryJson(const Simulation& simulation, const FinishContext* finish, std::ostream& out) {
+  JsonWriter json(out);
+  const Scheduler& scheduler = simulation.scheduler();
+  json.beginObject();
+  json.field("scene", simulation.scene().file().string());
+  json.field("seed", static_cast<unsigned long long>(simulation.plan().seed));
+  json.field("mode", simulation.plan().realtime ? "realtime" : "virtual");
+  json.field("duration_s", simulation.plan().duration);
+  json.field("sim_time_s", scheduler.simulatedTime());
+  json.field("wall_time_s", simulation.wallTime());
+  json.field("complete", simulation.complete());
+  if (!simulation.complete()) json.field("reason", simulation.incompleteReason());
+  json.key("plugins").beginArray();
+  for (const std::string& p : simulation.scene().plugins()) json.value(p);
+  json.endArray();
+
+  // Per component: timing from the scheduler, counters from the component.
+  std::map<const Component*, const GroupMember*> timing;
+  for (const RateGroup& g : scheduler.groups())
+    for (const GroupMember& m : g.members) timing[m.component] = &m;
+  std::map<std::string, double> totals;  // counters summed over components, for the drilling key
+  json.key("components").beginObject();
+  for (const Component* c : simulation.scene().components()) {
+    json.key(c->path()).beginObject();
+    json.field("type", c->typeName());
+    json.field("rate_hz", c->rateHz());
+    const auto it = timing.find(c);
+    json.field("calls", it == timing.end() ? 0ull : static_cast<unsigned long long>(it->second->calls));
+    json.key("time_us");
+    writeTiming(json, it == timing.end() ? TimingHistogram() : it->second->histogram);
+    json.field("deadline_misses", it == timing.end() ? 0ull : static_cast<unsigned long long>(it->second->overruns));
+    std::vector<Counter> counters;
+    c->reportCounters(counters);
+    if (!counters.empty()) {
+      json.key("counters").beginObject();
+      for (const Counter& counter : counters) {
+        json.field(counter.name, counter.value);
+        totals[counter.name] += counter.value;
+      }
+      json.endObject();
+    }
+    json.endObject();
+  }
+  json.endObject();
+
+  json.key("groups").beginObject();
+  for (const RateGroup& g : scheduler.groups()) {
+    json.key(rateKey(g.rateHz)).beginObject();
+    json.field("calls", static_cast<unsigned long long>(g.calls));
+    json.key("time_us");
+    writeTiming(json, g.stepHistogram);
+    json.field("deadline_misses", static_cast<unsigned long long>(g.deadlineMisses));
+    json.key("components").beginArray();
+    for (const GroupMember& m : g.members) json.value(m.component->path());
+    json.endArray();
+    if (simulation.plan().realtime) {
+      json.field("calls_per_s", g.wallSeconds > 0 ? static_cast<double>(g.calls) / g.wallSeconds : 0.0);
+      json.key("wake_lateness_us");
+      writeTiming(json, g.wakeLateness);
+      json.field("skipped_ticks", static_cast<unsigned long long>(g.skippedTicks));
+      json.field("realtime_priority", g.realtimePriority);
+    }
+    json.endObject();
+  }
+  json.endObject();
+
+  writeHaptics(json, simulation);
+  json.key("drilling").beginObject().field("voxels_removed", totals["voxels_removed"]).endObject();
+
+  const EventLog& events = simulation.events();
+  json.key("events").beginArray();
+  for (size_t i = 0; i < events.size(); ++i) {
+    const Event& e = events[i];
+    json.beginObject().field("t", e.t).field("kind", e.kind);
+    if (*e.detail) json.field("detail", e.detail);
+    json.field("component", sourcePath(simulation, e.source));
+    if (e.value != 0) json.field("value", e.value);
+    json.endObject();
+  }
+  json.endArray();
+  json.field("events_dropped", static_cast<unsigned long long>(events.dropped()));
+
+  if (finish) {
+    json.key("outputs").beginArray();
+    for (const auto& o : finish->outputs())
+      json.beginObject().field("component", o.component).field("file", o.file).endObject();
+    json.endArray();
+    if (!finish->errors().empty()) {
+      json.key("output_errors").beginArray();
+      for (const auto& e : finish->errors()) json.value(e);
+      json.endArray();
+    }
+  }
+  json.endObject();
+}
+
+void writeTraceCsv(const Simulation& simulation, std::ostream& out) {
+  out << kTraceHeader << "\n";
+  const HapticFrameLog& log = simulation.hapticLog();
+  std::string row;
+  for (size_t i = 0; i < log.size(); ++i) {
+    const HapticFrame& f = log[i];
+    row.clear();
+    row += formatDouble(f.t);
+    for (const Vec3* v : {&f.device, &f.proxy, &f.force}) {
+      for (int k = 0; k < 3; ++k) row += "," + formatDouble((*v)[k]);
+    }
+    row += "," + formatDouble(f.penetration);
+    for (int k = 0; k < 3; ++k) row += "," + formatDouble(f.normal[k]);
+    row += "," + std::to_string(f.contacts) + "\n";
+    out << row;
+  }
+}
+
+void writeTimingsCsv(const Simulation& simulation, std::ostream& out) {
+  out << "component,rate_hz,call,t,duration_us\n";
+  for (const RateGroup& g : simulation.scheduler().groups()) {
+    for (const GroupMember& m : g.members) {
+      const std::string prefix = m.component->path() + "," + formatDouble(g.rateHz) + ",";
+      const uint64_t n = std::min<uint64_t>(m.calls, m.callUs.size());
+      for (uint64_t k = 0; k < n; ++k)
+        out << prefix << k << "," << formatDouble(static_cast<double>(k) / g.rateHz) << ","
+            << formatDouble(static_cast<double>(m.callUs[k])) << "\n";
+    }
+  }
+}
+
+std::vector<std::string> writeRunOutputs(const Simulation& simulation, const FinishContext& finish,
+                                         const std::filesystem::path& directory) {
+  std::vector<std::string> written;
+  const auto write = [&](const char* name, auto&& writer) {
+    std::ofstream out(directory / name);
+    writer(out);
+    if (out) written.emplace_back(name);
+  };
+  write("trace.csv", [&](std::ostream& o) { writeTraceCsv(simulation, o); });
+  write("timings.csv", [&](std::ostream& o) { writeTimingsCsv(simulation, o); });
+  write("summary.json", [&](std::ostream& o) { writeSummaryJson(simulation, &finish, o); });
+  return written;
+}
+
+void printRunSummary(const Simulation& simulation, std::ostream& out) {
+  const Scheduler& scheduler = simulation.scheduler();
+  out << "scene     " << simulation.scene().file().string() << "\n";
+  out << "mode      " << (simulation.plan().realtime ? "realtime" : "virtual") << ", seed " << simulation.plan().seed
+      << ", simulated " << formatDouble(scheduler.simulatedTime()) << " s in " << std::fixed << std::setprecision(3)
+      << simulation.wallTime() << " s wall\n";
+  if (!simulation.complete()) out << "status    INCOMPLETE: " << simulation.incompleteReason() << "\n";
+  out << "groups    rate_hz     calls   p50_us   p99_us   max_us  misses\n";
+  for (const RateGroup& g : scheduler.groups()) {
+    const TimingSummary s = g.stepHistogram.summary();
+    out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(10) << g.calls
+        << std::setprecision(2) << std::setw(9) << s.p50 << std::setw(9) << s.p99 << std::setw(9) << s.max
+        << std::setw(8) << g.deadlineMisses << "\n";
+  }
+  if (simulation.hapticLogOwner()) {
+    const HapticStats h = simulation.hapticLog().stats();
+    out << std::setprecision(3) << "haptics   " << h.frames << " frames, " << h.contactFrames << " in contact, |F| max "
+        << h.forceMax << " N, step max " << h.forceStepMax << " N (p99 " << h.forceStepP99 << "), penetration max "
+        << h.penetrationMax << " mm, NaN frames " << h.nanFrames << "\n";
+  }
+  out.unsetf(std::ios::fixed);
+}
+
+}  // namespace trephine

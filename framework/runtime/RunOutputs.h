@@ -1,0 +1,29 @@
+#pragma once
+// The files of a run (the contract other tools read): summary.json,
+// trace.csv (one row per haptic frame) and timings.csv (one row per call).
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace trephine {
+
+class Simulation;
+class FinishContext;
+
+inline constexpr const char* kTraceHeader =
+    "t,device_x,device_y,device_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,penetration,normal_x,normal_y,"
+    "normal_z,contacts";
+
+// Writes the three files into `directory`; returns their names.
+std::vector<std::string> writeRunOutputs(const Simulation& simulation, const FinishContext& finish,
+                                         const std::filesystem::path& directory);
+
+void writeSummaryJson(const Simulation& simulation, const FinishContext* finish, std::ostream& out);
+void writeTraceCsv(const Simulation& simulation, std::ostream& out);
+void writeTimingsCsv(const Simulation& simulation, std::ostream& out);
+
+// The human summary printed by `trephine run`.
+void printRunSummary(const Simulation& simulation, std::ostream& out);
+
+}  // namespace trephine

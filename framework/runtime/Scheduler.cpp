@@ -1,0 +1,180 @@
+#include "framework/runtime/Scheduler.h"
+
+#include <pthread.h>
+#include <sched.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <thread>
+
+namespace trephine {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+inline uint64_t nowNs() {
+  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count());
+}
+
+void sleepUntilNs(uint64_t deadline) {
+  timespec ts{static_cast<time_t>(deadline / 1000000000ull), static_cast<long>(deadline % 1000000000ull)};
+  // steady_clock is CLOCK_MONOTONIC on Linux; retry when a signal interrupts the sleep.
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+// Asks for a real-time priority for the fastest group; refused without privileges, which is fine.
+bool tryRealtimePriority(int priority) {
+  sched_param param{};
+  param.sched_priority = priority;
+  return pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
+}
+
+}  // namespace
+
+Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& plan, EventLog* events)
+    : m_plan(plan), m_events(events) {
+  std::map<double, size_t, std::greater<>> byRate;  // highest rate first
+  for (Component* c : components) {
+    const double rate = c->rateHz();
+    if (rate <= 0) continue;
+    auto [it, inserted] = byRate.emplace(rate, m_groups.size());
+    if (inserted) {
+      RateGroup g;
+      g.rateHz = rate;
+      g.periodS = 1.0 / rate;
+      g.plannedCalls = plan.callsAt(rate);
+      m_groups.push_back(std::move(g));
+    }
+    GroupMember member;
+    member.component = c;
+    m_groups[it->second].members.push_back(std::move(member));
+  }
+  std::sort(m_groups.begin(), m_groups.end(), [](const RateGroup& a, const RateGroup& b) { return a.rateHz > b.rateHz; });
+  for (RateGroup& g : m_groups)
+    for (GroupMember& m : g.members) m.callUs.resize(g.plannedCalls);
+}
+
+const RateGroup* Scheduler::group(double rateHz) const {
+  for (const RateGroup& g : m_groups)
+    if (g.rateHz == rateHz) return &g;
+  return nullptr;
+}
+
+void Scheduler::run(const std::atomic<bool>& stop) {
+  if (m_plan.realtime) {
+    runRealtime(stop);
+  } else {
+    runVirtual(stop);
+  }
+}
+
+uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
+  const TickContext context{static_cast<double>(k) / group.rateHz, group.periodS, k, m_events};
+  const uint64_t periodNs = static_cast<uint64_t>(group.periodS * 1e9);
+  const uint64_t start = nowNs();
+  uint64_t before = start;
+  for (GroupMember& member : group.members) {
+    member.component->tick(context);
+    const uint64_t after = nowNs();
+    const uint64_t ns = after - before;
+    member.histogram.record(ns);
+    if (member.calls < member.callUs.size()) member.callUs[member.calls] = static_cast<float>(ns * 1e-3);
+    ++member.calls;
+    if (ns > periodNs) ++member.overruns;
+    before = after;
+  }
+  const uint64_t total = before - start;
+  group.stepHistogram.record(total);
+  ++group.calls;
+  return total;
+}
+
+void Scheduler::runVirtual(const std::atomic<bool>& stop) {
+  std::vector<uint64_t> next(m_groups.size(), 0);
+  const Component* current = nullptr;
+  try {
+    while (!stop.load(std::memory_order_relaxed)) {
+      // The group whose next call is due first; ties go to the higher rate (earlier in m_groups).
+      size_t chosen = m_groups.size();
+      double due = 0;
+      for (size_t i = 0; i < m_groups.size(); ++i) {
+        if (next[i] >= m_groups[i].plannedCalls) continue;
+        const double t = static_cast<double>(next[i]) / m_groups[i].rateHz;
+        if (chosen == m_groups.size() || t < due) {
+          chosen = i;
+          due = t;
+        }
+      }
+      if (chosen == m_groups.size()) {
+        m_completed = true;
+        break;
+      }
+      RateGroup& g = m_groups[chosen];
+      current = g.members.front().component;
+      const uint64_t ns = step(g, next[chosen]);
+      if (ns > static_cast<uint64_t>(g.periodS * 1e9)) ++g.deadlineMisses;  // would miss in real time
+      ++next[chosen];
+      m_simulatedTime = std::max(m_simulatedTime, static_cast<double>(next[chosen]) / g.rateHz);
+    }
+  } catch (const std::exception& e) {
+    m_failure = (current ? current->path() + " group: " : std::string()) + e.what();
+  }
+  if (m_groups.empty()) {
+    m_completed = !stop.load();
+    m_simulatedTime = m_completed ? m_plan.duration : 0;
+  }
+  if (m_completed) m_simulatedTime = m_plan.duration;
+}
+
+void Scheduler::runRealtime(const std::atomic<bool>& stop) {
+  std::mutex failureMutex;  // taken only on the failure path, never per tick
+  std::atomic<bool> abort{false};
+  const uint64_t t0 = nowNs() + 2'000'000;  // start every group together, 2 ms from now
+  std::vector<std::thread> threads;
+  for (size_t i = 0; i < m_groups.size(); ++i) {
+    threads.emplace_back([&, i] {
+      RateGroup& g = m_groups[i];
+      if (i == 0) g.realtimePriority = tryRealtimePriority(80);
+      const double periodNs = g.periodS * 1e9;
+      uint64_t k = 0;
+      try {
+        while (k < g.plannedCalls && !stop.load(std::memory_order_relaxed) && !abort.load(std::memory_order_relaxed)) {
+          const uint64_t deadline = t0 + static_cast<uint64_t>(static_cast<double>(k) * periodNs);
+          sleepUntilNs(deadline);
+          const uint64_t wake = nowNs();
+          g.wakeLateness.record(wake > deadline ? wake - deadline : 0);
+          step(g, k);
+          const uint64_t end = nowNs();
+          if (static_cast<double>(end - deadline) > periodNs) ++g.deadlineMisses;
+          // After a stall, resume at the tick now due instead of bursting through the missed ones.
+          const uint64_t due = static_cast<uint64_t>(static_cast<double>(end - t0) / periodNs);
+          if (due > k + 1) {
+            g.skippedTicks += due - (k + 1);
+            g.deadlineMisses += due - (k + 1);
+            k = due;
+          } else {
+            ++k;
+          }
+        }
+      } catch (const std::exception& e) {
+        std::lock_guard lock(failureMutex);
+        if (!m_failure) m_failure = g.members.front().component->path() + " group: " + e.what();
+        abort = true;
+      }
+      g.wallSeconds = static_cast<double>(nowNs() - t0) * 1e-9;
+    });
+  }
+  for (auto& t : threads) t.join();
+  m_completed = !stop.load() && !m_failure;
+  double elapsed = 0;
+  for (const RateGroup& g : m_groups) elapsed = std::max(elapsed, g.wallSeconds);
+  m_simulatedTime = m_completed ? m_plan.duration : std::min(elapsed, m_plan.duration);
+}
+
+}  // namespace trephine

@@ -1,0 +1,79 @@
+#pragma once
+// Steps ticking components in rate groups.
+//
+// Virtual time (default): one thread runs every group's calls in due-time
+// order, t = k / rate; calls due at the same instant run highest rate first,
+// and within a group in document order. Nothing depends on the wall clock,
+// so a run is reproducible bit for bit.
+//
+// Real time: one thread per group, each paced to absolute deadlines
+// t0 + k / rate. A step that ends after the next deadline is a deadline miss;
+// after a stall the group skips the ticks it missed (counted as misses)
+// instead of bursting to catch up.
+//
+// The scheduler times every call (one clock read per call: the end of one
+// call is the start of the next). Components of one group share a thread;
+// data crosses groups only through channels.
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "framework/core/Component.h"
+#include "framework/core/Lifecycle.h"
+#include "framework/runtime/TimingHistogram.h"
+
+namespace trephine {
+
+struct GroupMember {
+  Component* component = nullptr;
+  TimingHistogram histogram;
+  std::vector<float> callUs;  // per-call duration (µs), preallocated to the planned calls
+  uint64_t calls = 0;
+  uint64_t overruns = 0;  // calls that alone took longer than the group period
+};
+
+struct RateGroup {
+  double rateHz = 0;
+  double periodS = 0;
+  uint64_t plannedCalls = 0;
+  std::vector<GroupMember> members;  // document order
+  TimingHistogram stepHistogram;     // whole group step
+  TimingHistogram wakeLateness;      // real time: wake-up time minus deadline
+  uint64_t calls = 0;
+  uint64_t deadlineMisses = 0;
+  uint64_t skippedTicks = 0;   // real time: ticks dropped after a stall
+  double wallSeconds = 0;      // real time: from first deadline to the end
+  bool realtimePriority = false;
+};
+
+class Scheduler {
+ public:
+  Scheduler(const std::vector<Component*>& components, const RunPlan& plan, EventLog* events);
+
+  // Runs until the planned duration is simulated or `stop` becomes true.
+  void run(const std::atomic<bool>& stop);
+
+  const std::vector<RateGroup>& groups() const { return m_groups; }
+  const RateGroup* group(double rateHz) const;
+  double simulatedTime() const { return m_simulatedTime; }  // s
+  bool completed() const { return m_completed; }
+  // Set when a component threw during a tick: "path: message".
+  const std::optional<std::string>& failure() const { return m_failure; }
+
+ private:
+  void runVirtual(const std::atomic<bool>& stop);
+  void runRealtime(const std::atomic<bool>& stop);
+  // Runs one step of `group` at call index k; returns its duration (ns).
+  uint64_t step(RateGroup& group, uint64_t k);
+
+  RunPlan m_plan;
+  EventLog* m_events;
+  std::vector<RateGroup> m_groups;  // highest rate first
+  double m_simulatedTime = 0;
+  bool m_completed = false;
+  std::optional<std::string> m_failure;
+};
+
+}  // namespace trephine

@@ -1,0 +1,180 @@
+#include "framework/runtime/Simulation.h"
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <set>
+
+#include "framework/runtime/Recorder.h"
+#include "framework/runtime/RunOutputs.h"
+#include "framework/scene/SceneLoader.h"
+
+namespace trephine {
+
+void registerCoreComponents(Registry& registry) {
+  PluginRegistrar registrar(registry, "core");
+  registrar.add<Recorder>("Recorder", "Samples another component's published values at its own rate into a CSV file");
+}
+
+namespace {
+
+// Depth-first over links: every component comes after the components it links to.
+// A link cycle falls back to document order for the components on it.
+std::vector<Component*> initialisationOrder(const std::vector<Component*>& components) {
+  std::vector<Component*> order;
+  std::set<const Component*> done, visiting;
+  std::function<void(Component*)> visit = [&](Component* c) {
+    if (done.count(c) || visiting.count(c)) return;
+    visiting.insert(c);
+    for (const BaseField* field : c->fields()) {
+      if (const auto* link = dynamic_cast<const BaseLink*>(field); link && link->boundComponent())
+        visit(link->boundComponent());
+    }
+    visiting.erase(c);
+    done.insert(c);
+    order.push_back(c);
+  };
+  for (Component* c : components) visit(c);
+  return order;
+}
+
+}  // namespace
+
+class Simulation::Context final : public InitContext {
+ public:
+  Context(Simulation& simulation, Diagnostics& diagnostics, const SimulationOptions& options)
+      : m_simulation(simulation), m_diagnostics(diagnostics), m_options(options) {}
+
+  void error(const Component& component, std::string message) override {
+    m_diagnostics.error(component.location(), component.typeName() + " '" + component.name() + "': " + message);
+  }
+  void error(const BaseField& field, std::string message) override {
+    m_diagnostics.error(field.location(), "invalid " + field.name() + ": " + message);
+  }
+  uint64_t seed() const override { return m_options.seed; }
+  bool isRealtime() const override { return m_options.realtime; }
+  ChannelHub& channels() override { return *m_simulation.m_channels; }
+  EventLog& events() override { return m_simulation.m_events; }
+  HapticFrameLog* claimHapticLog(const Component& component) override {
+    if (m_simulation.m_hapticLogOwner) {
+      error(component, "only one component per scene writes the haptic trace; " +
+                           m_simulation.m_hapticLogOwner->path() + " already does");
+      return nullptr;
+    }
+    m_simulation.m_hapticLogOwner = &component;
+    return &m_simulation.m_hapticLog;
+  }
+
+ private:
+  Simulation& m_simulation;
+  Diagnostics& m_diagnostics;
+  const SimulationOptions& m_options;
+};
+
+std::unique_ptr<Simulation> Simulation::fromFile(const std::filesystem::path& file, const SimulationOptions& options,
+                                                 Diagnostics& diagnostics) {
+  std::unique_ptr<Simulation> simulation(new Simulation());
+  simulation->m_plugins = std::make_unique<PluginLoader>();
+  simulation->m_registry = std::make_unique<Registry>();
+  registerCoreComponents(*simulation->m_registry);
+  SceneLoader loader(*simulation->m_registry, *simulation->m_plugins);
+  simulation->m_scene = loader.loadFile(file, diagnostics, options.overrides);
+  if (!simulation->m_scene) return nullptr;
+  return initialise(std::move(simulation), options, diagnostics);
+}
+
+std::unique_ptr<Simulation> Simulation::fromString(std::string_view xml, const std::string& fileName,
+                                                   const SimulationOptions& options, Diagnostics& diagnostics) {
+  std::unique_ptr<Simulation> simulation(new Simulation());
+  simulation->m_plugins = std::make_unique<PluginLoader>();
+  simulation->m_registry = std::make_unique<Registry>();
+  registerCoreComponents(*simulation->m_registry);
+  SceneLoader loader(*simulation->m_registry, *simulation->m_plugins);
+  simulation->m_scene = loader.loadString(xml, fileName, diagnostics, options.overrides);
+  if (!simulation->m_scene) return nullptr;
+  return initialise(std::move(simulation), options, diagnostics);
+}
+
+Simulation::~Simulation() = default;
+
+std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> simulation,
+                                                   const SimulationOptions& options, Diagnostics& diagnostics) {
+  Simulation& s = *simulation;
+  s.m_channels = std::make_unique<ChannelHub>();
+  Context context(s, diagnostics, options);
+  const std::vector<Component*> components = s.m_scene->components();
+
+  // Initialise link targets before the components that link to them (document
+  // order otherwise); a component that throws is reported at its element.
+  for (Component* c : initialisationOrder(components)) {
+    try {
+      c->init(context);
+    } catch (const std::exception& e) {
+      context.error(*c, e.what());
+    }
+  }
+  for (const std::string& channel : s.m_channels->unpublished())
+    diagnostics.error(s.m_scene->root().location(), "channel " + channel + " is read but nothing publishes it");
+  if (diagnostics.hasErrors()) return nullptr;
+
+  // The run's length: as asked, else the longest any component wants, else 1 s.
+  double duration = 0;
+  for (const Component* c : components) duration = std::max(duration, c->preferredDuration());
+  // Rounded to whole nanoseconds so that sums of path segments print cleanly (2.3, not 2.3000000000000003).
+  s.m_plan.duration = std::round(options.duration.value_or(duration > 0 ? duration : 1.0) * 1e9) / 1e9;
+  s.m_plan.realtime = options.realtime;
+  s.m_plan.seed = options.seed;
+  if (s.m_hapticLogOwner) s.m_hapticLog.reserve(s.m_plan.callsAt(s.m_hapticLogOwner->rateHz()) + 1);
+  for (Component* c : components) {
+    try {
+      c->prepare(s.m_plan);
+    } catch (const std::exception& e) {
+      context.error(*c, e.what());
+    }
+  }
+  if (diagnostics.hasErrors()) return nullptr;
+  s.m_scheduler = std::make_unique<Scheduler>(components, s.m_plan, &s.m_events);
+  return simulation;
+}
+
+void Simulation::run() {
+  std::atomic<bool> never{false};
+  run(never);
+}
+
+void Simulation::run(const std::atomic<bool>& stop) {
+  const auto start = std::chrono::steady_clock::now();
+  m_scheduler->run(stop);
+  m_wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m_ran = true;
+  m_complete = m_scheduler->completed() && !m_scheduler->failure();
+  if (m_scheduler->failure()) {
+    m_incompleteReason = "run-time error: " + *m_scheduler->failure();
+  } else if (!m_complete) {
+    m_incompleteReason = "interrupted";
+  } else {
+    m_incompleteReason.clear();
+  }
+}
+
+void Simulation::markInterrupted(std::string reason) {
+  m_complete = false;
+  m_incompleteReason = std::move(reason);
+}
+
+std::vector<std::string> Simulation::writeOutputs(const std::filesystem::path& directory, std::vector<std::string>* errors) {
+  std::filesystem::create_directories(directory);
+  FinishContext finish(directory, m_scheduler->simulatedTime());
+  for (Component* c : m_scene->components()) {
+    try {
+      c->finish(finish);
+    } catch (const std::exception& e) {
+      finish.error(*c, e.what());
+    }
+  }
+  std::vector<std::string> written = writeRunOutputs(*this, finish, directory);
+  if (errors) *errors = finish.errors();
+  return written;
+}
+
+}  // namespace trephine

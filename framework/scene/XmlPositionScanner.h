@@ -1,0 +1,42 @@
+#pragma once
+// A small pass over XML text that records where each start tag and each
+// attribute is (1-based line and column, columns counted in characters), and
+// where the first well-formedness problem is. The XML library reports lines
+// only; this gives the columns.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace trephine {
+
+struct TextPosition {
+  int line = 1;
+  int column = 1;
+};
+
+struct ScannedAttribute {
+  std::string name;
+  TextPosition nameAt;
+  TextPosition valueAt;
+};
+
+struct ScannedElement {
+  std::string tag;
+  TextPosition at;
+  std::vector<ScannedAttribute> attributes;
+};
+
+struct ScanProblem {
+  TextPosition at;
+  std::string message;
+};
+
+struct ScanResult {
+  std::vector<ScannedElement> elements;  // in document order
+  std::optional<ScanProblem> problem;    // first problem found, if any
+};
+
+ScanResult scanXmlPositions(std::string_view text);
+
+}  // namespace trephine

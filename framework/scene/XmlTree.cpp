@@ -1,0 +1,133 @@
+#include "framework/scene/XmlTree.h"
+
+#include <tinyxml2.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "framework/core/Strings.h"
+#include "framework/scene/XmlPositionScanner.h"
+
+namespace trephine {
+
+const XmlAttribute* XmlElement::attribute(std::string_view name) const {
+  for (const XmlAttribute& a : attributes)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+namespace {
+
+SourceLocation at(const std::string& file, TextPosition p) { return {file, p.line, p.column}; }
+
+struct Converter {
+  const std::string& fileName;
+  const std::filesystem::path& baseDirectory;
+  const std::vector<ScannedElement>& scanned;
+  Diagnostics& diagnostics;
+  size_t next = 0;  // index of the next scanned element, in document order
+
+  XmlElement convert(const tinyxml2::XMLElement& source) {
+    XmlElement element;
+    element.tag = source.Name();
+    element.baseDirectory = baseDirectory;
+    const ScannedElement* positions = next < scanned.size() && scanned[next].tag == element.tag ? &scanned[next] : nullptr;
+    ++next;
+    element.at = positions ? at(fileName, positions->at) : SourceLocation{fileName, source.GetLineNum(), 1};
+    for (const tinyxml2::XMLAttribute* a = source.FirstAttribute(); a; a = a->Next()) {
+      XmlAttribute attribute{a->Name(), a->Value(), element.at, element.at};
+      if (positions) {
+        for (const ScannedAttribute& s : positions->attributes) {
+          if (s.name == attribute.name) {
+            attribute.nameAt = at(fileName, s.nameAt);
+            attribute.valueAt = at(fileName, s.valueAt);
+            break;
+          }
+        }
+      }
+      element.attributes.push_back(std::move(attribute));
+    }
+    for (const tinyxml2::XMLNode* child = source.FirstChild(); child; child = child->NextSibling()) {
+      if (const auto* childElement = child->ToElement()) {
+        element.children.push_back(convert(*childElement));
+      } else if (const auto* text = child->ToText()) {
+        if (!trim(text->Value() ? text->Value() : "").empty())
+          diagnostics.error({fileName, text->GetLineNum(), 0},
+                            "unexpected text inside <" + element.tag + ">; scene content goes in attributes");
+      }
+    }
+    return element;
+  }
+};
+
+}  // namespace
+
+std::optional<XmlElement> parseXml(std::string_view text, const std::string& fileName,
+                                   const std::filesystem::path& baseDirectory, Diagnostics& diagnostics) {
+  const ScanResult scan = scanXmlPositions(text);
+  tinyxml2::XMLDocument document;
+  const tinyxml2::XMLError status = document.Parse(text.data(), text.size());
+  if (status != tinyxml2::XML_SUCCESS || scan.problem) {
+    if (scan.problem) {
+      diagnostics.error(at(fileName, scan.problem->at), "malformed XML: " + scan.problem->message);
+    } else {
+      const char* detail = document.ErrorStr();
+      diagnostics.error({fileName, document.ErrorLineNum(), 1},
+                        std::string("malformed XML: ") + (detail ? detail : tinyxml2::XMLDocument::ErrorIDToName(status)));
+    }
+    return std::nullopt;
+  }
+  const tinyxml2::XMLElement* root = document.RootElement();
+  if (!root) {
+    diagnostics.error({fileName, 1, 1}, "malformed XML: the file has no root element");
+    return std::nullopt;
+  }
+  if (const tinyxml2::XMLElement* second = root->NextSiblingElement()) {
+    size_t index = 0;
+    for (const tinyxml2::XMLElement* e = root; e != second; e = e->NextSiblingElement()) {
+      // count elements of the first root's subtree to find the second root's scanned position
+      std::vector<const tinyxml2::XMLElement*> stack{e};
+      while (!stack.empty()) {
+        const auto* top = stack.back();
+        stack.pop_back();
+        ++index;
+        for (const auto* c = top->LastChildElement(); c; c = c->PreviousSiblingElement()) stack.push_back(c);
+      }
+    }
+    const SourceLocation where = index < scan.elements.size() ? at(fileName, scan.elements[index].at)
+                                                              : SourceLocation{fileName, second->GetLineNum(), 1};
+    diagnostics.error(where, "a scene file has one root element; found a second one <" + std::string(second->Name()) + ">");
+    return std::nullopt;
+  }
+  Converter converter{fileName, baseDirectory, scan.elements, diagnostics};
+  return converter.convert(*root);
+}
+
+std::optional<XmlElement> readXmlFile(const std::filesystem::path& file, const SourceLocation& from,
+                                      Diagnostics& diagnostics) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) {
+    diagnostics.error(from, "scene file not found: " + file.string());
+    return std::nullopt;
+  }
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    diagnostics.error(from, "not a regular file: " + file.string());
+    return std::nullopt;
+  }
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec || size > kMaxSceneFileBytes) {
+    diagnostics.error(from, "scene file " + file.string() + " is larger than " +
+                                std::to_string(kMaxSceneFileBytes >> 20) + " MiB");
+    return std::nullopt;
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    diagnostics.error(from, "cannot read " + file.string());
+    return std::nullopt;
+  }
+  std::ostringstream content;
+  content << in.rdbuf();
+  return parseXml(content.str(), file.string(), file.parent_path(), diagnostics);
+}
+
+}  // namespace trephine

@@ -1,0 +1,74 @@
+#include "tests/support/TestSupport.h"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace trephine::test {
+
+std::filesystem::path sourceDir() { return TREPHINE_SOURCE_DIR; }
+std::filesystem::path programPath() { return TREPHINE_PROGRAM; }
+
+TempDir::TempDir(const std::string& prefix) {
+  std::random_device device;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    auto candidate = std::filesystem::temp_directory_path() / (prefix + "-" + std::to_string(device()));
+    if (std::filesystem::create_directory(candidate)) {
+      m_path = candidate;
+      return;
+    }
+  }
+  throw std::runtime_error("cannot create a temporary directory");
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(m_path, ec);
+}
+
+std::filesystem::path TempDir::write(const std::string& name, const std::string& text) const {
+  const auto file = m_path / name;
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+  return file;
+}
+
+std::unique_ptr<Simulation> loadScene(const std::string& xml, Diagnostics& diagnostics,
+                                      const SimulationOptions& options, const std::string& fileName) {
+  return Simulation::fromString(xml, fileName, options, diagnostics);
+}
+
+std::string messages(const Diagnostics& diagnostics) {
+  std::string s;
+  for (const Diagnostic& d : diagnostics.all()) s += d.str() + "\n";
+  return s;
+}
+
+int runProgram(const std::vector<std::string>& arguments, std::string* output, const std::string& environment) {
+  std::string command = environment.empty() ? "" : environment + " ";
+  command += "'" + programPath().string() + "'";
+  for (const std::string& a : arguments) command += " '" + a + "'";
+  command += " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buffer{};
+  std::string captured;
+  size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) captured.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  if (output) *output = captured;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string readFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace trephine::test

@@ -1,0 +1,44 @@
+#pragma once
+// Helpers shared by the tests: scenes from inline XML, temporary directories,
+// running the trephine program.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "framework/runtime/Simulation.h"
+
+namespace trephine::test {
+
+std::filesystem::path sourceDir();
+std::filesystem::path programPath();
+
+// A fresh empty directory under the system temp dir, removed when the object goes away.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& prefix = "trephine-test");
+  ~TempDir();
+  const std::filesystem::path& path() const { return m_path; }
+  std::filesystem::path operator/(const std::string& name) const { return m_path / name; }
+  // Writes `text` to `name` inside the directory and returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& text) const;
+
+ private:
+  std::filesystem::path m_path;
+};
+
+// Loads a scene from an XML string; on failure `diagnostics` holds the errors.
+std::unique_ptr<Simulation> loadScene(const std::string& xml, Diagnostics& diagnostics,
+                                      const SimulationOptions& options = {},
+                                      const std::string& fileName = "inline.xml");
+
+// All diagnostics as one string, one per line.
+std::string messages(const Diagnostics& diagnostics);
+
+// Runs `trephine` with arguments; returns the exit code and captures stdout+stderr.
+int runProgram(const std::vector<std::string>& arguments, std::string* output = nullptr,
+               const std::string& environment = "");
+
+std::string readFile(const std::filesystem::path& file);
+
+}  // namespace trephine::test

@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Plots of one run, made from the files `trephine run` writes.
+
+usage: tools/plot_run.py RUN_DIR
+
+Writes RUN_DIR/force.png (device and proxy height, force, penetration and
+change of force per frame over time, from trace.csv) and RUN_DIR/timings.png
+(per-call time of each ticking component, from timings.csv).
+"""
+import csv
+import math
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def plot_trace(run, rows):
+    t = [float(r["t"]) for r in rows]
+    force = [math.sqrt(sum(float(r[f"force_{a}"]) ** 2 for a in "xyz")) for r in rows]
+    steps = [0.0] + [
+        math.sqrt(sum((float(b[f"force_{a}"]) - float(a_[f"force_{a}"])) ** 2 for a in "xyz"))
+        for a_, b in zip(rows, rows[1:])
+    ]
+    fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True)
+    axes[0].plot(t, [float(r["device_z"]) for r in rows], label="device z")
+    axes[0].plot(t, [float(r["proxy_z"]) for r in rows], label="proxy z", linestyle="--")
+    axes[0].set_ylabel("height (mm)")
+    axes[0].legend(loc="upper right")
+    axes[1].plot(t, force, color="tab:red")
+    axes[1].set_ylabel("|F| (N)")
+    axes[2].plot(t, [float(r["penetration"]) for r in rows], color="tab:green")
+    axes[2].set_ylabel("penetration (mm)")
+    axes[3].plot(t, steps, color="tab:purple")
+    axes[3].set_ylabel("|ΔF| per frame (N)")
+    axes[3].set_xlabel("time (s)")
+    fig.suptitle(f"{run.name}: haptic trace")
+    fig.tight_layout()
+    fig.savefig(run / "force.png", dpi=110)
+    plt.close(fig)
+
+
+def plot_timings(run, rows):
+    series = defaultdict(lambda: ([], []))
+    for r in rows:
+        ts, us = series[r["component"]]
+        ts.append(float(r["t"]))
+        us.append(float(r["duration_us"]))
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for name, (ts, us) in series.items():
+        ax.plot(ts, us, label=name, linewidth=0.7)
+    ax.set_yscale("log")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("call time (µs)")
+    ax.legend(loc="upper right", fontsize="small")
+    ax.set_title(f"{run.name}: time per call")
+    fig.tight_layout()
+    fig.savefig(run / "timings.png", dpi=110)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    run = Path(sys.argv[1])
+    trace = read_csv(run / "trace.csv")
+    if trace:
+        plot_trace(run, trace)
+    timings = read_csv(run / "timings.csv")
+    if timings:
+        plot_timings(run, timings)
+    print(f"plots     {run}/force.png, {run}/timings.png")
+
+
+if __name__ == "__main__":
+    main()

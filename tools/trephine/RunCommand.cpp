@@ -1,0 +1,118 @@
+#include "tools/trephine/RunCommand.h"
+
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+
+#include "framework/core/Strings.h"
+#include "framework/runtime/RunOutputs.h"
+#include "framework/runtime/Simulation.h"
+
+namespace trephine::cli {
+
+namespace {
+
+std::atomic<bool> g_stopRequested{false};
+std::atomic<int> g_signal{0};
+
+extern "C" void onSignal(int signal) {
+  g_signal = signal;
+  g_stopRequested = true;
+}
+
+std::optional<SimulationOptions> readOptions(const Arguments& a, std::string& error) {
+  SimulationOptions options;
+  options.overrides = a.overrides;
+  options.realtime = a.has("--realtime");
+  if (auto d = a.get("--duration")) {
+    double seconds = 0;
+    if (FieldTraits<double>::parse(*d, seconds) || seconds <= 0) {
+      error = "--duration expects a positive number of seconds, got '" + *d + "'";
+      return std::nullopt;
+    }
+    options.duration = seconds;
+  }
+  if (auto s = a.get("--seed")) {
+    char* end = nullptr;
+    const unsigned long long seed = std::strtoull(s->c_str(), &end, 10);
+    if (s->empty() || *end != '\0' || (*s)[0] == '-') {
+      error = "--seed expects a non-negative integer, got '" + *s + "'";
+      return std::nullopt;
+    }
+    options.seed = seed;
+  }
+  return options;
+}
+
+}  // namespace
+
+int validateCommand(const Arguments& a) {
+  if (a.positional.size() != 1) {
+    std::cerr << "usage: trephine validate SCENE [--set path.field=value ...]\n";
+    return kUsage;
+  }
+  Diagnostics diagnostics;
+  SimulationOptions options;
+  options.overrides = a.overrides;
+  auto simulation = Simulation::fromFile(a.positional[0], options, diagnostics);
+  if (!simulation) {
+    diagnostics.print(std::cerr);
+    return kSceneError;
+  }
+  diagnostics.print(std::cerr);  // warnings, if any
+  std::cout << "ok\n";
+  return kOk;
+}
+
+int runCommand(const Arguments& a) {
+  if (a.positional.size() != 1) {
+    std::cerr << "usage: trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value ...]\n";
+    return kUsage;
+  }
+  std::string error;
+  const auto options = readOptions(a, error);
+  if (!options) {
+    std::cerr << "trephine: " << error << "\n";
+    return kUsage;
+  }
+  const std::filesystem::path scene = a.positional[0];
+  const std::filesystem::path out = a.get("--out").value_or("runs/" + scene.stem().string());
+
+  Diagnostics diagnostics;
+  auto simulation = Simulation::fromFile(scene, *options, diagnostics);
+  if (!simulation) {
+    diagnostics.print(std::cerr);
+    return kSceneError;
+  }
+  diagnostics.print(std::cerr);
+
+  // Ctrl-C stops the run between steps; everything measured so far is written.
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  simulation->run(g_stopRequested);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (g_signal != 0 && !simulation->complete())
+    simulation->markInterrupted(std::string("interrupted by ") + (g_signal == SIGINT ? "SIGINT" : "SIGTERM"));
+
+  std::vector<std::string> outputErrors;
+  std::vector<std::string> written;
+  try {
+    written = simulation->writeOutputs(out, &outputErrors);
+  } catch (const std::exception& e) {
+    std::cerr << "trephine: cannot write outputs to " << out.string() << ": " << e.what() << "\n";
+    return kRuntimeFailure;
+  }
+  if (!a.has("--quiet")) printRunSummary(*simulation, std::cout);
+  std::cout << "outputs   " << out.string() << "/ (";
+  for (size_t i = 0; i < written.size(); ++i) std::cout << (i ? ", " : "") << written[i];
+  std::cout << ")\n";
+  for (const std::string& e : outputErrors) std::cerr << "trephine: " << e << "\n";
+  if (!simulation->complete()) {
+    std::cerr << "trephine: run incomplete: " << simulation->incompleteReason() << "\n";
+    return kRuntimeFailure;
+  }
+  return outputErrors.empty() ? kOk : kRuntimeFailure;
+}
+
+}  // namespace trephine::cli

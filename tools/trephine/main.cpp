@@ -1,0 +1,76 @@
+// trephine: run, validate and document scenes.
+#include <iostream>
+#include <string>
+
+#include "tools/trephine/CommandLine.h"
+#include "tools/trephine/Reference.h"
+#include "tools/trephine/RunCommand.h"
+
+namespace {
+
+constexpr const char* kHelp = R"(trephine - haptic neurosurgery simulation framework
+
+usage:
+  trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value ...] [--quiet]
+      Run a scene (virtual time unless --realtime) and write summary.json,
+      trace.csv and timings.csv to DIR (default runs/<scene name>).
+  trephine validate SCENE [--set path.field=value ...]
+      Load and initialise a scene; print every error, or "ok".
+  trephine components [NAME] [--json | --markdown]
+      Document every component and field of every available plugin.
+  trephine --version | --help
+
+Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then the
+build's plugin directory, then <prefix>/lib/trephine/plugins.
+
+exit codes: 0 ok, 1 scene or input error, 2 usage, 3 run-time failure
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace trephine::cli;
+  if (argc < 2) {
+    std::cerr << kHelp;
+    return kUsage;
+  }
+  const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << kHelp;
+    return kOk;
+  }
+  if (command == "--version") {
+    std::cout << "trephine " << TREPHINE_VERSION << "\n";
+    return kOk;
+  }
+  Arguments arguments;
+  arguments.command = command;
+  std::optional<std::string> error;
+  if (command == "run") {
+    error = parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"}, {"--realtime", "--quiet"}, arguments);
+    if (!error) return runCommand(arguments);
+  } else if (command == "validate") {
+    error = parseArguments(argc, argv, {"--set"}, {}, arguments);
+    if (!error) return validateCommand(arguments);
+  } else if (command == "components") {
+    error = parseArguments(argc, argv, {}, {"--json", "--markdown"}, arguments);
+    if (!error) {
+      if (arguments.positional.size() > 1) {
+        std::cerr << "usage: trephine components [NAME] [--json | --markdown]\n";
+        return kUsage;
+      }
+      const ReferenceFormat format = arguments.has("--json")       ? ReferenceFormat::Json
+                                     : arguments.has("--markdown") ? ReferenceFormat::Markdown
+                                                                   : ReferenceFormat::Text;
+      std::string problem;
+      const bool ok = writeReference(std::cout, format, arguments.positional.empty() ? "" : arguments.positional[0], problem);
+      if (!problem.empty()) std::cerr << "trephine: " << problem << "\n";
+      return ok ? kOk : kSceneError;
+    }
+  } else {
+    std::cerr << "trephine: unknown command '" << command << "' (run, validate, components, --help, --version)\n";
+    return kUsage;
+  }
+  std::cerr << "trephine " << command << ": " << *error << "\n";
+  return kUsage;
+}
