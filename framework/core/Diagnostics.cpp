@@ -1,6 +1,8 @@
 #include "framework/core/Diagnostics.h"
 
+#include <algorithm>
 #include <ostream>
+#include <tuple>
 #include <sstream>
 
 namespace trephine {
@@ -31,7 +33,13 @@ void Diagnostics::note(const SourceLocation& where, std::string message) {
 }
 
 void Diagnostics::print(std::ostream& out) const {
-  for (const Diagnostic& d : m_items) out << d.str() << "\n";
+  // In file order, as a reader goes through the scene; the order found is kept for equal places.
+  std::vector<const Diagnostic*> sorted;
+  for (const Diagnostic& d : m_items) sorted.push_back(&d);
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Diagnostic* a, const Diagnostic* b) {
+    return std::tie(a->where.file, a->where.line, a->where.column) < std::tie(b->where.file, b->where.line, b->where.column);
+  });
+  for (const Diagnostic* d : sorted) out << d->str() << "\n";
   if (m_errorCount > 0) out << m_errorCount << (m_errorCount == 1 ? " error" : " errors") << "\n";
 }
 

@@ -20,7 +20,8 @@ void HapticDevice::tick(const TickContext& context) {
 
   const SampleVerdict verdict = m_filter.check(raw, d_maxSpeed.value(), context.dt);
   if (verdict != SampleVerdict::Accepted) {
-    // Hold the last valid pose; the velocity of a held pose is zero.
+    // Hold the whole last valid state (pose and velocity), so the force computed
+    // from it is held too instead of jumping when the damping term drops out.
     if (verdict == SampleVerdict::NonFinite) {
       ++m_rejectedNonFinite;
     } else {
@@ -28,7 +29,6 @@ void HapticDevice::tick(const TickContext& context) {
     }
     if (context.events)
       context.events->log(context.t, "device_rejected", verdict == SampleVerdict::NonFinite ? "non_finite" : "jump", this);
-    m_state.velocity.setZero();
     return;
   }
   const DeviceSample previous = m_filter.last();

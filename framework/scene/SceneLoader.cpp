@@ -178,7 +178,16 @@ struct SceneLoader::Build {
       Component& added = node.addComponent(std::move(component));
       if (!child.children.empty())
         diagnostics.error(child.children.front().at, "<" + child.tag + "> is a component and has no child elements");
-      assignAttributes(added, child, describe(added));
+      // The name first, so that messages about the other attributes name the component.
+      if (const XmlAttribute* name = child.attribute("name")) {
+        XmlElement nameOnly;
+        nameOnly.baseDirectory = child.baseDirectory;
+        nameOnly.attributes.push_back(*name);
+        assignAttributes(added, nameOnly, describe(added));
+      }
+      XmlElement others = child;
+      std::erase_if(others.attributes, [](const XmlAttribute& a) { return a.name == "name"; });
+      assignAttributes(added, others, describe(added));
       if (child.attribute("name")) checkName(added.name(), child);
       claimName(added.name(), child);
     }

@@ -69,7 +69,7 @@ bool writeReference(std::ostream& out, ReferenceFormat format, const std::string
           << (entry->plugin == "core" ? " (always available)" : "") << ".\n\n";
       out << "| field | type | default | unit | range | help |\n|---|---|---|---|---|---|\n";
       for (const BaseField* f : prototype->fields()) {
-        out << "| `" << f->name() << "`" << (f->info().required ? " (required)" : "") << " | " << markdownCell(f->typeName())
+        out << "| `" << f->name() << "`" << (f->info().required ? " (required)" : "") << " | `" << markdownCell(f->typeName()) << "`"
             << " | " << markdownCell(f->defaultText()) << " | " << f->info().unit << " | " << markdownCell(f->rangeText())
             << " | " << markdownCell(std::string(f->info().help)) << " |\n";
       }

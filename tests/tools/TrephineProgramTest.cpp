@@ -1,0 +1,103 @@
+// The trephine program's contract: commands, exit codes, outputs.
+#include <gtest/gtest.h>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+using test::runProgram;
+
+const std::string kPlaneTouch = (test::sourceDir() / "scenes/examples/plane_touch.xml").string();
+
+TEST(TrephineProgramTest, VersionAndHelpExitZero) {
+  std::string out;
+  EXPECT_EQ(runProgram({"--version"}, &out), 0);
+  EXPECT_TRUE(out.starts_with("trephine ")) << out;
+  EXPECT_EQ(runProgram({"--help"}, &out), 0);
+  EXPECT_NE(out.find("trephine run SCENE"), std::string::npos);
+}
+
+TEST(TrephineProgramTest, UsageErrorsExitTwo) {
+  std::string out;
+  EXPECT_EQ(runProgram({}, &out), 2);
+  EXPECT_EQ(runProgram({"fly"}, &out), 2);
+  EXPECT_EQ(runProgram({"run"}, &out), 2);
+  EXPECT_EQ(runProgram({"run", kPlaneTouch, "--duratoin", "1"}, &out), 2);
+  EXPECT_NE(out.find("unknown option '--duratoin', did you mean '--duration'?"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"run", kPlaneTouch, "--duration", "-1"}, &out), 2);
+  EXPECT_EQ(runProgram({"run", kPlaneTouch, "--seed", "x"}, &out), 2);
+}
+
+TEST(TrephineProgramTest, ValidateSaysOkOrListsEveryErrorWithExitOne) {
+  std::string out;
+  EXPECT_EQ(runProgram({"validate", kPlaneTouch}, &out), 0);
+  EXPECT_EQ(out, "ok\n");
+
+  test::TempDir dir;
+  const auto bad = dir.write("bad.xml", R"(<Node name="root">
+  <RequiredPlugin name="haptics"/>
+  <SphereTool name="burr" radius="-1" colour="red"/>
+</Node>
+)");
+  EXPECT_EQ(runProgram({"validate", bad.string()}, &out), 1);
+  EXPECT_NE(out.find(bad.string() + ":3:"), std::string::npos) << out;
+  EXPECT_NE(out.find("3 errors"), std::string::npos) << out;
+}
+
+TEST(TrephineProgramTest, SetOverridesGoThroughValidation) {
+  std::string out;
+  EXPECT_EQ(runProgram({"validate", kPlaneTouch, "--set", "tool/force.stiffness=1.5"}, &out), 0) << out;
+  EXPECT_EQ(runProgram({"validate", kPlaneTouch, "--set", "tool/force.stiffness=soft"}, &out), 1);
+  EXPECT_NE(out.find("--set tool/force.stiffness=soft: error: invalid stiffness"), std::string::npos) << out;
+}
+
+TEST(TrephineProgramTest, RunWritesTheContractedOutputs) {
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(runProgram({"run", kPlaneTouch, "--duration", "0.5", "--out", dir.path().string(), "--seed", "3"}, &out), 0)
+      << out;
+  for (const char* file : {"summary.json", "trace.csv", "timings.csv", "device-tool-device.csv", "recording-record-recorder.csv"})
+    EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  const std::string summary = test::readFile(dir / "summary.json");
+  EXPECT_NE(summary.find("\"seed\": 3"), std::string::npos);
+  EXPECT_NE(summary.find("\"sim_time_s\": 0.5"), std::string::npos);
+  EXPECT_NE(out.find("haptics"), std::string::npos) << "the human summary is printed";
+}
+
+TEST(TrephineProgramTest, SceneErrorsExitOneAndRunNothing) {
+  test::TempDir dir;
+  const auto bad = dir.write("bad.xml", "<Node name=\"root\"><Nothing/></Node>\n");
+  std::string out;
+  EXPECT_EQ(runProgram({"run", bad.string(), "--out", (dir / "out").string()}, &out), 1);
+  EXPECT_NE(out.find("unknown component 'Nothing'"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+TEST(TrephineProgramTest, ComponentsDocumentsEveryFieldOfEveryPlugin) {
+  std::string out;
+  ASSERT_EQ(runProgram({"components", "--json"}, &out), 0);
+  for (const char* text : {"\"ScriptedDevice\"", "\"ReplayDevice\"", "\"AnalyticPlane\"", "\"Recorder\"",
+                           "\"unit\": \"N/mm\"", "\"type\": \"link<HapticDevice>\""})
+    EXPECT_NE(out.find(text), std::string::npos) << text;
+  ASSERT_EQ(runProgram({"components", "SpringForce"}, &out), 0);
+  EXPECT_NE(out.find("stiffness : double = 2 N/mm"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"components", "SpringForse"}, &out), 1);
+  EXPECT_NE(out.find("did you mean 'SpringForce'?"), std::string::npos) << out;
+}
+
+TEST(TrephineProgramTest, TheSceneReferenceInTheDocsIsCurrent) {
+  std::string generated;
+  ASSERT_EQ(runProgram({"components", "--markdown"}, &generated, "env -u TREPHINE_PLUGIN_PATH"), 0);
+  const std::string doc = test::readFile(test::sourceDir() / "docs/scene-format.md");
+  const std::string begin = "<!-- BEGIN GENERATED COMPONENT REFERENCE -->\n";
+  const std::string end = "<!-- END GENERATED COMPONENT REFERENCE -->";
+  const size_t from = doc.find(begin), to = doc.find(end);
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(doc.substr(from + begin.size(), to - from - begin.size()), generated)
+      << "docs/scene-format.md is out of date: run tools/update-docs";
+}
+
+}  // namespace
+}  // namespace trephine
