@@ -25,12 +25,15 @@ std::vector<std::filesystem::path> defaultSearchPath() {
     while (std::getline(entries, entry, ':'))
       if (!entry.empty()) path.emplace_back(entry);
   }
-#ifdef TREPHINE_BUILD_PLUGIN_DIR
-  path.emplace_back(TREPHINE_BUILD_PLUGIN_DIR);
-#endif
+  // The program's own tree before the build directory compiled into this
+  // library: an installed program must load its installed plugins, not those
+  // of the build tree it was installed from. In the build tree both are the same.
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) path.push_back(self.parent_path().parent_path() / "lib" / "trephine" / "plugins");
+#ifdef TREPHINE_BUILD_PLUGIN_DIR
+  if (path.empty() || path.back() != TREPHINE_BUILD_PLUGIN_DIR) path.emplace_back(TREPHINE_BUILD_PLUGIN_DIR);
+#endif
   return path;
 }
 

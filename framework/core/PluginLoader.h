@@ -1,7 +1,7 @@
 #pragma once
 // Finds and loads plugins: shared libraries named trephine_<name>.so in the
 // directories of TREPHINE_PLUGIN_PATH (colon-separated, searched first), then
-// the build's plugin directory, then <program>/../lib/trephine/plugins.
+// <program>/../lib/trephine/plugins, then the build's plugin directory.
 // Libraries stay loaded for the life of the process: components created from
 // them may outlive any one scene.
 #include <filesystem>

@@ -38,6 +38,7 @@ struct SceneLoader::Build {
   SceneLoader& loader;
   Diagnostics& diagnostics;
   std::unique_ptr<Registry> catalog;  // every available plugin, for "add <RequiredPlugin>" hints
+  std::set<const BaseField*> rejected;  // fields whose given value was invalid
 
   // ---- includes -------------------------------------------------------------
   void expandIncludes(XmlElement& element, std::vector<std::filesystem::path>& chain) {
@@ -132,8 +133,10 @@ struct SceneLoader::Build {
         diagnostics.error(a.nameAt, "unknown attribute '" + a.name + "' of " + what + didYouMean(a.name, owner.fieldNames()));
         continue;
       }
-      if (auto error = field->assign(a.value, ParseContext{e.baseDirectory}, a.valueAt))
+      if (auto error = field->assign(a.value, ParseContext{e.baseDirectory}, a.valueAt)) {
         diagnostics.error(a.valueAt, "invalid " + a.name + " of " + what + ": " + *error);
+        rejected.insert(field);  // given but invalid: not also "missing"
+      }
     }
   }
 
@@ -292,7 +295,7 @@ struct SceneLoader::Build {
   void checkRequired(Node& node) {
     for (const auto& component : node.components()) {
       for (BaseField* field : component->fields()) {
-        if (field->info().required && !field->isSet())
+        if (field->info().required && !field->isSet() && !rejected.count(field))
           diagnostics.error(component->location(), "missing required " + field->name() + " of " + describe(*component) +
                                                        " (" + field->typeName() + ": " + std::string(field->info().help) + ")");
       }

@@ -6,9 +6,34 @@ namespace trephine {
 
 namespace {
 
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
+bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+
+// The XML library's name rule: a letter, '_', ':' or any non-ASCII byte first,
+// then also digits, '.' and '-'. Checked here so that a bad name is reported
+// with its column instead of as the library's bare error code.
+bool isNameStart(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u >= 0x80 || std::isalpha(u) || c == '_' || c == ':';
+}
+bool isValidXmlName(std::string_view name) {
+  if (name.empty() || !isNameStart(name.front())) return false;
+  for (char c : name)
+    if (!isNameStart(c) && !std::isdigit(static_cast<unsigned char>(c)) && c != '.' && c != '-') return false;
+  return true;
+}
+
+std::string describe(TextPosition p) {
+  return "line " + std::to_string(p.line) + ", column " + std::to_string(p.column);
+}
+
 class Cursor {
  public:
-  explicit Cursor(std::string_view text) : m_text(text) {}
+  explicit Cursor(std::string_view text) : m_text(text) {
+    // An editor shows no character for a byte order mark: it takes no column.
+    if (m_text.starts_with(kByteOrderMark)) m_index = kByteOrderMark.size();
+  }
 
   bool done() const { return m_index >= m_text.size(); }
   char peek(size_t ahead = 0) const {
@@ -31,26 +56,27 @@ class Cursor {
     for (size_t i = 0; i < n; ++i) advance();
   }
   // Moves past the next occurrence of `terminator`; false at end of text.
-  bool skipPast(std::string_view terminator) {
+  // `blank` tells whether everything skipped before it was white space.
+  bool skipPast(std::string_view terminator, bool* blank = nullptr) {
+    if (blank) *blank = true;
     while (!done()) {
       if (startsWith(terminator)) {
         advance(terminator.size());
         return true;
       }
+      if (blank && !isSpace(peek())) *blank = false;
       advance();
     }
     return false;
   }
   void skipSpace() {
-    while (!done() && std::isspace(static_cast<unsigned char>(peek()))) advance();
+    while (!done() && isSpace(peek())) advance();
   }
   std::string readName() {
     std::string name;
     while (!done()) {
       const char c = peek();
-      if (std::isspace(static_cast<unsigned char>(c)) || c == '/' || c == '>' || c == '=' || c == '<' ||
-          c == '"' || c == '\'')
-        break;
+      if (isSpace(c) || c == '/' || c == '>' || c == '=' || c == '<' || c == '"' || c == '\'') break;
       name += c;
       advance();
     }
@@ -68,118 +94,193 @@ struct OpenElement {
   TextPosition at;
 };
 
-}  // namespace
+class Scanner {
+ public:
+  explicit Scanner(std::string_view text) : m_text(text), m_cursor(text) {}
 
-ScanResult scanXmlPositions(std::string_view text) {
-  ScanResult result;
-  Cursor cursor(text);
-  std::vector<OpenElement> open;
-  const auto fail = [&](TextPosition at, std::string message) {
-    if (!result.problem) result.problem = ScanProblem{at, std::move(message)};
-  };
-
-  while (!cursor.done() && !result.problem) {
-    if (cursor.peek() != '<') {
-      cursor.advance();
-      continue;
+  ScanResult run() {
+    // The XML library stops reading at a NUL byte, as if the file ended there.
+    if (const size_t nul = m_text.find('\0'); nul != std::string_view::npos) {
+      Cursor before(m_text.substr(0, nul));
+      while (!before.done()) before.advance();
+      fail(before.position(), "NUL byte in the file (is it a text file?)");
+      return std::move(m_result);
     }
-    const TextPosition start = cursor.position();
-    if (cursor.startsWith("<!--")) {
-      if (!cursor.skipPast("-->")) fail(start, "comment is not closed with '-->'");
-    } else if (cursor.startsWith("<![CDATA[")) {
-      if (!cursor.skipPast("]]>")) fail(start, "CDATA section is not closed with ']]>'");
-    } else if (cursor.startsWith("<?")) {
-      if (!cursor.skipPast("?>")) fail(start, "processing instruction is not closed with '?>'");
-    } else if (cursor.startsWith("<!")) {
-      // DOCTYPE, possibly with an internal subset in brackets.
-      int depth = 0;
-      cursor.advance(2);
-      while (!cursor.done() && !(cursor.peek() == '>' && depth == 0)) {
-        if (cursor.peek() == '[') ++depth;
-        if (cursor.peek() == ']') --depth;
-        cursor.advance();
-      }
-      if (cursor.done()) fail(start, "declaration is not closed with '>'");
-      cursor.advance();
-    } else if (cursor.startsWith("</")) {
-      cursor.advance(2);
-      const std::string tag = cursor.readName();
-      if (open.empty()) {
-        fail(start, "end tag </" + tag + "> has no matching start tag");
-      } else if (open.back().tag != tag) {
-        fail(start, "end tag </" + tag + "> does not match <" + open.back().tag + "> opened at line " +
-                        std::to_string(open.back().at.line) + ", column " + std::to_string(open.back().at.column));
+    while (!m_cursor.done() && !m_result.problem) {
+      if (m_cursor.peek() == '<') {
+        markup();
       } else {
-        open.pop_back();
+        characterData();
       }
-      cursor.skipSpace();
-      if (!result.problem && cursor.peek() != '>') fail(cursor.position(), "expected '>' to close </" + tag + ">");
-      cursor.advance();
+    }
+    if (!m_result.problem && !m_open.empty())
+      fail(m_open.back().at, "element <" + m_open.back().tag + "> is never closed");
+    if (!m_result.problem && m_result.elements.empty()) fail({}, "the file has no root element");
+    return std::move(m_result);
+  }
+
+ private:
+  void fail(TextPosition at, std::string message) {
+    if (!m_result.problem) m_result.problem = ScanProblem{at, std::move(message)};
+  }
+
+  // Text between markup: only white space is allowed outside the root element.
+  void characterData() {
+    if (isSpace(m_cursor.peek())) {
+      m_cursor.advance();
+      return;
+    }
+    if (m_open.empty()) {
+      fail(m_cursor.position(), "text outside the root element");
+      return;
+    }
+    m_result.texts.push_back(m_cursor.position());
+    while (!m_cursor.done() && m_cursor.peek() != '<') m_cursor.advance();
+  }
+
+  void markup() {
+    const TextPosition start = m_cursor.position();
+    if (m_cursor.startsWith("<!--")) {
+      if (!m_cursor.skipPast("-->")) fail(start, "comment is not closed with '-->'");
+    } else if (m_cursor.startsWith("<![CDATA[")) {
+      bool blank = true;
+      if (!m_cursor.skipPast("]]>", &blank)) fail(start, "CDATA section is not closed with ']]>'");
+      if (m_open.empty()) fail(start, "CDATA section outside the root element");
+      if (!blank) m_result.texts.push_back(start);
+    } else if (m_cursor.startsWith("<?")) {
+      if (!m_cursor.skipPast("?>")) fail(start, "processing instruction is not closed with '?>'");
+    } else if (m_cursor.startsWith("<!")) {
+      declaration(start);
+    } else if (m_cursor.startsWith("</")) {
+      endTag(start);
     } else {
-      cursor.advance();
-      ScannedElement element;
-      element.at = start;
-      element.tag = cursor.readName();
-      if (element.tag.empty()) {
-        fail(cursor.position(), "expected an element name after '<'");
-        break;
-      }
-      bool closed = false;
-      while (!cursor.done() && !result.problem) {
-        cursor.skipSpace();
-        if (cursor.startsWith("/>")) {
-          cursor.advance(2);
-          closed = true;
-          break;
-        }
-        if (cursor.peek() == '>') {
-          cursor.advance();
-          open.push_back({element.tag, start});
-          closed = true;
-          break;
-        }
-        ScannedAttribute attribute;
-        attribute.nameAt = cursor.position();
-        attribute.name = cursor.readName();
-        if (attribute.name.empty()) {
-          fail(cursor.position(), std::string("unexpected '") + cursor.peek() + "' in <" + element.tag + ">");
-          break;
-        }
-        cursor.skipSpace();
-        if (cursor.peek() != '=') {
-          fail(cursor.position(), "expected '=' after attribute '" + attribute.name + "'");
-          break;
-        }
-        cursor.advance();
-        cursor.skipSpace();
-        const char quote = cursor.peek();
-        if (quote != '"' && quote != '\'') {
-          fail(cursor.position(), "expected a quoted value for attribute '" + attribute.name + "'");
-          break;
-        }
-        cursor.advance();
-        attribute.valueAt = cursor.position();
-        while (!cursor.done() && cursor.peek() != quote) {
-          if (cursor.peek() == '<') {
-            fail(cursor.position(), "'<' is not allowed in the value of attribute '" + attribute.name + "'");
-            break;
-          }
-          cursor.advance();
-        }
-        if (cursor.done()) {
-          fail(attribute.valueAt, "value of attribute '" + attribute.name + "' is not closed");
-          break;
-        }
-        cursor.advance();  // closing quote
-        element.attributes.push_back(std::move(attribute));
-      }
-      if (!closed && !result.problem) fail(start, "start tag <" + element.tag + "> is not closed with '>'");
-      result.elements.push_back(std::move(element));
+      startTag(start);
     }
   }
-  if (!result.problem && !open.empty())
-    fail(open.back().at, "element <" + open.back().tag + "> is never closed");
-  return result;
-}
+
+  // DOCTYPE, possibly with an internal subset in brackets.
+  void declaration(TextPosition start) {
+    int depth = 0;
+    m_cursor.advance(2);
+    while (!m_cursor.done() && !(m_cursor.peek() == '>' && depth == 0)) {
+      if (m_cursor.peek() == '[') ++depth;
+      if (m_cursor.peek() == ']') --depth;
+      m_cursor.advance();
+    }
+    if (m_cursor.done()) fail(start, "declaration is not closed with '>'");
+    m_cursor.advance();
+  }
+
+  void endTag(TextPosition start) {
+    m_cursor.advance(2);
+    const std::string tag = m_cursor.readName();
+    if (tag.empty()) {
+      fail(m_cursor.position(), "expected an element name right after '</'");
+    } else if (m_open.empty()) {
+      fail(start, "end tag </" + tag + "> has no matching start tag");
+    } else if (m_open.back().tag != tag) {
+      fail(start, "end tag </" + tag + "> does not match <" + m_open.back().tag + "> opened at " +
+                      describe(m_open.back().at));
+    } else {
+      m_open.pop_back();
+    }
+    m_cursor.skipSpace();
+    if (!m_result.problem && m_cursor.peek() != '>') fail(m_cursor.position(), "expected '>' to close </" + tag + ">");
+    m_cursor.advance();
+  }
+
+  void startTag(TextPosition start) {
+    m_cursor.advance();
+    ScannedElement element;
+    element.at = start;
+    const TextPosition nameAt = m_cursor.position();
+    element.tag = m_cursor.readName();
+    if (element.tag.empty()) {
+      fail(nameAt, "expected an element name after '<'");
+      return;
+    }
+    if (!isValidXmlName(element.tag)) {
+      fail(nameAt, "'" + element.tag + "' is not a valid element name (names start with a letter or '_')");
+      return;
+    }
+    bool closed = false;
+    while (!m_cursor.done() && !m_result.problem) {
+      m_cursor.skipSpace();
+      if (m_cursor.startsWith("/>")) {
+        m_cursor.advance(2);
+        closed = true;
+        break;
+      }
+      if (m_cursor.peek() == '>') {
+        m_cursor.advance();
+        m_open.push_back({element.tag, start});
+        closed = true;
+        break;
+      }
+      if (auto attribute = readAttribute(element)) element.attributes.push_back(std::move(*attribute));
+    }
+    if (!closed && !m_result.problem) fail(start, "start tag <" + element.tag + "> is not closed with '>'");
+    m_result.elements.push_back(std::move(element));
+  }
+
+  std::optional<ScannedAttribute> readAttribute(const ScannedElement& element) {
+    ScannedAttribute attribute;
+    attribute.nameAt = m_cursor.position();
+    attribute.name = m_cursor.readName();
+    if (attribute.name.empty()) {
+      fail(m_cursor.position(), std::string("unexpected '") + m_cursor.peek() + "' in <" + element.tag + ">");
+      return std::nullopt;
+    }
+    if (!isValidXmlName(attribute.name)) {
+      fail(attribute.nameAt, "'" + attribute.name + "' is not a valid attribute name (names start with a letter or '_')");
+      return std::nullopt;
+    }
+    for (const ScannedAttribute& earlier : element.attributes) {
+      if (earlier.name == attribute.name) {
+        fail(attribute.nameAt, "attribute '" + attribute.name + "' is given twice in <" + element.tag +
+                                   "> (first at " + describe(earlier.nameAt) + ")");
+        return std::nullopt;
+      }
+    }
+    m_cursor.skipSpace();
+    if (m_cursor.peek() != '=') {
+      fail(m_cursor.position(), "expected '=' after attribute '" + attribute.name + "'");
+      return std::nullopt;
+    }
+    m_cursor.advance();
+    m_cursor.skipSpace();
+    const char quote = m_cursor.peek();
+    if (quote != '"' && quote != '\'') {
+      fail(m_cursor.position(), "expected a quoted value for attribute '" + attribute.name + "'");
+      return std::nullopt;
+    }
+    m_cursor.advance();
+    attribute.valueAt = m_cursor.position();
+    while (!m_cursor.done() && m_cursor.peek() != quote) {
+      if (m_cursor.peek() == '<') {
+        // Most often the closing quote is missing, so the value runs into the next tag.
+        fail(attribute.valueAt, "value of attribute '" + attribute.name + "' is not closed before the '<' at " +
+                                    describe(m_cursor.position()) + " (a value cannot contain '<'; write &lt;)");
+        return std::nullopt;
+      }
+      m_cursor.advance();
+    }
+    if (m_cursor.done()) {
+      fail(attribute.valueAt, "value of attribute '" + attribute.name + "' is not closed");
+      return std::nullopt;
+    }
+    m_cursor.advance();  // closing quote
+    return attribute;
+  }
+
+  std::string_view m_text;
+  Cursor m_cursor;
+  ScanResult m_result;
+  std::vector<OpenElement> m_open;
+};
+
+}  // namespace
+
+ScanResult scanXmlPositions(std::string_view text) { return Scanner(text).run(); }
 
 }  // namespace trephine

@@ -1,8 +1,10 @@
 #pragma once
-// A small pass over XML text that records where each start tag and each
-// attribute is (1-based line and column, columns counted in characters), and
-// where the first well-formedness problem is. The XML library reports lines
-// only; this gives the columns.
+// A small pass over XML text that records where each start tag, each
+// attribute and each run of text is (1-based line and column, columns counted
+// in characters, a tab counting as one), and where the first well-formedness
+// problem is. The XML library reports lines only; this gives the columns. It
+// also rejects what the library would accept silently or report without a
+// position: text outside the root element, repeated attributes, NUL bytes.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,7 +36,10 @@ struct ScanProblem {
 
 struct ScanResult {
   std::vector<ScannedElement> elements;  // in document order
-  std::optional<ScanProblem> problem;    // first problem found, if any
+  // First non-blank character of each run of character data inside an
+  // element, and the '<' of each non-blank CDATA section, in document order.
+  std::vector<TextPosition> texts;
+  std::optional<ScanProblem> problem;  // first problem found, if any
 };
 
 ScanResult scanXmlPositions(std::string_view text);

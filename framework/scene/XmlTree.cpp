@@ -2,8 +2,9 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
+#include <array>
 #include <fstream>
-#include <sstream>
 
 #include "framework/core/Strings.h"
 #include "framework/scene/XmlPositionScanner.h"
@@ -24,8 +25,23 @@ struct Converter {
   const std::string& fileName;
   const std::filesystem::path& baseDirectory;
   const std::vector<ScannedElement>& scanned;
+  const std::vector<TextPosition>& texts;
   Diagnostics& diagnostics;
-  size_t next = 0;  // index of the next scanned element, in document order
+  size_t next = 0;      // index of the next scanned element, in document order
+  size_t nextText = 0;  // index of the next scanned text run
+
+  // The scanned run of text the library reports on `line` (it gives the line
+  // of the first non-blank character). Runs that decode to blanks ("&#32;")
+  // have no text node, so unmatched runs are skipped.
+  SourceLocation textAt(int line) {
+    for (size_t i = nextText; i < texts.size(); ++i) {
+      if (texts[i].line == line) {
+        nextText = i + 1;
+        return at(fileName, texts[i]);
+      }
+    }
+    return {fileName, line, 1};
+  }
 
   XmlElement convert(const tinyxml2::XMLElement& source) {
     XmlElement element;
@@ -52,7 +68,7 @@ struct Converter {
         element.children.push_back(convert(*childElement));
       } else if (const auto* text = child->ToText()) {
         if (!trim(text->Value() ? text->Value() : "").empty())
-          diagnostics.error({fileName, text->GetLineNum(), 0},
+          diagnostics.error(textAt(text->GetLineNum()),
                             "unexpected text inside <" + element.tag + ">; scene content goes in attributes");
       }
     }
@@ -71,9 +87,9 @@ std::optional<XmlElement> parseXml(std::string_view text, const std::string& fil
     if (scan.problem) {
       diagnostics.error(at(fileName, scan.problem->at), "malformed XML: " + scan.problem->message);
     } else {
-      const char* detail = document.ErrorStr();
-      diagnostics.error({fileName, document.ErrorLineNum(), 1},
-                        std::string("malformed XML: ") + (detail ? detail : tinyxml2::XMLDocument::ErrorIDToName(status)));
+      // Only what the scanner does not check ends here; the library knows the line only.
+      diagnostics.error({fileName, std::max(1, document.ErrorLineNum()), 1},
+                        std::string("malformed XML on this line (") + tinyxml2::XMLDocument::ErrorIDToName(status) + ")");
     }
     return std::nullopt;
   }
@@ -99,7 +115,7 @@ std::optional<XmlElement> parseXml(std::string_view text, const std::string& fil
     diagnostics.error(where, "a scene file has one root element; found a second one <" + std::string(second->Name()) + ">");
     return std::nullopt;
   }
-  Converter converter{fileName, baseDirectory, scan.elements, diagnostics};
+  Converter converter{fileName, baseDirectory, scan.elements, scan.texts, diagnostics};
   return converter.convert(*root);
 }
 
@@ -114,20 +130,34 @@ std::optional<XmlElement> readXmlFile(const std::filesystem::path& file, const S
     diagnostics.error(from, "not a regular file: " + file.string());
     return std::nullopt;
   }
+  const std::string tooLarge =
+      "scene file " + file.string() + " is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB";
   const auto size = std::filesystem::file_size(file, ec);
-  if (ec || size > kMaxSceneFileBytes) {
-    diagnostics.error(from, "scene file " + file.string() + " is larger than " +
-                                std::to_string(kMaxSceneFileBytes >> 20) + " MiB");
+  if (!ec && size > kMaxSceneFileBytes) {
+    diagnostics.error(from, tooLarge);
     return std::nullopt;
   }
   std::ifstream in(file, std::ios::binary);
-  if (!in) {
+  if (ec || !in) {
     diagnostics.error(from, "cannot read " + file.string());
     return std::nullopt;
   }
-  std::ostringstream content;
-  content << in.rdbuf();
-  return parseXml(content.str(), file.string(), file.parent_path(), diagnostics);
+  // The size is read as it goes too: files such as /proc/self/pagemap say 0
+  // bytes and never end.
+  std::string content;
+  std::array<char, 64 * 1024> buffer;
+  while (in.read(buffer.data(), buffer.size()) || in.gcount() > 0) {
+    content.append(buffer.data(), static_cast<size_t>(in.gcount()));
+    if (content.size() > kMaxSceneFileBytes) {
+      diagnostics.error(from, tooLarge);
+      return std::nullopt;
+    }
+  }
+  if (in.bad()) {
+    diagnostics.error(from, "cannot read " + file.string());
+    return std::nullopt;
+  }
+  return parseXml(content, file.string(), file.parent_path(), diagnostics);
 }
 
 }  // namespace trephine

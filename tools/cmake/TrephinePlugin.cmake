@@ -1,11 +1,12 @@
-# trephine_add_plugin(<name> SOURCES <files...> [LINK <targets...>])
+# trephine_add_plugin(<name> SOURCES <files...> [LINK <targets...>]
+#                     [OUTPUT_DIRECTORY <dir>] [NO_INSTALL])
 #
 # Builds a Trephine plugin: a shared library named trephine_<name>.so that
 # exports one registration function, `trephine_register_plugin`. A scene
 # loads it with <RequiredPlugin name="<name>"/>. Used by the plugins of this
 # project and, through the exported package, by plugins built out of tree.
 function(trephine_add_plugin name)
-  cmake_parse_arguments(ARG "" "OUTPUT_DIRECTORY" "SOURCES;LINK" ${ARGN})
+  cmake_parse_arguments(ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES;LINK" ${ARGN})
   set(target trephine_plugin_${name})
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE Trephine::framework ${ARG_LINK})
@@ -19,7 +20,7 @@ function(trephine_add_plugin name)
   elseif(DEFINED TREPHINE_PLUGIN_OUTPUT_DIR)
     set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${TREPHINE_PLUGIN_OUTPUT_DIR})
   endif()
-  if(DEFINED TREPHINE_PLUGIN_INSTALL_DIR AND PROJECT_NAME STREQUAL "Trephine")
+  if(NOT ARG_NO_INSTALL AND DEFINED TREPHINE_PLUGIN_INSTALL_DIR AND PROJECT_NAME STREQUAL "Trephine")
     install(TARGETS ${target} LIBRARY DESTINATION ${TREPHINE_PLUGIN_INSTALL_DIR})
   endif()
 endfunction()

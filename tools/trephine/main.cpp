@@ -20,8 +20,8 @@ usage:
       Document every component and field of every available plugin.
   trephine --version | --help
 
-Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then the
-build's plugin directory, then <prefix>/lib/trephine/plugins.
+Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
+<prefix>/lib/trephine/plugins, then the build's plugin directory.
 
 exit codes: 0 ok, 1 scene or input error, 2 usage, 3 run-time failure
 )";

@@ -1,0 +1,139 @@
+// Scripted paths reach what they promise on any target geometry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+constexpr double kRadius = 2.5;  // mm, sphere tool radius in every scene here
+
+std::string scene(const std::string& deviceAttributes, const std::string& planeAttributes = "") {
+  return R"(<Node name="root">
+  <RequiredPlugin name="analytic"/>
+  <RequiredPlugin name="haptics"/>
+  <AnalyticPlane name="plane" )" + planeAttributes + R"(/>
+  <ScriptedDevice name="device" target="@plane" tipOffset="2.5" )" + deviceAttributes + R"(/>
+  <SphereTool name="burr" radius="2.5" device="@device"/>
+  <SpringForce name="force" tool="@burr" target="@plane" rate="1000"/>
+</Node>)";
+}
+
+std::unique_ptr<Simulation> run(const std::string& xml, uint64_t seed = 0) {
+  Diagnostics d;
+  SimulationOptions options;
+  options.seed = seed;
+  auto simulation = test::loadScene(xml, d, options);
+  EXPECT_TRUE(simulation) << test::messages(d);
+  if (simulation) simulation->run();
+  return simulation;
+}
+
+// Number of separate stretches of frames in contact.
+int contactEpisodes(const HapticFrameLog& log) {
+  int episodes = 0;
+  for (size_t i = 0; i < log.size(); ++i)
+    if (log[i].contacts > 0 && (i == 0 || log[i - 1].contacts == 0)) ++episodes;
+  return episodes;
+}
+
+TEST(ScriptedDeviceTest, ApproachPressSlidePressesTheToolToItsDepthAndLeaves) {
+  auto simulation = run(scene(R"(path="approach-press-slide" depth="1.5" slideDistance="10" speed="20")"));
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  EXPECT_NEAR(log.stats().penetrationMax, 1.5, 1e-9);
+  EXPECT_EQ(contactEpisodes(log), 1);
+  EXPECT_EQ(log[0].contacts, 0) << "starts off the surface";
+  EXPECT_EQ(log[log.size() - 1].contacts, 0) << "ends off the surface";
+  // Slid 10 mm along the surface while pressed.
+  double minX = 1e9, maxX = -1e9;
+  for (size_t i = 0; i < log.size(); ++i)
+    if (log[i].contacts) minX = std::min(minX, log[i].device.x()), maxX = std::max(maxX, log[i].device.x());
+  EXPECT_NEAR(maxX - minX, 10.0, 1e-6);
+}
+
+TEST(ScriptedDeviceTest, AimsAtATiltedSurfaceAlongTheGivenDirection) {
+  auto simulation = run(scene(R"(path="approach-press-slide" depth="1" direction="0 -1 -1")",
+                              R"(point="5 5 5" normal="0 1 1")"));
+  ASSERT_TRUE(simulation);
+  EXPECT_NEAR(simulation->hapticLog().stats().penetrationMax, 1.0, 1e-9);
+}
+
+TEST(ScriptedDeviceTest, DrillInFeedsAtTheFeedSpeed) {
+  auto simulation = run(scene(R"(path="drill-in" depth="2" feedSpeed="4")"));
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  size_t firstContact = 0, deepest = 0;
+  for (size_t i = 0; i < log.size(); ++i) {
+    if (!firstContact && log[i].contacts) firstContact = i;
+    if (log[i].penetration > log[deepest].penetration) deepest = i;
+  }
+  EXPECT_NEAR(log[deepest].penetration, 2.0, 1e-9);
+  EXPECT_NEAR(log[deepest].t - log[firstContact].t, 2.0 / 4.0, 0.002) << "depth / feed speed";
+}
+
+TEST(ScriptedDeviceTest, CircleKeepsItsRadiusAroundTheAimPoint) {
+  auto simulation = run(scene(R"(path="circle" radius="4" depth="0.5" turns="1" period="1" center="10 0 0")"));
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  int pressedFrames = 0;
+  for (size_t i = 0; i < log.size(); ++i) {
+    if (std::abs(log[i].penetration - 0.5) > 1e-9) continue;
+    ++pressedFrames;
+    EXPECT_NEAR(std::hypot(log[i].device.x() - 10.0, log[i].device.y()), 4.0, 1e-9);
+  }
+  EXPECT_GE(pressedFrames, 1000) << "one turn of one second at full depth";
+}
+
+TEST(ScriptedDeviceTest, RandomWalkIsSeededAndStaysWithinItsDepths) {
+  const std::string xml = scene(R"(path="random-walk" radius="5" depth="2" walkDuration="3")");
+  auto a = run(xml, 1), b = run(xml, 1), c = run(xml, 2);
+  ASSERT_TRUE(a && b && c);
+  EXPECT_EQ(a->hapticLog()[1500].device, b->hapticLog()[1500].device);
+  EXPECT_NE(a->hapticLog()[1500].device, c->hapticLog()[1500].device);
+  EXPECT_LE(a->hapticLog().stats().penetrationMax, 2.0 + 1e-9);
+  EXPECT_GT(a->hapticLog().stats().contactFrames, 0u);
+  EXPECT_LT(a->hapticLog().stats().contactFrames, a->hapticLog().size()) << "slight and strong contacts, and none";
+}
+
+TEST(ScriptedDeviceTest, PokesTouchTheSurfaceCountTimes) {
+  auto simulation = run(scene(R"(path="pokes" count="7" radius="3" depth="1" lift="2")"));
+  ASSERT_TRUE(simulation);
+  EXPECT_EQ(contactEpisodes(simulation->hapticLog()), 7);
+  EXPECT_NEAR(simulation->hapticLog().stats().penetrationMax, 1.0, 1e-9);
+}
+
+TEST(ScriptedDeviceTest, WaypointsAreFollowedExactlyAtTheirTimes) {
+  auto simulation = run(R"(<Node name="root">
+  <RequiredPlugin name="haptics"/>
+  <ScriptedDevice name="device" path="waypoints" waypoints="0 0 0 10  0.5 5 0 10  1.0 5 5 0" rate="1000"/>
+</Node>)");
+  ASSERT_TRUE(simulation);
+  EXPECT_DOUBLE_EQ(simulation->plan().duration, 1.0);
+}
+
+TEST(ScriptedDeviceTest, ReportsAnApproachThatMissesTheTarget) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(scene(R"(path="approach-press-slide" direction="1 0 0" center="0 0 10")"), d));
+  EXPECT_NE(test::messages(d).find("inline.xml:5:3: error: ScriptedDevice 'device': the approach ray through 0 0 10 "
+                                   "along 1 0 0 misses /plane"),
+            std::string::npos)
+      << test::messages(d);
+}
+
+TEST(ScriptedDeviceTest, ReportsMalformedWaypoints) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="haptics"/>
+  <ScriptedDevice name="device" path="waypoints" waypoints="0 0 0 10 1 2"/>
+</Node>)",
+                               d));
+  EXPECT_NE(test::messages(d).find("inline.xml:3:61: error: invalid waypoints: path=waypoints needs groups of four"),
+            std::string::npos)
+      << test::messages(d);
+}
+
+}  // namespace
+}  // namespace trephine
