@@ -31,7 +31,8 @@ std::optional<std::string> closestMatch(std::string_view word, const std::vector
   size_t bestDistance = limit + 1;
   for (const std::string& candidate : candidates) {
     const size_t d = editDistance(word, candidate);
-    if (d < bestDistance) {
+    // Never a change of every letter: "x" is no typo of "a", nor "ab" of "xy".
+    if (d < bestDistance && d < word.size()) {
       bestDistance = d;
       best = candidate;
     }

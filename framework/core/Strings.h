@@ -11,7 +11,7 @@ namespace trephine {
 size_t editDistance(std::string_view a, std::string_view b);
 
 // The candidate closest to `word` if it is close enough to be a likely typo
-// (distance at most max(2, |word|/3)), else nothing.
+// (distance at most max(2, |word|/3) and less than |word|), else nothing.
 std::optional<std::string> closestMatch(std::string_view word, const std::vector<std::string>& candidates);
 
 // ", did you mean 'x'?" or "" when nothing is close.

@@ -200,6 +200,16 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
         << std::setprecision(2) << std::setw(9) << s.p50 << std::setw(9) << s.p99 << std::setw(9) << s.max
         << std::setw(8) << g.deadlineMisses << "\n";
   }
+  if (simulation.plan().realtime) {
+    out << "realtime  rate_hz  calls/s  wake_late_p50_us  p99_us  max_us  skipped  SCHED_FIFO\n";
+    for (const RateGroup& g : scheduler.groups()) {
+      const TimingSummary late = g.wakeLateness.summary();
+      out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9)
+          << (g.wallSeconds > 0 ? static_cast<double>(g.calls) / g.wallSeconds : 0.0) << std::setw(18)
+          << late.p50 << std::setw(8) << late.p99 << std::setw(8) << late.max << std::setw(9) << g.skippedTicks
+          << std::setw(12) << (g.realtimePriority ? "yes" : "no") << "\n";
+    }
+  }
   if (simulation.hapticLogOwner()) {
     const HapticStats h = simulation.hapticLog().stats();
     out << std::setprecision(3) << "haptics   " << h.frames << " frames, " << h.contactFrames << " in contact, |F| max "

@@ -14,6 +14,9 @@ constexpr std::string_view kNodeTag = "Node";
 constexpr std::string_view kPluginTag = "RequiredPlugin";
 constexpr std::string_view kIncludeTag = "Include";
 constexpr int kMaxIncludeDepth = 32;
+// Two includes of a part that includes two of another, and so on, grow
+// exponentially within the depth limit; a scene never needs this many.
+constexpr int kMaxIncludes = 1000;
 
 bool isValidName(std::string_view name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
@@ -31,17 +34,24 @@ void checkDirectiveAttributes(const XmlElement& e, const std::vector<std::string
 
 std::string describe(const Component& c) { return c.typeName() + " '" + c.name() + "'"; }
 
+// A file being included, outermost first, to detect and show cycles.
+struct IncludeFrame {
+  std::filesystem::path canonical;
+  std::string shown;  // as written in messages
+};
+
 }  // namespace
 
 // State of one load.
 struct SceneLoader::Build {
   SceneLoader& loader;
   Diagnostics& diagnostics;
-  std::unique_ptr<Registry> catalog;  // every available plugin, for "add <RequiredPlugin>" hints
-  std::set<const BaseField*> rejected;  // fields whose given value was invalid
+  std::unique_ptr<Registry> catalog{};  // every available plugin, for "add <RequiredPlugin>" hints
+  std::set<const BaseField*> rejected{};  // fields whose given value was invalid
+  int includesRead = 0;
 
   // ---- includes -------------------------------------------------------------
-  void expandIncludes(XmlElement& element, std::vector<std::filesystem::path>& chain) {
+  void expandIncludes(XmlElement& element, std::vector<IncludeFrame>& chain) {
     for (auto it = element.children.begin(); it != element.children.end();) {
       if (it->tag != kIncludeTag) {
         expandIncludes(*it, chain);
@@ -61,17 +71,26 @@ struct SceneLoader::Build {
       path = path.lexically_normal();
       std::error_code ec;
       const auto canonical = std::filesystem::weakly_canonical(path, ec);
-      if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
-        diagnostics.error(file->valueAt, "include cycle: " + path.string() + " includes itself");
+      const auto cycleStart = std::find_if(chain.begin(), chain.end(),
+                                           [&](const IncludeFrame& frame) { return frame.canonical == canonical; });
+      if (cycleStart != chain.end()) {
+        std::string cycle;
+        for (auto frame = cycleStart; frame != chain.end(); ++frame) cycle += frame->shown + " -> ";
+        diagnostics.error(file->valueAt, "include cycle: " + cycle + path.string());
         continue;
       }
       if (static_cast<int>(chain.size()) >= kMaxIncludeDepth) {
         diagnostics.error(file->valueAt, "includes nested deeper than " + std::to_string(kMaxIncludeDepth));
         continue;
       }
+      if (++includesRead > kMaxIncludes) {
+        if (includesRead == kMaxIncludes + 1)
+          diagnostics.error(file->valueAt, "more than " + std::to_string(kMaxIncludes) + " includes in one scene");
+        continue;
+      }
       auto included = readXmlFile(path, file->valueAt, diagnostics);
       if (!included) continue;
-      chain.push_back(canonical);
+      chain.push_back({canonical, path.string()});
       XmlElement holder;  // lets expandIncludes replace an <Include> at the included file's root too
       holder.children.push_back(std::move(*included));
       expandIncludes(holder, chain);
@@ -168,7 +187,7 @@ struct SceneLoader::Build {
         childNode->setLocation(child.at);
         Node& added = node.addChild(std::move(childNode));
         buildNode(child, added);
-        claimName(added.name(), child);
+        if (added.d_name.isSet()) claimName(added.name(), child);  // else already reported as unnamed
         continue;
       }
       auto component = loader.m_registry.create(child.tag);
@@ -179,6 +198,9 @@ struct SceneLoader::Build {
       component->setLocation(child.at);
       component->attach(&node, child.tag);
       Component& added = node.addComponent(std::move(component));
+      // The name first, so that messages about the other attributes name the component.
+      if (const XmlAttribute* name = child.attribute("name"))
+        (void)added.findField("name")->assign(name->value, ParseContext{child.baseDirectory}, name->valueAt);
       if (!child.children.empty())
         diagnostics.error(child.children.front().at, "<" + child.tag + "> is a component and has no child elements");
       // The name first, so that messages about the other attributes name the component.
@@ -320,8 +342,11 @@ struct SceneLoader::Build {
     if (path == "/" || path == "root") {
       owner = &root;
       what = "<Node> '/'";
-    } else {
+    } else if (Node* node = findNode(path, root)) {
       // A node path is allowed too ("--set tool.units=mm" is valid but rarely useful).
+      owner = node;
+      what = "<Node> '" + node->path() + "'";
+    } else {
       Component* c = resolveComponent(path, root, root, where, "--set");
       if (!c) return;
       owner = c;
@@ -336,8 +361,25 @@ struct SceneLoader::Build {
       diagnostics.error(where, "--set cannot rename a component (links would change meaning)");
       return;
     }
-    if (auto error = field->assign(value, ParseContext{std::filesystem::current_path()}, where))
+    std::error_code ec;
+    if (auto error = field->assign(value, ParseContext{std::filesystem::current_path(ec)}, where)) {
       diagnostics.error(where, "invalid " + fieldName + " of " + what + ": " + *error);
+      rejected.insert(field);
+    }
+  }
+
+  // The node at `path` from the root, or nullptr (quietly: the path may name a component).
+  static Node* findNode(std::string_view path, Node& root) {
+    Node* node = &root;
+    while (!path.empty()) {
+      const size_t slash = path.find('/');
+      const std::string_view segment = path.substr(0, slash);
+      path = slash == std::string_view::npos ? std::string_view() : path.substr(slash + 1);
+      if (segment.empty() || segment == ".") continue;
+      node = segment == ".." ? node->parent() : node->findChild(segment);
+      if (!node) return nullptr;
+    }
+    return node;
   }
 };
 
@@ -358,10 +400,10 @@ std::unique_ptr<Scene> SceneLoader::loadString(std::string_view xml, const std::
 
 std::unique_ptr<Scene> SceneLoader::build(XmlElement rootElement, const std::filesystem::path& file,
                                           Diagnostics& diagnostics, const std::vector<std::string>& overrides) {
-  Build b{*this, diagnostics, nullptr};
-  std::vector<std::filesystem::path> chain;
+  Build b{.loader = *this, .diagnostics = diagnostics};
+  std::vector<IncludeFrame> chain;
   std::error_code ec;
-  chain.push_back(std::filesystem::weakly_canonical(file, ec));
+  chain.push_back({std::filesystem::weakly_canonical(file, ec), file.string()});
 
   XmlElement holder;
   holder.children.push_back(std::move(rootElement));

@@ -1,0 +1,54 @@
+// The haptic loop must not allocate: count heap allocations made while a
+// scene runs and check they do not grow with the number of frames.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "tests/support/TestSupport.h"
+
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<size_t> g_allocations{0};
+}  // namespace
+
+// Replacements of the global allocation functions for this test program only.
+void* operator new(std::size_t size) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace trephine {
+namespace {
+
+size_t allocationsDuringRun(double durationS) {
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = durationS;
+  auto simulation = Simulation::fromFile(test::sourceDir() / "scenes/examples/plane_touch.xml", options, d);
+  EXPECT_TRUE(simulation) << test::messages(d);
+  if (!simulation) return 0;
+  g_allocations = 0;
+  g_counting = true;
+  simulation->run();
+  g_counting = false;
+  EXPECT_TRUE(simulation->complete());
+  return g_allocations.load();
+}
+
+TEST(NoAllocationTest, RunningMoreFramesAllocatesNothingMore) {
+  const size_t shortRun = allocationsDuringRun(0.2);   // 200 haptic frames, 12 recorder ticks
+  const size_t longRun = allocationsDuringRun(2.0);    // 2000 haptic frames, 120 recorder ticks
+  EXPECT_EQ(longRun, shortRun) << "allocations grow with frames: the loop allocates";
+  EXPECT_LE(shortRun, 4u) << "only the run's own set-up may allocate";
+}
+
+}  // namespace
+}  // namespace trephine
