@@ -79,12 +79,13 @@ class Component : public FieldOwner {
 template <class T>
 bool Link<T>::bind(Component* target) {
   m_target = dynamic_cast<T*>(target);
+  m_component = m_target ? target : nullptr;
   return m_target != nullptr;
 }
 
 template <class T>
 Component* Link<T>::boundComponent() const {
-  return m_target;
+  return m_component;
 }
 
 }  // namespace trephine

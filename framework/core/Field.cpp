@@ -67,8 +67,11 @@ std::optional<std::string> parseNumber(std::string_view text, double& out) {
   const std::string_view t = trim(text);
   if (t.empty()) return std::string("expected a number, got an empty value");
   const char* begin = t.data();
-  if (*begin == '+') ++begin;  // from_chars does not accept a leading '+'
+  // from_chars does not accept a leading '+'; one is allowed, but not "+-1".
+  if (*begin == '+' && t.size() > 1 && t[1] != '-' && t[1] != '+') ++begin;
   const auto result = std::from_chars(begin, t.data() + t.size(), out);
+  if (result.ec == std::errc::result_out_of_range)
+    return "number '" + std::string(t) + "' is outside the range of a double (about 1e-308 to 1e308)";
   if (result.ec != std::errc() || result.ptr != t.data() + t.size())
     return "expected a number, got '" + std::string(t) + "'";
   if (!std::isfinite(out)) return "expected a finite number, got '" + std::string(t) + "'";
@@ -107,8 +110,10 @@ std::string FieldTraits<bool>::format(bool value) { return value ? "true" : "fal
 std::optional<std::string> FieldTraits<int>::parse(std::string_view text, int& out) {
   const std::string_view t = trim(text);
   const char* begin = t.data();
-  if (!t.empty() && *begin == '+') ++begin;
+  if (t.size() > 1 && *begin == '+' && t[1] != '-' && t[1] != '+') ++begin;
   const auto result = std::from_chars(begin, t.data() + t.size(), out);
+  if (!t.empty() && result.ec == std::errc::result_out_of_range)
+    return "integer '" + std::string(t) + "' is outside the range of an int";
   if (t.empty() || result.ec != std::errc() || result.ptr != t.data() + t.size())
     return "expected an integer, got '" + std::string(t) + "'";
   return std::nullopt;

@@ -28,6 +28,10 @@ struct FieldInfo {
   std::optional<double> max = std::nullopt;
   // When true, `min` itself is not allowed (a rate or a radius must be > 0).
   bool minExclusive = false;
+  // Links only: the link is followed during initialisation only (to subscribe
+  // to a channel, to aim a path), never while ticking, so it may join
+  // components of different rate groups.
+  bool initOnly = false;
 };
 
 // What a value's text may refer to: the directory of the file that set it.

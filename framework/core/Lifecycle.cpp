@@ -1,13 +1,15 @@
 #include "framework/core/Lifecycle.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "framework/core/Component.h"
 
 namespace trephine {
 
 uint64_t RunPlan::callsAt(double rateHz) const {
-  if (rateHz <= 0 || duration <= 0) return 0;
+  if (!(rateHz > 0) || !(duration > 0) || !std::isfinite(rateHz * duration)) return 0;
   // Calls happen at k / rate for k = 0, 1, ... while k / rate < duration. The
   // small tolerance makes 1 s at 3030 Hz give 3030 calls despite rounding.
   const double exact = duration * rateHz;
@@ -16,8 +18,30 @@ uint64_t RunPlan::callsAt(double rateHz) const {
   return static_cast<uint64_t>(calls);
 }
 
-void FinishContext::addOutput(const Component& component, std::string fileName) {
-  m_outputs.push_back({component.path(), std::move(fileName)});
+bool FinishContext::claimOutput(const Component& component, const std::string& fileName) {
+  static const char* const reserved[] = {"summary.json", "trace.csv", "timings.csv"};
+  std::string problem;
+  if (fileName.empty() || fileName == "." || fileName == ".." || fileName.find('/') != std::string::npos) {
+    problem = "'" + fileName + "' is not a plain file name (no directories)";
+  } else if (std::find(std::begin(reserved), std::end(reserved), fileName) != std::end(reserved)) {
+    problem = "'" + fileName + "' is one of the run's own files";
+  } else {
+    for (const Output& o : m_outputs)
+      if (o.file == fileName) problem = "'" + fileName + "' is already written by " + o.component;
+  }
+  if (!problem.empty()) {
+    error(component, "cannot write " + problem);
+    return false;
+  }
+  m_outputs.push_back({component.path(), fileName});
+  return true;
+}
+
+std::string FinishContext::defaultFileName(const std::string& kind, const Component& component) {
+  std::string p = component.path();
+  for (char& c : p)
+    if (c == '/') c = '.';
+  return kind + p + ".csv";
 }
 
 void FinishContext::error(const Component& component, std::string message) {

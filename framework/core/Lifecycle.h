@@ -32,6 +32,8 @@ class InitContext {
 
 // Known once every component is initialised: how long the run is.
 struct RunPlan {
+  // Longest run (s): every per-frame buffer is preallocated from the duration.
+  static constexpr double kMaxDuration = 3600.0;
   double duration = 1.0;    // s of simulated time
   bool realtime = false;
   uint64_t seed = 0;
@@ -46,7 +48,12 @@ class FinishContext {
   // Empty when the run writes no files (tests, validate).
   const std::filesystem::path& outputDirectory() const { return m_outputDirectory; }
   double simulatedTime() const { return m_simulatedTime; }
-  void addOutput(const Component& component, std::string fileName);
+  // Reserves `fileName` in the output directory for `component` before it is
+  // written. False (with an error recorded) when the name is not a plain file
+  // name, is one of the run's own files, or another component has it.
+  bool claimOutput(const Component& component, const std::string& fileName);
+  // "<kind>.<path with '/' as '.'>.csv", unique because names cannot contain '.'.
+  static std::string defaultFileName(const std::string& kind, const Component& component);
   void error(const Component& component, std::string message);
 
   struct Output {

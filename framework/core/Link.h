@@ -38,13 +38,16 @@ class BaseLink : public BaseField {
 };
 
 // T must declare `static constexpr std::string_view kTypeName`, the name shown
-// in errors and in the reference ("HapticDevice", "SurfaceTarget", ...).
+// in errors and in the reference ("HapticDevice", "SurfaceTarget", ...). T may
+// be a component class or an interface that does not derive from Component
+// (a component may implement several interfaces).
 template <class T>
 class Link final : public BaseLink {
  public:
   Link(FieldOwner* owner, std::string_view name, FieldInfo info) : BaseLink(owner, name, T::kTypeName, info) {}
 
   T* get() const { return m_target; }
+  // The linked component itself (for its path, its channels).
   T* operator->() const { return m_target; }
   T& operator*() const { return *m_target; }
   explicit operator bool() const { return m_target != nullptr; }
@@ -54,6 +57,7 @@ class Link final : public BaseLink {
 
  private:
   T* m_target = nullptr;
+  Component* m_component = nullptr;
 };
 
 }  // namespace trephine

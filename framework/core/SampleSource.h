@@ -19,9 +19,12 @@ struct Sample {
 
 inline constexpr const char* kSampleChannel = "samples";
 
-class SampleSource : public Component {
+// An interface, implemented by components next to Component. The component
+// publishes `Sample`s on the channel named kSampleChannel in its init().
+class SampleSource {
  public:
   static constexpr std::string_view kTypeName = "SampleSource";
+  virtual ~SampleSource() = default;
   // Names (with units) of the values, at most kMaxSampleValues.
   virtual std::vector<std::string> sampleColumns() const = 0;
 };

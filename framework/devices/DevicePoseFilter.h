@@ -17,6 +17,7 @@ class DevicePoseFilter {
     m_last = sample;
     m_hasLast = true;
   }
+  void forget() { m_hasLast = false; }
   bool hasLast() const { return m_hasLast; }
   const DeviceSample& last() const { return m_last; }
 

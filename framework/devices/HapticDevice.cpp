@@ -27,10 +27,15 @@ void HapticDevice::tick(const TickContext& context) {
     } else {
       ++m_rejectedJump;
     }
-    if (context.events)
+    // One event when a streak of rejections starts; the counters have the totals,
+    // so a device stuck on NaN cannot fill the event log.
+    if (context.events && !m_rejecting)
       context.events->log(context.t, "device_rejected", verdict == SampleVerdict::NonFinite ? "non_finite" : "jump", this);
+    m_rejecting = true;
     return;
   }
+  if (m_rejecting && context.events) context.events->log(context.t, "device_recovered", "", this);
+  m_rejecting = false;
   const DeviceSample previous = m_filter.last();
   const bool hadPrevious = m_filter.hasLast();
   m_filter.accept(raw);
@@ -45,17 +50,11 @@ void HapticDevice::tick(const TickContext& context) {
 
 void HapticDevice::finish(FinishContext& context) {
   if (!d_record.value() || context.outputDirectory().empty()) return;
-  std::string p = path().substr(1);
-  for (char& c : p)
-    if (c == '/') c = '-';
-  const std::string name = "device-" + p + ".csv";
+  const std::string name = FinishContext::defaultFileName("device", *this);
+  if (!context.claimOutput(*this, name)) return;
   std::ofstream out(context.outputDirectory() / name);
   writeDeviceStream(out, m_recorded, m_recordedSize);
-  if (!out) {
-    context.error(*this, "cannot write " + name);
-    return;
-  }
-  context.addOutput(*this, name);
+  if (!out) context.error(*this, "cannot write " + name);
 }
 
 void HapticDevice::reportCounters(std::vector<Counter>& counters) const {

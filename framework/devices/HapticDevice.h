@@ -32,6 +32,8 @@ class HapticDevice : public Component {
   virtual void applyForce(const Vec3& force_N) { m_commandedForce = force_N; }
   const Vec3& commandedForce() const { return m_commandedForce; }
 
+  // Subclasses that override these must call the HapticDevice versions
+  // (they allocate the recording and report the rejection counters).
   void prepare(const RunPlan& plan) override;
   void tick(const TickContext& context) final;
   void finish(FinishContext& context) override;
@@ -45,12 +47,15 @@ class HapticDevice : public Component {
  protected:
   // The raw device reading at time t (s). Must not allocate or throw.
   virtual DeviceSample readSample(double t) = 0;
+  // The next sample is taken as it comes, without the jump test (an intended
+  // discontinuity, such as a looping replay starting over).
+  void forgetLastSample() { m_filter.forget(); }
 
   RateField d_rate{this, 1000.0, "Rate at which the device is read"};
   Field<double> d_maxSpeed{this, "maxSpeed", 5000.0,
                            {.help = "Fastest plausible motion; a faster jump is rejected and the last pose held",
                             .unit = "mm/s", .min = 0.0, .minExclusive = true}};
-  Field<bool> d_record{this, "record", true, {.help = "Write the raw device stream to device-<path>.csv"}};
+  Field<bool> d_record{this, "record", true, {.help = "Write the raw device stream to device.<path with / as .>.csv"}};
 
  private:
   DeviceState m_state;
@@ -59,6 +64,7 @@ class HapticDevice : public Component {
   std::vector<DeviceSample> m_recorded;  // preallocated in prepare()
   size_t m_recordedSize = 0;
   uint64_t m_samples = 0, m_rejectedNonFinite = 0, m_rejectedJump = 0;
+  bool m_rejecting = false;  // inside a streak of rejected samples
 };
 
 }  // namespace trephine

@@ -16,9 +16,12 @@ struct SurfaceHit {
   double distance;  // mm along the ray
 };
 
-class SurfaceTarget : public Component {
+// An interface, implemented by components next to Component:
+//   class AnalyticPlane final : public Component, public ImplicitSurface { ... };
+class SurfaceTarget {
  public:
   static constexpr std::string_view kTypeName = "SurfaceTarget";
+  virtual ~SurfaceTarget() = default;
 
   // World-frame bounds of the target (mm).
   virtual Box3 bounds() const = 0;

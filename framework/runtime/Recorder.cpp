@@ -14,7 +14,7 @@ void Recorder::init(InitContext& context) {
                              std::to_string(kMaxSampleValues) + " are supported");
     m_columns.resize(kMaxSampleValues);
   }
-  m_reader = context.channels().subscribe<Sample>(*l_source, kSampleChannel);
+  m_reader = context.channels().subscribe<Sample>(*l_source.boundComponent(), kSampleChannel);
 }
 
 void Recorder::prepare(const RunPlan& plan) { m_rows.resize(plan.callsAt(rateHz())); }
@@ -26,13 +26,8 @@ void Recorder::tick(const TickContext& context) {
 
 void Recorder::finish(FinishContext& context) {
   if (context.outputDirectory().empty()) return;
-  std::string name = d_file.value();
-  if (name.empty()) {
-    std::string p = path().substr(1);
-    for (char& c : p)
-      if (c == '/') c = '-';
-    name = "recording-" + p + ".csv";
-  }
+  const std::string name = d_file->empty() ? FinishContext::defaultFileName("recording", *this) : d_file.value();
+  if (!context.claimOutput(*this, name)) return;
   std::ofstream out(context.outputDirectory() / name);
   out << "t,source_t";
   for (const std::string& c : m_columns) out << "," << c;
@@ -42,11 +37,7 @@ void Recorder::finish(FinishContext& context) {
     for (size_t k = 0; k < m_columns.size(); ++k) out << "," << formatDouble(m_rows[i].sample.values[k]);
     out << "\n";
   }
-  if (!out) {
-    context.error(*this, "cannot write " + (context.outputDirectory() / name).string());
-    return;
-  }
-  context.addOutput(*this, name);
+  if (!out) context.error(*this, "cannot write " + (context.outputDirectory() / name).string());
 }
 
 void Recorder::reportCounters(std::vector<Counter>& counters) const {

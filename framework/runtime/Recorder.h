@@ -1,6 +1,6 @@
 #pragma once
 // Records another component's published samples at its own rate (for example
-// 60 Hz next to a 1 kHz haptic loop) into recording-<path>.csv. It reads
+// 60 Hz next to a 1 kHz haptic loop) into recording.<path>.csv. It reads
 // through a channel, so it may run in its own thread without slowing the source.
 #include <vector>
 
@@ -21,9 +21,9 @@ class Recorder final : public Component {
   void reportCounters(std::vector<Counter>& counters) const override;
 
  private:
-  Link<SampleSource> l_source{this, "source", {.help = "Component whose samples are recorded", .required = true}};
+  Link<SampleSource> l_source{this, "source", {.help = "Component whose samples are recorded (read through a channel)", .required = true, .initOnly = true}};
   RateField d_rate{this, 60.0, "Sampling rate of the recording"};
-  Field<std::string> d_file{this, "file", "", {.help = "Output file name in the run directory (default recording-<path>.csv)"}};
+  Field<std::string> d_file{this, "file", "", {.help = "Output file name in the run directory (default recording.<path with / as .>.csv)"}};
 
   struct Row {
     double t;

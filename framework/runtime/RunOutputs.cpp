@@ -1,5 +1,6 @@
 #include "framework/runtime/RunOutputs.h"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -164,10 +165,11 @@ void writeTimingsCsv(const Simulation& simulation, std::ostream& out) {
   for (const RateGroup& g : simulation.scheduler().groups()) {
     for (const GroupMember& m : g.members) {
       const std::string prefix = m.component->path() + "," + formatDouble(g.rateHz) + ",";
-      const uint64_t n = std::min<uint64_t>(m.calls, m.callUs.size());
-      for (uint64_t k = 0; k < n; ++k)
+      for (uint64_t k = 0; k < m.callUs.size(); ++k) {
+        if (std::isnan(m.callUs[k])) continue;  // not called: skipped in real time, or after a stop
         out << prefix << k << "," << formatDouble(static_cast<double>(k) / g.rateHz) << ","
             << formatDouble(static_cast<double>(m.callUs[k])) << "\n";
+      }
     }
   }
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -39,6 +40,8 @@ void sleepUntilNs(uint64_t deadline, uint64_t spinNs) {
 // each deadline: 10% of a core at 1 kHz, bought for sub-microsecond wake-ups.
 uint64_t spinMarginNs(double periodS) { return periodS <= 0.002 ? 100'000 : 0; }
 
+constexpr uint64_t kStopCheckNs = 50'000'000;
+
 // Asks for a real-time priority for the fastest group; refused without privileges, which is fine.
 bool tryRealtimePriority(int priority) {
   sched_param param{};
@@ -67,8 +70,9 @@ Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& p
     m_groups[it->second].members.push_back(std::move(member));
   }
   std::sort(m_groups.begin(), m_groups.end(), [](const RateGroup& a, const RateGroup& b) { return a.rateHz > b.rateHz; });
+  // Indexed by tick; a tick skipped in real time stays NaN and is left out of timings.csv.
   for (RateGroup& g : m_groups)
-    for (GroupMember& m : g.members) m.callUs.resize(g.plannedCalls);
+    for (GroupMember& m : g.members) m.callUs.assign(g.plannedCalls, std::numeric_limits<float>::quiet_NaN());
 }
 
 const RateGroup* Scheduler::group(double rateHz) const {
@@ -91,11 +95,12 @@ uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
   const uint64_t start = nowNs();
   uint64_t before = start;
   for (GroupMember& member : group.members) {
+    group.current = &member;  // names the component if its tick throws
     member.component->tick(context);
     const uint64_t after = nowNs();
     const uint64_t ns = after - before;
     member.histogram.record(ns);
-    if (member.calls < member.callUs.size()) member.callUs[member.calls] = static_cast<float>(ns * 1e-3);
+    if (k < member.callUs.size()) member.callUs[k] = static_cast<float>(ns * 1e-3);
     ++member.calls;
     if (ns > periodNs) ++member.overruns;
     before = after;
@@ -106,9 +111,14 @@ uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
   return total;
 }
 
+std::string Scheduler::describeFailure(const RateGroup& group, const char* what) {
+  const Component* culprit = group.current ? group.current->component : nullptr;
+  return (culprit ? culprit->path() + ": " : std::string()) + what;
+}
+
 void Scheduler::runVirtual(const std::atomic<bool>& stop) {
   std::vector<uint64_t> next(m_groups.size(), 0);
-  const Component* current = nullptr;
+  RateGroup* running = nullptr;
   try {
     while (!stop.load(std::memory_order_relaxed)) {
       // The group whose next call is due first; ties go to the higher rate (earlier in m_groups).
@@ -127,14 +137,16 @@ void Scheduler::runVirtual(const std::atomic<bool>& stop) {
         break;
       }
       RateGroup& g = m_groups[chosen];
-      current = g.members.front().component;
+      running = &g;
       const uint64_t ns = step(g, next[chosen]);
       if (ns > static_cast<uint64_t>(g.periodS * 1e9)) ++g.deadlineMisses;  // would miss in real time
       ++next[chosen];
       m_simulatedTime = std::max(m_simulatedTime, static_cast<double>(next[chosen]) / g.rateHz);
     }
   } catch (const std::exception& e) {
-    m_failure = (current ? current->path() + " group: " : std::string()) + e.what();
+    m_failure = running ? describeFailure(*running, e.what()) : std::string(e.what());
+  } catch (...) {
+    m_failure = running ? describeFailure(*running, "unknown exception") : std::string("unknown exception");
   }
   if (m_groups.empty()) {
     m_completed = !stop.load();
@@ -161,6 +173,10 @@ void Scheduler::runRealtime(const std::atomic<bool>& stop) {
       try {
         while (k < g.plannedCalls && !stop.load(std::memory_order_relaxed) && !abort.load(std::memory_order_relaxed)) {
           const uint64_t deadline = t0 + static_cast<uint64_t>(static_cast<double>(k) * periodNs);
+          // Slow groups sleep in slices so that a stop request is seen within 50 ms.
+          while (deadline > nowNs() + kStopCheckNs && !stop.load(std::memory_order_relaxed) &&
+                 !abort.load(std::memory_order_relaxed))
+            sleepUntilNs(nowNs() + kStopCheckNs, 0);
           sleepUntilNs(deadline, spin);
           const uint64_t wake = nowNs();
           g.wakeLateness.record(wake > deadline ? wake - deadline : 0);
@@ -179,7 +195,11 @@ void Scheduler::runRealtime(const std::atomic<bool>& stop) {
         }
       } catch (const std::exception& e) {
         std::lock_guard lock(failureMutex);
-        if (!m_failure) m_failure = g.members.front().component->path() + " group: " + e.what();
+        if (!m_failure) m_failure = describeFailure(g, e.what());
+        abort = true;
+      } catch (...) {
+        std::lock_guard lock(failureMutex);
+        if (!m_failure) m_failure = describeFailure(g, "unknown exception");
         abort = true;
       }
       g.wallSeconds = static_cast<double>(nowNs() - t0) * 1e-9;

@@ -29,7 +29,7 @@ namespace trephine {
 struct GroupMember {
   Component* component = nullptr;
   TimingHistogram histogram;
-  std::vector<float> callUs;  // per-call duration (µs), preallocated to the planned calls
+  std::vector<float> callUs;  // duration (µs) per tick index, preallocated; NaN for a skipped tick
   uint64_t calls = 0;
   uint64_t overruns = 0;  // calls that alone took longer than the group period
 };
@@ -46,6 +46,7 @@ struct RateGroup {
   uint64_t skippedTicks = 0;   // real time: ticks dropped after a stall
   double wallSeconds = 0;      // real time: from first deadline to the end
   bool realtimePriority = false;
+  const GroupMember* current = nullptr;  // the member being ticked
 };
 
 class Scheduler {
@@ -67,6 +68,7 @@ class Scheduler {
   void runRealtime(const std::atomic<bool>& stop);
   // Runs one step of `group` at call index k; returns its duration (ns).
   uint64_t step(RateGroup& group, uint64_t k);
+  static std::string describeFailure(const RateGroup& group, const char* what);
 
   RunPlan m_plan;
   EventLog* m_events;

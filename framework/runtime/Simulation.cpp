@@ -5,6 +5,7 @@
 #include <functional>
 #include <set>
 
+#include "framework/core/Strings.h"
 #include "framework/runtime/Recorder.h"
 #include "framework/runtime/RunOutputs.h"
 #include "framework/scene/SceneLoader.h"
@@ -36,6 +37,37 @@ std::vector<Component*> initialisationOrder(const std::vector<Component*>& compo
   };
   for (Component* c : components) visit(c);
   return order;
+}
+
+// A ticking component reads what it reaches through links (passing through
+// passive components). Reaching a ticking component of another rate would read
+// another thread's state in real time, so it is refused: such data goes through channels.
+void checkRateGroupLinks(const std::vector<Component*>& components, Diagnostics& diagnostics) {
+  for (const Component* reader : components) {
+    if (!reader->isTicking()) continue;
+    std::set<const Component*> seen{reader};
+    std::function<void(const Component*, const BaseLink*)> follow = [&](const Component* c, const BaseLink* first) {
+      for (const BaseField* field : c->fields()) {
+        const auto* link = dynamic_cast<const BaseLink*>(field);
+        if (!link || link->info().initOnly || !link->boundComponent()) continue;
+        const Component* target = link->boundComponent();
+        if (!seen.insert(target).second) continue;
+        const BaseLink* via = first ? first : link;
+        if (target->isTicking()) {
+          if (target->rateHz() != reader->rateHz())
+            diagnostics.error(via->location(),
+                              reader->typeName() + " '" + reader->name() + "' (" + formatDouble(reader->rateHz()) +
+                                  " Hz) reads " + target->typeName() + " '" + target->path() + "' (" +
+                                  formatDouble(target->rateHz()) +
+                                  " Hz) through its links; components of different rates exchange data only through "
+                                  "channels, so give them the same rate");
+          continue;  // a ticking target's own links are checked from it
+        }
+        follow(target, via);
+      }
+    };
+    follow(reader, nullptr);
+  }
 }
 
 }  // namespace
@@ -119,21 +151,52 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
 
   // The run's length: as asked, else the longest any component wants, else 1 s.
   double duration = 0;
-  for (const Component* c : components) duration = std::max(duration, c->preferredDuration());
-  // Rounded to whole nanoseconds so that sums of path segments print cleanly (2.3, not 2.3000000000000003).
-  s.m_plan.duration = std::round(options.duration.value_or(duration > 0 ? duration : 1.0) * 1e9) / 1e9;
-  s.m_plan.realtime = options.realtime;
-  s.m_plan.seed = options.seed;
-  if (s.m_hapticLogOwner) s.m_hapticLog.reserve(s.m_plan.callsAt(s.m_hapticLogOwner->rateHz()) + 1);
-  for (Component* c : components) {
-    try {
-      c->prepare(s.m_plan);
-    } catch (const std::exception& e) {
-      context.error(*c, e.what());
+  const Component* longest = nullptr;
+  for (const Component* c : components) {
+    const double wanted = c->preferredDuration();
+    if (!(wanted <= duration)) {  // also catches NaN
+      duration = wanted;
+      longest = c;
     }
   }
+  const double planned = options.duration.value_or(duration > 0 ? duration : 1.0);
+  if (!std::isfinite(planned) || planned > RunPlan::kMaxDuration) {
+    const std::string what = "a run of " + formatDouble(planned) + " s is longer than the " +
+                             formatDouble(RunPlan::kMaxDuration) + " s that per-frame buffers are sized for";
+    if (longest && !options.duration) {
+      context.error(*longest, "asks for " + what + "; shorten its motion or pass --duration");
+    } else {
+      diagnostics.error(s.m_scene->root().location(), what);
+    }
+    return nullptr;
+  }
+  // Rounded to whole nanoseconds so that sums of path segments print cleanly (2.3, not 2.3000000000000003).
+  s.m_plan.duration = std::round(planned * 1e9) / 1e9;
+  s.m_plan.realtime = options.realtime;
+  s.m_plan.seed = options.seed;
+  checkRateGroupLinks(components, diagnostics);
   if (diagnostics.hasErrors()) return nullptr;
-  s.m_scheduler = std::make_unique<Scheduler>(components, s.m_plan, &s.m_events);
+
+  // Every per-frame buffer is allocated here, before the first tick.
+  const std::vector<Component*> order = initialisationOrder(components);
+  try {
+    if (s.m_hapticLogOwner) s.m_hapticLog.reserve(s.m_plan.callsAt(s.m_hapticLogOwner->rateHz()) + 1);
+    for (Component* c : order) {
+      try {
+        c->prepare(s.m_plan);
+      } catch (const std::bad_alloc&) {
+        throw;
+      } catch (const std::exception& e) {
+        context.error(*c, e.what());
+      }
+    }
+    // Within a rate group, link targets tick before the components that read them.
+    s.m_scheduler = std::make_unique<Scheduler>(order, s.m_plan, &s.m_events);
+  } catch (const std::bad_alloc&) {
+    diagnostics.error(s.m_scene->root().location(), "not enough memory for the buffers of a " +
+                                                        formatDouble(s.m_plan.duration) + " s run; pass a shorter --duration");
+  }
+  if (diagnostics.hasErrors()) return nullptr;
   return simulation;
 }
 

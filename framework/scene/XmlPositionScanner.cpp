@@ -1,12 +1,16 @@
 #include "framework/scene/XmlPositionScanner.h"
 
 #include <cctype>
+#include <utility>
 
 namespace trephine {
 
 namespace {
 
 constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+// Deepest element nesting accepted. The XML library stops at about 100 with a
+// line number only; scenes nest a handful of levels.
+constexpr size_t kMaxDepth = 64;
 
 bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
@@ -140,17 +144,30 @@ class Scanner {
 
   void markup() {
     const TextPosition start = m_cursor.position();
-    if (m_cursor.startsWith("<!--")) {
+    const bool pastProlog = std::exchange(m_pastProlog, true);
+    // The terminator is searched after the opener, as the XML library does: "<!-->" is not a comment.
+    const auto opens = [&](std::string_view opener) {
+      if (!m_cursor.startsWith(opener)) return false;
+      m_cursor.advance(opener.size());
+      return true;
+    };
+    if (opens("<!--")) {
       if (!m_cursor.skipPast("-->")) fail(start, "comment is not closed with '-->'");
-    } else if (m_cursor.startsWith("<![CDATA[")) {
+    } else if (opens("<![CDATA[")) {
       bool blank = true;
       if (!m_cursor.skipPast("]]>", &blank)) fail(start, "CDATA section is not closed with ']]>'");
       if (m_open.empty()) fail(start, "CDATA section outside the root element");
       if (!blank) m_result.texts.push_back(start);
-    } else if (m_cursor.startsWith("<?")) {
+    } else if (opens("<?")) {
       if (!m_cursor.skipPast("?>")) fail(start, "processing instruction is not closed with '?>'");
+      // The XML library takes every <?...?> for an XML declaration and accepts those only first.
+      if (pastProlog) fail(start, "'<?...?>' is only allowed at the start of the file, before any other markup");
+      m_pastProlog = pastProlog;
     } else if (m_cursor.startsWith("<!")) {
       declaration(start);
+      // The XML library ends a declaration at its first '>', so an internal
+      // subset's "]>" would become text: a declaration belongs before the root.
+      if (!m_result.elements.empty()) fail(start, "'<!...>' declarations are only allowed before the root element");
     } else if (m_cursor.startsWith("</")) {
       endTag(start);
     } else {
@@ -164,7 +181,7 @@ class Scanner {
     m_cursor.advance(2);
     while (!m_cursor.done() && !(m_cursor.peek() == '>' && depth == 0)) {
       if (m_cursor.peek() == '[') ++depth;
-      if (m_cursor.peek() == ']') --depth;
+      if (m_cursor.peek() == ']' && depth > 0) --depth;
       m_cursor.advance();
     }
     if (m_cursor.done()) fail(start, "declaration is not closed with '>'");
@@ -201,6 +218,10 @@ class Scanner {
     }
     if (!isValidXmlName(element.tag)) {
       fail(nameAt, "'" + element.tag + "' is not a valid element name (names start with a letter or '_')");
+      return;
+    }
+    if (m_open.size() >= kMaxDepth) {
+      fail(start, "elements nested more than " + std::to_string(kMaxDepth) + " deep");
       return;
     }
     bool closed = false;
@@ -277,6 +298,7 @@ class Scanner {
   Cursor m_cursor;
   ScanResult m_result;
   std::vector<OpenElement> m_open;
+  bool m_pastProlog = false;  // seen anything but white space and <?...?>
 };
 
 }  // namespace

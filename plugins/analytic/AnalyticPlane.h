@@ -5,7 +5,7 @@
 
 namespace trephine::analytic {
 
-class AnalyticPlane final : public ImplicitSurface {
+class AnalyticPlane final : public Component, public ImplicitSurface {
  public:
   static constexpr std::string_view kTypeName = "AnalyticPlane";
 

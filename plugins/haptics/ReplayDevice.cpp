@@ -20,18 +20,29 @@ void ReplayDevice::init(InitContext& context) {
 void ReplayDevice::prepare(const RunPlan& plan) {
   HapticDevice::prepare(plan);
   m_cursor = 0;
+  m_pass = 0;
+  // One pass lasts from the first sample to one period after the last.
+  m_loopSpan = m_samples.back().t - m_samples.front().t + 1.0 / rateHz();
 }
 
 double ReplayDevice::preferredDuration() const {
-  if (m_samples.empty()) return 0;
+  // A looping replay has no natural end: the run length comes from --duration or other components.
+  if (m_samples.empty() || d_loop.value()) return 0;
   return m_samples.back().t + 1.0 / rateHz();
 }
 
-DeviceSample ReplayDevice::readSample(double t) {
+DeviceSample ReplayDevice::readSample(double scheduledT) {
+  // With loop, the recording is looked up at a wrapped time; the sample keeps
+  // the scheduled time so that time never runs backwards in the run.
+  double t = scheduledT;
   const double first = m_samples.front().t, last = m_samples.back().t;
   if (d_loop.value() && t > last) {
-    const double span = last - first + 1.0 / rateHz();
-    t = first + std::fmod(t - first, span);
+    t = first + std::fmod(t - first, m_loopSpan);
+    const uint64_t pass = static_cast<uint64_t>((scheduledT - first) / m_loopSpan);
+    if (pass != m_pass) {
+      m_pass = pass;
+      forgetLastSample();  // jumping back to the start is intended, not a glitch
+    }
   }
   // Times only move forward within one pass, so the cursor search is amortised O(1).
   if (m_cursor >= m_samples.size() || m_samples[m_cursor].t > t) m_cursor = 0;
@@ -45,7 +56,7 @@ DeviceSample ReplayDevice::readSample(double t) {
     if (next.orientation.coeffs().allFinite() && sample.orientation.coeffs().allFinite())
       sample.orientation = sample.orientation.normalized().slerp(u, next.orientation.normalized());
   }
-  sample.t = t;
+  sample.t = scheduledT;
   return sample;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Replays a device stream file (t,x,y,z,qw,qx,qy,qz,buttons; s, mm), such as
-// the device-*.csv every run records. At a recorded time it returns exactly the
+// the device.*.csv every run records. At a recorded time it returns exactly the
 // recorded sample, so a run replayed at the same rate reproduces its trace;
 // between samples it interpolates (linear position, spherical orientation).
 #include "framework/devices/HapticDevice.h"
@@ -16,7 +16,7 @@ class ReplayDevice final : public HapticDevice {
   double preferredDuration() const override;
 
  protected:
-  DeviceSample readSample(double t) override;
+  DeviceSample readSample(double scheduledT) override;
 
  private:
   FilePathField d_file{this, "file", {.help = "Device stream CSV (t,x,y,z,qw,qx,qy,qz,buttons)", .required = true}};
@@ -25,6 +25,8 @@ class ReplayDevice final : public HapticDevice {
 
   std::vector<DeviceSample> m_samples;
   size_t m_cursor = 0;
+  double m_loopSpan = 0;  // s
+  uint64_t m_pass = 0;
 };
 
 }  // namespace trephine::haptics

@@ -32,9 +32,10 @@ std::optional<ScriptedDevice::Aim> ScriptedDevice::aimAt(const Vec3& offset, Ini
   const double reach = box.diagonal().norm() + (center - box.center()).norm() + d_standoff.value() + 1.0;
   const Vec3 origin = center - d * reach;
   const auto hit = l_target->raycast(origin, d, 2.0 * reach);
-  if (!hit) {
+  // A hit at distance 0 means the ray starts inside the target: the direction points out of it.
+  if (!hit || hit->distance <= 0) {
     context.error(*this, "the approach ray through " + FieldTraits<Vec3>::format(center) + " along " +
-                             FieldTraits<Vec3>::format(d) + " misses " + l_target->path());
+                             FieldTraits<Vec3>::format(d) + " misses " + l_target.boundComponent()->path());
     return std::nullopt;
   }
   return Aim{hit->point + back, hit->normal};

@@ -40,7 +40,7 @@ class ScriptedDevice final : public HapticDevice {
 
   EnumField d_path{this, "path", {"approach-press-slide", "drill-in", "circle", "random-walk", "pokes", "waypoints"},
                    "approach-press-slide", {.help = "Which scripted motion to follow"}};
-  Link<SurfaceTarget> l_target{this, "target", {.help = "Target whose surface the motion aims at (optional)"}};
+  Link<SurfaceTarget> l_target{this, "target", {.help = "Target whose surface the motion aims at (optional; used to plan the path)", .initOnly = true}};
   Field<Vec3> d_center{this, "center", Vec3::Zero(),
                        {.help = "Aim point; with a target the approach ray passes through it (default: the middle of "
                                 "the target's bounds), without one it is the surface point",

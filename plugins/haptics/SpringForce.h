@@ -11,7 +11,7 @@
 
 namespace trephine::haptics {
 
-class SpringForce final : public SampleSource {
+class SpringForce final : public Component, public SampleSource {
  public:
   static constexpr std::string_view kTypeName = "SpringForce";
 

@@ -7,6 +7,7 @@
 #include <regex>
 #include <sstream>
 
+#include "framework/devices/DeviceStream.h"
 #include "framework/runtime/RunOutputs.h"
 #include "tests/support/TestSupport.h"
 
@@ -69,7 +70,7 @@ TEST(SimulationTest, ARecordedRunReplayedThroughReplayDeviceGivesTheSameTrace) {
   ASSERT_TRUE(recorded);
   recorded->run();
   recorded->writeOutputs(dir.path());
-  const auto stream = dir / "device-device.csv";
+  const auto stream = dir / "device.device.csv";
   ASSERT_TRUE(std::filesystem::exists(stream));
 
   auto replayed = mustLoad(planeScene(R"(<ReplayDevice name="device" file=")" + stream.string() + R"(" rate="1000"/>)"));
@@ -94,8 +95,11 @@ TEST(SimulationTest, NaNDeviceSamplesAreRejectedCountedAndThePoseHeld) {
     return -1.0;
   };
   EXPECT_EQ(counter("rejected_non_finite"), 3.0);
-  EXPECT_EQ(simulation->events().size(), 3u);
+  // Two streaks (0.6 s; 0.9 and 0.901 s): one event when each starts and one when it ends.
+  ASSERT_EQ(simulation->events().size(), 4u);
   EXPECT_STREQ(simulation->events()[0].kind, "device_rejected");
+  EXPECT_STREQ(simulation->events()[1].kind, "device_recovered");
+  EXPECT_DOUBLE_EQ(simulation->events()[2].t, 0.9);
   // The frame at 0.6 s shows the pose of 0.599 s.
   const HapticFrameLog& log = simulation->hapticLog();
   EXPECT_EQ(log[600].device, log[599].device);
@@ -121,7 +125,7 @@ TEST(SimulationTest, RecorderSamplesThePublishedValuesAtItsOwnRate) {
   ASSERT_TRUE(simulation);
   simulation->run();
   simulation->writeOutputs(dir.path());
-  const std::string csv = test::readFile(dir / "recording-rec.csv");
+  const std::string csv = test::readFile(dir / "recording.rec.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 61) << "header plus 60 rows in one second";
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "t,source_t,device_x,device_y,device_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,penetration");
@@ -182,6 +186,85 @@ TEST(SimulationTest, InitErrorsPointAtTheComponent) {
   EXPECT_FALSE(simulation);
   EXPECT_NE(messages(d).find("inline.xml:3:39: error: invalid normal: the normal must not be zero"), std::string::npos)
       << messages(d);
+}
+
+}  // namespace
+}  // namespace trephine
+
+namespace trephine {
+namespace {
+
+TEST(SimulationRulesTest, LinksBetweenTickingComponentsOfDifferentRatesAreRefused) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(planeScene(
+      R"(<ScriptedDevice name="device" target="@plane" tipOffset="2.5" rate="500"/>)"), d));
+  // The force (1000 Hz) reads the device (500 Hz) through the passive tool.
+  EXPECT_NE(messages(d).find("inline.xml:7:35: error: SpringForce 'force' (1000 Hz) reads ScriptedDevice '/device' "
+                             "(500 Hz) through its links"),
+            std::string::npos)
+      << messages(d);
+}
+
+TEST(SimulationRulesTest, WithinAGroupLinkTargetsTickFirstWhateverTheDocumentOrder) {
+  auto simulation = mustLoad(R"(<Node name="root">
+  <RequiredPlugin name="analytic"/>
+  <RequiredPlugin name="haptics"/>
+  <SpringForce name="force" tool="@burr" target="@plane" rate="1000"/>
+  <SphereTool name="burr" radius="2.5" device="@device"/>
+  <ScriptedDevice name="device" path="waypoints" waypoints="0 1 2 3  1 1 2 3" rate="1000"/>
+  <AnalyticPlane name="plane"/>
+</Node>)");
+  ASSERT_TRUE(simulation);
+  simulation->run();
+  EXPECT_EQ(simulation->hapticLog()[0].device, Vec3(1, 2, 3)) << "the force saw this frame's device pose";
+}
+
+TEST(SimulationRulesTest, RecorderFileNamesStayInsideTheRunDirectory) {
+  test::TempDir dir;
+  for (const char* name : {"../escaped.csv", "summary.json"}) {
+    auto simulation = mustLoad(planeScene(kScripted, std::string(R"(<Recorder source="@force" file=")") + name + "\"/>"));
+    ASSERT_TRUE(simulation);
+    simulation->run();
+    std::vector<std::string> errors;
+    simulation->writeOutputs(dir.path(), &errors);
+    ASSERT_EQ(errors.size(), 1u) << name;
+    EXPECT_NE(errors[0].find("cannot write"), std::string::npos) << errors[0];
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path().parent_path() / "escaped.csv"));
+  EXPECT_NE(test::readFile(dir / "summary.json").find("\"haptics\""), std::string::npos) << "the summary was kept";
+}
+
+TEST(SimulationRulesTest, TooLongARunIsAnErrorNamingWhoAskedForIt) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(planeScene(
+      R"(<ScriptedDevice name="device" path="random-walk" target="@plane" walkDuration="1e9" rate="1000"/>)"), d));
+  EXPECT_NE(messages(d).find("ScriptedDevice 'device': asks for a run of"), std::string::npos) << messages(d);
+}
+
+TEST(SimulationRulesTest, AnApproachFromInsideTheTargetIsRefused) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(planeScene(R"(<ScriptedDevice name="device" target="@plane" direction="0 0 1"/>)"), d));
+  EXPECT_NE(messages(d).find("misses /plane"), std::string::npos) << messages(d);
+}
+
+TEST(SimulationRulesTest, ALoopingReplayKeepsTimeMovingAndIsNotAJump) {
+  test::TempDir dir;
+  const auto file = dir.write("stroke.csv",
+                              "t,x,y,z,qw,qx,qy,qz,buttons\n0,0,0,10,1,0,0,0,0\n0.05,40,0,10,1,0,0,0,0\n0.099,80,0,10,1,0,0,0,0\n");
+  SimulationOptions options;
+  options.duration = 0.35;
+  auto simulation = mustLoad(
+      planeScene(R"(<ReplayDevice name="device" loop="true" maxSpeed="1000000" file=")" + file.string() + "\"/>"), options);
+  ASSERT_TRUE(simulation);
+  simulation->run();
+  std::vector<Counter> counters;
+  simulation->scene().findComponent("device")->reportCounters(counters);
+  for (const Counter& c : counters)
+    if (c.name == "rejected_jump") EXPECT_EQ(c.value, 0.0) << "starting over is intended";
+  simulation->writeOutputs(dir / "run");
+  const auto recorded = readDeviceStream(dir / "run/device.device.csv");
+  EXPECT_TRUE(recorded.error.empty()) << recorded.error << ": the recording of a looping replay replays";
+  EXPECT_EQ(recorded.samples.size(), 350u);
 }
 
 }  // namespace

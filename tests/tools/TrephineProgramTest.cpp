@@ -57,7 +57,7 @@ TEST(TrephineProgramTest, RunWritesTheContractedOutputs) {
   std::string out;
   ASSERT_EQ(runProgram({"run", kPlaneTouch, "--duration", "0.5", "--out", dir.path().string(), "--seed", "3"}, &out), 0)
       << out;
-  for (const char* file : {"summary.json", "trace.csv", "timings.csv", "device-tool-device.csv", "recording-record-recorder.csv"})
+  for (const char* file : {"summary.json", "trace.csv", "timings.csv", "device.tool.device.csv", "recording.record.recorder.csv"})
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   const std::string summary = test::readFile(dir / "summary.json");
   EXPECT_NE(summary.find("\"seed\": 3"), std::string::npos);

@@ -20,6 +20,16 @@ function(trephine_add_plugin name)
   elseif(DEFINED TREPHINE_PLUGIN_OUTPUT_DIR)
     set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${TREPHINE_PLUGIN_OUTPUT_DIR})
   endif()
+  if(PROJECT_NAME STREQUAL "Trephine")
+    # Installed in <libdir>/trephine/plugins, the plugin finds the framework
+    # libraries two levels up; the project-wide $ORIGIN/../<libdir> would miss
+    # those the program does not load itself (libtrephine_devices.so).
+    file(RELATIVE_PATH to_libdir /${TREPHINE_PLUGIN_INSTALL_DIR} /${CMAKE_INSTALL_LIBDIR})
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/${to_libdir}")
+  else()
+    # Out of tree: keep the installed Trephine's library directory in the RPATH.
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
+  endif()
   if(NOT ARG_NO_INSTALL AND DEFINED TREPHINE_PLUGIN_INSTALL_DIR AND PROJECT_NAME STREQUAL "Trephine")
     install(TARGETS ${target} LIBRARY DESTINATION ${TREPHINE_PLUGIN_INSTALL_DIR})
   endif()

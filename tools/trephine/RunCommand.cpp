@@ -1,5 +1,6 @@
 #include "tools/trephine/RunCommand.h"
 
+#include <charconv>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
@@ -33,9 +34,9 @@ std::optional<SimulationOptions> readOptions(const Arguments& a, std::string& er
     options.duration = seconds;
   }
   if (auto s = a.get("--seed")) {
-    char* end = nullptr;
-    const unsigned long long seed = std::strtoull(s->c_str(), &end, 10);
-    if (s->empty() || *end != '\0' || (*s)[0] == '-') {
+    uint64_t seed = 0;
+    const auto result = std::from_chars(s->data(), s->data() + s->size(), seed);
+    if (s->empty() || result.ec != std::errc() || result.ptr != s->data() + s->size()) {
       error = "--seed expects a non-negative integer, got '" + *s + "'";
       return std::nullopt;
     }
