@@ -34,6 +34,9 @@ class InitContext {
 struct RunPlan {
   // Longest run (s): every per-frame buffer is preallocated from the duration.
   static constexpr double kMaxDuration = 3600.0;
+  // Most component calls in one run (all groups): per-call timings and
+  // per-frame records are preallocated, a few hundred bytes per call at most.
+  static constexpr uint64_t kMaxCalls = 20'000'000;
   double duration = 1.0;    // s of simulated time
   bool realtime = false;
   uint64_t seed = 0;

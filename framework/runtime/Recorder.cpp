@@ -17,11 +17,22 @@ void Recorder::init(InitContext& context) {
   m_reader = context.channels().subscribe<Sample>(*l_source.boundComponent(), kSampleChannel);
 }
 
-void Recorder::prepare(const RunPlan& plan) { m_rows.resize(plan.callsAt(rateHz())); }
+size_t Recorder::rowWidth() const { return 2 + m_columns.size(); }
+
+void Recorder::prepare(const RunPlan& plan) {
+  m_rowCapacity = plan.callsAt(rateHz());
+  m_rows.assign(m_rowCapacity * rowWidth(), 0.0);
+  m_size = 0;
+}
 
 void Recorder::tick(const TickContext& context) {
   m_reader->fetch();
-  if (m_size < m_rows.size()) m_rows[m_size++] = Row{context.t, m_reader->read()};
+  if (m_size >= m_rowCapacity) return;
+  const Sample& sample = m_reader->read();
+  double* row = &m_rows[m_size++ * rowWidth()];
+  row[0] = context.t;
+  row[1] = sample.t;
+  for (size_t k = 0; k < m_columns.size(); ++k) row[2 + k] = sample.values[k];
 }
 
 void Recorder::finish(FinishContext& context) {
@@ -33,8 +44,8 @@ void Recorder::finish(FinishContext& context) {
   for (const std::string& c : m_columns) out << "," << c;
   out << "\n";
   for (size_t i = 0; i < m_size; ++i) {
-    out << formatDouble(m_rows[i].t) << "," << formatDouble(m_rows[i].sample.t);
-    for (size_t k = 0; k < m_columns.size(); ++k) out << "," << formatDouble(m_rows[i].sample.values[k]);
+    const double* row = &m_rows[i * rowWidth()];
+    for (size_t k = 0; k < rowWidth(); ++k) out << (k ? "," : "") << formatDouble(row[k]);
     out << "\n";
   }
   if (!out) context.error(*this, "cannot write " + (context.outputDirectory() / name).string());

@@ -21,17 +21,16 @@ class Recorder final : public Component {
   void reportCounters(std::vector<Counter>& counters) const override;
 
  private:
+  size_t rowWidth() const;
   Link<SampleSource> l_source{this, "source", {.help = "Component whose samples are recorded (read through a channel)", .required = true, .initOnly = true}};
   RateField d_rate{this, 60.0, "Sampling rate of the recording"};
   Field<std::string> d_file{this, "file", "", {.help = "Output file name in the run directory (default recording.<path with / as .>.csv)"}};
 
-  struct Row {
-    double t;
-    Sample sample;
-  };
   std::optional<ChannelReader<Sample>> m_reader;
   std::vector<std::string> m_columns;
-  std::vector<Row> m_rows;
+  // Rows stored flat: t, source_t, then one value per column (only the columns in use).
+  std::vector<double> m_rows;
+  size_t m_rowCapacity = 0;
   size_t m_size = 0;
 };
 

@@ -172,6 +172,15 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   }
   // Rounded to whole nanoseconds so that sums of path segments print cleanly (2.3, not 2.3000000000000003).
   s.m_plan.duration = std::round(planned * 1e9) / 1e9;
+  uint64_t calls = 0;
+  for (const Component* c : components) calls += s.m_plan.callsAt(c->rateHz());
+  if (calls > RunPlan::kMaxCalls) {
+    diagnostics.error(s.m_scene->root().location(),
+                      "a " + formatDouble(s.m_plan.duration) + " s run at these rates makes " + std::to_string(calls) +
+                          " component calls, more than the " + std::to_string(RunPlan::kMaxCalls) +
+                          " its preallocated buffers are sized for; shorten the run or lower the rates");
+    return nullptr;
+  }
   s.m_plan.realtime = options.realtime;
   s.m_plan.seed = options.seed;
   checkRateGroupLinks(components, diagnostics);
@@ -236,6 +245,7 @@ std::vector<std::string> Simulation::writeOutputs(const std::filesystem::path& d
     }
   }
   std::vector<std::string> written = writeRunOutputs(*this, finish, directory);
+  for (const FinishContext::Output& o : finish.outputs()) written.push_back(o.file);
   if (errors) *errors = finish.errors();
   return written;
 }

@@ -48,7 +48,8 @@ class Simulation {
   void run();
 
   // Lets every component write its files, then writes summary.json, trace.csv and timings.csv.
-  // Returns the files written; problems are listed in the summary and returned in `errors`.
+  // Returns the names of the files written (the run's three first); problems are listed in
+  // the summary and returned in `errors`.
   std::vector<std::string> writeOutputs(const std::filesystem::path& directory, std::vector<std::string>* errors = nullptr);
 
   Scene& scene() const { return *m_scene; }

@@ -32,6 +32,12 @@ void checkDirectiveAttributes(const XmlElement& e, const std::vector<std::string
   }
 }
 
+// "a SurfaceTarget", "an ImplicitSurface".
+std::string withArticle(const std::string& word) {
+  const bool vowel = !word.empty() && std::string_view("AEIOUaeiou").find(word[0]) != std::string_view::npos;
+  return (vowel ? "an " : "a ") + word;
+}
+
 std::string describe(const Component& c) { return c.typeName() + " '" + c.name() + "'"; }
 
 // A file being included, outermost first, to detect and show cycles.
@@ -70,7 +76,8 @@ struct SceneLoader::Build {
       if (path.is_relative()) path = include.baseDirectory / path;
       path = path.lexically_normal();
       std::error_code ec;
-      const auto canonical = std::filesystem::weakly_canonical(path, ec);
+      auto canonical = std::filesystem::weakly_canonical(path, ec);
+      if (ec) canonical = path;  // an empty path would match every other unresolvable one
       const auto cycleStart = std::find_if(chain.begin(), chain.end(),
                                            [&](const IncludeFrame& frame) { return frame.canonical == canonical; });
       if (cycleStart != chain.end()) {
@@ -306,7 +313,7 @@ struct SceneLoader::Build {
         if (target == component.get()) {
           diagnostics.error(link->location(), what + " points to the component itself");
         } else if (!link->bind(target)) {
-          diagnostics.error(link->location(), what + " points to " + describe(*target) + ", expected a " +
+          diagnostics.error(link->location(), what + " points to " + describe(*target) + ", expected " + withArticle(link->targetType()) +
                                                   link->targetType());
         }
       }

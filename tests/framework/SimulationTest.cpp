@@ -139,7 +139,7 @@ TEST(SimulationTest, OutputsFollowTheRunContract) {
   ASSERT_TRUE(simulation);
   simulation->run();
   const auto written = simulation->writeOutputs(dir.path());
-  EXPECT_EQ(written, (std::vector<std::string>{"trace.csv", "timings.csv", "summary.json"}));
+  EXPECT_EQ(written, (std::vector<std::string>{"trace.csv", "timings.csv", "summary.json", "device.device.csv"}));
   const std::string trace = test::readFile(dir / "trace.csv");
   EXPECT_EQ(trace.substr(0, trace.find('\n')), kTraceHeader);
   EXPECT_EQ(std::count(trace.begin(), trace.end(), '\n'), 251);

@@ -249,7 +249,7 @@ TEST(SceneLoaderErrorTest, LinkToAComponentOfTheWrongTypeNamesTheExpectedType) {
 </Node>)");
   EXPECT_TRUE(hasError(d, "inline.xml:6:50",
                        "link target=\"@device\" of SpringForce 'force' points to ScriptedDevice 'device', "
-                       "expected a ImplicitSurface"));
+                       "expected an ImplicitSurface"));
   EXPECT_EQ(d.errorCount(), 1);
 }
 
