@@ -86,6 +86,21 @@ TEST(TrephineProgramTest, ComponentsDocumentsEveryFieldOfEveryPlugin) {
   EXPECT_NE(out.find("did you mean 'SpringForce'?"), std::string::npos) << out;
 }
 
+TEST(TrephineProgramTest, GeneratedSchemaAcceptsEveryShippedSceneAndRejectsMistakes) {
+  if (std::system("command -v xmllint > /dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint (libxml2-utils) is not installed";
+  test::TempDir dir;
+  std::string schema;
+  ASSERT_EQ(runProgram({"components", "--xsd"}, &schema, "env -u TREPHINE_PLUGIN_PATH"), 0);
+  const auto xsd = dir.write("trephine.xsd", schema);
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourceDir() / "scenes")) {
+    if (entry.path().extension() != ".xml") continue;
+    const std::string command = "xmllint --noout --schema '" + xsd.string() + "' '" + entry.path().string() + "' 2>&1";
+    EXPECT_EQ(std::system((command + " > /dev/null").c_str()), 0) << entry.path();
+  }
+  const auto bad = dir.write("bad.xml", R"(<Node name="r"><SphereTool radus="1"/><ScriptedDevice path="zigzag"/></Node>)");
+  EXPECT_NE(std::system(("xmllint --noout --schema '" + xsd.string() + "' '" + bad.string() + "' > /dev/null 2>&1").c_str()), 0);
+}
+
 TEST(TrephineProgramTest, TheSceneReferenceInTheDocsIsCurrent) {
   std::string generated;
   ASSERT_EQ(runProgram({"components", "--markdown"}, &generated, "env -u TREPHINE_PLUGIN_PATH"), 0);

@@ -8,6 +8,7 @@
 #include "framework/core/Strings.h"
 #include "framework/runtime/JsonWriter.h"
 #include "framework/runtime/Simulation.h"
+#include "tools/trephine/XmlSchema.h"
 
 namespace trephine::cli {
 
@@ -40,6 +41,10 @@ bool writeReference(std::ostream& out, ReferenceFormat format, const std::string
     return false;
   }
 
+  if (format == ReferenceFormat::XmlSchema) {
+    writeXmlSchema(out, registry);
+    return true;
+  }
   if (format == ReferenceFormat::Json) {
     JsonWriter json(out);
     json.beginObject();

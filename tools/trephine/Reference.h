@@ -6,7 +6,7 @@
 
 namespace trephine::cli {
 
-enum class ReferenceFormat { Text, Json, Markdown };
+enum class ReferenceFormat { Text, Json, Markdown, XmlSchema };
 
 // Writes the reference; `only` restricts it to one component type. Returns false when `only` is unknown.
 bool writeReference(std::ostream& out, ReferenceFormat format, const std::string& only, std::string& error);

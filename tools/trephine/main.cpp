@@ -16,8 +16,9 @@ usage:
       trace.csv and timings.csv to DIR (default runs/<scene name>).
   trephine validate SCENE [--set path.field=value ...]
       Load and initialise a scene; print every error, or "ok".
-  trephine components [NAME] [--json | --markdown]
-      Document every component and field of every available plugin.
+  trephine components [NAME] [--json | --markdown | --xsd]
+      Document every component and field of every available plugin
+      (--xsd: an XML Schema of scenes, for editors).
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
@@ -53,14 +54,15 @@ int main(int argc, char** argv) {
     error = parseArguments(argc, argv, {"--set"}, {}, arguments);
     if (!error) return validateCommand(arguments);
   } else if (command == "components") {
-    error = parseArguments(argc, argv, {}, {"--json", "--markdown"}, arguments);
+    error = parseArguments(argc, argv, {}, {"--json", "--markdown", "--xsd"}, arguments);
     if (!error) {
       if (arguments.positional.size() > 1) {
-        std::cerr << "usage: trephine components [NAME] [--json | --markdown]\n";
+        std::cerr << "usage: trephine components [NAME] [--json | --markdown | --xsd]\n";
         return kUsage;
       }
       const ReferenceFormat format = arguments.has("--json")       ? ReferenceFormat::Json
                                      : arguments.has("--markdown") ? ReferenceFormat::Markdown
+                                     : arguments.has("--xsd")      ? ReferenceFormat::XmlSchema
                                                                    : ReferenceFormat::Text;
       std::string problem;
       const bool ok = writeReference(std::cout, format, arguments.positional.empty() ? "" : arguments.positional[0], problem);

@@ -1,0 +1,73 @@
+// Runs that go wrong still end cleanly and say what happened.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <thread>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+class RunFailureTest : public testing::Test {
+ protected:
+  void SetUp() override { setenv("TREPHINE_PLUGIN_PATH", TREPHINE_TEST_PLUGIN_DIR, 1); }
+  void TearDown() override { unsetenv("TREPHINE_PLUGIN_PATH"); }
+};
+
+TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasMeasured) {
+  test::TempDir dir;
+  const auto scene = dir.write("throws.xml", R"(<Node name="root">
+  <RequiredPlugin name="test_faults"/>
+  <Node name="bad"><ThrowingComponent name="thrower" failAt="0.25"/></Node>
+</Node>
+)");
+  std::string out;
+  EXPECT_EQ(test::runProgram({"run", scene.string(), "--duration", "1", "--out", (dir / "out").string()}, &out,
+                             "TREPHINE_PLUGIN_PATH=" TREPHINE_TEST_PLUGIN_DIR),
+            3)
+      << out;
+  const std::string summary = test::readFile(dir / "out/summary.json");
+  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos);
+  EXPECT_NE(summary.find("\"reason\": \"run-time error: /bad/thrower: deliberate failure\""), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"calls\": 250"), std::string::npos) << "the 250 calls before the failure were timed";
+}
+
+TEST_F(RunFailureTest, VirtualTimeCountsStepsLongerThanTheirPeriodAsDeadlineMisses) {
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = 0.02;
+  auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="test_faults"/>
+  <SlowComponent name="slow" busy="0.0015" rate="1000"/>
+</Node>)",
+                                    d, options);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  EXPECT_EQ(simulation->scheduler().groups()[0].deadlineMisses, 20u) << "every 1.5 ms step misses its 1 ms period";
+}
+
+TEST_F(RunFailureTest, CtrlCStopsARealTimeRunAndItsOutputsAreWritten) {
+  test::TempDir dir;
+  const std::string command = "TREPHINE_PLUGIN_PATH=" TREPHINE_TEST_PLUGIN_DIR " '" + test::programPath().string() +
+                              "' run '" + (test::sourceDir() / "scenes/examples/plane_touch.xml").string() +
+                              "' --realtime --duration 30 --out '" + (dir / "out").string() +
+                              "' > /dev/null 2>&1 & echo $! > '" + (dir / "pid").string() + "'; wait $!";
+  std::thread run([&] { EXPECT_EQ(std::system(command.c_str()) >> 8, 3) << "interrupted runs exit with 3"; });
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  const int pid = std::atoi(test::readFile(dir / "pid").c_str());
+  ASSERT_GT(pid, 0);
+  kill(pid, SIGINT);
+  run.join();
+  const std::string summary = test::readFile(dir / "out/summary.json");
+  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"reason\": \"interrupted by SIGINT\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"calls_per_s\""), std::string::npos) << "real-time figures are reported";
+  const std::string trace = test::readFile(dir / "out/trace.csv");
+  EXPECT_GT(std::count(trace.begin(), trace.end(), '\n'), 100) << "frames measured before the stop are kept";
+}
+
+}  // namespace
+}  // namespace trephine
