@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <ostream>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 namespace trephine {
 
@@ -37,7 +37,8 @@ void Diagnostics::print(std::ostream& out) const {
   std::vector<const Diagnostic*> sorted;
   for (const Diagnostic& d : m_items) sorted.push_back(&d);
   std::stable_sort(sorted.begin(), sorted.end(), [](const Diagnostic* a, const Diagnostic* b) {
-    return std::tie(a->where.file, a->where.line, a->where.column) < std::tie(b->where.file, b->where.line, b->where.column);
+    return std::tie(a->where.file, a->where.line, a->where.column) <
+           std::tie(b->where.file, b->where.line, b->where.column);
   });
   for (const Diagnostic* d : sorted) out << d->str() << "\n";
   if (m_errorCount > 0) out << m_errorCount << (m_errorCount == 1 ? " error" : " errors") << "\n";

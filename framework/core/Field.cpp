@@ -144,8 +144,7 @@ std::string FieldTraits<Vec3>::format(const Vec3& v) {
   return formatDouble(v.x()) + " " + formatDouble(v.y()) + " " + formatDouble(v.z());
 }
 
-std::optional<std::string> FieldTraits<std::vector<double>>::parse(std::string_view text,
-                                                                   std::vector<double>& out) {
+std::optional<std::string> FieldTraits<std::vector<double>>::parse(std::string_view text, std::vector<double>& out) {
   out.clear();
   for (std::string_view part : splitList(text)) {
     double v = 0;
@@ -213,11 +212,13 @@ std::optional<std::string> FilePathField::parseAndStore(std::string_view text, c
   // "name:rest" with a name of two or more letters is a scheme, not a path.
   const size_t colon = t.find(':');
   if (colon != std::string::npos && colon >= 2 &&
-      std::all_of(t.begin(), t.begin() + static_cast<long>(colon), [](char c) { return std::isalpha(static_cast<unsigned char>(c)); })) {
+      std::all_of(t.begin(), t.begin() + static_cast<long>(colon),
+                  [](char c) { return std::isalpha(static_cast<unsigned char>(c)); })) {
     const std::string scheme = t.substr(0, colon);
     if (std::find(m_schemes.begin(), m_schemes.end(), scheme) == m_schemes.end()) {
       return "unknown source '" + scheme + ":'" +
-             (m_schemes.empty() ? std::string(", expected a file path") : ", expected a file path or " + rangeText().substr(17));
+             (m_schemes.empty() ? std::string(", expected a file path")
+                                : ", expected a file path or " + rangeText().substr(17));
     }
     m_text = t;
     m_scheme = scheme;

@@ -58,8 +58,7 @@ class BaseField {
 
   // Parses and validates `text`. Returns the reason it was rejected (what was
   // expected) or nothing; on success the field remembers where it was set.
-  std::optional<std::string> assign(std::string_view text, const ParseContext& context,
-                                    const SourceLocation& where);
+  std::optional<std::string> assign(std::string_view text, const ParseContext& context, const SourceLocation& where);
 
   bool isSet() const { return m_isSet; }
   // Where the value came from; the owner's location when never set.
@@ -180,8 +179,8 @@ class RateField final : public Field<double> {
 // One of a fixed set of words.
 class EnumField final : public BaseField {
  public:
-  EnumField(FieldOwner* owner, std::string_view name, std::vector<std::string> options,
-            std::string defaultValue, FieldInfo info);
+  EnumField(FieldOwner* owner, std::string_view name, std::vector<std::string> options, std::string defaultValue,
+            FieldInfo info);
   const std::string& value() const { return m_options[m_index]; }
   size_t index() const { return m_index; }
   bool is(std::string_view option) const { return value() == option; }

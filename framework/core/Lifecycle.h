@@ -21,7 +21,7 @@ class InitContext {
   // Report a problem at the component's element, or at a field's value.
   virtual void error(const Component& component, std::string message) = 0;
   virtual void error(const BaseField& field, std::string message) = 0;
-  virtual uint64_t seed() const = 0;          // the run's seed (--seed)
+  virtual uint64_t seed() const = 0;  // the run's seed (--seed)
   virtual bool isRealtime() const = 0;
   virtual ChannelHub& channels() = 0;
   virtual EventLog& events() = 0;
@@ -37,7 +37,7 @@ struct RunPlan {
   // Most component calls in one run (all groups): per-call timings and
   // per-frame records are preallocated, a few hundred bytes per call at most.
   static constexpr uint64_t kMaxCalls = 20'000'000;
-  double duration = 1.0;    // s of simulated time
+  double duration = 1.0;  // s of simulated time
   bool realtime = false;
   uint64_t seed = 0;
   // Number of calls a component of `rateHz` receives in this run.

@@ -6,8 +6,8 @@ namespace trephine {
 
 std::optional<std::string> Registry::add(ComponentEntry entry) {
   if (const ComponentEntry* existing = find(entry.type)) {
-    return "component '" + entry.type + "' is registered by both plugin '" + existing->plugin +
-           "' and plugin '" + entry.plugin + "'";
+    return "component '" + entry.type + "' is registered by both plugin '" + existing->plugin + "' and plugin '" +
+           entry.plugin + "'";
   }
   std::string key = entry.type;
   m_entries.emplace(std::move(key), std::move(entry));

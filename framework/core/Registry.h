@@ -63,9 +63,9 @@ class PluginRegistrar {
 //     registrar.add<ScriptedDevice>("ScriptedDevice", "Scripted tool motion");
 //   }
 #define TREPHINE_PLUGIN_API_VERSION 1
-#define TREPHINE_PLUGIN_ENTRY(registrar)                                                            \
-  extern "C" __attribute__((visibility("default"))) int trephine_plugin_api_version() {             \
-    return TREPHINE_PLUGIN_API_VERSION;                                                             \
-  }                                                                                                 \
-  extern "C" __attribute__((visibility("default"))) void trephine_register_plugin(                  \
+#define TREPHINE_PLUGIN_ENTRY(registrar)                                                \
+  extern "C" __attribute__((visibility("default"))) int trephine_plugin_api_version() { \
+    return TREPHINE_PLUGIN_API_VERSION;                                                 \
+  }                                                                                     \
+  extern "C" __attribute__((visibility("default"))) void trephine_register_plugin(      \
       ::trephine::PluginRegistrar& registrar)

@@ -62,17 +62,22 @@ DeviceStreamReadResult parseDeviceStream(std::istream& in, const std::string& fi
     size_t column = 0, start = 0;
     while (true) {
       const size_t comma = line.find(',', start);
-      const std::string_view cell = std::string_view(line).substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      const std::string_view cell =
+          std::string_view(line).substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       if (column >= 9) return fail("more than 9 columns");
       if (!parseValue(cell, values[column]))
-        return fail("column '" + std::string(kColumns[column]) + "': expected a number, got '" + std::string(cell) + "'");
+        return fail("column '" + std::string(kColumns[column]) + "': expected a number, got '" + std::string(cell) +
+                    "'");
       ++column;
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
-    if (column != 9) return fail("expected 9 columns (" + std::string(kDeviceStreamHeader) + "), got " + std::to_string(column));
+    if (column != 9)
+      return fail("expected 9 columns (" + std::string(kDeviceStreamHeader) + "), got " + std::to_string(column));
     if (!std::isfinite(values[0])) return fail("column 't': time must be finite");
-    if (values[0] <= previousT) return fail("column 't': times must increase (got " + formatDouble(values[0]) + " after " + formatDouble(previousT) + ")");
+    if (values[0] <= previousT)
+      return fail("column 't': times must increase (got " + formatDouble(values[0]) + " after " +
+                  formatDouble(previousT) + ")");
     if (!(values[8] >= 0 && values[8] <= 4294967295.0 && values[8] == std::floor(values[8])))
       return fail("column 'buttons': expected a non-negative integer bit mask");
     previousT = values[0];

@@ -30,7 +30,8 @@ void HapticDevice::tick(const TickContext& context) {
     // One event when a streak of rejections starts; the counters have the totals,
     // so a device stuck on NaN cannot fill the event log.
     if (context.events && !m_rejecting)
-      context.events->log(context.t, "device_rejected", verdict == SampleVerdict::NonFinite ? "non_finite" : "jump", this);
+      context.events->log(context.t, "device_rejected", verdict == SampleVerdict::NonFinite ? "non_finite" : "jump",
+                          this);
     m_rejecting = true;
     return;
   }
@@ -40,7 +41,7 @@ void HapticDevice::tick(const TickContext& context) {
   const bool hadPrevious = m_filter.hasLast();
   m_filter.accept(raw);
   m_state.velocity = hadPrevious && raw.t > previous.t ? Vec3((raw.position - previous.position) / (raw.t - previous.t))
-                                                        : Vec3::Zero();
+                                                       : Vec3::Zero();
   m_state.t = raw.t;
   m_state.pose.position = raw.position;
   m_state.pose.orientation = raw.orientation.normalized();

@@ -19,7 +19,7 @@ struct DeviceState {
   Pose pose;                     // X_WD, mm
   Vec3 velocity = Vec3::Zero();  // mm/s, from the last two accepted poses
   uint32_t buttons = 0;
-  bool valid = false;            // false until a first sample was accepted
+  bool valid = false;  // false until a first sample was accepted
 };
 
 class HapticDevice : public Component {
@@ -52,9 +52,13 @@ class HapticDevice : public Component {
   void forgetLastSample() { m_filter.forget(); }
 
   RateField d_rate{this, 1000.0, "Rate at which the device is read"};
-  Field<double> d_maxSpeed{this, "maxSpeed", 5000.0,
+  Field<double> d_maxSpeed{this,
+                           "maxSpeed",
+                           5000.0,
                            {.help = "Fastest plausible motion; a faster jump is rejected and the last pose held",
-                            .unit = "mm/s", .min = 0.0, .minExclusive = true}};
+                            .unit = "mm/s",
+                            .min = 0.0,
+                            .minExclusive = true}};
   Field<bool> d_record{this, "record", true, {.help = "Write the raw device stream to device.<path with / as .>.csv"}};
 
  private:

@@ -2,8 +2,8 @@
 // Run-time events (a rejected device sample, a deadline miss, a drilled-through
 // plate) recorded from any thread without allocating or locking: a fixed array
 // and an atomic cursor. Events past the capacity are counted, not stored.
-#include <atomic>
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -11,11 +11,11 @@
 namespace trephine {
 
 struct Event {
-  double t = 0;                // s, simulation time
-  const char* kind = "";      // static string, e.g. "device_rejected"
-  const char* detail = "";    // static string, e.g. "non_finite"
+  double t = 0;                  // s, simulation time
+  const char* kind = "";         // static string, e.g. "device_rejected"
+  const char* detail = "";       // static string, e.g. "non_finite"
   const void* source = nullptr;  // the component that logged it (resolved to a path when written)
-  double value = 0;            // optional figure, unit given by the kind
+  double value = 0;              // optional figure, unit given by the kind
 };
 
 class EventLog {

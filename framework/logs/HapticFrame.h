@@ -7,14 +7,14 @@
 namespace trephine {
 
 struct HapticFrame {
-  double t = 0;                           // s, scheduled time of the frame
-  Vec3 device = Vec3::Zero();             // mm, device (haptic interface point) position
-  Vec3 proxy = Vec3::Zero();              // mm, displayed proxy position
-  Vec3 force = Vec3::Zero();              // N, force sent to the device
-  double penetration = 0;                 // mm, depth used for the force
-  Vec3 normal = Vec3::Zero();             // unit contact normal, zero without contact
-  int32_t contacts = 0;                   // number of contact points this frame
-  bool proxyInside = false;               // displayed proxy overlaps the target
+  double t = 0;                // s, scheduled time of the frame
+  Vec3 device = Vec3::Zero();  // mm, device (haptic interface point) position
+  Vec3 proxy = Vec3::Zero();   // mm, displayed proxy position
+  Vec3 force = Vec3::Zero();   // N, force sent to the device
+  double penetration = 0;      // mm, depth used for the force
+  Vec3 normal = Vec3::Zero();  // unit contact normal, zero without contact
+  int32_t contacts = 0;        // number of contact points this frame
+  bool proxyInside = false;    // displayed proxy overlaps the target
 };
 
 }  // namespace trephine

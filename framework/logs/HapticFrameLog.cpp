@@ -7,8 +7,8 @@ namespace trephine {
 
 namespace {
 bool frameHasNaN(const HapticFrame& f) {
-  return !f.device.allFinite() || !f.proxy.allFinite() || !f.force.allFinite() ||
-         !std::isfinite(f.penetration) || !f.normal.allFinite();
+  return !f.device.allFinite() || !f.proxy.allFinite() || !f.force.allFinite() || !std::isfinite(f.penetration) ||
+         !f.normal.allFinite();
 }
 }  // namespace
 

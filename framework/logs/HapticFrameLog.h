@@ -12,12 +12,12 @@ namespace trephine {
 struct HapticStats {
   size_t frames = 0;
   size_t contactFrames = 0;
-  double forceMax = 0, forceMean = 0;          // N, |F|
-  double forceStepMax = 0, forceStepP99 = 0;   // N, |F_k - F_{k-1}|
+  double forceMax = 0, forceMean = 0;              // N, |F|
+  double forceStepMax = 0, forceStepP99 = 0;       // N, |F_k - F_{k-1}|
   double penetrationMax = 0, penetrationMean = 0;  // mm, over contact frames
   size_t nanFrames = 0;
   size_t proxyInsideFrames = 0;
-  size_t droppedFrames = 0;                     // frames beyond the preallocated capacity
+  size_t droppedFrames = 0;  // frames beyond the preallocated capacity
 };
 
 class HapticFrameLog {

@@ -22,9 +22,13 @@ class Recorder final : public Component {
 
  private:
   size_t rowWidth() const;
-  Link<SampleSource> l_source{this, "source", {.help = "Component whose samples are recorded (read through a channel)", .required = true, .initOnly = true}};
+  Link<SampleSource> l_source{
+      this,
+      "source",
+      {.help = "Component whose samples are recorded (read through a channel)", .required = true, .initOnly = true}};
   RateField d_rate{this, 60.0, "Sampling rate of the recording"};
-  Field<std::string> d_file{this, "file", "", {.help = "Output file name in the run directory (default recording.<path with / as .>.csv)"}};
+  Field<std::string> d_file{
+      this, "file", "", {.help = "Output file name in the run directory (default recording.<path with / as .>.csv)"}};
 
   std::optional<ChannelReader<Sample>> m_reader;
   std::vector<std::string> m_columns;

@@ -207,9 +207,9 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     for (const RateGroup& g : scheduler.groups()) {
       const TimingSummary late = g.wakeLateness.summary();
       out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9)
-          << (g.wallSeconds > 0 ? static_cast<double>(g.calls) / g.wallSeconds : 0.0) << std::setw(18)
-          << late.p50 << std::setw(8) << late.p99 << std::setw(8) << late.max << std::setw(9) << g.skippedTicks
-          << std::setw(12) << (g.realtimePriority ? "yes" : "no") << "\n";
+          << (g.wallSeconds > 0 ? static_cast<double>(g.calls) / g.wallSeconds : 0.0) << std::setw(18) << late.p50
+          << std::setw(8) << late.p99 << std::setw(8) << late.max << std::setw(9) << g.skippedTicks << std::setw(12)
+          << (g.realtimePriority ? "yes" : "no") << "\n";
     }
   }
   if (simulation.hapticLogOwner()) {

@@ -1,8 +1,8 @@
 #include "framework/runtime/Scheduler.h"
 
 #include <pthread.h>
-#include <sys/prctl.h>
 #include <sched.h>
+#include <sys/prctl.h>
 #include <time.h>
 
 #include <algorithm>
@@ -20,7 +20,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 inline uint64_t nowNs() {
-  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count());
+  return static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count());
 }
 
 // Sleeps until `deadline` (ns, steady clock). The last `spinNs` are spent
@@ -71,7 +72,8 @@ Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& p
     member.component = c;
     m_groups[it->second].members.push_back(std::move(member));
   }
-  std::sort(m_groups.begin(), m_groups.end(), [](const RateGroup& a, const RateGroup& b) { return a.rateHz > b.rateHz; });
+  std::sort(m_groups.begin(), m_groups.end(),
+            [](const RateGroup& a, const RateGroup& b) { return a.rateHz > b.rateHz; });
   // Indexed by tick; a tick skipped in real time stays NaN and is left out of timings.csv.
   for (RateGroup& g : m_groups)
     for (GroupMember& m : g.members) m.callUs.assign(g.plannedCalls, std::numeric_limits<float>::quiet_NaN());

@@ -43,8 +43,8 @@ struct RateGroup {
   TimingHistogram wakeLateness;      // real time: wake-up time minus deadline
   uint64_t calls = 0;
   uint64_t deadlineMisses = 0;
-  uint64_t skippedTicks = 0;   // real time: ticks dropped after a stall
-  double wallSeconds = 0;      // real time: from first deadline to the end
+  uint64_t skippedTicks = 0;  // real time: ticks dropped after a stall
+  double wallSeconds = 0;     // real time: from first deadline to the end
   bool realtimePriority = false;
   const GroupMember* current = nullptr;  // the member being ticked
 };

@@ -203,7 +203,8 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
     s.m_scheduler = std::make_unique<Scheduler>(order, s.m_plan, &s.m_events);
   } catch (const std::bad_alloc&) {
     diagnostics.error(s.m_scene->root().location(), "not enough memory for the buffers of a " +
-                                                        formatDouble(s.m_plan.duration) + " s run; pass a shorter --duration");
+                                                        formatDouble(s.m_plan.duration) +
+                                                        " s run; pass a shorter --duration");
   }
   if (diagnostics.hasErrors()) return nullptr;
   return simulation;
@@ -234,7 +235,8 @@ void Simulation::markInterrupted(std::string reason) {
   m_incompleteReason = std::move(reason);
 }
 
-std::vector<std::string> Simulation::writeOutputs(const std::filesystem::path& directory, std::vector<std::string>* errors) {
+std::vector<std::string> Simulation::writeOutputs(const std::filesystem::path& directory,
+                                                  std::vector<std::string>* errors) {
   std::filesystem::create_directories(directory);
   FinishContext finish(directory, m_scheduler->simulatedTime());
   for (Component* c : m_scene->components()) {

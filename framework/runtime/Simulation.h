@@ -26,7 +26,7 @@
 namespace trephine {
 
 struct SimulationOptions {
-  std::optional<double> duration;      // s; default: the longest a component asks for, else 1 s
+  std::optional<double> duration;  // s; default: the longest a component asks for, else 1 s
   bool realtime = false;
   uint64_t seed = 0;
   std::vector<std::string> overrides;  // "path.field=value"
@@ -50,7 +50,8 @@ class Simulation {
   // Lets every component write its files, then writes summary.json, trace.csv and timings.csv.
   // Returns the names of the files written (the run's three first); problems are listed in
   // the summary and returned in `errors`.
-  std::vector<std::string> writeOutputs(const std::filesystem::path& directory, std::vector<std::string>* errors = nullptr);
+  std::vector<std::string> writeOutputs(const std::filesystem::path& directory,
+                                        std::vector<std::string>* errors = nullptr);
 
   Scene& scene() const { return *m_scene; }
   const RunPlan& plan() const { return m_plan; }
@@ -67,8 +68,8 @@ class Simulation {
 
  private:
   Simulation() = default;
-  static std::unique_ptr<Simulation> initialise(std::unique_ptr<Simulation> simulation, const SimulationOptions& options,
-                                                Diagnostics& diagnostics);
+  static std::unique_ptr<Simulation> initialise(std::unique_ptr<Simulation> simulation,
+                                                const SimulationOptions& options, Diagnostics& diagnostics);
   class Context;
 
   std::unique_ptr<PluginLoader> m_plugins;

@@ -33,13 +33,13 @@ class TimingHistogram {
   void merge(const TimingHistogram& other);
 
  private:
-  static constexpr int kSubBits = 6;                    // 64 sub-buckets per octave
+  static constexpr int kSubBits = 6;  // 64 sub-buckets per octave
   static constexpr uint64_t kSub = uint64_t{1} << kSubBits;
   static constexpr int kOctaves = 64 - kSubBits;
   static constexpr size_t kBuckets = (kOctaves + 1) * kSub;
 
   static size_t bucketOf(uint64_t v) {
-    if (v < kSub) return static_cast<size_t>(v);  // exact below 64 ns
+    if (v < kSub) return static_cast<size_t>(v);      // exact below 64 ns
     const int octave = std::bit_width(v) - kSubBits;  // >= 1
     return static_cast<size_t>(octave) * kSub + static_cast<size_t>((v >> (octave - 1)) - kSub);
   }

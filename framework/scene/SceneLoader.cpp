@@ -4,32 +4,19 @@
 #include <set>
 
 #include "framework/core/Strings.h"
+#include "framework/scene/Directives.h"
+#include "framework/scene/IncludeExpander.h"
+#include "framework/scene/ScenePaths.h"
 #include "framework/scene/XmlTree.h"
 
 namespace trephine {
 
 namespace {
 
-constexpr std::string_view kNodeTag = "Node";
-constexpr std::string_view kPluginTag = "RequiredPlugin";
-constexpr std::string_view kIncludeTag = "Include";
-constexpr int kMaxIncludeDepth = 32;
-// Two includes of a part that includes two of another, and so on, grow
-// exponentially within the depth limit; a scene never needs this many.
-constexpr int kMaxIncludes = 1000;
-
 bool isValidName(std::string_view name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-           return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-         });
-}
-
-// Checks that an element has only the attributes in `allowed`.
-void checkDirectiveAttributes(const XmlElement& e, const std::vector<std::string>& allowed, Diagnostics& d) {
-  for (const XmlAttribute& a : e.attributes) {
-    if (std::find(allowed.begin(), allowed.end(), a.name) == allowed.end())
-      d.error(a.nameAt, "unknown attribute '" + a.name + "' of <" + e.tag + ">" + didYouMean(a.name, allowed));
-  }
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
 }
 
 // "a SurfaceTarget", "an ImplicitSurface".
@@ -40,74 +27,14 @@ std::string withArticle(const std::string& word) {
 
 std::string describe(const Component& c) { return c.typeName() + " '" + c.name() + "'"; }
 
-// A file being included, outermost first, to detect and show cycles.
-struct IncludeFrame {
-  std::filesystem::path canonical;
-  std::string shown;  // as written in messages
-};
-
 }  // namespace
 
 // State of one load.
 struct SceneLoader::Build {
   SceneLoader& loader;
   Diagnostics& diagnostics;
-  std::unique_ptr<Registry> catalog{};  // every available plugin, for "add <RequiredPlugin>" hints
+  std::unique_ptr<Registry> catalog{};    // every available plugin, for "add <RequiredPlugin>" hints
   std::set<const BaseField*> rejected{};  // fields whose given value was invalid
-  int includesRead = 0;
-
-  // ---- includes -------------------------------------------------------------
-  void expandIncludes(XmlElement& element, std::vector<IncludeFrame>& chain) {
-    for (auto it = element.children.begin(); it != element.children.end();) {
-      if (it->tag != kIncludeTag) {
-        expandIncludes(*it, chain);
-        ++it;
-        continue;
-      }
-      const XmlElement include = std::move(*it);
-      it = element.children.erase(it);
-      checkDirectiveAttributes(include, {"file"}, diagnostics);
-      const XmlAttribute* file = include.attribute("file");
-      if (!file || trim(file->value).empty()) {
-        diagnostics.error(include.at, "<Include> needs a file attribute: <Include file=\"part.xml\"/>");
-        continue;
-      }
-      std::filesystem::path path = std::filesystem::path(std::string(trim(file->value)));
-      if (path.is_relative()) path = include.baseDirectory / path;
-      path = path.lexically_normal();
-      std::error_code ec;
-      auto canonical = std::filesystem::weakly_canonical(path, ec);
-      if (ec) canonical = path;  // an empty path would match every other unresolvable one
-      const auto cycleStart = std::find_if(chain.begin(), chain.end(),
-                                           [&](const IncludeFrame& frame) { return frame.canonical == canonical; });
-      if (cycleStart != chain.end()) {
-        std::string cycle;
-        for (auto frame = cycleStart; frame != chain.end(); ++frame) cycle += frame->shown + " -> ";
-        diagnostics.error(file->valueAt, "include cycle: " + cycle + path.string());
-        continue;
-      }
-      if (static_cast<int>(chain.size()) >= kMaxIncludeDepth) {
-        diagnostics.error(file->valueAt, "includes nested deeper than " + std::to_string(kMaxIncludeDepth));
-        continue;
-      }
-      if (++includesRead > kMaxIncludes) {
-        if (includesRead == kMaxIncludes + 1)
-          diagnostics.error(file->valueAt, "more than " + std::to_string(kMaxIncludes) + " includes in one scene");
-        continue;
-      }
-      auto included = readXmlFile(path, file->valueAt, diagnostics);
-      if (!included) continue;
-      chain.push_back({canonical, path.string()});
-      XmlElement holder;  // lets expandIncludes replace an <Include> at the included file's root too
-      holder.children.push_back(std::move(*included));
-      expandIncludes(holder, chain);
-      chain.pop_back();
-      for (auto& child : holder.children) {
-        it = element.children.insert(it, std::move(child));
-        ++it;
-      }
-    }
-  }
 
   // ---- plugins --------------------------------------------------------------
   void loadPlugins(const XmlElement& element) {
@@ -156,7 +83,8 @@ struct SceneLoader::Build {
     for (const XmlAttribute& a : e.attributes) {
       BaseField* field = owner.findField(a.name);
       if (!field) {
-        diagnostics.error(a.nameAt, "unknown attribute '" + a.name + "' of " + what + didYouMean(a.name, owner.fieldNames()));
+        diagnostics.error(a.nameAt,
+                          "unknown attribute '" + a.name + "' of " + what + didYouMean(a.name, owner.fieldNames()));
         continue;
       }
       if (auto error = field->assign(a.value, ParseContext{e.baseDirectory}, a.valueAt)) {
@@ -182,9 +110,9 @@ struct SceneLoader::Build {
       const auto [it, inserted] = names.emplace(name, &child);
       if (!inserted) {
         const XmlAttribute* a = child.attribute("name");
-        diagnostics.error(a ? a->valueAt : child.at,
-                          "duplicate name '" + name + "' in node '" + node.path() + "' (first used at " +
-                              it->second->at.str() + ")" + (a ? "" : "; give each a distinct name attribute"));
+        diagnostics.error(a ? a->valueAt : child.at, "duplicate name '" + name + "' in node '" + node.path() +
+                                                         "' (first used at " + it->second->at.str() + ")" +
+                                                         (a ? "" : "; give each a distinct name attribute"));
       }
     };
     for (const XmlElement& child : e.children) {
@@ -250,71 +178,19 @@ struct SceneLoader::Build {
     diagnostics.error(e.at, "unknown component '" + e.tag + "'" + hint);
   }
 
-  // ---- paths and links ------------------------------------------------------
-  // Resolves "a/b/c" from `start` (or the root when it starts with '/'): the
-  // leading segments are nodes, the last a component. Reports at `where`.
-  Component* resolveComponent(std::string_view path, Node& start, Node& root, const SourceLocation& where,
-                              const std::string& what) {
-    Node* node = &start;
-    if (path.starts_with('/')) {
-      node = &root;
-      path.remove_prefix(1);
-    }
-    std::vector<std::string_view> segments;
-    size_t begin = 0;
-    while (begin <= path.size()) {
-      const size_t slash = path.find('/', begin);
-      const size_t end = slash == std::string_view::npos ? path.size() : slash;
-      segments.push_back(path.substr(begin, end - begin));
-      if (slash == std::string_view::npos) break;
-      begin = slash + 1;
-    }
-    for (size_t i = 0; i < segments.size(); ++i) {
-      const std::string segment(segments[i]);
-      const bool last = i + 1 == segments.size();
-      if (segment.empty() || segment == ".") {
-        if (last) break;
-        continue;
-      }
-      if (segment == "..") {
-        if (!node->parent()) {
-          diagnostics.error(where, what + ": '..' goes above the root node");
-          return nullptr;
-        }
-        node = node->parent();
-        continue;
-      }
-      if (last) {
-        if (Component* c = node->findComponent(segment)) return c;
-        if (node->findChild(segment)) {
-          diagnostics.error(where, what + ": '" + segment + "' is a node, not a component");
-          return nullptr;
-        }
-      } else if (Node* child = node->findChild(segment)) {
-        node = child;
-        continue;
-      }
-      diagnostics.error(where, what + ": no " + (last ? "component" : "node") + " '" + segment + "' in node '" +
-                                   node->path() + "'" + didYouMean(segment, node->memberNames()));
-      return nullptr;
-    }
-    diagnostics.error(where, what + ": the path names no component");
-    return nullptr;
-  }
-
   void resolveLinks(Node& node, Node& root) {
     for (const auto& component : node.components()) {
       for (BaseField* field : component->fields()) {
         auto* link = dynamic_cast<BaseLink*>(field);
         if (!link || !link->hasPath()) continue;
         const std::string what = "link " + link->name() + "=\"@" + link->path() + "\" of " + describe(*component);
-        Component* target = resolveComponent(link->path(), node, root, link->location(), what);
+        Component* target = resolveComponentPath(link->path(), node, root, link->location(), what, diagnostics);
         if (!target) continue;
         if (target == component.get()) {
           diagnostics.error(link->location(), what + " points to the component itself");
         } else if (!link->bind(target)) {
-          diagnostics.error(link->location(), what + " points to " + describe(*target) + ", expected " + withArticle(link->targetType()) +
-                                                  link->targetType());
+          diagnostics.error(link->location(), what + " points to " + describe(*target) + ", expected " +
+                                                  withArticle(link->targetType()) + link->targetType());
         }
       }
     }
@@ -326,7 +202,8 @@ struct SceneLoader::Build {
       for (BaseField* field : component->fields()) {
         if (field->info().required && !field->isSet() && !rejected.count(field))
           diagnostics.error(component->location(), "missing required " + field->name() + " of " + describe(*component) +
-                                                       " (" + field->typeName() + ": " + std::string(field->info().help) + ")");
+                                                       " (" + field->typeName() + ": " +
+                                                       std::string(field->info().help) + ")");
       }
     }
     for (const auto& child : node.children()) checkRequired(*child);
@@ -349,19 +226,20 @@ struct SceneLoader::Build {
     if (path == "/" || path == "root") {
       owner = &root;
       what = "<Node> '/'";
-    } else if (Node* node = findNode(path, root)) {
+    } else if (Node* node = findNodePath(path, root)) {
       // A node path is allowed too ("--set tool.units=mm" is valid but rarely useful).
       owner = node;
       what = "<Node> '" + node->path() + "'";
     } else {
-      Component* c = resolveComponent(path, root, root, where, "--set");
+      Component* c = resolveComponentPath(path, root, root, where, "--set", diagnostics);
       if (!c) return;
       owner = c;
       what = describe(*c);
     }
     BaseField* field = owner->findField(fieldName);
     if (!field) {
-      diagnostics.error(where, "unknown field '" + fieldName + "' of " + what + didYouMean(fieldName, owner->fieldNames()));
+      diagnostics.error(where,
+                        "unknown field '" + fieldName + "' of " + what + didYouMean(fieldName, owner->fieldNames()));
       return;
     }
     if (field->name() == "name") {
@@ -373,20 +251,6 @@ struct SceneLoader::Build {
       diagnostics.error(where, "invalid " + fieldName + " of " + what + ": " + *error);
       rejected.insert(field);
     }
-  }
-
-  // The node at `path` from the root, or nullptr (quietly: the path may name a component).
-  static Node* findNode(std::string_view path, Node& root) {
-    Node* node = &root;
-    while (!path.empty()) {
-      const size_t slash = path.find('/');
-      const std::string_view segment = path.substr(0, slash);
-      path = slash == std::string_view::npos ? std::string_view() : path.substr(slash + 1);
-      if (segment.empty() || segment == ".") continue;
-      node = segment == ".." ? node->parent() : node->findChild(segment);
-      if (!node) return nullptr;
-    }
-    return node;
   }
 };
 
@@ -408,13 +272,9 @@ std::unique_ptr<Scene> SceneLoader::loadString(std::string_view xml, const std::
 std::unique_ptr<Scene> SceneLoader::build(XmlElement rootElement, const std::filesystem::path& file,
                                           Diagnostics& diagnostics, const std::vector<std::string>& overrides) {
   Build b{.loader = *this, .diagnostics = diagnostics};
-  std::vector<IncludeFrame> chain;
-  std::error_code ec;
-  chain.push_back({std::filesystem::weakly_canonical(file, ec), file.string()});
-
   XmlElement holder;
   holder.children.push_back(std::move(rootElement));
-  b.expandIncludes(holder, chain);
+  expandIncludes(holder, file, diagnostics);
   if (holder.children.size() != 1) {
     if (!diagnostics.hasErrors()) diagnostics.error({file.string(), 1, 1}, "the scene has no root <Node>");
     return nullptr;
@@ -434,22 +294,6 @@ std::unique_ptr<Scene> SceneLoader::build(XmlElement rootElement, const std::fil
   b.resolveLinks(*root, *root);
   if (diagnostics.hasErrors()) return nullptr;
   return std::make_unique<Scene>(std::move(root), file, m_loadedPlugins);
-}
-
-// ---- Scene ------------------------------------------------------------------
-
-std::vector<Component*> Scene::components() const {
-  std::vector<Component*> list;
-  m_root->collectComponents(list);
-  return list;
-}
-
-Component* Scene::findComponent(std::string_view path) const {
-  if (path.starts_with('/')) path.remove_prefix(1);
-  for (Component* c : components()) {
-    if (std::string_view(c->path()).substr(1) == path) return c;
-  }
-  return nullptr;
 }
 
 }  // namespace trephine

@@ -40,9 +40,7 @@ class Cursor {
   }
 
   bool done() const { return m_index >= m_text.size(); }
-  char peek(size_t ahead = 0) const {
-    return m_index + ahead < m_text.size() ? m_text[m_index + ahead] : '\0';
-  }
+  char peek(size_t ahead = 0) const { return m_index + ahead < m_text.size() ? m_text[m_index + ahead] : '\0'; }
   bool startsWith(std::string_view s) const { return m_text.substr(m_index).starts_with(s); }
   TextPosition position() const { return m_position; }
 
@@ -196,8 +194,8 @@ class Scanner {
     } else if (m_open.empty()) {
       fail(start, "end tag </" + tag + "> has no matching start tag");
     } else if (m_open.back().tag != tag) {
-      fail(start, "end tag </" + tag + "> does not match <" + m_open.back().tag + "> opened at " +
-                      describe(m_open.back().at));
+      fail(start,
+           "end tag </" + tag + "> does not match <" + m_open.back().tag + "> opened at " + describe(m_open.back().at));
     } else {
       m_open.pop_back();
     }
@@ -253,13 +251,14 @@ class Scanner {
       return std::nullopt;
     }
     if (!isValidXmlName(attribute.name)) {
-      fail(attribute.nameAt, "'" + attribute.name + "' is not a valid attribute name (names start with a letter or '_')");
+      fail(attribute.nameAt,
+           "'" + attribute.name + "' is not a valid attribute name (names start with a letter or '_')");
       return std::nullopt;
     }
     for (const ScannedAttribute& earlier : element.attributes) {
       if (earlier.name == attribute.name) {
-        fail(attribute.nameAt, "attribute '" + attribute.name + "' is given twice in <" + element.tag +
-                                   "> (first at " + describe(earlier.nameAt) + ")");
+        fail(attribute.nameAt, "attribute '" + attribute.name + "' is given twice in <" + element.tag + "> (first at " +
+                                   describe(earlier.nameAt) + ")");
         return std::nullopt;
       }
     }

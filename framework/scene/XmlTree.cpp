@@ -47,7 +47,8 @@ struct Converter {
     XmlElement element;
     element.tag = source.Name();
     element.baseDirectory = baseDirectory;
-    const ScannedElement* positions = next < scanned.size() && scanned[next].tag == element.tag ? &scanned[next] : nullptr;
+    const ScannedElement* positions =
+        next < scanned.size() && scanned[next].tag == element.tag ? &scanned[next] : nullptr;
     ++next;
     element.at = positions ? at(fileName, positions->at) : SourceLocation{fileName, source.GetLineNum(), 1};
     for (const tinyxml2::XMLAttribute* a = source.FirstAttribute(); a; a = a->Next()) {
@@ -88,8 +89,9 @@ std::optional<XmlElement> parseXml(std::string_view text, const std::string& fil
       diagnostics.error(at(fileName, scan.problem->at), "malformed XML: " + scan.problem->message);
     } else {
       // Only what the scanner does not check ends here; the library knows the line only.
-      diagnostics.error({fileName, std::max(1, document.ErrorLineNum()), 1},
-                        std::string("malformed XML on this line (") + tinyxml2::XMLDocument::ErrorIDToName(status) + ")");
+      diagnostics.error(
+          {fileName, std::max(1, document.ErrorLineNum()), 1},
+          std::string("malformed XML on this line (") + tinyxml2::XMLDocument::ErrorIDToName(status) + ")");
     }
     return std::nullopt;
   }
@@ -112,7 +114,8 @@ std::optional<XmlElement> parseXml(std::string_view text, const std::string& fil
     }
     const SourceLocation where = index < scan.elements.size() ? at(fileName, scan.elements[index].at)
                                                               : SourceLocation{fileName, second->GetLineNum(), 1};
-    diagnostics.error(where, "a scene file has one root element; found a second one <" + std::string(second->Name()) + ">");
+    diagnostics.error(where,
+                      "a scene file has one root element; found a second one <" + std::string(second->Name()) + ">");
     return std::nullopt;
   }
   Converter converter{fileName, baseDirectory, scan.elements, scan.texts, diagnostics};

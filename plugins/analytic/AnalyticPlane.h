@@ -17,9 +17,13 @@ class AnalyticPlane final : public Component, public ImplicitSurface {
  private:
   Field<Vec3> d_point{this, "point", Vec3::Zero(), {.help = "A point on the plane", .unit = "mm"}};
   Field<Vec3> d_normal{this, "normal", Vec3::UnitZ(), {.help = "Outward normal (normalised on load; not zero)"}};
-  Field<double> d_extent{this, "extent", 100.0,
-                         {.help = "Half size of the region reported as the plane's bounds", .unit = "mm",
-                          .min = 0.0, .minExclusive = true}};
+  Field<double> d_extent{this,
+                         "extent",
+                         100.0,
+                         {.help = "Half size of the region reported as the plane's bounds",
+                          .unit = "mm",
+                          .min = 0.0,
+                          .minExclusive = true}};
   Vec3 m_unitNormal = Vec3::UnitZ();
 };
 

@@ -3,5 +3,6 @@
 #include "plugins/analytic/AnalyticPlane.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
-  registrar.add<trephine::analytic::AnalyticPlane>("AnalyticPlane", "Solid half-space bounded by a plane (exact distances)");
+  registrar.add<trephine::analytic::AnalyticPlane>("AnalyticPlane",
+                                                   "Solid half-space bounded by a plane (exact distances)");
 }

@@ -8,8 +8,8 @@
 TREPHINE_PLUGIN_ENTRY(registrar) {
   using namespace trephine::haptics;
   registrar.add<ReplayDevice>("ReplayDevice", "Replays a recorded device stream (CSV t,x,y,z,qw,qx,qy,qz,buttons)");
-  registrar.add<ScriptedDevice>("ScriptedDevice",
-                                "Scripted tool motion: approach-press-slide, drill-in, circle, random-walk, pokes, waypoints");
+  registrar.add<ScriptedDevice>(
+      "ScriptedDevice", "Scripted tool motion: approach-press-slide, drill-in, circle, random-walk, pokes, waypoints");
   registrar.add<SphereTool>("SphereTool", "Sphere tool following a device");
   registrar.add<SpringForce>("SpringForce", "Penalty spring-damper force of a sphere tool against an implicit surface");
 }

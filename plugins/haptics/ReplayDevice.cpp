@@ -52,7 +52,8 @@ DeviceSample ReplayDevice::readSample(double scheduledT) {
   if (between) {
     const DeviceSample& next = m_samples[m_cursor + 1];
     const double u = (t - sample.t) / (next.t - sample.t);
-    if (next.position.allFinite() && sample.position.allFinite()) sample.position += u * (next.position - sample.position);
+    if (next.position.allFinite() && sample.position.allFinite())
+      sample.position += u * (next.position - sample.position);
     if (next.orientation.coeffs().allFinite() && sample.orientation.coeffs().allFinite())
       sample.orientation = sample.orientation.normalized().slerp(u, next.orientation.normalized());
   }

@@ -84,7 +84,8 @@ void ScriptedDevice::buildApproachPressSlide(const Aim& aim, const Vec3& d) {
   const Vec3 start = aim.surface - d * d_standoff.value();
   const Vec3 pressed = aim.surface + d * d_depth.value();
   Vec3 slide = d_slideDirection.value() - d_slideDirection->dot(aim.normal) * aim.normal;
-  if (slide.norm() < 1e-9) slide = tangentBasis(aim.normal).first;  // slide direction along the normal: pick any tangent
+  if (slide.norm() < 1e-9)
+    slide = tangentBasis(aim.normal).first;  // slide direction along the normal: pick any tangent
   slide.normalize();
   const Vec3 slid = pressed + slide * d_slideDistance.value();
   const Vec3 end = slid - d * (d_depth.value() + d_standoff.value());
@@ -123,7 +124,8 @@ void ScriptedDevice::buildCircle(const Aim& aim, const Vec3& d) {
     return Vec3(center + r * (std::cos(angle) * uu + std::sin(angle) * vv));
   });
   const Vec3 last = m_path.end();
-  m_path.moveTo(last - d * (d_depth.value() + d_standoff.value()), (d_depth.value() + d_standoff.value()) / d_speed.value());
+  m_path.moveTo(last - d * (d_depth.value() + d_standoff.value()),
+                (d_depth.value() + d_standoff.value()) / d_speed.value());
   m_path.hold(kSettle);
 }
 
@@ -152,7 +154,8 @@ void ScriptedDevice::buildRandomWalk(const Aim& aim, const Vec3& d, uint64_t see
   const auto walk = [waves, surface, dd, uu, vv, r, depth](double s) {
     std::array<double, 3> value{};
     for (int a = 0; a < 3; ++a)
-      for (const Wave& w : waves[a]) value[a] += w.weight * std::sin(2.0 * std::numbers::pi * w.frequency * s + w.phase);
+      for (const Wave& w : waves[a])
+        value[a] += w.weight * std::sin(2.0 * std::numbers::pi * w.frequency * s + w.phase);
     const double press = depth * (0.375 + 0.625 * value[2]);  // from -0.25*depth to depth
     return Vec3(surface + r * (value[0] * uu + value[1] * vv) + press * dd);
   };
@@ -202,7 +205,8 @@ bool ScriptedDevice::buildPokes(const Vec3& d, uint64_t seed, InitContext& conte
 bool ScriptedDevice::buildWaypoints(InitContext& context) {
   const std::vector<double>& w = d_waypoints.value();
   if (w.size() < 4 || w.size() % 4 != 0) {
-    context.error(d_waypoints, "path=waypoints needs groups of four numbers 't x y z', got " + std::to_string(w.size()) + " numbers");
+    context.error(d_waypoints, "path=waypoints needs groups of four numbers 't x y z', got " +
+                                   std::to_string(w.size()) + " numbers");
     return false;
   }
   for (size_t i = 4; i < w.size(); i += 4) {

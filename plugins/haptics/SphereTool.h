@@ -18,7 +18,8 @@ class SphereTool final : public Component {
 
  private:
   Link<HapticDevice> l_device{this, "device", {.help = "Device that moves the tool", .required = true}};
-  Field<double> d_radius{this, "radius", 2.5, {.help = "Sphere radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
+  Field<double> d_radius{
+      this, "radius", 2.5, {.help = "Sphere radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Sphere centre in the device frame", .unit = "mm"}};
 };
 

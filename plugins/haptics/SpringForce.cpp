@@ -12,8 +12,8 @@ void SpringForce::init(InitContext& context) {
 }
 
 std::vector<std::string> SpringForce::sampleColumns() const {
-  return {"device_x", "device_y", "device_z", "proxy_x", "proxy_y", "proxy_z",
-          "force_x",  "force_y",  "force_z",  "penetration"};
+  return {"device_x", "device_y", "device_z", "proxy_x", "proxy_y",
+          "proxy_z",  "force_x",  "force_y",  "force_z", "penetration"};
 }
 
 void SpringForce::tick(const TickContext& context) {

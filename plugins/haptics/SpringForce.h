@@ -24,7 +24,8 @@ class SpringForce final : public Component, public SampleSource {
   Link<ImplicitSurface> l_target{this, "target", {.help = "Surface the tool touches", .required = true}};
   Field<double> d_stiffness{this, "stiffness", 2.0, {.help = "Spring stiffness k", .unit = "N/mm", .min = 0.0}};
   Field<double> d_damping{this, "damping", 0.002, {.help = "Damping b along the normal", .unit = "N*s/mm", .min = 0.0}};
-  Field<double> d_maxForce{this, "maxForce", 3.3, {.help = "Largest force sent to the device", .unit = "N", .min = 0.0}};
+  Field<double> d_maxForce{
+      this, "maxForce", 3.3, {.help = "Largest force sent to the device", .unit = "N", .min = 0.0}};
   RateField d_rate{this, 1000.0, "Haptic rate"};
 
   HapticFrameLog* m_log = nullptr;

@@ -44,7 +44,8 @@ void BM_VirtualDispatch(benchmark::State& state) {
   }
   state.SetItemsProcessed(static_cast<int64_t>(calls));
   // Seconds per component call; shown with an SI prefix ("45n" = 45 ns).
-  state.counters["per_call"] = benchmark::Counter(static_cast<double>(calls), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_call"] =
+      benchmark::Counter(static_cast<double>(calls), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   // The scheduler's own view: clock read to clock read around each tick (µs -> ns).
   const TimingSummary recorded = callTimes.summary();
   state.counters["recorded_p50_ns"] = recorded.p50 * 1e3;

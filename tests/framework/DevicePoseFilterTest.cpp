@@ -1,15 +1,14 @@
-#include "framework/devices/DevicePoseFilter.h"
-
 #include <gtest/gtest.h>
 
 #include <limits>
 
+#include "framework/devices/DevicePoseFilter.h"
 #include "framework/devices/DeviceStream.h"
 
 namespace trephine {
 namespace {
 
-constexpr double kPeriod = 0.001;  // s
+constexpr double kPeriod = 0.001;   // s
 constexpr double kMaxSpeed = 1000;  // mm/s: at most 1 mm per frame
 
 DeviceSample at(double t, Vec3 p) { return DeviceSample{t, p, Quat::Identity(), 0}; }

@@ -44,8 +44,8 @@ size_t allocationsDuringRun(double durationS) {
 }
 
 TEST(NoAllocationTest, RunningMoreFramesAllocatesNothingMore) {
-  const size_t shortRun = allocationsDuringRun(0.2);   // 200 haptic frames, 12 recorder ticks
-  const size_t longRun = allocationsDuringRun(2.0);    // 2000 haptic frames, 120 recorder ticks
+  const size_t shortRun = allocationsDuringRun(0.2);  // 200 haptic frames, 12 recorder ticks
+  const size_t longRun = allocationsDuringRun(2.0);   // 2000 haptic frames, 120 recorder ticks
   EXPECT_EQ(longRun, shortRun) << "allocations grow with frames: the loop allocates";
   EXPECT_LE(shortRun, 4u) << "only the run's own set-up may allocate";
 }

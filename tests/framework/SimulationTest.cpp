@@ -1,7 +1,5 @@
 // End-to-end behaviour of a run: determinism, replay, device rejection,
 // outputs, interrupts, and that only what the scene names runs.
-#include "framework/runtime/Simulation.h"
-
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -9,6 +7,7 @@
 
 #include "framework/devices/DeviceStream.h"
 #include "framework/runtime/RunOutputs.h"
+#include "framework/runtime/Simulation.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -23,10 +22,12 @@ std::string planeScene(const std::string& device, const std::string& extra = "")
   <RequiredPlugin name="analytic"/>
   <RequiredPlugin name="haptics"/>
   <AnalyticPlane name="plane"/>
-  )" + device + R"(
+  )" + device +
+         R"(
   <SphereTool name="burr" radius="2.5" device="@device"/>
   <SpringForce name="force" tool="@burr" target="@plane" stiffness="2" rate="1000"/>
-  )" + extra + R"(
+  )" + extra +
+         R"(
 </Node>)";
 }
 
@@ -73,7 +74,8 @@ TEST(SimulationTest, ARecordedRunReplayedThroughReplayDeviceGivesTheSameTrace) {
   const auto stream = dir / "device.device.csv";
   ASSERT_TRUE(std::filesystem::exists(stream));
 
-  auto replayed = mustLoad(planeScene(R"(<ReplayDevice name="device" file=")" + stream.string() + R"(" rate="1000"/>)"));
+  auto replayed =
+      mustLoad(planeScene(R"(<ReplayDevice name="device" file=")" + stream.string() + R"(" rate="1000"/>)"));
   ASSERT_TRUE(replayed);
   EXPECT_DOUBLE_EQ(replayed->plan().duration, recorded->plan().duration) << "replay lasts as long as the recording";
   replayed->run();
@@ -146,10 +148,10 @@ TEST(SimulationTest, OutputsFollowTheRunContract) {
   const std::string timings = test::readFile(dir / "timings.csv");
   EXPECT_EQ(std::count(timings.begin(), timings.end(), '\n'), 1 + 2 * 250) << "one row per call of device and force";
   const std::string summary = test::readFile(dir / "summary.json");
-  for (const char* key : {"\"scene\"", "\"seed\"", "\"mode\": \"virtual\"", "\"sim_time_s\": 0.25", "\"wall_time_s\"",
-                          "\"components\"", "\"/device\"", "\"groups\"", "\"1000\"", "\"haptics\"", "\"frames\": 250",
-                          "\"force_step_N\"", "\"proxy_inside_frames\"", "\"drilling\"", "\"voxels_removed\"",
-                          "\"events\"", "\"complete\": true"})
+  for (const char* key :
+       {"\"scene\"", "\"seed\"", "\"mode\": \"virtual\"", "\"sim_time_s\": 0.25", "\"wall_time_s\"", "\"components\"",
+        "\"/device\"", "\"groups\"", "\"1000\"", "\"haptics\"", "\"frames\": 250", "\"force_step_N\"",
+        "\"proxy_inside_frames\"", "\"drilling\"", "\"voxels_removed\"", "\"events\"", "\"complete\": true"})
     EXPECT_NE(summary.find(key), std::string::npos) << key << " missing from summary.json";
 }
 
@@ -196,8 +198,8 @@ namespace {
 
 TEST(SimulationRulesTest, LinksBetweenTickingComponentsOfDifferentRatesAreRefused) {
   Diagnostics d;
-  EXPECT_FALSE(test::loadScene(planeScene(
-      R"(<ScriptedDevice name="device" target="@plane" tipOffset="2.5" rate="500"/>)"), d));
+  EXPECT_FALSE(
+      test::loadScene(planeScene(R"(<ScriptedDevice name="device" target="@plane" tipOffset="2.5" rate="500"/>)"), d));
   // The force (1000 Hz) reads the device (500 Hz) through the passive tool.
   EXPECT_NE(messages(d).find("inline.xml:7:35: error: SpringForce 'force' (1000 Hz) reads ScriptedDevice '/device' "
                              "(500 Hz) through its links"),
@@ -222,7 +224,8 @@ TEST(SimulationRulesTest, WithinAGroupLinkTargetsTickFirstWhateverTheDocumentOrd
 TEST(SimulationRulesTest, RecorderFileNamesStayInsideTheRunDirectory) {
   test::TempDir dir;
   for (const char* name : {"../escaped.csv", "summary.json"}) {
-    auto simulation = mustLoad(planeScene(kScripted, std::string(R"(<Recorder source="@force" file=")") + name + "\"/>"));
+    auto simulation =
+        mustLoad(planeScene(kScripted, std::string(R"(<Recorder source="@force" file=")") + name + "\"/>"));
     ASSERT_TRUE(simulation);
     simulation->run();
     std::vector<std::string> errors;
@@ -236,8 +239,10 @@ TEST(SimulationRulesTest, RecorderFileNamesStayInsideTheRunDirectory) {
 
 TEST(SimulationRulesTest, TooLongARunIsAnErrorNamingWhoAskedForIt) {
   Diagnostics d;
-  EXPECT_FALSE(test::loadScene(planeScene(
-      R"(<ScriptedDevice name="device" path="random-walk" target="@plane" walkDuration="1e9" rate="1000"/>)"), d));
+  EXPECT_FALSE(test::loadScene(
+      planeScene(
+          R"(<ScriptedDevice name="device" path="random-walk" target="@plane" walkDuration="1e9" rate="1000"/>)"),
+      d));
   EXPECT_NE(messages(d).find("ScriptedDevice 'device': asks for a run of"), std::string::npos) << messages(d);
 }
 
@@ -249,12 +254,14 @@ TEST(SimulationRulesTest, AnApproachFromInsideTheTargetIsRefused) {
 
 TEST(SimulationRulesTest, ALoopingReplayKeepsTimeMovingAndIsNotAJump) {
   test::TempDir dir;
-  const auto file = dir.write("stroke.csv",
-                              "t,x,y,z,qw,qx,qy,qz,buttons\n0,0,0,10,1,0,0,0,0\n0.05,40,0,10,1,0,0,0,0\n0.099,80,0,10,1,0,0,0,0\n");
+  const auto file =
+      dir.write("stroke.csv",
+                "t,x,y,z,qw,qx,qy,qz,buttons\n0,0,0,10,1,0,0,0,0\n0.05,40,0,10,1,0,0,0,0\n0.099,80,0,10,1,0,0,0,0\n");
   SimulationOptions options;
   options.duration = 0.35;
   auto simulation = mustLoad(
-      planeScene(R"(<ReplayDevice name="device" loop="true" maxSpeed="1000000" file=")" + file.string() + "\"/>"), options);
+      planeScene(R"(<ReplayDevice name="device" loop="true" maxSpeed="1000000" file=")" + file.string() + "\"/>"),
+      options);
   ASSERT_TRUE(simulation);
   simulation->run();
   std::vector<Counter> counters;

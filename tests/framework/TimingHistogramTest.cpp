@@ -1,6 +1,6 @@
-#include "framework/runtime/TimingHistogram.h"
-
 #include <gtest/gtest.h>
+
+#include "framework/runtime/TimingHistogram.h"
 
 namespace trephine {
 namespace {

@@ -1,11 +1,10 @@
-#include "framework/channels/TripleBuffer.h"
-
 #include <gtest/gtest.h>
 
 #include <array>
 #include <thread>
 
 #include "framework/channels/Channel.h"
+#include "framework/channels/TripleBuffer.h"
 
 namespace trephine {
 namespace {

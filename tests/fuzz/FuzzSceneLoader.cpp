@@ -2,14 +2,14 @@
 // (XML, includes, plugins, fields, links, initialisation). Any
 // crash, sanitizer report, leak or hang is a loader bug: a scene, however
 // broken, must end in diagnostics.
+#include <unistd.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
 #include <system_error>
-
-#include <unistd.h>
 
 #include "framework/runtime/Simulation.h"
 

@@ -49,7 +49,8 @@ TEST_F(PluginLoadingTest, AFileThatIsNotALibraryFailsToLoadWithTheReason) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene("<Node name=\"root\">\n  <RequiredPlugin name=\"garbage\"/>\n</Node>", d));
   const std::string text = test::messages(d);
-  EXPECT_NE(text.find("inline.xml:2:3: error: plugin 'garbage' failed to load from " + (dir / "trephine_garbage.so").string()),
+  EXPECT_NE(text.find("inline.xml:2:3: error: plugin 'garbage' failed to load from " +
+                      (dir / "trephine_garbage.so").string()),
             std::string::npos)
       << text;
 }

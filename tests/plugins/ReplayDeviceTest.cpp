@@ -10,7 +10,8 @@ namespace {
 std::string replayScene(const std::string& file, const std::string& extra = "") {
   return R"(<Node name="root">
   <RequiredPlugin name="haptics"/>
-  <ReplayDevice name="device" file=")" + file + "\" " + extra + R"(/>
+  <ReplayDevice name="device" file=")" +
+         file + "\" " + extra + R"(/>
 </Node>)";
 }
 

@@ -14,8 +14,10 @@ std::string scene(const std::string& deviceAttributes, const std::string& planeA
   return R"(<Node name="root">
   <RequiredPlugin name="analytic"/>
   <RequiredPlugin name="haptics"/>
-  <AnalyticPlane name="plane" )" + planeAttributes + R"(/>
-  <ScriptedDevice name="device" target="@plane" tipOffset="2.5" )" + deviceAttributes + R"(/>
+  <AnalyticPlane name="plane" )" +
+         planeAttributes + R"(/>
+  <ScriptedDevice name="device" target="@plane" tipOffset="2.5" )" +
+         deviceAttributes + R"(/>
   <SphereTool name="burr" radius="2.5" device="@device"/>
   <SpringForce name="force" tool="@burr" target="@plane" rate="1000"/>
 </Node>)";
@@ -55,8 +57,8 @@ TEST(ScriptedDeviceTest, ApproachPressSlidePressesTheToolToItsDepthAndLeaves) {
 }
 
 TEST(ScriptedDeviceTest, AimsAtATiltedSurfaceAlongTheGivenDirection) {
-  auto simulation = run(scene(R"(path="approach-press-slide" depth="1" direction="0 -1 -1")",
-                              R"(point="5 5 5" normal="0 1 1")"));
+  auto simulation =
+      run(scene(R"(path="approach-press-slide" depth="1" direction="0 -1 -1")", R"(point="5 5 5" normal="0 1 1")"));
   ASSERT_TRUE(simulation);
   EXPECT_NEAR(simulation->hapticLog().stats().penetrationMax, 1.0, 1e-9);
 }

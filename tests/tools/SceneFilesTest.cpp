@@ -9,7 +9,8 @@ namespace {
 std::vector<std::filesystem::path> sceneFiles() {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourceDir() / "scenes"))
-    if (entry.path().extension() == ".xml" && entry.path().parent_path().filename() != "parts") files.push_back(entry.path());
+    if (entry.path().extension() == ".xml" && entry.path().parent_path().filename() != "parts")
+      files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -32,15 +33,15 @@ TEST_P(SceneFileTest, LoadsAndRunsAFewSteps) {
   EXPECT_EQ(simulation->hapticLog().stats().nanFrames, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SceneFileTest, testing::ValuesIn(sceneFiles()),
-                         [](const testing::TestParamInfo<std::filesystem::path>& info) {
-                           std::string name = std::filesystem::relative(info.param, test::sourceDir() / "scenes")
-                                                  .replace_extension()
-                                                  .string();
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, SceneFileTest, testing::ValuesIn(sceneFiles()),
+    [](const testing::TestParamInfo<std::filesystem::path>& info) {
+      std::string name =
+          std::filesystem::relative(info.param, test::sourceDir() / "scenes").replace_extension().string();
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 }  // namespace
 }  // namespace trephine

@@ -57,7 +57,8 @@ TEST(TrephineProgramTest, RunWritesTheContractedOutputs) {
   std::string out;
   ASSERT_EQ(runProgram({"run", kPlaneTouch, "--duration", "0.5", "--out", dir.path().string(), "--seed", "3"}, &out), 0)
       << out;
-  for (const char* file : {"summary.json", "trace.csv", "timings.csv", "device.tool.device.csv", "recording.record.recorder.csv"})
+  for (const char* file :
+       {"summary.json", "trace.csv", "timings.csv", "device.tool.device.csv", "recording.record.recorder.csv"})
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   const std::string summary = test::readFile(dir / "summary.json");
   EXPECT_NE(summary.find("\"seed\": 3"), std::string::npos);
@@ -87,7 +88,8 @@ TEST(TrephineProgramTest, ComponentsDocumentsEveryFieldOfEveryPlugin) {
 }
 
 TEST(TrephineProgramTest, GeneratedSchemaAcceptsEveryShippedSceneAndRejectsMistakes) {
-  if (std::system("command -v xmllint > /dev/null 2>&1") != 0) GTEST_SKIP() << "xmllint (libxml2-utils) is not installed";
+  if (std::system("command -v xmllint > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xmllint (libxml2-utils) is not installed";
   test::TempDir dir;
   std::string schema;
   ASSERT_EQ(runProgram({"components", "--xsd"}, &schema, "env -u TREPHINE_PLUGIN_PATH"), 0);
@@ -97,8 +99,11 @@ TEST(TrephineProgramTest, GeneratedSchemaAcceptsEveryShippedSceneAndRejectsMista
     const std::string command = "xmllint --noout --schema '" + xsd.string() + "' '" + entry.path().string() + "' 2>&1";
     EXPECT_EQ(std::system((command + " > /dev/null").c_str()), 0) << entry.path();
   }
-  const auto bad = dir.write("bad.xml", R"(<Node name="r"><SphereTool radus="1"/><ScriptedDevice path="zigzag"/></Node>)");
-  EXPECT_NE(std::system(("xmllint --noout --schema '" + xsd.string() + "' '" + bad.string() + "' > /dev/null 2>&1").c_str()), 0);
+  const auto bad =
+      dir.write("bad.xml", R"(<Node name="r"><SphereTool radus="1"/><ScriptedDevice path="zigzag"/></Node>)");
+  EXPECT_NE(
+      std::system(("xmllint --noout --schema '" + xsd.string() + "' '" + bad.string() + "' > /dev/null 2>&1").c_str()),
+      0);
 }
 
 TEST(TrephineProgramTest, TheSceneReferenceInTheDocsIsCurrent) {

@@ -17,9 +17,12 @@ namespace {
 std::string markdownCell(std::string text) {
   std::string out;
   for (char c : text) {
-    if (c == '|') out += "\\|";
-    else if (c == '\n') out += ' ';
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n')
+      out += ' ';
+    else
+      out += c;
   }
   return out;
 }
@@ -74,9 +77,10 @@ bool writeReference(std::ostream& out, ReferenceFormat format, const std::string
           << (entry->plugin == "core" ? " (always available)" : "") << ".\n\n";
       out << "| field | type | default | unit | range | help |\n|---|---|---|---|---|---|\n";
       for (const BaseField* f : prototype->fields()) {
-        out << "| `" << f->name() << "`" << (f->info().required ? " (required)" : "") << " | `" << markdownCell(f->typeName()) << "`"
-            << " | " << markdownCell(f->defaultText()) << " | " << f->info().unit << " | " << markdownCell(f->rangeText())
-            << " | " << markdownCell(std::string(f->info().help)) << " |\n";
+        out << "| `" << f->name() << "`" << (f->info().required ? " (required)" : "") << " | `"
+            << markdownCell(f->typeName()) << "`"
+            << " | " << markdownCell(f->defaultText()) << " | " << f->info().unit << " | "
+            << markdownCell(f->rangeText()) << " | " << markdownCell(std::string(f->info().help)) << " |\n";
       }
       out << "\n";
     } else {

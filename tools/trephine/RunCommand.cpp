@@ -67,7 +67,8 @@ int validateCommand(const Arguments& a) {
 
 int runCommand(const Arguments& a) {
   if (a.positional.size() != 1) {
-    std::cerr << "usage: trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value ...]\n";
+    std::cerr << "usage: trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value "
+                 "...]\n";
     return kUsage;
   }
   std::string error;

@@ -14,11 +14,20 @@ std::string escapeXml(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -67,7 +76,8 @@ void writeXmlSchema(std::ostream& out, const Registry& registry) {
 
   // Any component, a node, a plugin or an include may appear in a node, in any order.
   out << "  <xs:group name=\"member\">\n    <xs:choice>\n"
-         "      <xs:element ref=\"Node\"/>\n      <xs:element ref=\"RequiredPlugin\"/>\n      <xs:element ref=\"Include\"/>\n";
+         "      <xs:element ref=\"Node\"/>\n      <xs:element ref=\"RequiredPlugin\"/>\n      <xs:element "
+         "ref=\"Include\"/>\n";
   for (const ComponentEntry* entry : registry.entries()) out << "      <xs:element ref=\"" << entry->type << "\"/>\n";
   out << "    </xs:choice>\n  </xs:group>\n";
 

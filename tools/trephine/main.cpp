@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
   arguments.command = command;
   std::optional<std::string> error;
   if (command == "run") {
-    error = parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"}, {"--realtime", "--quiet"}, arguments);
+    error =
+        parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"}, {"--realtime", "--quiet"}, arguments);
     if (!error) return runCommand(arguments);
   } else if (command == "validate") {
     error = parseArguments(argc, argv, {"--set"}, {}, arguments);
@@ -65,7 +66,8 @@ int main(int argc, char** argv) {
                                      : arguments.has("--xsd")      ? ReferenceFormat::XmlSchema
                                                                    : ReferenceFormat::Text;
       std::string problem;
-      const bool ok = writeReference(std::cout, format, arguments.positional.empty() ? "" : arguments.positional[0], problem);
+      const bool ok =
+          writeReference(std::cout, format, arguments.positional.empty() ? "" : arguments.positional[0], problem);
       if (!problem.empty()) std::cerr << "trephine: " << problem << "\n";
       return ok ? kOk : kSceneError;
     }

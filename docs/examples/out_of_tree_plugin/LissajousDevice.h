@@ -22,15 +22,24 @@ class LissajousDevice final : public trephine::HapticDevice {
   trephine::DeviceSample readSample(double t) override;
 
  private:
-  trephine::Field<trephine::Vec3> d_center{this, "center", trephine::Vec3::Zero(),
-                                           {.help = "Centre of the figure", .unit = "mm"}};
-  trephine::Field<trephine::Vec3> d_amplitude{this, "amplitude", trephine::Vec3(10, 10, 0),
+  trephine::Field<trephine::Vec3> d_center{
+      this, "center", trephine::Vec3::Zero(), {.help = "Centre of the figure", .unit = "mm"}};
+  trephine::Field<trephine::Vec3> d_amplitude{this,
+                                              "amplitude",
+                                              trephine::Vec3(10, 10, 0),
                                               {.help = "Half the swing along x, y and z", .unit = "mm", .min = 0.0}};
-  trephine::Field<trephine::Vec3> d_frequency{this, "frequency", trephine::Vec3(1, 2, 0),
-                                              {.help = "Oscillation frequency along x, y and z", .unit = "Hz", .min = 0.0}};
-  trephine::Field<double> d_duration{this, "duration", 2.0,
+  trephine::Field<trephine::Vec3> d_frequency{
+      this,
+      "frequency",
+      trephine::Vec3(1, 2, 0),
+      {.help = "Oscillation frequency along x, y and z", .unit = "Hz", .min = 0.0}};
+  trephine::Field<double> d_duration{this,
+                                     "duration",
+                                     2.0,
                                      {.help = "Length of the motion, used as the run length when none is given",
-                                      .unit = "s", .min = 0.0, .minExclusive = true}};
+                                      .unit = "s",
+                                      .min = 0.0,
+                                      .minExclusive = true}};
 };
 
 }  // namespace lissajous

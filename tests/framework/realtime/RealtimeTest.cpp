@@ -77,11 +77,12 @@ TEST(RealtimeTest, FastGroupKeepsItsRateWhileASlowGroupReadsItsChannel) {
   const RateGroup& slowGroup = *scheduler.group(60.0);
   const double callsPerSecond = static_cast<double>(fastGroup.calls) / fastGroup.wallSeconds;
   const TimingSummary lateness = fastGroup.wakeLateness.summary();  // µs
-  std::printf("1 kHz group: %.1f calls/s over %.3f s, wake lateness p50 %.1f us p99 %.1f us max %.1f us, "
-              "%llu deadline misses, %llu skipped ticks, SCHED_FIFO %s\n",
-              callsPerSecond, fastGroup.wallSeconds, lateness.p50, lateness.p99, lateness.max,
-              static_cast<unsigned long long>(fastGroup.deadlineMisses),
-              static_cast<unsigned long long>(fastGroup.skippedTicks), fastGroup.realtimePriority ? "yes" : "no");
+  std::printf(
+      "1 kHz group: %.1f calls/s over %.3f s, wake lateness p50 %.1f us p99 %.1f us max %.1f us, "
+      "%llu deadline misses, %llu skipped ticks, SCHED_FIFO %s\n",
+      callsPerSecond, fastGroup.wallSeconds, lateness.p50, lateness.p99, lateness.max,
+      static_cast<unsigned long long>(fastGroup.deadlineMisses),
+      static_cast<unsigned long long>(fastGroup.skippedTicks), fastGroup.realtimePriority ? "yes" : "no");
   std::printf("60 Hz group: %llu calls, %llu fresh reads, newest frame read %llu\n",
               static_cast<unsigned long long>(slowGroup.calls), static_cast<unsigned long long>(slow.freshReads),
               static_cast<unsigned long long>(slow.lastFrame));
@@ -108,7 +109,8 @@ std::string planeScene(const std::string& extra) {
   <ScriptedDevice name="device" path="drill-in" target="@plane" tipOffset="2.5" rate="1000"/>
   <SphereTool name="burr" radius="2.5" device="@device"/>
   <SpringForce name="force" tool="@burr" target="@plane" rate="1000"/>
-  )" + extra + R"(
+  )" + extra +
+         R"(
 </Node>)";
 }
 
@@ -124,11 +126,13 @@ TEST(RealtimeTest, SceneWithoutRecorderRunsOneGroupThread) {
   EXPECT_EQ(simulation->scheduler().groups().front().rateHz, 1000.0);
   simulation->run();
   EXPECT_TRUE(simulation->complete()) << simulation->incompleteReason();
-  EXPECT_EQ(simulation->scheduler().groups().front().calls + simulation->scheduler().groups().front().skippedTicks, 200u);
+  EXPECT_EQ(simulation->scheduler().groups().front().calls + simulation->scheduler().groups().front().skippedTicks,
+            200u);
 
   // The same scene with a recorder gets a second group, hence a second thread.
   Diagnostics withRecorder;
-  auto recorded = test::loadScene(planeScene(R"(<Recorder name="recorder" source="@force" rate="60"/>)"), withRecorder, options);
+  auto recorded =
+      test::loadScene(planeScene(R"(<Recorder name="recorder" source="@force" rate="60"/>)"), withRecorder, options);
   ASSERT_TRUE(recorded) << test::messages(withRecorder);
   EXPECT_EQ(recorded->scheduler().groups().size(), 2u);
 }

@@ -140,7 +140,8 @@ TEST(FieldParsingTest, EnumAcceptsExactlyOneOfItsOptionsAndSuggestsTheClosest) {
   EXPECT_EQ(zoo.shape.index(), 2u);
   EXPECT_EQ(assign(zoo.shape, "cylnder"),
             "expected one of: sphere, cylinder, cone, got 'cylnder', did you mean 'cylinder'?");
-  EXPECT_EQ(assign(zoo.shape, "Sphere"), "expected one of: sphere, cylinder, cone, got 'Sphere', did you mean 'sphere'?");
+  EXPECT_EQ(assign(zoo.shape, "Sphere"),
+            "expected one of: sphere, cylinder, cone, got 'Sphere', did you mean 'sphere'?");
   EXPECT_EQ(assign(zoo.shape, "pyramid"), "expected one of: sphere, cylinder, cone, got 'pyramid'");
   EXPECT_TRUE(zoo.shape.is("cone"));
 }

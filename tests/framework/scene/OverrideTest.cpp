@@ -88,12 +88,14 @@ TEST(OverrideTest, RenamingIsRefused) {
 
 TEST(OverrideTest, LinkOverrideToTheWrongTypeIsReportedAtTheOverride) {
   const Diagnostics d = loadFailure(kScene, withOverrides({"tool/force.tool=@device"}));
-  EXPECT_TRUE(hasError(d, "--set tool/force.tool=@device",
-                       "link tool=\"@device\" of SpringForce 'force' points to ScriptedDevice 'device', expected a SphereTool"));
+  EXPECT_TRUE(hasError(
+      d, "--set tool/force.tool=@device",
+      "link tool=\"@device\" of SpringForce 'force' points to ScriptedDevice 'device', expected a SphereTool"));
 }
 
 TEST(OverrideTest, EveryBadOverrideIsReported) {
-  const Diagnostics d = loadFailure(kScene, withOverrides({"tool/force.stiffness=x", "tool/burr.radius=-1", "nowhere.x=1"}));
+  const Diagnostics d =
+      loadFailure(kScene, withOverrides({"tool/force.stiffness=x", "tool/burr.radius=-1", "nowhere.x=1"}));
   EXPECT_TRUE(hasError(d, "--set tool/force.stiffness=x", "expected a number"));
   EXPECT_TRUE(hasError(d, "--set tool/burr.radius=-1", "out of range"));
   EXPECT_TRUE(hasError(d, "--set nowhere.x=1", "no component 'nowhere' in node '/'"));

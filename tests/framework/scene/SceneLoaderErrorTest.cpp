@@ -97,8 +97,8 @@ TEST(SceneLoaderErrorTest, UnknownAttributeIsReportedAtItsNameWithSuggestion) {
   <RequiredPlugin name="analytic"/>
   <AnalyticPlane name="plane" extnt="5"/>
 </Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:3:31",
-                       "unknown attribute 'extnt' of AnalyticPlane 'plane', did you mean 'extent'?"));
+  EXPECT_TRUE(
+      hasError(d, "inline.xml:3:31", "unknown attribute 'extnt' of AnalyticPlane 'plane', did you mean 'extent'?"));
   EXPECT_EQ(d.errorCount(), 1);
 }
 
@@ -127,8 +127,9 @@ TEST(SceneLoaderErrorTest, Vec3WithTwoNumbersSaysThreeAreExpected) {
   <RequiredPlugin name="analytic"/>
   <AnalyticPlane name="plane" normal="0 1"/>
 </Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:3:39",
-                       "invalid normal of AnalyticPlane 'plane': expected three numbers 'x y z', got 2 value(s) in '0 1'"));
+  EXPECT_TRUE(
+      hasError(d, "inline.xml:3:39",
+               "invalid normal of AnalyticPlane 'plane': expected three numbers 'x y z', got 2 value(s) in '0 1'"));
 }
 
 TEST(SceneLoaderErrorTest, BoolAcceptsOnlyTrueFalseOneOrZero) {
@@ -136,7 +137,8 @@ TEST(SceneLoaderErrorTest, BoolAcceptsOnlyTrueFalseOneOrZero) {
   <RequiredPlugin name="haptics"/>
   <ReplayDevice name="replay" loop="yes"/>
 </Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:3:37", "invalid loop of ReplayDevice 'replay': expected true or false, got 'yes'"));
+  EXPECT_TRUE(
+      hasError(d, "inline.xml:3:37", "invalid loop of ReplayDevice 'replay': expected true or false, got 'yes'"));
   EXPECT_TRUE(hasError(d, "inline.xml:3:3", "missing required file of ReplayDevice 'replay'"));
   EXPECT_EQ(d.errorCount(), 2);
 }
@@ -157,7 +159,8 @@ TEST(SceneLoaderErrorTest, NegativeRadiusIsOutOfItsExclusiveRange) {
   <ScriptedDevice name="device"/>
   <SphereTool name="burr" device="@device" radius="-1"/>
 </Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:4:52", "invalid radius of SphereTool 'burr': value -1 is out of range (0, inf) mm"));
+  EXPECT_TRUE(
+      hasError(d, "inline.xml:4:52", "invalid radius of SphereTool 'burr': value -1 is out of range (0, inf) mm"));
   EXPECT_EQ(d.errorCount(), 1);
 }
 
@@ -166,8 +169,8 @@ TEST(SceneLoaderErrorTest, RateZeroIsOutOfRange) {
   <RequiredPlugin name="haptics"/>
   <ScriptedDevice name="device" rate="0"/>
 </Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:3:39",
-                       "invalid rate of ScriptedDevice 'device': value 0 is out of range (0, 1e+06] Hz"));
+  EXPECT_TRUE(
+      hasError(d, "inline.xml:3:39", "invalid rate of ScriptedDevice 'device': value 0 is out of range (0, 1e+06] Hz"));
   EXPECT_EQ(d.errorCount(), 1);
 }
 
@@ -186,8 +189,9 @@ TEST(SceneLoaderErrorTest, MissingRequiredLinkIsReportedAtTheElementWithItsTypeA
   <RequiredPlugin name="haptics"/>
   <SphereTool name="burr"/>
 </Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:3:3",
-                       "missing required device of SphereTool 'burr' (link<HapticDevice>: Device that moves the tool)"));
+  EXPECT_TRUE(
+      hasError(d, "inline.xml:3:3",
+               "missing required device of SphereTool 'burr' (link<HapticDevice>: Device that moves the tool)"));
   EXPECT_EQ(d.errorCount(), 1);
 }
 

@@ -1,9 +1,9 @@
 // The scanner behind every column in loader messages.
-#include "framework/scene/XmlPositionScanner.h"
-
 #include <gtest/gtest.h>
 
 #include <string>
+
+#include "framework/scene/XmlPositionScanner.h"
 
 namespace trephine {
 namespace {
@@ -120,7 +120,8 @@ TEST(XmlPositionScannerTest, RejectsWhatTheXmlLibraryWouldIgnoreOrMisplace) {
   EXPECT_EQ(problemOf("<a/>\n\n  x"), "3:3 text outside the root element");
   EXPECT_EQ(problemOf("<![CDATA[x]]><a/>"), "1:1 CDATA section outside the root element");
   EXPECT_EQ(problemOf("<a/></a>"), "1:5 end tag </a> has no matching start tag");
-  EXPECT_EQ(problemOf("<a><?pi x?></a>"), "1:4 '<?...?>' is only allowed at the start of the file, before any other markup");
+  EXPECT_EQ(problemOf("<a><?pi x?></a>"),
+            "1:4 '<?...?>' is only allowed at the start of the file, before any other markup");
   EXPECT_EQ(problemOf("<!-- c --><?xml version=\"1.0\"?><a/>"),
             "1:11 '<?...?>' is only allowed at the start of the file, before any other markup");
   EXPECT_EQ(problemOf("<a><!DOCTYPE a></a>"), "1:4 '<!...>' declarations are only allowed before the root element");
@@ -141,7 +142,8 @@ TEST(XmlPositionScannerTest, LimitsNestingDepthWithThePositionOfTheTooDeepElemen
 }
 
 TEST(XmlPositionScannerTest, AcceptsAWellFormedScene) {
-  EXPECT_EQ(problemOf("<?xml version=\"1.0\"?>\r\n<Node name=\"root\">\r\n  <Recorder name='r'/>\r\n</Node>\r\n"), "none");
+  EXPECT_EQ(problemOf("<?xml version=\"1.0\"?>\r\n<Node name=\"root\">\r\n  <Recorder name='r'/>\r\n</Node>\r\n"),
+            "none");
 }
 
 TEST(XmlPositionScannerTest, SurvivesTruncationAtEveryByte) {
