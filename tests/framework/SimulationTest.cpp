@@ -266,8 +266,11 @@ TEST(SimulationRulesTest, ALoopingReplayKeepsTimeMovingAndIsNotAJump) {
   simulation->run();
   std::vector<Counter> counters;
   simulation->scene().findComponent("device")->reportCounters(counters);
-  for (const Counter& c : counters)
-    if (c.name == "rejected_jump") EXPECT_EQ(c.value, 0.0) << "starting over is intended";
+  for (const Counter& c : counters) {
+    if (c.name == "rejected_jump") {
+      EXPECT_EQ(c.value, 0.0) << "starting over is intended";
+    }
+  }
   simulation->writeOutputs(dir / "run");
   const auto recorded = readDeviceStream(dir / "run/device.device.csv");
   EXPECT_TRUE(recorded.error.empty()) << recorded.error << ": the recording of a looping replay replays";
