@@ -28,6 +28,7 @@ void Component::prepare(const RunPlan&) {}
 void Component::tick(const TickContext&) {}
 void Component::finish(FinishContext&) {}
 void Component::reportCounters(std::vector<Counter>&) const {}
+void Component::declareOutputs(std::vector<OutputFile>&) const {}
 
 void Component::attach(Node* node, std::string typeName) {
   m_node = node;

@@ -28,6 +28,12 @@ struct TickContext {
   EventLog* events = nullptr;
 };
 
+// A file a component will write into the run directory, and the field that names it (if any).
+struct OutputFile {
+  std::string name;
+  const BaseField* field = nullptr;
+};
+
 // A named figure a component adds to its entry in summary.json ("rejected_non_finite": 3).
 struct Counter {
   std::string name;
@@ -66,6 +72,9 @@ class Component : public FieldOwner {
   virtual void finish(FinishContext& context);
   // Figures for this component's entry in summary.json.
   virtual void reportCounters(std::vector<Counter>& counters) const;
+  // The files finish() will write, checked after init (plain names, none of the
+  // run's own, no two alike) so that a bad name fails the load, not the end of a run.
+  virtual void declareOutputs(std::vector<OutputFile>& outputs) const;
 
   // Set by the loader.
   void attach(Node* node, std::string typeName);

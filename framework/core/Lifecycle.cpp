@@ -18,19 +18,22 @@ uint64_t RunPlan::callsAt(double rateHz) const {
   return static_cast<uint64_t>(calls);
 }
 
-bool FinishContext::claimOutput(const Component& component, const std::string& fileName) {
+std::optional<std::string> FinishContext::checkFileName(const std::string& fileName) {
   static const char* const reserved[] = {"summary.json", "trace.csv", "timings.csv"};
-  std::string problem;
-  if (fileName.empty() || fileName == "." || fileName == ".." || fileName.find('/') != std::string::npos) {
-    problem = "'" + fileName + "' is not a plain file name (no directories)";
-  } else if (std::find(std::begin(reserved), std::end(reserved), fileName) != std::end(reserved)) {
-    problem = "'" + fileName + "' is one of the run's own files";
-  } else {
-    for (const Output& o : m_outputs)
-      if (o.file == fileName) problem = "'" + fileName + "' is already written by " + o.component;
-  }
-  if (!problem.empty()) {
-    error(component, "cannot write " + problem);
+  if (fileName.empty() || fileName == "." || fileName == ".." || fileName.find('/') != std::string::npos ||
+      fileName.find('\\') != std::string::npos)
+    return std::string("it is not a plain file name (a name in the run directory, without directories)");
+  if (std::find(std::begin(reserved), std::end(reserved), fileName) != std::end(reserved))
+    return std::string("it is one of the run's own files");
+  return std::nullopt;
+}
+
+bool FinishContext::claimOutput(const Component& component, const std::string& fileName) {
+  std::optional<std::string> problem = checkFileName(fileName);
+  for (const Output& o : m_outputs)
+    if (!problem && o.file == fileName) problem = o.component + " writes it";
+  if (problem) {
+    error(component, "cannot write '" + fileName + "': " + *problem);
     return false;
   }
   m_outputs.push_back({component.path(), fileName});

@@ -3,6 +3,7 @@
 // and after the run. The runtime implements these; components only see them.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,9 @@ class FinishContext {
   bool claimOutput(const Component& component, const std::string& fileName);
   // "<kind>.<path with '/' as '.'>.csv", unique because names cannot contain '.'.
   static std::string defaultFileName(const std::string& kind, const Component& component);
+  // Why `fileName` cannot be a component's output ("it is not a plain file
+  // name ...", "it is one of the run's own files"), or nothing.
+  static std::optional<std::string> checkFileName(const std::string& fileName);
   void error(const Component& component, std::string message);
 
   struct Output {

@@ -58,6 +58,10 @@ void HapticDevice::finish(FinishContext& context) {
   if (!out) context.error(*this, "cannot write " + name);
 }
 
+void HapticDevice::declareOutputs(std::vector<OutputFile>& outputs) const {
+  if (d_record.value()) outputs.push_back({FinishContext::defaultFileName("device", *this), &d_record});
+}
+
 void HapticDevice::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"samples", static_cast<double>(m_samples)});
   counters.push_back({"rejected_non_finite", static_cast<double>(m_rejectedNonFinite)});

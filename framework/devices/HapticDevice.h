@@ -38,6 +38,7 @@ class HapticDevice : public Component {
   void tick(const TickContext& context) final;
   void finish(FinishContext& context) override;
   void reportCounters(std::vector<Counter>& counters) const override;
+  void declareOutputs(std::vector<OutputFile>& outputs) const override;
 
   // Samples received and rejected so far.
   uint64_t samples() const { return m_samples; }

@@ -35,9 +35,17 @@ void Recorder::tick(const TickContext& context) {
   for (size_t k = 0; k < m_columns.size(); ++k) row[2 + k] = sample.values[k];
 }
 
+std::string Recorder::fileName() const {
+  return d_file->empty() ? FinishContext::defaultFileName("recording", *this) : d_file.value();
+}
+
+void Recorder::declareOutputs(std::vector<OutputFile>& outputs) const {
+  outputs.push_back({fileName(), d_file.isSet() ? &d_file : nullptr});
+}
+
 void Recorder::finish(FinishContext& context) {
   if (context.outputDirectory().empty()) return;
-  const std::string name = d_file->empty() ? FinishContext::defaultFileName("recording", *this) : d_file.value();
+  const std::string name = fileName();
   if (!context.claimOutput(*this, name)) return;
   std::ofstream out(context.outputDirectory() / name);
   out << "t,source_t";

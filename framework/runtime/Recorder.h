@@ -19,8 +19,10 @@ class Recorder final : public Component {
   void tick(const TickContext& context) override;
   void finish(FinishContext& context) override;
   void reportCounters(std::vector<Counter>& counters) const override;
+  void declareOutputs(std::vector<OutputFile>& outputs) const override;
 
  private:
+  std::string fileName() const;
   size_t rowWidth() const;
   Link<SampleSource> l_source{
       this,

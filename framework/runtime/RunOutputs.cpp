@@ -102,7 +102,7 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
     for (const GroupMember& m : g.members) json.value(m.component->path());
     json.endArray();
     if (simulation.plan().realtime) {
-      json.field("calls_per_s", g.wallSeconds > 0 ? static_cast<double>(g.calls) / g.wallSeconds : 0.0);
+      json.field("calls_per_s", g.callsPerSecond());
       json.key("wake_lateness_us");
       writeTiming(json, g.wakeLateness);
       json.field("skipped_ticks", static_cast<unsigned long long>(g.skippedTicks));
@@ -207,7 +207,7 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     for (const RateGroup& g : scheduler.groups()) {
       const TimingSummary late = g.wakeLateness.summary();
       out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9)
-          << (g.wallSeconds > 0 ? static_cast<double>(g.calls) / g.wallSeconds : 0.0) << std::setw(18) << late.p50
+          << g.callsPerSecond() << std::setprecision(3) << std::setw(18) << late.p50
           << std::setw(8) << late.p99 << std::setw(8) << late.max << std::setw(9) << g.skippedTicks << std::setw(12)
           << (g.realtimePriority ? "yes" : "no") << "\n";
     }

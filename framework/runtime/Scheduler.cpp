@@ -96,6 +96,8 @@ void Scheduler::run(const std::atomic<bool>& stop) {
 uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
   const TickContext context{static_cast<double>(k) / group.rateHz, group.periodS, k, m_events};
   const uint64_t periodNs = static_cast<uint64_t>(group.periodS * 1e9);
+  ++group.calls;  // counted when it starts: a step that throws is still a step taken
+  group.currentT = context.t;
   const uint64_t start = nowNs();
   uint64_t before = start;
   for (GroupMember& member : group.members) {
@@ -111,12 +113,12 @@ uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
   }
   const uint64_t total = before - start;
   group.stepHistogram.record(total);
-  ++group.calls;
   return total;
 }
 
 std::string Scheduler::describeFailure(const RateGroup& group, const char* what) {
   const Component* culprit = group.current ? group.current->component : nullptr;
+  if (m_events) m_events->log(group.currentT, "tick_failed", "", culprit);
   return (culprit ? culprit->path() + ": " : std::string()) + what;
 }
 
@@ -184,6 +186,8 @@ void Scheduler::runRealtime(const std::atomic<bool>& stop) {
           sleepUntilNs(deadline, spin);
           const uint64_t wake = nowNs();
           g.wakeLateness.record(wake > deadline ? wake - deadline : 0);
+          if (g.calls == 0) g.firstStartNs = wake;
+          g.lastStartNs = wake;
           step(g, k);
           const uint64_t end = nowNs();
           if (static_cast<double>(end - deadline) > periodNs) ++g.deadlineMisses;

@@ -45,8 +45,17 @@ struct RateGroup {
   uint64_t deadlineMisses = 0;
   uint64_t skippedTicks = 0;  // real time: ticks dropped after a stall
   double wallSeconds = 0;     // real time: from first deadline to the end
+  uint64_t firstStartNs = 0, lastStartNs = 0;  // real time: clock at the first and the last step
+
+  // Real time: steps per second actually achieved, (calls - 1) / (last start - first start).
+  double callsPerSecond() const {
+    return calls > 1 && lastStartNs > firstStartNs
+               ? static_cast<double>(calls - 1) / (static_cast<double>(lastStartNs - firstStartNs) * 1e-9)
+               : 0.0;
+  }
   bool realtimePriority = false;
   const GroupMember* current = nullptr;  // the member being ticked
+  double currentT = 0;                   // s, scheduled time of the step being run
 };
 
 class Scheduler {
@@ -68,7 +77,8 @@ class Scheduler {
   void runRealtime(const std::atomic<bool>& stop);
   // Runs one step of `group` at call index k; returns its duration (ns).
   uint64_t step(RateGroup& group, uint64_t k);
-  static std::string describeFailure(const RateGroup& group, const char* what);
+  // "path: what", and a tick_failed event.
+  std::string describeFailure(const RateGroup& group, const char* what);
 
   RunPlan m_plan;
   EventLog* m_events;

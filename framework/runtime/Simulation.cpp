@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <set>
 
 #include "framework/core/Strings.h"
@@ -70,6 +71,24 @@ void checkRateGroupLinks(const std::vector<Component*>& components, Diagnostics&
   }
 }
 
+// Every file components will write: a plain name, none of the run's own, no two alike.
+void checkDeclaredOutputs(const std::vector<Component*>& components, Diagnostics& diagnostics) {
+  std::map<std::string, const Component*> owners;
+  for (const Component* c : components) {
+    std::vector<OutputFile> outputs;
+    c->declareOutputs(outputs);
+    for (const OutputFile& output : outputs) {
+      const SourceLocation& where = output.field ? output.field->location() : c->location();
+      const std::string who = c->typeName() + " '" + c->name() + "'";
+      if (auto problem = FinishContext::checkFileName(output.name)) {
+        diagnostics.error(where, who + " cannot write '" + output.name + "': " + *problem);
+      } else if (const auto [it, added] = owners.emplace(output.name, c); !added) {
+        diagnostics.error(where, who + " cannot write '" + output.name + "': " + it->second->path() + " writes it");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 class Simulation::Context final : public InitContext {
@@ -81,7 +100,9 @@ class Simulation::Context final : public InitContext {
     m_diagnostics.error(component.location(), component.typeName() + " '" + component.name() + "': " + message);
   }
   void error(const BaseField& field, std::string message) override {
-    m_diagnostics.error(field.location(), "invalid " + field.name() + ": " + message);
+    const auto* owner = dynamic_cast<const Component*>(&field.owner());
+    const std::string of = owner ? " of " + owner->typeName() + " '" + owner->name() + "'" : std::string();
+    m_diagnostics.error(field.location(), "invalid " + field.name() + of + ": " + message);
   }
   uint64_t seed() const override { return m_options.seed; }
   bool isRealtime() const override { return m_options.realtime; }
@@ -184,6 +205,7 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   s.m_plan.realtime = options.realtime;
   s.m_plan.seed = options.seed;
   checkRateGroupLinks(components, diagnostics);
+  checkDeclaredOutputs(components, diagnostics);
   if (diagnostics.hasErrors()) return nullptr;
 
   // Every per-frame buffer is allocated here, before the first tick.

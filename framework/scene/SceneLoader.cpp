@@ -35,6 +35,8 @@ struct SceneLoader::Build {
   Diagnostics& diagnostics;
   std::unique_ptr<Registry> catalog{};    // every available plugin, for "add <RequiredPlugin>" hints
   std::set<const BaseField*> rejected{};  // fields whose given value was invalid
+  std::vector<std::string> failedPlugins{};
+  std::set<std::pair<const Node*, std::string>> uncreated{};  // components that could not be created
 
   // ---- plugins --------------------------------------------------------------
   void loadPlugins(const XmlElement& element) {
@@ -59,12 +61,19 @@ struct SceneLoader::Build {
     auto& loaded = loader.m_loadedPlugins;
     if (std::find(loaded.begin(), loaded.end(), name) != loaded.end()) return;
     if (!loader.m_plugins.locate(name)) {
+      std::string searched;
+      for (const auto& dir : loader.m_plugins.searchPath()) searched += (searched.empty() ? "" : ":") + dir.string();
+      const std::string hint = didYouMean(name, loader.m_plugins.available());
       diagnostics.error(nameAttribute->valueAt,
-                        "unknown plugin '" + name + "'" + didYouMean(name, loader.m_plugins.available()));
+                        "unknown plugin '" + name + "'" + (hint.empty() ? "" : hint + ";") + " no trephine_" + name +
+                            ".so in " + (searched.empty() ? std::string("any directory") : searched) +
+                            " (add its directory to TREPHINE_PLUGIN_PATH)");
+      failedPlugins.push_back(name);
       return;
     }
     if (auto error = loader.m_plugins.load(name, loader.m_registry)) {
       diagnostics.error(e.at, *error);
+      failedPlugins.push_back(name);
       return;
     }
     loaded.push_back(name);
@@ -128,14 +137,14 @@ struct SceneLoader::Build {
       auto component = loader.m_registry.create(child.tag);
       if (!component) {
         reportUnknownComponent(child);
+        // Links to it would only repeat this error.
+        const XmlAttribute* name = child.attribute("name");
+        uncreated.insert({&node, name ? name->value : child.tag});
         continue;
       }
       component->setLocation(child.at);
       component->attach(&node, child.tag);
       Component& added = node.addComponent(std::move(component));
-      // The name first, so that messages about the other attributes name the component.
-      if (const XmlAttribute* name = child.attribute("name"))
-        (void)added.findField("name")->assign(name->value, ParseContext{child.baseDirectory}, name->valueAt);
       if (!child.children.empty())
         diagnostics.error(child.children.front().at, "<" + child.tag + "> is a component and has no child elements");
       // The name first, so that messages about the other attributes name the component.
@@ -175,6 +184,11 @@ struct SceneLoader::Build {
       if (entry && !loader.m_registry.find(suggestion))
         hint += " (in plugin '" + entry->plugin + "': add <RequiredPlugin name=\"" + entry->plugin + "\"/>)";
     }
+    if (hint.empty() && !failedPlugins.empty()) {
+      std::string plugins;
+      for (const auto& p : failedPlugins) plugins += (plugins.empty() ? "'" : ", '") + p + "'";
+      hint = " (perhaps from plugin " + plugins + ", which could not be loaded)";
+    }
     diagnostics.error(e.at, "unknown component '" + e.tag + "'" + hint);
   }
 
@@ -184,13 +198,14 @@ struct SceneLoader::Build {
         auto* link = dynamic_cast<BaseLink*>(field);
         if (!link || !link->hasPath()) continue;
         const std::string what = "link " + link->name() + "=\"@" + link->path() + "\" of " + describe(*component);
-        Component* target = resolveComponentPath(link->path(), node, root, link->location(), what, diagnostics);
+        Component* target =
+            resolveComponentPath(link->path(), node, root, link->location(), what, diagnostics, &uncreated);
         if (!target) continue;
         if (target == component.get()) {
           diagnostics.error(link->location(), what + " points to the component itself");
         } else if (!link->bind(target)) {
           diagnostics.error(link->location(), what + " points to " + describe(*target) + ", expected " +
-                                                  withArticle(link->targetType()) + link->targetType());
+                                                  withArticle(link->targetType()));
         }
       }
     }

@@ -9,8 +9,13 @@ namespace trephine {
 // Resolves "a/b/c" from `start` (or the root when it starts with '/'): the
 // leading segments are nodes, the last a component. Reports at `where`.
 Component* resolveComponentPath(std::string_view path, Node& start, Node& root, const SourceLocation& where,
-                                const std::string& what, Diagnostics& diagnostics) {
+                                const std::string& what, Diagnostics& diagnostics,
+                                const std::set<std::pair<const Node*, std::string>>* uncreated) {
   Node* node = &start;
+  if (path.ends_with('/')) {
+    diagnostics.error(where, what + ": a path ends with the name of a component, not with '/'");
+    return nullptr;
+  }
   if (path.starts_with('/')) {
     node = &root;
     path.remove_prefix(1);
@@ -41,6 +46,7 @@ Component* resolveComponentPath(std::string_view path, Node& start, Node& root, 
     }
     if (last) {
       if (Component* c = node->findComponent(segment)) return c;
+      if (uncreated && uncreated->count({node, segment})) return nullptr;
       if (node->findChild(segment)) {
         diagnostics.error(where, what + ": '" + segment + "' is a node, not a component");
         return nullptr;

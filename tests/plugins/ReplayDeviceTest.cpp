@@ -40,7 +40,7 @@ TEST(ReplayDeviceTest, AMalformedStreamIsAnErrorAtTheFileField) {
   const auto file = dir.write("bad.csv", "t,x,y,z,qw,qx,qy,qz,buttons\n0,0,0,0,1,0,0,0,0\n0.001,1,2\n");
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(replayScene(file.string()), d));
-  EXPECT_NE(test::messages(d).find("inline.xml:3:37: error: invalid file: " + file.string() +
+  EXPECT_NE(test::messages(d).find("inline.xml:3:37: error: invalid file of ReplayDevice 'device': " + file.string() +
                                    ":3: expected 9 columns (t,x,y,z,qw,qx,qy,qz,buttons), got 3"),
             std::string::npos)
       << test::messages(d);

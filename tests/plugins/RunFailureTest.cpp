@@ -33,6 +33,9 @@ TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasM
   EXPECT_NE(summary.find("\"reason\": \"run-time error: /bad/thrower: deliberate failure\""), std::string::npos)
       << summary;
   EXPECT_NE(summary.find("\"calls\": 250"), std::string::npos) << "the 250 calls before the failure were timed";
+  EXPECT_NE(summary.find("\"t\": 0.25,\n      \"kind\": \"tick_failed\",\n      \"component\": \"/bad/thrower\""),
+            std::string::npos)
+      << "the failure is an event too";
 }
 
 TEST_F(RunFailureTest, VirtualTimeCountsStepsLongerThanTheirPeriodAsDeadlineMisses) {

@@ -132,7 +132,7 @@ TEST(ScriptedDeviceTest, ReportsMalformedWaypoints) {
   <ScriptedDevice name="device" path="waypoints" waypoints="0 0 0 10 1 2"/>
 </Node>)",
                                d));
-  EXPECT_NE(test::messages(d).find("inline.xml:3:61: error: invalid waypoints: path=waypoints needs groups of four"),
+  EXPECT_NE(test::messages(d).find("inline.xml:3:61: error: invalid waypoints of ScriptedDevice 'device': path=waypoints needs groups of four"),
             std::string::npos)
       << test::messages(d);
 }

@@ -3,7 +3,9 @@
 #include <charconv>
 #include <csignal>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "framework/core/Strings.h"
 #include "framework/runtime/RunOutputs.h"
@@ -45,17 +47,41 @@ std::optional<SimulationOptions> readOptions(const Arguments& a, std::string& er
   return options;
 }
 
+// Creates `directory` if needed and removes what an earlier run wrote there
+// (its three files, device and recording streams, plots), so that a reused
+// directory never mixes two runs. Other files are left alone.
+std::optional<std::string> prepareOutputDirectory(const std::filesystem::path& directory) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec || !std::filesystem::is_directory(directory)) return "cannot create a directory there";
+  for (const auto& entry : std::filesystem::directory_iterator(directory, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool runFile = name == "summary.json" || name == "trace.csv" || name == "timings.csv" ||
+                         ((name.starts_with("device.") || name.starts_with("recording.")) && name.ends_with(".csv")) ||
+                         name == "force.png" || name == "timings.png";
+    if (runFile && entry.is_regular_file()) std::filesystem::remove(entry.path(), ec);
+  }
+  const auto probe = directory / ".trephine-write-test";
+  if (!std::ofstream(probe)) return "cannot write there";
+  std::filesystem::remove(probe, ec);
+  return std::nullopt;
+}
+
 }  // namespace
 
 int validateCommand(const Arguments& a) {
   if (a.positional.size() != 1) {
-    std::cerr << "usage: trephine validate SCENE [--set path.field=value ...]\n";
+    std::cerr << "usage: trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...]\n";
+    return kUsage;
+  }
+  std::string error;
+  const auto options = readOptions(a, error);
+  if (!options) {
+    std::cerr << "trephine: " << error << "\n";
     return kUsage;
   }
   Diagnostics diagnostics;
-  SimulationOptions options;
-  options.overrides = a.overrides;
-  auto simulation = Simulation::fromFile(a.positional[0], options, diagnostics);
+  auto simulation = Simulation::fromFile(a.positional[0], *options, diagnostics);
   if (!simulation) {
     diagnostics.print(std::cerr);
     return kSceneError;
@@ -87,6 +113,11 @@ int runCommand(const Arguments& a) {
     return kSceneError;
   }
   diagnostics.print(std::cerr);
+  // The output directory must be usable before anything is simulated.
+  if (auto problem = prepareOutputDirectory(out)) {
+    std::cerr << "trephine: --out " << out.string() << ": " << *problem << "\n";
+    return kSceneError;
+  }
 
   // Ctrl-C stops the run between steps; everything measured so far is written.
   std::signal(SIGINT, onSignal);
@@ -105,10 +136,12 @@ int runCommand(const Arguments& a) {
     std::cerr << "trephine: cannot write outputs to " << out.string() << ": " << e.what() << "\n";
     return kRuntimeFailure;
   }
-  if (!a.has("--quiet")) printRunSummary(*simulation, std::cout);
-  std::cout << "outputs   " << out.string() << "/ (";
-  for (size_t i = 0; i < written.size(); ++i) std::cout << (i ? ", " : "") << written[i];
-  std::cout << ")\n";
+  if (!a.has("--quiet")) {
+    printRunSummary(*simulation, std::cout);
+    std::cout << "outputs   " << out.string() << "/ (";
+    for (size_t i = 0; i < written.size(); ++i) std::cout << (i ? ", " : "") << written[i];
+    std::cout << ")\n";
+  }
   for (const std::string& e : outputErrors) std::cerr << "trephine: " << e << "\n";
   if (!simulation->complete()) {
     std::cerr << "trephine: run incomplete: " << simulation->incompleteReason() << "\n";

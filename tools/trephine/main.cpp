@@ -14,8 +14,9 @@ usage:
   trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value ...] [--quiet]
       Run a scene (virtual time unless --realtime) and write summary.json,
       trace.csv and timings.csv to DIR (default runs/<scene name>).
-  trephine validate SCENE [--set path.field=value ...]
-      Load and initialise a scene; print every error, or "ok".
+  trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...]
+      Load and initialise a scene as run would, without running it;
+      print every error, or "ok".
   trephine components [NAME] [--json | --markdown | --xsd]
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
         parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"}, {"--realtime", "--quiet"}, arguments);
     if (!error) return runCommand(arguments);
   } else if (command == "validate") {
-    error = parseArguments(argc, argv, {"--set"}, {}, arguments);
+    error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {}, arguments);
     if (!error) return validateCommand(arguments);
   } else if (command == "components") {
     error = parseArguments(argc, argv, {}, {"--json", "--markdown", "--xsd"}, arguments);

@@ -75,7 +75,7 @@ TEST(RealtimeTest, FastGroupKeepsItsRateWhileASlowGroupReadsItsChannel) {
 
   const RateGroup& fastGroup = *scheduler.group(1000.0);
   const RateGroup& slowGroup = *scheduler.group(60.0);
-  const double callsPerSecond = static_cast<double>(fastGroup.calls) / fastGroup.wallSeconds;
+  const double callsPerSecond = fastGroup.callsPerSecond();
   const TimingSummary lateness = fastGroup.wakeLateness.summary();  // µs
   std::printf(
       "1 kHz group: %.1f calls/s over %.3f s, wake lateness p50 %.1f us p99 %.1f us max %.1f us, "

@@ -254,6 +254,7 @@ TEST(SceneLoaderErrorTest, LinkToAComponentOfTheWrongTypeNamesTheExpectedType) {
   EXPECT_TRUE(hasError(d, "inline.xml:6:50",
                        "link target=\"@device\" of SpringForce 'force' points to ScriptedDevice 'device', "
                        "expected an ImplicitSurface"));
+  EXPECT_TRUE(d.all().front().message.ends_with("expected an ImplicitSurface")) << d.all().front().message;
   EXPECT_EQ(d.errorCount(), 1);
 }
 
