@@ -18,7 +18,8 @@ std::string SourceLocation::str() const {
 
 std::string Diagnostic::str() const {
   const char* label = severity == Severity::Error ? "error" : severity == Severity::Warning ? "warning" : "note";
-  return where.str() + ": " + label + ": " + message;
+  return where.str() + ": " + label + ": " + message +
+         (where.includedFrom.empty() ? std::string() : " [included from " + where.includedFrom + "]");
 }
 
 void Diagnostics::error(const SourceLocation& where, std::string message) {

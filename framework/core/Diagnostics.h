@@ -12,6 +12,9 @@ struct SourceLocation {
   std::string file;  // scene file, or a pseudo-file such as "--set"
   int line = 0;      // 1-based; 0 when unknown
   int column = 0;    // 1-based; 0 when unknown
+  // For text read through <Include>: where it was included ("scene.xml:4:18",
+  // then "<- outer.xml:2:18" for nested includes); empty otherwise.
+  std::string includedFrom = {};
 
   bool known() const { return !file.empty(); }
   std::string str() const;  // "file:line:col"

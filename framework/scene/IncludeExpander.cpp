@@ -21,6 +21,12 @@ struct IncludeFrame {
   std::string shown;  // as written in messages
 };
 
+void markIncludedFrom(XmlElement& element, const std::string& from) {
+  element.at.includedFrom = from;
+  for (XmlAttribute& a : element.attributes) a.nameAt.includedFrom = a.valueAt.includedFrom = from;
+  for (XmlElement& child : element.children) markIncludedFrom(child, from);
+}
+
 struct Expander {
   Diagnostics& diagnostics;
   int includesRead = 0;
@@ -65,6 +71,11 @@ struct Expander {
       }
       auto included = readXmlFile(path, file->valueAt, diagnostics);
       if (!included) continue;
+      // Every position in the included text says where it was included, so that a part
+      // included twice gives two distinguishable errors.
+      const std::string from = file->valueAt.str() +
+                               (file->valueAt.includedFrom.empty() ? "" : " <- " + file->valueAt.includedFrom);
+      markIncludedFrom(*included, from);
       chain.push_back({canonical, path.string()});
       XmlElement holder;  // lets expand() replace an <Include> at the included file's root too
       holder.children.push_back(std::move(*included));

@@ -57,6 +57,24 @@ TEST(IncludeTest, PartIncludedTwiceInDifferentNodesIsNotACycle) {
   EXPECT_NE(simulation, nullptr) << messages(d);
 }
 
+TEST(IncludeTest, ErrorsInAPartIncludedTwiceSayWhereEachCopyWasIncluded) {
+  TempDir dir;
+  dir.write("plane.xml", R"(<AnalyticPlane name="plane" normal="0 0 0"/>)");
+  Diagnostics d;
+  EXPECT_EQ(loadMain(dir, R"(<Node name="root">
+  <RequiredPlugin name="analytic"/>
+  <Node name="a"><Include file="plane.xml"/></Node>
+  <Node name="b"><Include file="plane.xml"/></Node>
+</Node>)",
+                     d),
+            nullptr);
+  ASSERT_EQ(d.errorCount(), 2);
+  const std::string part = in(dir, "plane.xml") + ":1:37: error: invalid normal of AnalyticPlane 'plane'";
+  const std::string main = (dir.path() / "main.xml").string();
+  EXPECT_EQ(d.all()[0].str(), part + ": the normal must not be zero [included from " + main + ":3:33]");
+  EXPECT_EQ(d.all()[1].str(), part + ": the normal must not be zero [included from " + main + ":4:33]");
+}
+
 TEST(IncludeTest, IncludeMayBeTheRootElement) {
   TempDir dir;
   dir.write("real.xml", R"(<Node name="root"/>)");
