@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <set>
 
 #include "framework/core/Lifecycle.h"
 
@@ -18,7 +20,8 @@ std::pair<Vec3, Vec3> tangentBasis(const Vec3& n) {
   return {u, n.cross(u)};
 }
 
-constexpr double kSettle = 0.1;  // s held at the start and end of each path
+constexpr double kSettle = 0.1;    // s held at the start and end of each path
+constexpr double kEaseTime = 0.5;  // s to reach full speed on a circle or a walk
 
 }  // namespace
 
@@ -41,7 +44,36 @@ std::optional<ScriptedDevice::Aim> ScriptedDevice::aimAt(const Vec3& offset, Ini
   return Aim{hit->point + back, hit->normal};
 }
 
+// The fields each path reads (besides name, rate, maxSpeed, record, path and
+// nanTimes, which every path has). Setting another is an error: it would be
+// silently ignored.
+const std::map<std::string, std::set<std::string>>& fieldsOfPath() {
+  static const std::set<std::string> aimed = {"target", "center", "direction", "standoff", "depth", "tipOffset", "speed"};
+  static const auto with = [](std::set<std::string> extra) {
+    extra.insert(aimed.begin(), aimed.end());
+    return extra;
+  };
+  static const std::map<std::string, std::set<std::string>> table = {
+      {"approach-press-slide", with({"slideDistance", "slideDirection"})},
+      {"drill-in", with({"feedSpeed"})},
+      {"circle", with({"radius", "period", "turns"})},
+      {"random-walk", with({"radius", "walkDuration", "seed"})},
+      {"pokes", with({"radius", "count", "lift", "seed"})},
+      {"waypoints", {"waypoints"}},
+  };
+  return table;
+}
+
 void ScriptedDevice::init(InitContext& context) {
+  static const std::set<std::string> common = {"name", "rate", "maxSpeed", "record", "path", "nanTimes"};
+  const std::set<std::string>& used = fieldsOfPath().at(d_path.value());
+  for (const BaseField* field : fields()) {
+    if (!field->isSet() || common.count(field->name()) || used.count(field->name())) continue;
+    std::string users;
+    for (const auto& [path, names] : fieldsOfPath())
+      if (names.count(field->name())) users += (users.empty() ? "" : ", ") + path;
+    context.error(*field, "has no effect with path=\"" + d_path.value() + "\" (it is used by " + users + ")");
+  }
   if (d_direction->norm() < 1e-12) {
     context.error(d_direction, "the approach direction must not be zero");
     return;
@@ -119,8 +151,11 @@ void ScriptedDevice::buildCircle(const Aim& aim, const Vec3& d) {
   m_path.hold(kSettle);
   m_path.moveTo(first, (first - start).norm() / d_speed.value());
   const Vec3 uu = u, vv = v;
-  m_path.follow(d_turns.value() * period, [center, uu, vv, r, period](double s) {
-    const double angle = 2.0 * std::numbers::pi * s / period;
+  // Eased in and out, so the circle starts and ends at rest like the moves around it.
+  const double turning = d_turns.value() * period;
+  const double ramp = std::min(kEaseTime, 0.5 * turning), total = turning + ramp;
+  m_path.follow(total, [center, uu, vv, r, period, total, ramp](double s) {
+    const double angle = 2.0 * std::numbers::pi * easedTime(s, total, ramp) / period;
     return Vec3(center + r * (std::cos(angle) * uu + std::sin(angle) * vv));
   });
   const Vec3 last = m_path.end();
@@ -164,7 +199,9 @@ void ScriptedDevice::buildRandomWalk(const Aim& aim, const Vec3& d, uint64_t see
   m_path.start(start);
   m_path.hold(kSettle);
   m_path.moveTo(first, d_standoff.value() / d_speed.value());
-  m_path.follow(d_walkDuration.value(), walk);
+  // Eased in and out, so the walk starts and ends at rest like the moves around it.
+  const double ramp = std::min(kEaseTime, 0.5 * d_walkDuration.value()), total = d_walkDuration.value() + ramp;
+  m_path.follow(total, [walk, total, ramp](double s) { return walk(easedTime(s, total, ramp)); });
   const Vec3 last = m_path.end();
   m_path.moveTo(last - d * (depth + d_standoff.value()), (depth + d_standoff.value()) / d_speed.value());
   m_path.hold(kSettle);

@@ -9,6 +9,16 @@ double minimumJerk(double u) {
   return u * u * u * (10.0 + u * (-15.0 + 6.0 * u));
 }
 
+double easedTime(double s, double total, double ramp) {
+  // Integral of the minimum-jerk rate, F(u) = 2.5u^4 - 3u^5 + u^6, F(1) = 1/2.
+  const auto rampIntegral = [](double u) { return u * u * u * u * (2.5 + u * (-3.0 + u)); };
+  s = std::clamp(s, 0.0, total);
+  if (ramp <= 0) return s;
+  if (s < ramp) return ramp * rampIntegral(s / ramp);
+  if (s > total - ramp) return (total - ramp) - ramp * rampIntegral((total - s) / ramp);
+  return s - 0.5 * ramp;
+}
+
 void ScriptedPath::moveTo(const Vec3& to, double duration) {
   const Vec3 from = m_current;
   if (duration <= 0) {

@@ -38,6 +38,12 @@ class ScriptedPath {
 // Quintic minimum-jerk blend: 0 at u=0, 1 at u=1, zero velocity and acceleration at both ends.
 double minimumJerk(double u);
 
+// A time warp that starts a steady motion from rest and brings it back to
+// rest: its rate rises from 0 to 1 over the first `ramp` s with the
+// minimum-jerk profile, stays 1, and falls back over the last `ramp` s. Maps
+// [0, total] onto [0, total - ramp]; needs total >= 2 ramp.
+double easedTime(double s, double total, double ramp);
+
 // Uniform numbers from a seed, identical on every platform (the standard
 // distributions are not specified bit for bit, the engine is).
 class SeededRandom {

@@ -116,6 +116,42 @@ TEST(ScriptedDeviceTest, WaypointsAreFollowedExactlyAtTheirTimes) {
   EXPECT_DOUBLE_EQ(simulation->plan().duration, 1.0);
 }
 
+// Velocity (mm/s) changes by less than `bound` between consecutive frames: the
+// script has no corners, so force changes come from contact, not from the motion.
+class SmoothPathTest : public testing::TestWithParam<std::string> {};
+
+TEST_P(SmoothPathTest, VelocityHasNoJumps) {
+  auto simulation = run(scene(GetParam()), 3);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  double largestChange = 0;  // mm/s per frame
+  for (size_t i = 2; i < log.size(); ++i) {
+    const Vec3 v1 = (log[i - 1].device - log[i - 2].device) * 1000.0, v2 = (log[i].device - log[i - 1].device) * 1000.0;
+    largestChange = std::max(largestChange, (v2 - v1).norm());
+  }
+  EXPECT_LT(largestChange, 2.0) << GetParam() << ": a velocity jump of " << largestChange << " mm/s in one frame";
+}
+
+INSTANTIATE_TEST_SUITE_P(Paths, SmoothPathTest,
+                         testing::Values(R"(path="approach-press-slide" depth="1")", R"(path="drill-in" depth="1")",
+                                         R"(path="circle" depth="1" radius="4" period="1" turns="1")",
+                                         R"(path="random-walk" depth="1" radius="4" walkDuration="2")",
+                                         R"(path="pokes" depth="1" radius="4" count="3")"),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param.substr(6, info.param.find('"', 6) - 6);
+                           std::erase(name, '-');
+                           return name;
+                         });
+
+TEST(ScriptedDeviceTest, AFieldThePathDoesNotUseIsAnError) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(scene(R"(path="circle" slideDistance="5")"), d));
+  EXPECT_NE(test::messages(d).find("inline.xml:5:94: error: invalid slideDistance of ScriptedDevice 'device': has no "
+                                   "effect with path=\"circle\" (it is used by approach-press-slide)"),
+            std::string::npos)
+      << test::messages(d);
+}
+
 TEST(ScriptedDeviceTest, ReportsAnApproachThatMissesTheTarget) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(scene(R"(path="approach-press-slide" direction="1 0 0" center="0 0 10")"), d));
