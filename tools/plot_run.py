@@ -9,11 +9,19 @@ change of force per frame over time, from trace.csv) and RUN_DIR/timings.png
 """
 import csv
 import math
+import os
 import sys
 from collections import defaultdict
 from pathlib import Path
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    # Another python3 earlier on PATH (a pyenv one, say) may lack Debian's
+    # matplotlib, which tools/setup installs for /usr/bin/python3.
+    if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
+    sys.exit("plot_run.py: matplotlib is missing; install python3-matplotlib")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
