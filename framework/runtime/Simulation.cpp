@@ -124,28 +124,28 @@ class Simulation::Context final : public InitContext {
   const SimulationOptions& m_options;
 };
 
-std::unique_ptr<Simulation> Simulation::fromFile(const std::filesystem::path& file, const SimulationOptions& options,
-                                                 Diagnostics& diagnostics) {
+std::unique_ptr<Simulation> Simulation::load(const std::function<std::unique_ptr<Scene>(SceneLoader&)>& read,
+                                             const SimulationOptions& options, Diagnostics& diagnostics) {
   std::unique_ptr<Simulation> simulation(new Simulation());
   simulation->m_plugins = std::make_unique<PluginLoader>();
   simulation->m_registry = std::make_unique<Registry>();
   registerCoreComponents(*simulation->m_registry);
   SceneLoader loader(*simulation->m_registry, *simulation->m_plugins);
-  simulation->m_scene = loader.loadFile(file, diagnostics, options.overrides);
+  simulation->m_scene = read(loader);
   if (!simulation->m_scene) return nullptr;
   return initialise(std::move(simulation), options, diagnostics);
 }
 
+std::unique_ptr<Simulation> Simulation::fromFile(const std::filesystem::path& file, const SimulationOptions& options,
+                                                 Diagnostics& diagnostics) {
+  return load([&](SceneLoader& loader) { return loader.loadFile(file, diagnostics, options.overrides); }, options,
+              diagnostics);
+}
+
 std::unique_ptr<Simulation> Simulation::fromString(std::string_view xml, const std::string& fileName,
                                                    const SimulationOptions& options, Diagnostics& diagnostics) {
-  std::unique_ptr<Simulation> simulation(new Simulation());
-  simulation->m_plugins = std::make_unique<PluginLoader>();
-  simulation->m_registry = std::make_unique<Registry>();
-  registerCoreComponents(*simulation->m_registry);
-  SceneLoader loader(*simulation->m_registry, *simulation->m_plugins);
-  simulation->m_scene = loader.loadString(xml, fileName, diagnostics, options.overrides);
-  if (!simulation->m_scene) return nullptr;
-  return initialise(std::move(simulation), options, diagnostics);
+  return load([&](SceneLoader& loader) { return loader.loadString(xml, fileName, diagnostics, options.overrides); },
+              options, diagnostics);
 }
 
 Simulation::~Simulation() = default;

@@ -9,6 +9,7 @@
 //   sim->writeOutputs("out");
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,8 @@
 #include "framework/scene/Scene.h"
 
 namespace trephine {
+
+class SceneLoader;
 
 struct SimulationOptions {
   std::optional<double> duration;  // s; default: the longest a component asks for, else 1 s
@@ -68,6 +71,8 @@ class Simulation {
 
  private:
   Simulation() = default;
+  static std::unique_ptr<Simulation> load(const std::function<std::unique_ptr<Scene>(SceneLoader&)>& read,
+                                          const SimulationOptions& options, Diagnostics& diagnostics);
   static std::unique_ptr<Simulation> initialise(std::unique_ptr<Simulation> simulation,
                                                 const SimulationOptions& options, Diagnostics& diagnostics);
   class Context;
