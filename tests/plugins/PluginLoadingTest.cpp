@@ -6,17 +6,13 @@
 
 #include "framework/core/PluginLoader.h"
 #include "framework/core/Registry.h"
+#include "tests/plugins/TestPluginFixture.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
 namespace {
 
-// The test plugins are built into their own directory, searched through TREPHINE_PLUGIN_PATH.
-class PluginLoadingTest : public testing::Test {
- protected:
-  void SetUp() override { setenv("TREPHINE_PLUGIN_PATH", TREPHINE_TEST_PLUGIN_DIR, 1); }
-  void TearDown() override { unsetenv("TREPHINE_PLUGIN_PATH"); }
-};
+using PluginLoadingTest = TestPluginFixture;
 
 TEST_F(PluginLoadingTest, TwoPluginsRegisteringOneTypeIsAnErrorNamingBoth) {
   Diagnostics d;

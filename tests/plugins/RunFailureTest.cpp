@@ -5,16 +5,13 @@
 #include <cstdlib>
 #include <thread>
 
+#include "tests/plugins/TestPluginFixture.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
 namespace {
 
-class RunFailureTest : public testing::Test {
- protected:
-  void SetUp() override { setenv("TREPHINE_PLUGIN_PATH", TREPHINE_TEST_PLUGIN_DIR, 1); }
-  void TearDown() override { unsetenv("TREPHINE_PLUGIN_PATH"); }
-};
+using RunFailureTest = TestPluginFixture;
 
 TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasMeasured) {
   test::TempDir dir;
