@@ -15,6 +15,10 @@ struct HapticFrame {
   Vec3 normal = Vec3::Zero();  // unit contact normal, zero without contact
   int32_t contacts = 0;        // number of contact points this frame
   bool proxyInside = false;    // displayed proxy overlaps the target
+  // Extra trace columns (after the contract's columns):
+  double rawPenetration = 0;  // mm, depth measured by the detection before the proxy rectified it
+  int32_t primitives = 0;     // colliding primitives (voxels, tetrahedra) this frame
+  int32_t removed = 0;        // primitives removed this frame (drilled voxels)
 };
 
 }  // namespace trephine

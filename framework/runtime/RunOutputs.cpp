@@ -155,7 +155,8 @@ void writeTraceCsv(const Simulation& simulation, std::ostream& out) {
     }
     row += "," + formatDouble(f.penetration);
     for (int k = 0; k < 3; ++k) row += "," + formatDouble(f.normal[k]);
-    row += "," + std::to_string(f.contacts) + "\n";
+    row += "," + std::to_string(f.contacts) + "," + formatDouble(f.rawPenetration) + "," +
+           std::to_string(f.primitives) + "," + (f.proxyInside ? "1" : "0") + "," + std::to_string(f.removed) + "\n";
     out << row;
   }
 }

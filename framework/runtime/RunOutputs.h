@@ -13,7 +13,7 @@ class FinishContext;
 
 inline constexpr const char* kTraceHeader =
     "t,device_x,device_y,device_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,penetration,normal_x,normal_y,"
-    "normal_z,contacts";
+    "normal_z,contacts,penetration_raw,primitives,proxy_inside,removed";
 
 // Writes the three files into `directory`; returns their names.
 std::vector<std::string> writeRunOutputs(const Simulation& simulation, const FinishContext& finish,

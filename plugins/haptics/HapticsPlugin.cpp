@@ -1,5 +1,9 @@
 // Devices, tools and force rendering.
 #include "framework/core/Registry.h"
+#include "plugins/haptics/CapsuleTool.h"
+#include "plugins/haptics/ForceFeedback.h"
+#include "plugins/haptics/GodObjectProxy.h"
+#include "plugins/haptics/PointshellTool.h"
 #include "plugins/haptics/ReplayDevice.h"
 #include "plugins/haptics/ScriptedDevice.h"
 #include "plugins/haptics/SphereTool.h"
@@ -11,5 +15,10 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<ScriptedDevice>(
       "ScriptedDevice", "Scripted tool motion: approach-press-slide, drill-in, circle, random-walk, pokes, waypoints");
   registrar.add<SphereTool>("SphereTool", "Sphere tool following a device");
+  registrar.add<PointshellTool>("PointshellTool", "Spherical burr covered by a pointshell (angle-step or even points)");
+  registrar.add<CapsuleTool>("CapsuleTool", "Spherical burr on a cylindrical shaft, covered by a pointshell");
+  registrar.add<GodObjectProxy>(
+      "GodObjectProxy", "God-object proxy of a pointshell tool: sweep, detection, constraint-plane projection");
+  registrar.add<ForceFeedback>("ForceFeedback", "Viscoelastic force F = k p n - b (v.n) n of a proxy contact");
   registrar.add<SpringForce>("SpringForce", "Penalty spring-damper force of a sphere tool against an implicit surface");
 }

@@ -65,7 +65,7 @@ const std::map<std::string, std::set<std::string>>& fieldsOfPath() {
 }
 
 void ScriptedDevice::init(InitContext& context) {
-  static const std::set<std::string> common = {"name", "rate", "maxSpeed", "record", "path", "nanTimes"};
+  static const std::set<std::string> common = {"name", "rate", "maxSpeed", "record", "path", "nanTimes", "buttonTimes"};
   const std::set<std::string>& used = fieldsOfPath().at(d_path.value());
   for (const BaseField* field : fields()) {
     if (!field->isSet() || common.count(field->name()) || used.count(field->name())) continue;
@@ -81,6 +81,10 @@ void ScriptedDevice::init(InitContext& context) {
   const Vec3 d = d_direction->normalized();
   const uint64_t seed = d_seed.value() >= 0 ? static_cast<uint64_t>(d_seed.value()) : context.seed();
   m_path = ScriptedPath();
+  const auto& toggles = d_buttonTimes.value();
+  if (!std::is_sorted(toggles.begin(), toggles.end()) ||
+      std::adjacent_find(toggles.begin(), toggles.end()) != toggles.end())
+    context.error(d_buttonTimes, "times must be strictly increasing");
   m_nanTimes = d_nanTimes.value();
   std::sort(m_nanTimes.begin(), m_nanTimes.end());
   m_nextNaN = 0;
@@ -263,7 +267,10 @@ bool ScriptedDevice::buildWaypoints(InitContext& context) {
 }
 
 DeviceSample ScriptedDevice::readSample(double t) {
-  DeviceSample sample{t, m_path.at(t), Quat::Identity(), 0};
+  // Button 1 is held after an odd number of toggles.
+  const auto& toggles = d_buttonTimes.value();
+  const size_t toggled = std::upper_bound(toggles.begin(), toggles.end(), t) - toggles.begin();
+  DeviceSample sample{t, m_path.at(t), Quat::Identity(), static_cast<uint32_t>(toggled % 2)};
   if (m_nextNaN < m_nanTimes.size() && t >= m_nanTimes[m_nextNaN]) {
     while (m_nextNaN < m_nanTimes.size() && t >= m_nanTimes[m_nextNaN]) ++m_nextNaN;
     sample.position.x() = std::numeric_limits<double>::quiet_NaN();

@@ -99,6 +99,14 @@ class ScriptedDevice final : public HapticDevice {
       {},
       {.help = "Times (s) at which the device reports a NaN pose, to test rejection", .unit = "s"}};
 
+  Field<std::vector<double>> d_buttonTimes{
+      this,
+      "buttonTimes",
+      {},
+      {.help = "Increasing times (s) at which button 1 toggles, starting released: '1.5 4' holds it from 1.5 s to 4 s",
+       .unit = "s",
+       .min = 0.0}};
+
   ScriptedPath m_path;
   std::vector<double> m_nanTimes;  // sorted
   size_t m_nextNaN = 0;

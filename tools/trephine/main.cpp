@@ -3,6 +3,7 @@
 #include <string>
 
 #include "tools/trephine/CommandLine.h"
+#include "tools/trephine/PhantomCommand.h"
 #include "tools/trephine/Reference.h"
 #include "tools/trephine/RunCommand.h"
 
@@ -20,6 +21,10 @@ usage:
   trephine components [NAME] [--json | --markdown | --xsd]
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
+  trephine phantom SPEC --out FILE.mha|FILE.mhd [--raw]
+      Write a generated phantom volume (the same as file="phantom:SPEC" in a
+      scene), e.g. skull?voxel=0.5 or cube?voxels=300; zlib-compressed
+      unless --raw. Run without arguments for the list of phantoms.
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
@@ -72,8 +77,12 @@ int main(int argc, char** argv) {
       if (!problem.empty()) std::cerr << "trephine: " << problem << "\n";
       return ok ? kOk : kSceneError;
     }
+  } else if (command == "phantom") {
+    error = parseArguments(argc, argv, {"--out"}, {"--raw"}, arguments);
+    if (!error) return phantomCommand(arguments);
   } else {
-    std::cerr << "trephine: unknown command '" << command << "' (run, validate, components, --help, --version)\n";
+    std::cerr << "trephine: unknown command '" << command
+              << "' (run, validate, components, phantom, --help, --version)\n";
     return kUsage;
   }
   std::cerr << "trephine " << command << ": " << *error << "\n";

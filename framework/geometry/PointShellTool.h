@@ -1,0 +1,37 @@
+#pragma once
+// A rigid tool described by a cloud of points on its surface (the pointshell),
+// each with the unit normal pointing into the tool. Collision targets test
+// these points; a new tool shape is one component implementing this
+// interface (PointshellTool: a sphere; CapsuleTool: a burr on a shaft).
+#include <span>
+#include <string_view>
+
+#include "framework/devices/HapticDevice.h"
+#include "framework/math/Math.h"
+
+namespace trephine {
+
+struct ShellPoint {
+  Vec3 position;      // mm, tool frame (origin at the tool's reference point)
+  Vec3 inwardNormal;  // unit, tool frame, pointing into the tool
+};
+
+class PointShellTool {
+ public:
+  static constexpr std::string_view kTypeName = "PointShellTool";
+  virtual ~PointShellTool() = default;
+
+  // The shell in the tool frame; fixed after initialisation (spans stay valid).
+  virtual std::span<const ShellPoint> shellPoints() const = 0;
+  // The device that moves the tool.
+  virtual HapticDevice& device() const = 0;
+  // X_WT: the tool frame in the world when the device is at X_WD.
+  virtual Pose toolPose(const Pose& X_WD) const = 0;
+  // Radius of the working end around the reference point (mm): how far the
+  // surface reaches ahead of the reference point when it moves (the burr radius).
+  virtual double leadingRadius() const = 0;
+  // Every shell point lies within this distance of the reference point (mm).
+  virtual double boundingRadius() const = 0;
+};
+
+}  // namespace trephine

@@ -1,0 +1,66 @@
+#pragma once
+// A target that a pointshell tool collides with (a voxel skull, a tetrahedral
+// brain). The god-object proxy drives it through three queries, all called
+// from the haptic loop (no allocation, no exception):
+//   sweep    - how far the tool can move along a segment before entering the target;
+//   collide  - which shell points are inside, and the contact normal and
+//              penetration they give (and, for a drillable target, removal);
+//   overlaps - whether a displayed tool pose visibly overlaps the target.
+#include <span>
+#include <string_view>
+
+#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/SurfaceTarget.h"
+
+namespace trephine {
+
+// What a tool placement collides with this frame.
+struct ShellContact {
+  int points = 0;               // shell points inside the target
+  int primitives = 0;           // colliding primitives (voxels, tetrahedra)
+  int removed = 0;              // primitives removed this frame (drilling)
+  Vec3 normal = Vec3::Zero();   // unit, out of the target towards the tool; zero if undefined
+  double penetration = 0;       // mm, depth of the tool in the target as the target measures it
+};
+
+// How the sweep probes the path of a tool.
+enum class SweepProbe {
+  Line,      // the leading point of the tool (reference + leadingRadius along the motion)
+  Cylinder,  // the leading point and a ring of lines at leadingRadius around the path
+  Spheres,   // the whole pointshell at steps along the path (a string of spheres)
+};
+
+struct SweepQuery {
+  Vec3 from;                           // mm, tool reference point at the start
+  Vec3 to;                             // mm, and at the end
+  Quat orientation = Quat::Identity();  // tool orientation along the path
+  SweepProbe probe = SweepProbe::Line;
+  double leadingRadius = 0;             // mm
+  std::span<const ShellPoint> shell;    // tool frame (used by Spheres)
+};
+
+struct SweepResult {
+  double freeFraction = 1;  // fraction of the segment travelled before entering the target
+  bool blocked = false;     // the target stops the tool before `to`
+  bool startsInside = false;  // blocked right at `from` (the tool already presses in this direction)
+};
+
+class ShellContactTarget : public SurfaceTarget {
+ public:
+  static constexpr std::string_view kTypeName = "ShellContactTarget";
+
+  // Called during initialisation for each tool shell that will collide with
+  // this target (the span stays valid for the run): preallocates per-point
+  // working memory and any per-shell data. Other shells are not tested.
+  virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  virtual SweepResult sweep(const SweepQuery& query) const = 0;
+  // `removeMaterial`: the tool cuts now (a drill that is running); a target
+  // that cannot be cut, or is not set to, ignores it.
+  virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) = 0;
+  virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
+  // How far the proxy is placed into the target when a sweep stops it (mm):
+  // enough for the shell points to register contact at the stop.
+  virtual double contactDepth() const = 0;
+};
+
+}  // namespace trephine

@@ -1,0 +1,79 @@
+#include "plugins/haptics/ForceFeedback.h"
+
+#include <algorithm>
+
+#include "framework/core/Lifecycle.h"
+
+namespace trephine::haptics {
+
+void ForceFeedback::init(InitContext& context) {
+  m_log = context.claimHapticLog(*this);
+  m_samples = &context.channels().publish<Sample>(*this, kSampleChannel);
+}
+
+std::vector<std::string> ForceFeedback::sampleColumns() const {
+  return {"device_x", "device_y", "device_z", "proxy_x",  "proxy_y",  "proxy_z",  "force_x",
+          "force_y",  "force_z",  "normal_x", "normal_y", "normal_z", "penetration", "penetration_raw",
+          "points",   "primitives"};
+}
+
+void ForceFeedback::tick(const TickContext& context) {
+  const GodObjectProxy& proxy = *l_proxy;
+  const ProxyState& s = proxy.state();
+  HapticDevice& device = proxy.tool().device();
+
+  Vec3 force = Vec3::Zero();
+  if (s.contact) {
+    const double normalSpeed = device.state().velocity.dot(s.normal);  // mm/s, negative when pressing in
+    const double magnitude = d_stiffness.value() * s.penetration - d_damping.value() * normalSpeed;
+    force = std::max(0.0, magnitude) * s.normal;
+    const double norm = force.norm();
+    if (norm > d_maxForce.value()) {
+      force *= d_maxForce.value() / norm;
+      ++m_saturatedFrames;
+    }
+  }
+  if (d_maxForceStep.value() > 0) {
+    const Vec3 step = force - m_force;
+    const double stepNorm = step.norm();
+    if (stepNorm > d_maxForceStep.value()) {
+      force = m_force + step * (d_maxForceStep.value() / stepNorm);
+      ++m_stepLimitedFrames;
+    }
+  }
+  if (!force.allFinite()) force = m_force;  // never send a NaN; hold the last force
+  m_force = force;
+  device.applyForce(force);
+
+  HapticFrame frame;
+  frame.t = context.t;
+  frame.device = s.device;
+  frame.proxy = s.proxy;
+  frame.force = force;
+  frame.penetration = s.contact ? s.penetration : 0.0;
+  frame.normal = s.normal;
+  frame.contacts = s.contact ? std::max(1, s.points) : 0;
+  frame.proxyInside = s.proxyInside;
+  frame.rawPenetration = s.rawPenetration;
+  frame.primitives = s.primitives;
+  frame.removed = s.removed;
+  if (m_log) m_log->record(frame);
+
+  Sample sample;
+  sample.t = context.t;
+  size_t k = 0;
+  for (const Vec3* v : {&frame.device, &frame.proxy, &frame.force, &frame.normal})
+    for (int i = 0; i < 3; ++i) sample.values[k++] = (*v)[i];
+  sample.values[k++] = frame.penetration;
+  sample.values[k++] = frame.rawPenetration;
+  sample.values[k++] = s.points;
+  sample.values[k++] = s.primitives;
+  m_samples->publish(sample);
+}
+
+void ForceFeedback::reportCounters(std::vector<Counter>& counters) const {
+  counters.push_back({"saturated_frames", double(m_saturatedFrames)});
+  counters.push_back({"step_limited_frames", double(m_stepLimitedFrames)});
+}
+
+}  // namespace trephine::haptics

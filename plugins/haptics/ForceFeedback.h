@@ -1,0 +1,50 @@
+#pragma once
+// The viscoelastic force of a god-object proxy contact (thesis Eq. 3.3):
+//   F = k p n - b (v . n) n,
+// with k the stiffness, p the rendered penetration, n the contact normal and
+// v the device velocity. The damping acts along the normal only and opposes
+// the motion (pressing in meets more resistance, pulling out less), and the
+// force never pulls the hand into the target. |F| is clamped to maxForce, and,
+// when maxForceStep > 0, the change of F between frames to maxForceStep.
+// Writes the haptic trace and publishes its values for a Recorder.
+#include "framework/channels/Channel.h"
+#include "framework/core/SampleSource.h"
+#include "framework/logs/HapticFrameLog.h"
+#include "plugins/haptics/GodObjectProxy.h"
+
+namespace trephine::haptics {
+
+class ForceFeedback final : public Component, public SampleSource {
+ public:
+  static constexpr std::string_view kTypeName = "ForceFeedback";
+
+  void init(InitContext& context) override;
+  void tick(const TickContext& context) override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+  std::vector<std::string> sampleColumns() const override;
+
+  const Vec3& force() const { return m_force; }
+
+ private:
+  Link<GodObjectProxy> l_proxy{this, "proxy", {.help = "Proxy whose contact is rendered", .required = true}};
+  Field<double> d_stiffness{this, "stiffness", 2.0, {.help = "Stiffness k", .unit = "N/mm", .min = 0.0}};
+  Field<double> d_damping{
+      this, "damping", 0.002, {.help = "Viscosity b along the contact normal", .unit = "N*s/mm", .min = 0.0}};
+  Field<double> d_maxForce{
+      this, "maxForce", 3.3, {.help = "Largest force sent to the device (3.3 N for a Phantom Omni)", .unit = "N",
+                              .min = 0.0}};
+  Field<double> d_maxForceStep{this,
+                               "maxForceStep",
+                               0.0,
+                               {.help = "Largest change of the force vector between two frames; 0 for no limit",
+                                .unit = "N",
+                                .min = 0.0}};
+  RateField d_rate{this, 1000.0, "Haptic rate"};
+
+  HapticFrameLog* m_log = nullptr;
+  Channel<Sample>* m_samples = nullptr;
+  Vec3 m_force = Vec3::Zero();
+  uint64_t m_saturatedFrames = 0, m_stepLimitedFrames = 0;
+};
+
+}  // namespace trephine::haptics

@@ -1,0 +1,82 @@
+#pragma once
+// The god-object proxy of a pointshell tool against a ShellContactTarget. Each
+// haptic frame:
+//  1. sweep before moving: the proxy moves from its last position towards the
+//     device until the target stops it (placed contactDepth into the target);
+//  2. detection at that position: colliding shell points, contact normal and
+//     raw penetration from the target (drilling happens here if the target drills);
+//  3. god-object projection: the device is projected on the constraint plane
+//     through the proxy (lifted out to the contact depth when the raw
+//     penetration is deeper), so the proxy slides along the surface;
+//  4. rectifying sweep from the proxy to that projection, so the new position
+//     never crosses another part of the target;
+//  5. penetration = the depth of the device below the constraint plane (the
+//     device-proxy distance along the normal) plus the proxy's own contact depth.
+// When the sweep stopped the proxy but no shell point collides there (the two
+// conflicting cases of the rigid method), the normal is against the sweep
+// direction and the penetration is the device-proxy distance.
+#include <vector>
+
+#include "framework/geometry/ShellContactTarget.h"
+
+namespace trephine::haptics {
+
+struct ProxyState {
+  Vec3 device = Vec3::Zero();  // mm, tool reference point where the device puts it
+  Vec3 proxy = Vec3::Zero();   // mm, displayed tool reference point
+  Vec3 normal = Vec3::Zero();  // unit contact normal (out of the target); zero without contact
+  double penetration = 0;      // mm, rendered depth
+  double rawPenetration = 0;   // mm, as detected before rectification
+  int points = 0;              // colliding shell points
+  int primitives = 0;          // colliding voxels / tetrahedra
+  int removed = 0;             // drilled primitives this frame
+  bool contact = false;
+  bool proxyInside = false;  // the displayed proxy visibly overlaps the target
+  bool deviceValid = false;
+};
+
+class GodObjectProxy final : public Component {
+ public:
+  static constexpr std::string_view kTypeName = "GodObjectProxy";
+
+  void init(InitContext& context) override;
+  void tick(const TickContext& context) override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+
+  const ProxyState& state() const { return m_state; }
+  PointShellTool& tool() const { return *l_tool; }
+
+ private:
+  SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
+
+  Link<PointShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
+  Link<ShellContactTarget> l_target{this, "target", {.help = "What the tool collides with", .required = true}};
+  EnumField d_sweep{this,
+                    "sweep",
+                    {"line", "cylinder", "spheres", "none"},
+                    "line",
+                    {.help = "How the path of the tool is swept before it moves: its leading point, a cylinder of "
+                             "lines, the whole shell at steps, or not at all (the proxy jumps to the device)"}};
+  Field<bool> d_rectify{
+      this, "rectify", true, {.help = "Sweep again from the proxy to its god-object position before moving it"}};
+  Field<bool> d_godObject{this,
+                          "godObject",
+                          true,
+                          {.help = "Project the device on the constraint plane so the proxy slides on the surface "
+                                   "(visual feedback); off keeps the proxy where the sweep left it"}};
+  Field<int> d_drillButton{this,
+                           "drillButton",
+                           0,
+                           {.help = "0: the tool cuts whenever the target can be drilled; n: only while device "
+                                    "button n is held (a foot pedal)",
+                            .min = 0.0,
+                            .max = 32.0}};
+  RateField d_rate{this, 1000.0, "Haptic rate"};
+
+  ProxyState m_state;
+  Vec3 m_lastNormal = Vec3::Zero();
+  bool m_started = false;
+  uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0;
+};
+
+}  // namespace trephine::haptics

@@ -1,0 +1,197 @@
+#include "plugins/voxel_skull/Phantoms.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace trephine::voxel {
+
+namespace {
+
+// Fraction of a voxel of side h inside a region whose signed distance at the
+// voxel centre is `distance` (negative inside): a linear ramp over one voxel,
+// the partial-volume value of a flat boundary crossing the voxel.
+double insideFraction(double distance, double h) { return std::clamp(0.5 - distance / h, 0.0, 1.0); }
+
+std::array<int32_t, 3> dimsFor(const Vec3& extent, double voxel) {
+  std::array<int32_t, 3> dims;
+  for (int a = 0; a < 3; ++a) dims[a] = std::max(1, static_cast<int32_t>(std::ceil(extent[a] / voxel - 1e-9)));
+  return dims;
+}
+
+void checkVoxel(double voxel, const Vec3& extent) {
+  if (!(voxel > 0) || !std::isfinite(voxel)) throw std::invalid_argument("voxel size must be > 0 mm");
+  const double count = std::ceil(extent.x() / voxel) * std::ceil(extent.y() / voxel) * std::ceil(extent.z() / voxel);
+  if (count > 1.5e9) throw std::invalid_argument("voxel size too small: more than 1.5e9 voxels");
+}
+
+// Fills every voxel from density(centre) with the grid centred on the origin.
+DensityVolume fill(const Vec3& extent, double voxel, const std::function<double(const Vec3&)>& density) {
+  checkVoxel(voxel, extent);
+  const auto dims = dimsFor(extent, voxel);
+  const Vec3 size(dims[0] * voxel, dims[1] * voxel, dims[2] * voxel);
+  const Vec3 origin = -0.5 * size + 0.5 * Vec3::Constant(voxel);
+  DensityVolume volume(dims, Vec3::Constant(voxel), origin);
+  for (int32_t k = 0; k < dims[2]; ++k)
+    for (int32_t j = 0; j < dims[1]; ++j)
+      for (int32_t i = 0; i < dims[0]; ++i) volume.setDensity(i, j, k, density(volume.voxelCenter(i, j, k)));
+  return volume;
+}
+
+}  // namespace
+
+DensityVolume makeCubePhantom(int voxelsPerAxis, double density) {
+  if (voxelsPerAxis < 2 || voxelsPerAxis > 2000) throw std::invalid_argument("voxels must be in [2, 2000]");
+  const double voxel = 200.0 / voxelsPerAxis;
+  return fill(Vec3::Constant(200.0), voxel, [&](const Vec3& p) {
+    const double distance = (p.cwiseAbs() - Vec3::Constant(80.0)).maxCoeff();  // box, exact on the faces
+    return density * insideFraction(distance, voxel);
+  });
+}
+
+DensityVolume makeSkullPhantom(double voxel) {
+  const Vec3 extent(212.5, 201.5, 141.5);
+  const Vec3 outer = 0.5 * extent - Vec3::Constant(1.5);  // mm, semi-axes of the outer surface
+  return fill(extent, voxel, [&](const Vec3& p) {
+    const Vec3 e = p.cwiseQuotient(outer);
+    const double rho = e.norm();  // 1 on the outer surface
+    if (rho < 1e-9) return 40.0;
+    // Depth below the outer surface along the ray from the centre (mm).
+    const double depth = p.norm() * (1.0 / rho - 1.0);
+    const Vec3 dir = e / rho;
+    // Thickness varies smoothly with direction: 4.5 to 8.5 mm.
+    const double theta = std::acos(std::clamp(dir.z(), -1.0, 1.0)), phi = std::atan2(dir.y(), dir.x());
+    const double thickness = 6.5 + 2.0 * std::sin(3 * theta) * std::cos(2 * phi);
+    const double table = 0.25 * thickness;  // each cortical table (mm)
+    const double inBone = insideFraction(std::max(-depth, depth - thickness), voxel);
+    const double inOuterTable = insideFraction(depth - table, voxel);
+    const double inInnerTable = insideFraction(thickness - table - depth, voxel);
+    const double boneDensity = 700.0 + 800.0 * inOuterTable + 600.0 * inInnerTable;
+    // Opening at the base: no bone within 16 mm of the -z axis.
+    const double opening = p.z() < 0 ? insideFraction(std::hypot(p.x(), p.y()) - 16.0, voxel) : 0.0;
+    const double inCavity = insideFraction(thickness - depth, voxel);
+    return inBone * (1.0 - opening) * boneDensity + inCavity * 40.0;
+  });
+}
+
+DensityVolume makeHalfSpacePhantom(double voxel, const Vec3& normal, double size, double density) {
+  if (!(normal.norm() > 1e-9) || !normal.allFinite()) throw std::invalid_argument("normal must not be zero");
+  const Vec3 n = normal.normalized();
+  return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
+    // Partial volume of a tilted plane: the ramp width is the voxel's extent along n.
+    const double width = voxel * n.cwiseAbs().sum();
+    return density * std::clamp(0.5 - p.dot(n) / width, 0.0, 1.0);
+  });
+}
+
+DensityVolume makeWallPhantom(double voxel, double thickness, double size, double density) {
+  return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
+    return density * insideFraction(std::abs(p.z()) - 0.5 * thickness, voxel);
+  });
+}
+
+DensityVolume makeChannelPhantom(double voxel, double width, double size, double density) {
+  return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
+    const double fromChannel = std::max(std::abs(p.x()), std::abs(p.y())) - 0.5 * width;  // > 0 in the block
+    const double block = (p.cwiseAbs() - Vec3::Constant(0.5 * size - 2.0 * voxel)).maxCoeff();
+    return density * insideFraction(-fromChannel, voxel) * insideFraction(block, voxel);
+  });
+}
+
+namespace {
+
+struct PhantomKeys {
+  std::map<std::string, double> values;
+  std::string name;
+
+  double take(const std::string& key) const { return values.at(key); }
+};
+
+// Parses "name?k=v&k=v" against the allowed keys and their defaults.
+PhantomKeys parseKeys(const std::string& name, const std::string& query,
+                      const std::map<std::string, double>& defaults) {
+  PhantomKeys keys{defaults, name};
+  std::stringstream stream(query);
+  std::string pair;
+  while (std::getline(stream, pair, '&')) {
+    if (pair.empty()) continue;
+    const size_t eq = pair.find('=');
+    const std::string key = pair.substr(0, eq);
+    if (!defaults.count(key)) {
+      std::string known;
+      for (const auto& [k, v] : defaults) known += (known.empty() ? "" : ", ") + k;
+      throw std::invalid_argument("phantom '" + name + "' has no key '" + key + "' (keys: " + known + ")");
+    }
+    if (eq == std::string::npos) throw std::invalid_argument("phantom key '" + key + "' needs a value (" + key + "=...)");
+    const std::string text = pair.substr(eq + 1);
+    size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || text.empty() || !std::isfinite(value))
+      throw std::invalid_argument("phantom key '" + key + "': '" + text + "' is not a number");
+    keys.values[key] = value;
+  }
+  return keys;
+}
+
+void requirePositive(const PhantomKeys& keys, const std::string& key) {
+  if (!(keys.take(key) > 0)) throw std::invalid_argument("phantom key '" + key + "' must be > 0");
+}
+
+}  // namespace
+
+DensityVolume makePhantom(const std::string& specification) {
+  const size_t mark = specification.find('?');
+  const std::string name = specification.substr(0, mark);
+  const std::string query = mark == std::string::npos ? "" : specification.substr(mark + 1);
+  if (name == "cube") {
+    const PhantomKeys k = parseKeys(name, query, {{"voxels", 200}, {"density", 1200}});
+    const double voxels = k.take("voxels");
+    if (voxels != std::floor(voxels)) throw std::invalid_argument("phantom key 'voxels' must be a whole number");
+    return makeCubePhantom(static_cast<int>(voxels), k.take("density"));
+  }
+  if (name == "skull") {
+    const PhantomKeys k = parseKeys(name, query, {{"voxel", 1.0}});
+    requirePositive(k, "voxel");
+    return makeSkullPhantom(k.take("voxel"));
+  }
+  if (name == "halfspace") {
+    const PhantomKeys k =
+        parseKeys(name, query, {{"voxel", 0.5}, {"nx", 0}, {"ny", 0}, {"nz", 1}, {"size", 40}, {"density", 1000}});
+    requirePositive(k, "voxel");
+    requirePositive(k, "size");
+    return makeHalfSpacePhantom(k.take("voxel"), Vec3(k.take("nx"), k.take("ny"), k.take("nz")), k.take("size"),
+                                k.take("density"));
+  }
+  if (name == "wall") {
+    const PhantomKeys k = parseKeys(name, query, {{"voxel", 0.5}, {"thickness", 0.5}, {"size", 40}, {"density", 1000}});
+    requirePositive(k, "voxel");
+    requirePositive(k, "size");
+    return makeWallPhantom(k.take("voxel"), k.take("thickness"), k.take("size"), k.take("density"));
+  }
+  if (name == "channel") {
+    const PhantomKeys k = parseKeys(name, query, {{"voxel", 0.5}, {"width", 3}, {"size", 40}, {"density", 1000}});
+    requirePositive(k, "voxel");
+    requirePositive(k, "size");
+    return makeChannelPhantom(k.take("voxel"), k.take("width"), k.take("size"), k.take("density"));
+  }
+  throw std::invalid_argument("unknown phantom '" + name + "' (cube, skull, halfspace, wall, channel)");
+}
+
+std::string phantomHelp() {
+  return "  cube?voxels=200&density=1200          160 mm solid cube in a 200 mm grid of voxels^3 (Table 3.1)\n"
+         "  skull?voxel=1.0                       skull shell, 212.5 x 201.5 x 141.5 mm (Table 3.2: 1.5 .. 0.5)\n"
+         "  halfspace?voxel=0.5&nx=0&ny=0&nz=1&size=40&density=1000   solid below a plane through the centre\n"
+         "  wall?voxel=0.5&thickness=0.5&size=40&density=1000        wall across z = 0\n"
+         "  channel?voxel=0.5&width=3&size=40&density=1000           block with a square channel along z\n";
+}
+
+}  // namespace trephine::voxel

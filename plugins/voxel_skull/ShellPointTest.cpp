@@ -1,0 +1,75 @@
+#include "plugins/voxel_skull/ShellPointTest.h"
+
+namespace trephine::voxel {
+
+void ShellArrays::assign(std::span<const ShellPoint> shell) {
+  x.resize(shell.size());
+  y.resize(shell.size());
+  z.resize(shell.size());
+  for (size_t i = 0; i < shell.size(); ++i) {
+    x[i] = shell[i].position.x();
+    y[i] = shell[i].position.y();
+    z[i] = shell[i].position.z();
+  }
+}
+
+namespace {
+
+[[gnu::always_inline]] inline void testPoints(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT,
+                                              PointTestOutput out) {
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  // Grid coordinates g = (R p + t - corner) / spacing, folded into one affine map.
+  double m[3][3], c[3];
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) m[r][k] = R(r, k) * grid.inverseSpacing[r];
+    c[r] = (X_WT.position[r] - grid.corner[r]) * grid.inverseSpacing[r];
+  }
+  const double nx = grid.nx, ny = grid.ny, nz = grid.nz;
+  const int64_t strideY = grid.nx, strideZ = int64_t(grid.nx) * grid.ny;
+  const double* __restrict px = shell.x.data();
+  const double* __restrict py = shell.y.data();
+  const double* __restrict pz = shell.z.data();
+  int64_t* __restrict voxel = out.voxel;
+  const size_t n = shell.size();
+  for (size_t i = 0; i < n; ++i) {
+    const double gx = m[0][0] * px[i] + m[0][1] * py[i] + m[0][2] * pz[i] + c[0];
+    const double gy = m[1][0] * px[i] + m[1][1] * py[i] + m[1][2] * pz[i] + c[1];
+    const double gz = m[2][0] * px[i] + m[2][1] * py[i] + m[2][2] * pz[i] + c[2];
+    const bool inside = gx >= 0 && gy >= 0 && gz >= 0 && gx < nx && gy < ny && gz < nz;
+    // Truncation is floor here: negative coordinates are outside anyway.
+    const int64_t linear = int64_t(inside ? gx : 0) + strideY * int64_t(inside ? gy : 0) +
+                           strideZ * int64_t(inside ? gz : 0);
+    voxel[i] = inside ? linear : -1;
+  }
+  const VoxelCode* __restrict codes = grid.codes;
+  uint8_t* __restrict solid = out.solid;
+  const int32_t threshold = grid.threshold;
+  for (size_t i = 0; i < n; ++i) {
+    const int64_t v = voxel[i];
+    solid[i] = v >= 0 && codes[v >= 0 ? v : 0] >= threshold;
+  }
+}
+
+}  // namespace
+
+void testShellPointsBaseline(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT, PointTestOutput out) {
+  testPoints(grid, shell, X_WT, out);
+}
+
+#ifdef TREPHINE_HAS_AVX2_PATH
+__attribute__((target("avx2"))) void testShellPointsAvx2(const SolidGrid& grid, const ShellArrays& shell,
+                                                              const Pose& X_WT, PointTestOutput out) {
+  testPoints(grid, shell, X_WT, out);
+}
+#endif
+
+ShellPointTestFunction bestShellPointTest() {
+#ifdef TREPHINE_HAS_AVX2_PATH
+  if (__builtin_cpu_supports("avx2")) return &testShellPointsAvx2;
+#endif
+  return &testShellPointsBaseline;
+}
+
+const char* bestShellPointTestName() { return bestShellPointTest() == &testShellPointsBaseline ? "sse2" : "avx2"; }
+
+}  // namespace trephine::voxel

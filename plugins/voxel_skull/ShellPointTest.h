@@ -1,0 +1,42 @@
+#pragma once
+// The per-point voxel test of the collision step, the innermost loop of the
+// haptic frame: transform each shell point to the world, find its voxel and
+// compare the voxel's code with the solid threshold. Written as flat loops over
+// arrays so the compiler vectorises them; compiled twice, for the x86-64
+// baseline (SSE2) and for AVX2, and the AVX2 version is chosen at start-up
+// when the processor has it (correctness never depends on it).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "framework/geometry/PointShellTool.h"
+#include "plugins/voxel_skull/SolidGrid.h"
+
+namespace trephine::voxel {
+
+// A shell in structure-of-arrays form (tool frame, mm), for vector loads.
+struct ShellArrays {
+  std::vector<double> x, y, z;
+  void assign(std::span<const ShellPoint> shell);
+  size_t size() const { return x.size(); }
+};
+
+// Output per point: the linear voxel index (-1 outside the grid) and whether it is solid.
+struct PointTestOutput {
+  int64_t* voxel;
+  uint8_t* solid;
+};
+
+using ShellPointTestFunction = void (*)(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT,
+                                        PointTestOutput out);
+
+void testShellPointsBaseline(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT, PointTestOutput out);
+#if defined(__x86_64__) && defined(__GNUC__)
+#define TREPHINE_HAS_AVX2_PATH 1
+void testShellPointsAvx2(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT, PointTestOutput out);
+#endif
+// The fastest version this processor runs, and its instruction set ("avx2" or "sse2").
+ShellPointTestFunction bestShellPointTest();
+const char* bestShellPointTestName();
+
+}  // namespace trephine::voxel

@@ -1,0 +1,134 @@
+// VoxelSkull: detection, drilling and the contact parameters (thesis section
+// 3.2 and Algorithm 1), and the overlap test of a displayed proxy.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "plugins/voxel_skull/VoxelSkull.h"
+#include "plugins/voxel_skull/VoxelTraversal.h"
+
+namespace trephine::voxel {
+
+namespace {
+
+// Distance (mm) from p, inside solid voxel `voxel`, along unit n to the first
+// free voxel. Most contact points are in the bone's outer voxel layer, so the
+// exit of their own voxel is computed directly and the full traversal is only
+// needed when the next voxel is solid too.
+double depthToFreeVoxel(const SolidGrid& grid, const Vec3& p, int64_t voxel, const Vec3& n, double reach) {
+  const Vec3 g = (p - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const Vec3 gd = n.cwiseProduct(grid.inverseSpacing);
+  int64_t cell[3] = {voxel % grid.nx, (voxel / grid.nx) % grid.ny, voxel / (int64_t(grid.nx) * grid.ny)};
+  double exit = std::numeric_limits<double>::infinity();
+  int axis = 0;
+  for (int a = 0; a < 3; ++a) {
+    double t = std::numeric_limits<double>::infinity();
+    if (gd[a] > 0) t = (double(cell[a] + 1) - g[a]) / gd[a];
+    if (gd[a] < 0) t = (g[a] - double(cell[a])) / -gd[a];
+    if (t < exit) exit = t, axis = a;
+  }
+  if (!std::isfinite(exit)) return 0;
+  cell[axis] += gd[axis] > 0 ? 1 : -1;
+  if (!grid.solidCell(cell[0], cell[1], cell[2])) return std::max(0.0, exit);
+  return reach * firstFreeOnSegment(grid, p, p + reach * n);
+}
+
+}  // namespace
+
+ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
+  ShellContact contact;
+  const ReservedShell* reserved = findShell(shell);
+  if (!reserved) {  // a shell nobody announced: counted, not tested (no allocation here)
+    ++m_unreservedShellCalls;
+    return contact;
+  }
+  const size_t n = shell.size();
+  // Colliding box: the tool's bounds against the volume's.
+  const Box3 toolBox(X_WT.position - Vec3::Constant(reserved->radius),
+                     X_WT.position + Vec3::Constant(reserved->radius));
+  if (!m_volume.bounds().intersects(toolBox)) return contact;
+
+  m_pointTest(m_grid, reserved->arrays, X_WT, {m_voxels.data(), m_solid.data()});
+  size_t hits = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (m_solid[i]) m_hits[hits++] = {m_voxels[i], static_cast<int32_t>(i)};
+  if (hits == 0) return contact;
+  ++m_contactFrames;
+  contact.points = static_cast<int>(hits);
+  // Group the points by voxel: the colliding voxels with their points.
+  std::sort(m_hits.begin(), m_hits.begin() + hits,
+            [](const Hit& a, const Hit& b) { return a.voxel < b.voxel || (a.voxel == b.voxel && a.point < b.point); });
+
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  const bool algorithm1 = d_penetration.is("algorithm1");
+  const bool drilling = removeMaterial && d_drill.value();
+  // Deepest-point depths are searched along the normal up to the tool's diameter.
+  const double reach = 2.0 * reserved->radius + m_grid.spacing.maxCoeff();
+  Vec3 normalSum = Vec3::Zero();
+  double penetration = 0;
+  int voxels = 0, removed = 0;
+  for (size_t first = 0; first < hits;) {
+    size_t last = first;
+    while (last < hits && m_hits[last].voxel == m_hits[first].voxel) ++last;
+    const int64_t voxel = m_hits[first].voxel;
+    const Vec3 center = m_grid.centerOf(voxel);
+    Vec3 voxelNormal = Vec3::Zero();
+    double depthSum = 0;
+    for (size_t h = first; h < last; ++h) {
+      const ShellPoint& point = shell[m_hits[h].point];
+      const Vec3 p = R * point.position + X_WT.position;
+      const Vec3 normal = R * point.inwardNormal;  // out of the bone, towards the tool centre
+      if (algorithm1) {
+        // McNeely tangent plane: through the voxel centre with the point's normal.
+        depthSum += (center - p).dot(normal);
+      } else {
+        m_depths[h] = depthToFreeVoxel(m_grid, p, voxel, normal, reach);
+      }
+      voxelNormal += normal;
+    }
+    // Algorithm 1: the deepest of the per-voxel mean depths.
+    if (algorithm1) penetration = std::max(penetration, depthSum / double(last - first));
+    const double length = voxelNormal.norm();
+    if (length > 1e-12) normalSum += voxelNormal / length;  // Eq. 3.4: one unit normal per voxel
+    ++voxels;
+    if (drilling) {
+      VoxelCode& code = m_volume.codes()[voxel];
+      const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::numeric_limits<VoxelCode>::min());
+      if (lowered < m_grid.threshold) ++removed;
+      code = static_cast<VoxelCode>(lowered);
+    }
+    first = last;
+  }
+  // The average vanishes when contacts surround the tool: no direction is given then.
+  const double sumLength = normalSum.norm();
+  contact.normal = sumLength > 1e-3 * voxels ? Vec3(normalSum / sumLength) : Vec3::Zero();
+  if (!algorithm1) {
+    // The deepest point measured along the contact normal.
+    for (size_t h = 0; h < hits; ++h) {
+      const Vec3 normal = R * shell[m_hits[h].point].inwardNormal;
+      penetration = std::max(penetration, m_depths[h] * std::max(0.0, normal.dot(contact.normal)));
+    }
+  }
+  contact.primitives = voxels;
+  contact.removed = removed;
+  contact.penetration = penetration;
+  m_voxelsRemoved += removed;
+  m_maxCollidingVoxels = std::max<uint64_t>(m_maxCollidingVoxels, voxels);
+  return contact;
+}
+
+bool VoxelSkull::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+  // Visible overlap: the tool's centre, or its shell pulled one voxel inwards, is in bone.
+  if (m_grid.solidAt(X_WT.position)) return true;
+  const ReservedShell* reserved = findShell(shell);
+  if (!reserved) return false;
+  const Box3 toolBox(X_WT.position - Vec3::Constant(reserved->radius),
+                     X_WT.position + Vec3::Constant(reserved->radius));
+  if (!m_volume.bounds().intersects(toolBox)) return false;
+  m_pointTest(m_grid, reserved->inset, X_WT, {m_voxels.data(), m_solid.data()});
+  for (size_t i = 0; i < reserved->inset.size(); ++i)
+    if (m_solid[i]) return true;
+  return false;
+}
+
+}  // namespace trephine::voxel

@@ -1,0 +1,99 @@
+#include "plugins/voxel_skull/VoxelSkull.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "framework/core/Lifecycle.h"
+#include "plugins/voxel_skull/Phantoms.h"
+#include "plugins/voxel_skull/io/Resample.h"
+#include "plugins/voxel_skull/io/VolumeReader.h"
+#include "plugins/voxel_skull/io/VolumeWriter.h"
+
+namespace trephine::voxel {
+
+void VoxelSkull::init(InitContext& context) {
+  DensityVolume volume;
+  try {
+    volume = d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : readVolume(d_file.path());
+    if (d_voxelSize.value() > 0) volume = resampleToVoxelSize(volume, d_voxelSize.value());
+  } catch (const std::exception& e) {
+    context.error(d_file, e.what());
+    return;
+  }
+  if (!d_saveDrilled.value().empty()) {
+    const std::string& name = d_saveDrilled.value();
+    const bool meta = name.size() > 4 && (name.ends_with(".mha") || name.ends_with(".mhd"));
+    if (!meta) context.error(d_saveDrilled, "expected a MetaImage file name ending in .mha or .mhd");
+    if (!d_drill.value()) context.error(d_saveDrilled, "nothing is drilled: set drill=\"true\" or leave saveDrilled empty");
+  }
+  setVolume(std::move(volume));
+}
+
+void VoxelSkull::setVolume(DensityVolume volume) {
+  m_volume = std::move(volume);
+  m_grid = SolidGrid::of(m_volume, d_isovalue.value());
+  // Drilling works on the stored codes: at least one code step per frame.
+  m_drillStep = std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
+}
+
+void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
+  if (findShell(shell)) return;
+  ReservedShell reserved;
+  reserved.source = shell.data();
+  reserved.size = shell.size();
+  reserved.arrays.assign(shell);
+  // Pulled in by one voxel, never past the reference point (a tool thinner than a
+  // voxel is judged by its centre).
+  const double inset = m_grid.spacing.maxCoeff();
+  std::vector<ShellPoint> pulled(shell.begin(), shell.end());
+  for (ShellPoint& p : pulled) p.position += std::min(inset, p.position.norm()) * p.inwardNormal;
+  reserved.inset.assign(pulled);
+  for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
+  m_shells.push_back(std::move(reserved));
+  const size_t n = std::max(shell.size(), m_hits.size());
+  m_hits.resize(n);
+  m_voxels.resize(n);
+  m_solid.resize(n);
+  m_depths.resize(n);
+  m_wasSolid.resize(n);
+}
+
+const VoxelSkull::ReservedShell* VoxelSkull::findShell(std::span<const ShellPoint> shell) const {
+  for (const ReservedShell& s : m_shells)
+    if (s.source == shell.data() && s.size == shell.size()) return &s;
+  return nullptr;
+}
+
+Box3 VoxelSkull::bounds() const { return m_volume.bounds(); }
+
+void VoxelSkull::declareOutputs(std::vector<OutputFile>& outputs) const {
+  if (!d_saveDrilled.value().empty()) outputs.push_back({d_saveDrilled.value(), &d_saveDrilled});
+}
+
+void VoxelSkull::finish(FinishContext& context) {
+  if (d_saveDrilled.value().empty() || context.outputDirectory().empty()) return;
+  if (!context.claimOutput(*this, d_saveDrilled.value())) return;
+  const std::string& name = d_saveDrilled.value();
+  try {
+    writeMetaImage(m_volume, context.outputDirectory() / name, /*compress=*/true);
+  } catch (const std::exception& e) {
+    context.error(*this, e.what());
+  }
+}
+
+void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
+  const auto& d = m_volume.dims();
+  counters.push_back({"voxels", double(m_volume.voxelCount())});
+  counters.push_back({"dims_x", double(d[0])});
+  counters.push_back({"dims_y", double(d[1])});
+  counters.push_back({"dims_z", double(d[2])});
+  counters.push_back({"voxel_size_mm", m_volume.spacing().minCoeff()});
+  counters.push_back({"bytes_per_voxel", double(sizeof(VoxelCode))});
+  counters.push_back({"voxels_removed", double(m_voxelsRemoved)});
+  counters.push_back({"contact_frames", double(m_contactFrames)});
+  counters.push_back({"max_colliding_voxels", double(m_maxCollidingVoxels)});
+  if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
+}
+
+}  // namespace trephine::voxel

@@ -1,0 +1,108 @@
+#pragma once
+// A rigid skull kept as CT density voxels (no surface mesh): voxels denser
+// than `isovalue` are bone. A pointshell tool collides with it point by point
+// (thesis section 3.2); with `drill` the voxels the tool touches lose
+// `drillRate` density per haptic frame until they fall below the isovalue.
+#include <vector>
+
+#include "framework/core/Component.h"
+#include "framework/geometry/ShellContactTarget.h"
+#include "plugins/voxel_skull/DensityVolume.h"
+#include "plugins/voxel_skull/ShellPointTest.h"
+#include "plugins/voxel_skull/SolidGrid.h"
+
+namespace trephine::voxel {
+
+class VoxelSkull final : public Component, public ShellContactTarget {
+ public:
+  static constexpr std::string_view kTypeName = "VoxelSkull";
+
+  void init(InitContext& context) override;
+  void finish(FinishContext& context) override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+  void declareOutputs(std::vector<OutputFile>& outputs) const override;
+
+  // SurfaceTarget
+  Box3 bounds() const override;
+  std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
+  // ShellContactTarget
+  void reserveShell(std::span<const ShellPoint> shell) override;
+  SweepResult sweep(const SweepQuery& query) const override;
+  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) override;
+  bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
+  double contactDepth() const override { return 0.1 * m_grid.smallestSide(); }
+
+  const DensityVolume& volume() const { return m_volume; }
+  const SolidGrid& grid() const { return m_grid; }
+  uint64_t voxelsRemoved() const { return m_voxelsRemoved; }
+  // Replaces the volume (tests and tools); call before the run.
+  void setVolume(DensityVolume volume);
+
+ private:
+  Vec3 densityGradient(const Vec3& p) const;
+
+  FilePathField d_file{this,
+                       "file",
+                       {.help = "Density volume: MetaImage (.mhd/.mha), NRRD (.nrrd/.nhdr) or NIfTI-1 (.nii/.nii.gz); "
+                                "or a generated phantom, e.g. phantom:skull?voxel=1.0",
+                        .required = true},
+                       FilePathField::Role::Input,
+                       {"phantom"}};
+  Field<double> d_isovalue{this, "isovalue", 400.0, {.help = "Voxels denser than this are bone", .unit = "density"}};
+  Field<double> d_voxelSize{this,
+                            "voxelSize",
+                            0.0,
+                            {.help = "Resample to cubic voxels of this size on load; 0 keeps the file's voxels",
+                             .unit = "mm",
+                             .min = 0.0}};
+  Field<bool> d_drill{this, "drill", false, {.help = "Remove the bone the tool touches"}};
+  Field<double> d_drillRate{this,
+                            "drillRate",
+                            2.0,
+                            {.help = "Density removed from each touched voxel per haptic frame (2 at 1 kHz erodes "
+                                     "cortical bone of 1500 to an isovalue of 400 in 0.55 s of contact)",
+                             .unit = "density/frame",
+                             .min = 0.0,
+                             .minExclusive = true}};
+  EnumField d_penetration{this,
+                          "penetration",
+                          {"deepest-point", "algorithm1"},
+                          "deepest-point",
+                          {.help = "Penetration of a contact. algorithm1 (thesis, McNeely tangent planes): per "
+                                   "colliding voxel the mean distance of its points to the plane through the voxel "
+                                   "centre along their normals, the largest voxel mean taken. deepest-point: each "
+                                   "colliding point's distance along its normal to the first voxel out of the bone, "
+                                   "projected on the contact normal, the largest taken (exact on voxel faces)"}};
+  Field<std::string> d_saveDrilled{this,
+                                   "saveDrilled",
+                                   "",
+                                   {.help = "Write the drilled volume to this MetaImage file (.mha/.mhd) in the run "
+                                            "directory after the run; empty writes nothing"}};
+
+  DensityVolume m_volume;
+  SolidGrid m_grid;
+  int32_t m_drillStep = 1;  // codes removed per frame
+  // Per-frame working memory, sized by reserveShell().
+  struct Hit {
+    int64_t voxel;
+    int32_t point;
+  };
+  struct ReservedShell {
+    const ShellPoint* source = nullptr;
+    size_t size = 0;
+    ShellArrays arrays;
+    ShellArrays inset;  // the shell pulled one voxel inwards: the overlap test of a displayed proxy
+    double radius = 0;  // mm, farthest point from the reference point
+  };
+  const ReservedShell* findShell(std::span<const ShellPoint> shell) const;
+  std::vector<ReservedShell> m_shells;
+  ShellPointTestFunction m_pointTest = bestShellPointTest();
+  std::vector<Hit> m_hits;
+  mutable std::vector<int64_t> m_voxels;
+  mutable std::vector<uint8_t> m_solid;
+  std::vector<double> m_depths;  // per hit, mm
+  mutable std::vector<uint8_t> m_wasSolid;
+  uint64_t m_voxelsRemoved = 0, m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;
+};
+
+}  // namespace trephine::voxel

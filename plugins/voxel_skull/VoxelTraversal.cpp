@@ -1,0 +1,112 @@
+#include "plugins/voxel_skull/VoxelTraversal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace trephine::voxel {
+
+namespace {
+
+// Visits the voxels of a -> b inside the grid in order; `visit(voxel, solid, tEnter, enteredAxis)`
+// returns true to stop there. Returns whether it stopped.
+template <class Visit>
+bool traverse(const SolidGrid& grid, const Vec3& a, const Vec3& b, Visit&& visit) {
+  // Grid coordinates: voxel (i, j, k) spans [i, i+1) x [j, j+1) x [k, k+1).
+  const Vec3 ga = (a - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const Vec3 gd = (b - a).cwiseProduct(grid.inverseSpacing);
+  if (!ga.allFinite() || !gd.allFinite()) return false;
+  const double n[3] = {double(grid.nx), double(grid.ny), double(grid.nz)};
+  // Clip the segment to the grid box.
+  double t0 = 0, t1 = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (gd[axis] == 0) {
+      if (ga[axis] < 0 || ga[axis] >= n[axis]) return false;
+      continue;
+    }
+    double ta = (0 - ga[axis]) / gd[axis], tb = (n[axis] - ga[axis]) / gd[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (t0 > t1) return false;
+
+  const Vec3 start = ga + t0 * gd;
+  int64_t cell[3];
+  int step[3];
+  double tNext[3], tDelta[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    cell[axis] = std::clamp<int64_t>(static_cast<int64_t>(std::floor(start[axis])), 0, int64_t(n[axis]) - 1);
+    if (gd[axis] > 0) {
+      step[axis] = 1;
+      tDelta[axis] = 1.0 / gd[axis];
+      tNext[axis] = t0 + (double(cell[axis] + 1) - start[axis]) / gd[axis];
+    } else if (gd[axis] < 0) {
+      step[axis] = -1;
+      tDelta[axis] = -1.0 / gd[axis];
+      tNext[axis] = t0 + (double(cell[axis]) - start[axis]) / gd[axis];
+    } else {
+      step[axis] = 0;
+      tDelta[axis] = std::numeric_limits<double>::infinity();
+      tNext[axis] = std::numeric_limits<double>::infinity();
+    }
+  }
+  double tEnter = t0;
+  int enteredAxis = t0 > 0 ? -2 : -1;  // -2: entered the grid from outside
+  const int64_t maxSteps = int64_t(grid.nx) + grid.ny + grid.nz + 3;
+  for (int64_t s = 0; s < maxSteps; ++s) {
+    const int64_t v = grid.linear(cell[0], cell[1], cell[2]);
+    if (visit(v, grid.codes[v] >= grid.threshold, tEnter, enteredAxis)) return true;
+    const int axis = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+    if (tNext[axis] > t1) break;
+    tEnter = tNext[axis];
+    cell[axis] += step[axis];
+    if (cell[axis] < 0 || cell[axis] >= int64_t(n[axis])) break;
+    tNext[axis] += tDelta[axis];
+    enteredAxis = axis;
+  }
+  return false;
+}
+
+}  // namespace
+
+SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitialSolid) {
+  SegmentHit result;
+  result.startsSolid = grid.solidAt(a);
+  bool skipping = skipInitialSolid;
+  traverse(grid, a, b, [&](int64_t voxel, bool solid, double tEnter, int enteredAxis) {
+    if (solid && !skipping) {
+      result = {true, tEnter, result.startsSolid, voxel, enteredAxis};
+      return true;
+    }
+    if (!solid) skipping = false;
+    return false;
+  });
+  return result;
+}
+
+double firstFreeOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b) {
+  double found = 1.0;
+  const bool stopped = traverse(grid, a, b, [&](int64_t, bool solid, double tEnter, int) {
+    if (!solid) found = tEnter;
+    return !solid;
+  });
+  if (stopped) return found;
+  // The segment left the grid (outside is free) or stayed in bone to its end.
+  const Vec3 ga = (b - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const bool endsInGrid = ga.x() >= 0 && ga.y() >= 0 && ga.z() >= 0 && ga.x() < grid.nx && ga.y() < grid.ny &&
+                          ga.z() < grid.nz;
+  if (endsInGrid) return 1.0;
+  // Where the segment leaves the grid box.
+  const Vec3 g0 = (a - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const Vec3 gd = ga - g0;
+  double t1 = 1.0;
+  const double n[3] = {double(grid.nx), double(grid.ny), double(grid.nz)};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (gd[axis] > 0) t1 = std::min(t1, (n[axis] - g0[axis]) / gd[axis]);
+    if (gd[axis] < 0) t1 = std::min(t1, (0 - g0[axis]) / gd[axis]);
+  }
+  return std::clamp(t1, 0.0, 1.0);
+}
+
+}  // namespace trephine::voxel

@@ -1,0 +1,45 @@
+#pragma once
+// Parsing the text headers of MetaImage and NRRD files: lines, words and
+// numbers, strictly (a whole word must be the number) so that a corrupt
+// header is reported instead of being half-read.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace trephine::voxel {
+
+// One header line without its line ending, and where the next line starts (byte offset).
+struct HeaderLine {
+  std::string_view text;
+  size_t next = 0;
+  bool terminated = false;  // ended by '\n' (false: the text ran out first)
+};
+// The line starting at byte `start` of `text` ("\n" or "\r\n" endings).
+HeaderLine headerLineAt(std::string_view text, size_t start);
+
+bool equalsIgnoreCase(std::string_view a, std::string_view b);
+// ASCII lower case (header keywords are ASCII; other bytes are kept).
+std::string toLower(std::string_view text);
+
+std::optional<int64_t> parseInteger(std::string_view word);
+// A finite or non-finite double ("nan", "inf" accepted; the caller checks finiteness).
+std::optional<double> parseReal(std::string_view word);
+// Exactly `count` whitespace-separated numbers, or nothing.
+std::optional<std::vector<double>> parseReals(std::string_view text, size_t count);
+std::optional<std::vector<int64_t>> parseIntegers(std::string_view text, size_t count);
+
+// True when `name` has no control characters (NUL, newline, ...): usable as a data file name.
+bool isPlainFileName(std::string_view name);
+
+// `text` for an error message: quoted, non-printable bytes escaped, long text cut.
+std::string quoteForMessage(std::string_view text);
+
+// The bytes as text, for header parsing.
+inline std::string_view asText(std::span<const uint8_t> bytes) {
+  return std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+}  // namespace trephine::voxel

@@ -1,0 +1,60 @@
+// libFuzzer target: arbitrary bytes as a volume file. The first byte picks
+// the extension (.mha, .nrrd or .nii; the readers detect the format from the
+// content, the extension is only the fallback), the rest is the file. The
+// file lives in a directory of its own per process, so relative data file
+// names in fuzzed headers resolve inside it. Any crash, sanitizer report,
+// hang or exception other than VolumeReadError is a reader bug.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "plugins/voxel_skull/io/VolumeReader.h"
+
+namespace {
+
+// Created on first use, removed at exit (never destroyed before that: the exit handler needs it).
+const std::filesystem::path& inputDirectory() {
+  static const auto* const directory = [] {
+    auto* path = new std::filesystem::path(std::filesystem::temp_directory_path() /
+                                           ("fuzz_volume_reader_" + std::to_string(::getpid())));
+    std::filesystem::create_directories(*path);
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(inputDirectory(), ignored);
+    });
+    return path;
+  }();
+  return *directory;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size == 0) return 0;
+  static const char* const kExtensions[] = {".mha", ".nrrd", ".nii"};
+  const std::filesystem::path file = inputDirectory() / (std::string("input") + kExtensions[data[0] % 3]);
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
+  }
+  try {
+    const trephine::voxel::DensityVolume volume = trephine::voxel::readVolume(file);
+    // A volume that was read is usable: codes for every voxel, positive spacing, finite bounds.
+    const auto& dims = volume.dims();
+    if (volume.voxelCount() != size_t(dims[0]) * size_t(dims[1]) * size_t(dims[2])) __builtin_trap();
+    if (!(volume.spacing().minCoeff() > 0) || !volume.bounds().min().allFinite() || !volume.bounds().max().allFinite())
+      __builtin_trap();
+    if (!(volume.encoding().scale > 0) || !std::isfinite(volume.encoding().offset)) __builtin_trap();
+  } catch (const trephine::voxel::VolumeReadError& error) {
+    // The message names a file (this one or a data file it refers to) before the problem.
+    if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
+  }
+  std::filesystem::remove(file);
+  return 0;
+}

@@ -1,0 +1,274 @@
+// Hard cases of rigid voxel collision: each test drives a pointshell burr
+// through a scene and asserts bounded forces, no NaN and no pop-through.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "framework/core/Node.h"
+#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+constexpr double kRadius = 2.5;    // mm, burr radius
+constexpr double kMaxForce = 3.3;  // N
+
+struct SceneParts {
+  std::string skull = R"(file="phantom:halfspace?voxel=0.5" isovalue="500")";
+  std::string device;  // attributes of the ScriptedDevice
+  std::string proxy = R"(sweep="line")";
+  std::string tool = R"(<PointshellTool name="burr" radius="2.5" angleStep="10" device="@device"/>)";
+  std::string force = R"(stiffness="2.0" damping="0.002" maxForce="3.3")";
+};
+
+std::string sceneXml(const SceneParts& p) {
+  return R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <VoxelSkull name="skull" )" +
+         p.skull + R"(/>
+  <ScriptedDevice name="device" record="false" )" +
+         p.device + R"(/>
+  )" + p.tool + R"(
+  <GodObjectProxy name="proxy" tool="@burr" target="@skull" )" +
+         p.proxy + R"(/>
+  <ForceFeedback name="force" proxy="@proxy" )" +
+         p.force + R"(/>
+</Node>)";
+}
+
+std::unique_ptr<Simulation> run(const SceneParts& parts, const std::string& file = "inline.xml") {
+  Diagnostics d;
+  auto simulation = test::loadScene(sceneXml(parts), d, {}, file);
+  EXPECT_TRUE(simulation) << test::messages(d);
+  if (simulation) simulation->run();
+  return simulation;
+}
+
+// Waypoints "t x y z ..." along z at x = y = 0.
+std::string verticalWaypoints(std::initializer_list<std::pair<double, double>> tz) {
+  std::string s = R"(path="waypoints" maxSpeed="1e6" waypoints=")";
+  for (const auto& [t, z] : tz) s += std::to_string(t) + " 0 0 " + std::to_string(z) + " ";
+  return s + "\"";
+}
+
+void expectStable(const HapticFrameLog& log, const char* what) {
+  const HapticStats s = log.stats();
+  EXPECT_EQ(s.nanFrames, 0u) << what;
+  EXPECT_LE(s.forceMax, kMaxForce + 1e-9) << what;
+  for (size_t i = 0; i < log.size(); ++i) ASSERT_TRUE(log[i].force.allFinite()) << what << " frame " << i;
+}
+
+// A counter of the scene's component of type `type` (the plugin's classes stay in the plugin).
+double counter(const Simulation& simulation, const std::string& type, const std::string& name) {
+  for (const Component* c : simulation.scene().components()) {
+    if (c->typeName() != type) continue;
+    std::vector<Counter> counters;
+    c->reportCounters(counters);
+    for (const Counter& k : counters)
+      if (k.name == name) return k.value;
+  }
+  ADD_FAILURE() << "no counter " << name << " on a " << type;
+  return 0;
+}
+
+TEST(RigidCollisionTest, OneVoxelWallCrossedAtTenVoxelsPerFrameDoesNotPopThrough) {
+  SceneParts p;
+  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=0.5&size=40.5" isovalue="500")";
+  // 5 mm per 1 ms frame = 10 voxels per frame, from 10 mm above the wall to 10 mm below.
+  p.device = verticalWaypoints({{0, 10}, {0.004, -10}, {0.1, -10}});
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "thin wall");
+  EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
+  for (size_t i = 0; i < log.size(); ++i) {
+    // The wall spans z in [-0.25, 0.25]: the burr centre stays above it.
+    EXPECT_GT(log[i].proxy.z(), 0.25) << "frame " << i;
+    if (log[i].device.z() < 0) {
+      EXPECT_GT(log[i].force.z(), 0.0) << "force points back up, frame " << i;
+    }
+  }
+  EXPECT_NEAR(log[log.size() - 1].force.norm(), kMaxForce, 1e-9) << "device 12 mm past the surface: saturated";
+}
+
+TEST(RigidCollisionTest, ToolStartingInsideBoneIsBoundedAndLeaves) {
+  SceneParts p;
+  // Starts 5 mm below the surface of a half-space (fully inside), then rises out.
+  p.device = verticalWaypoints({{0, -5}, {0.05, -5}, {1.0, 10}, {1.1, 10}});
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "inside");
+  const HapticFrame& last = log[log.size() - 1];
+  EXPECT_EQ(last.contacts, 0);
+  EXPECT_NEAR((last.proxy - last.device).norm(), 0.0, 1e-9) << "proxy rejoins the device once out";
+}
+
+TEST(RigidCollisionTest, VolumeBorderAndToolPartlyOutsideTheGrid) {
+  // The half-space grid spans [-20, 20] mm; the burr presses at x = 19 (half outside).
+  SceneParts p;
+  p.device = R"(path="waypoints" waypoints="0 19 0 5  0.5 19 0 1.5  1.0 19 0 1.5  1.5 25 0 1.5  2.0 25 0 1.5")";
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "border");
+  EXPECT_GT(log.stats().contactFrames, 0u);
+  const HapticFrame& pressed = log[900];
+  EXPECT_GT(pressed.contacts, 0);
+  EXPECT_GT(pressed.normal.z(), 0.95) << "normal still up at the border";
+  EXPECT_NEAR(pressed.penetration, 1.0, 0.1);
+  EXPECT_EQ(log[log.size() - 1].contacts, 0) << "outside the grid: nothing to touch";
+}
+
+TEST(RigidCollisionTest, ShellPointsExactlyOnVoxelFacesAndCorners) {
+  // Voxel 1 mm: voxel faces at integer + 0.5 offsets of the grid corner. The half-space
+  // surface is at z = 0, a voxel face; with the burr centre at z = 2.5 its bottom
+  // point is exactly on that face, and at x = y = 0.5 on voxel corners.
+  // Nudged by +-1e-9 mm the results must not jump: every point is counted in one voxel.
+  for (const Vec3& at : {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 0, 0)}) {
+    for (double depth : {0.0, 0.5, 1.0}) {
+      for (double nudge : {0.0, 1e-9, -1e-9}) {
+        SceneParts p;
+        p.skull = R"(file="phantom:halfspace?voxel=1.0" isovalue="500")";
+        const Vec3 c = at + Vec3(nudge, nudge, kRadius - depth + nudge);
+        const std::string xyz = std::to_string(c.x()) + " " + std::to_string(c.y()) + " " + std::to_string(c.z());
+        p.device = R"(path="waypoints" waypoints="0 )" + xyz + " 0.01 " + xyz + R"(")";
+        auto simulation = run(p);
+        ASSERT_TRUE(simulation);
+        const HapticFrameLog& log = simulation->hapticLog();
+        expectStable(log, "faces");
+        const HapticFrame& f = log[log.size() - 1];
+        const std::string where = "at " + xyz;
+        if (depth == 0.0) {
+          EXPECT_LE(f.penetration, 1e-6) << "touching exactly: no penetration " << where;
+        } else {
+          EXPECT_NEAR(f.penetration, depth, 1e-3) << where;
+          EXPECT_GT(f.normal.z(), 0.9999) << where;
+        }
+      }
+    }
+  }
+}
+
+TEST(RigidCollisionTest, AnisotropicSpacingOfTheOriginalSkull) {
+  // A half-space written with the thesis's original spacing 0.984 x 1.584 x 0.997 mm.
+  test::TempDir dir;
+  voxel::DensityVolume volume({60, 40, 40}, Vec3(0.984, 1.584, 0.997), Vec3(-29.5 * 0.984, -19.5 * 1.584, -19.5 * 0.997));
+  for (int k = 0; k < 40; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 60; ++i) volume.setDensity(i, j, k, volume.voxelCenter(i, j, k).z() < 0 ? 1000.0 : 0.0);
+  voxel::writeMetaImage(volume, dir / "anisotropic.mha", false);
+  const double surface = -19.5 * 0.997 + 20 * 0.997 - 0.5 * 0.997;  // top face of the last solid layer
+  SceneParts p;
+  p.skull = R"(file="anisotropic.mha" isovalue="500")";
+  const double z = surface + kRadius - 0.8;
+  p.device = R"(path="waypoints" waypoints="0 0 0 )" + std::to_string(z + 5) + " 0.5 0 0 " + std::to_string(z) +
+             " 1.0 0 0 " + std::to_string(z) + R"(")";
+  dir.write("scene.xml", sceneXml(p));
+  Diagnostics d;
+  auto simulation = Simulation::fromFile(dir / "scene.xml", {}, d);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "anisotropic");
+  const HapticFrame& f = log[log.size() - 1];
+  EXPECT_NEAR(f.penetration, 0.8, 0.05);
+  EXPECT_GT(f.normal.z(), 0.99);
+  EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
+}
+
+TEST(RigidCollisionTest, CavityNarrowerThanTheToolLineAndCylinderSweeps) {
+  // A 3 mm channel along z through a block whose top is at z = 19 mm; the 5 mm
+  // burr comes straight down the channel axis to z = 10.
+  double lowest[2];
+  int k = 0;
+  for (const char* sweep : {"line", "cylinder"}) {
+    SceneParts p;
+    p.skull = R"(file="phantom:channel?voxel=0.5&width=3" isovalue="500")";
+    p.device = verticalWaypoints({{0, 30}, {0.5, 10}, {1.0, 10}});
+    p.proxy = std::string(R"(sweep=")") + sweep + R"(")";
+    auto simulation = run(p);
+    ASSERT_TRUE(simulation);
+    const HapticFrameLog& log = simulation->hapticLog();
+    expectStable(log, sweep);
+    lowest[k] = 1e9;
+    for (size_t i = 0; i < log.size(); ++i) lowest[k] = std::min(lowest[k], log[i].proxy.z());
+    if (std::string(sweep) == "cylinder") {
+      EXPECT_GT(log[log.size() - 1].force.z(), 0.5) << "the rim holds the burr";
+    }
+    ++k;
+  }
+  // Resting on the rim, the burr centre is sqrt(2.5^2 - 1.5^2) = 2 mm above the top (z = 21).
+  // The line sweep follows the leading point down the channel: the burr sinks into
+  // the block (its documented limit). The cylinder sweep stops it at the rim.
+  // The cylinder's front rings stop the burr where they meet the rim, within 1 mm of resting.
+  EXPECT_GT(lowest[1], 20.0) << "cylinder keeps the burr at the channel's rim";
+  EXPECT_LT(lowest[0], 19.0) << "line lets the burr into the narrow channel";
+  RecordProperty("line_lowest_mm", std::to_string(lowest[0]));
+  RecordProperty("cylinder_lowest_mm", std::to_string(lowest[1]));
+}
+
+TEST(RigidCollisionTest, DrillingThroughAPlateUntilTheToolPasses) {
+  SceneParts p;
+  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500" drill="true" drillRate="50")";
+  // Feed from 5 mm above to 8 mm below the plate at 2 mm/s.
+  p.device = verticalWaypoints({{0, 5}, {0.2, 3.6}, {6.0, -8}, {6.5, -8}});
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "drill");
+  EXPECT_GT(counter(*simulation, "VoxelSkull", "voxels_removed"), 0.0);
+  const HapticFrame& last = log[log.size() - 1];
+  EXPECT_LT(last.proxy.z(), -1.0 - kRadius + 0.5) << "the burr went through the plate";
+  EXPECT_EQ(last.contacts, 0);
+  EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
+}
+
+TEST(RigidCollisionTest, IsovalueAboveTheDensestVoxelMeansNoContact) {
+  SceneParts p;
+  p.skull = R"(file="phantom:halfspace?voxel=0.5" isovalue="5000")";
+  p.device = verticalWaypoints({{0, 5}, {0.5, -3}, {0.6, -3}});
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  EXPECT_EQ(simulation->hapticLog().stats().contactFrames, 0u);
+  EXPECT_EQ(simulation->hapticLog().stats().forceMax, 0.0);
+}
+
+TEST(RigidCollisionTest, NaNDevicePoseIsRejectedAndTheForceHeld) {
+  SceneParts p;
+  p.device = verticalWaypoints({{0, 5}, {0.3, 1.5}, {0.6, 1.5}});
+  p.device += R"( nanTimes="0.4 0.401 0.45")";
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "nan");
+  // Frames at the rejected samples hold the force of the frame before.
+  for (double t : {0.4, 0.401, 0.45}) {
+    const size_t i = static_cast<size_t>(std::lround(t * 1000));
+    EXPECT_NEAR((log[i].force - log[i - 1].force).norm(), 0.0, 1e-12) << "t = " << t;
+    EXPECT_GT(log[i].force.z(), 1.5) << "still pressing at t = " << t;
+  }
+}
+
+TEST(RigidCollisionTest, CapsuleShaftTouchingAWallPushesBack) {
+  // A burr on a 20 mm shaft along +x sits level with a wall whose face is at z = 0.25;
+  // the shaft, not the burr, rests on the wall.
+  SceneParts p;
+  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=0.5&size=40.5" isovalue="500")";
+  p.tool = R"(<CapsuleTool name="burr" radius="2.5" shaftRadius="1.0" shaftLength="20" axis="1 0 0" device="@device"/>)";
+  // Burr centre beyond the wall's edge (x = -25, the grid spans 40 mm), shaft across it.
+  p.device = R"(path="waypoints" waypoints="0 -25 0 4  0.5 -25 0 0.9  1.0 -25 0 0.9")";
+  auto simulation = run(p);
+  ASSERT_TRUE(simulation);
+  const HapticFrameLog& log = simulation->hapticLog();
+  expectStable(log, "capsule");
+  const HapticFrame& f = log[log.size() - 1];
+  EXPECT_GT(f.contacts, 0) << "the shaft touches";
+  EXPECT_GT(f.force.z(), 0.0);
+  EXPECT_NEAR(f.penetration, 0.35, 0.1) << "shaft bottom at 0.9 - 1.0 = -0.1, face at 0.25";
+}
+
+}  // namespace
+}  // namespace trephine
