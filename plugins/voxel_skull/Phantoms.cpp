@@ -53,8 +53,14 @@ DensityVolume makeCubePhantom(int voxelsPerAxis, double density) {
   });
 }
 
+namespace {
+const Vec3 kSkullExtent(212.5, 201.5, 141.5);  // mm
+}  // namespace
+
+std::array<int32_t, 3> skullPhantomDims(double voxel) { return dimsFor(kSkullExtent, voxel); }
+
 DensityVolume makeSkullPhantom(double voxel) {
-  const Vec3 extent(212.5, 201.5, 141.5);
+  const Vec3& extent = kSkullExtent;
   const Vec3 outer = 0.5 * extent - Vec3::Constant(1.5);  // mm, semi-axes of the outer surface
   return fill(extent, voxel, [&](const Vec3& p) {
     const Vec3 e = p.cwiseQuotient(outer);

@@ -20,6 +20,8 @@ DensityVolume makeCubePhantom(int voxelsPerAxis, double density = 1200.0);
 // density 1500, diploe of 700 and an inner table of 1300, soft tissue (40)
 // inside, and an opening of 16 mm radius at the base (foramen magnum).
 DensityVolume makeSkullPhantom(double voxelSize);
+// Its voxel counts per axis, without building it.
+std::array<int32_t, 3> skullPhantomDims(double voxelSize);
 
 // A half-space of density `density` below the plane through the grid centre
 // with unit `normal`, in a cube grid of `size` mm. Partial-volume edges make

@@ -50,7 +50,30 @@ namespace {
   }
 }
 
+// Smooth surface: the trilinear density at each point against the isovalue.
+[[gnu::always_inline]] inline void testPointsSmooth(const SolidGrid& grid, const ShellArrays& shell,
+                                                    const Pose& X_WT, PointTestOutput out) {
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  for (size_t i = 0; i < shell.size(); ++i) {
+    const Vec3 p = R * Vec3(shell.x[i], shell.y[i], shell.z[i]) + X_WT.position;
+    out.solid[i] = grid.codeAt(p) > grid.isoCode;
+    out.voxel[i] = grid.voxelOf(p);
+  }
+}
+
 }  // namespace
+
+void testShellPointsSmoothBaseline(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT,
+                                   PointTestOutput out) {
+  testPointsSmooth(grid, shell, X_WT, out);
+}
+
+#ifdef TREPHINE_HAS_AVX2_PATH
+__attribute__((target("avx2"))) void testShellPointsSmoothAvx2(const SolidGrid& grid, const ShellArrays& shell,
+                                                                const Pose& X_WT, PointTestOutput out) {
+  testPointsSmooth(grid, shell, X_WT, out);
+}
+#endif
 
 void testShellPointsBaseline(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT, PointTestOutput out) {
   testPoints(grid, shell, X_WT, out);
@@ -63,13 +86,23 @@ __attribute__((target("avx2"))) void testShellPointsAvx2(const SolidGrid& grid, 
 }
 #endif
 
-ShellPointTestFunction bestShellPointTest() {
+namespace {
+bool hasAvx2() {
 #ifdef TREPHINE_HAS_AVX2_PATH
-  if (__builtin_cpu_supports("avx2")) return &testShellPointsAvx2;
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
 #endif
-  return &testShellPointsBaseline;
+}
+}  // namespace
+
+ShellPointTestFunction bestShellPointTest(bool smooth) {
+#ifdef TREPHINE_HAS_AVX2_PATH
+  if (hasAvx2()) return smooth ? &testShellPointsSmoothAvx2 : &testShellPointsAvx2;
+#endif
+  return smooth ? &testShellPointsSmoothBaseline : &testShellPointsBaseline;
 }
 
-const char* bestShellPointTestName() { return bestShellPointTest() == &testShellPointsBaseline ? "sse2" : "avx2"; }
+const char* bestShellPointTestName() { return hasAvx2() ? "avx2" : "sse2"; }
 
 }  // namespace trephine::voxel

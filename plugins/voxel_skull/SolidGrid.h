@@ -1,7 +1,12 @@
 #pragma once
 // The hot-loop view of a density volume: which voxel a point falls in and
-// whether that voxel is solid (density above the isovalue). Plain data and
-// inline functions, no allocation.
+// whether it is solid. Two surfaces:
+//  - voxels (the thesis): a voxel is bone when its density is above the
+//    isovalue; the bone is a union of boxes, its surface a staircase;
+//  - smooth: the density is interpolated trilinearly between voxel centres and
+//    bone is where it exceeds the isovalue; the surface is the isosurface,
+//    continuous across voxels, with the density gradient as its normal.
+// Plain data and inline functions, no allocation.
 #include <cmath>
 #include <cstdint>
 
@@ -16,8 +21,11 @@ struct SolidGrid {
   Vec3 spacing = Vec3::Ones();  // mm
   Vec3 inverseSpacing = Vec3::Ones();  // 1/mm
   int32_t threshold = 0;  // codes >= threshold are solid
+  bool smooth = false;
+  double isoCode = 0;      // the isovalue in code units (smooth surface)
+  double outsideCode = 0;  // code of the space around the grid (the volume's lowest)
 
-  static SolidGrid of(DensityVolume& volume, double isovalue) {
+  static SolidGrid of(DensityVolume& volume, double isovalue, bool smoothSurface = false) {
     SolidGrid g;
     g.codes = volume.codes();
     g.nx = volume.dims()[0];
@@ -27,6 +35,9 @@ struct SolidGrid {
     g.corner = volume.origin() - 0.5 * g.spacing;
     g.inverseSpacing = g.spacing.cwiseInverse();
     g.threshold = volume.encoding().thresholdCode(isovalue);
+    g.smooth = smoothSurface;
+    g.isoCode = (isovalue - volume.encoding().offset) / volume.encoding().scale;
+    g.outsideCode = volume.voxelCount() ? (volume.minDensity() - volume.encoding().offset) / volume.encoding().scale : 0;
     return g;
   }
 
@@ -46,9 +57,54 @@ struct SolidGrid {
     return linear(int64_t(gx), int64_t(gy), int64_t(gz));
   }
   bool solidAt(const Vec3& p) const {
+    if (smooth) return codeAt(p) > isoCode;
     const int64_t v = voxelOf(p);
     return v >= 0 && codes[v] >= threshold;
   }
+  double codeAtCell(int64_t i, int64_t j, int64_t k) const {
+    return inside(i, j, k) ? double(codes[linear(i, j, k)]) : outsideCode;
+  }
+  // Trilinear interpolation of the codes between voxel centres, and optionally
+  // its gradient (codes per mm). NaN points give NaN.
+  double codeAt(const Vec3& p, Vec3* gradient = nullptr) const {
+    // Coordinates relative to voxel centres: centre (i, j, k) is at i + 0.5 from the corner.
+    const double ux = (p.x() - corner.x()) * inverseSpacing.x() - 0.5;
+    const double uy = (p.y() - corner.y()) * inverseSpacing.y() - 0.5;
+    const double uz = (p.z() - corner.z()) * inverseSpacing.z() - 0.5;
+    if (!(ux > -2 && uy > -2 && uz > -2 && ux < nx + 1 && uy < ny + 1 && uz < nz + 1)) {
+      if (gradient) gradient->setZero();
+      return (ux == ux && uy == uy && uz == uz) ? outsideCode : ux + uy + uz;
+    }
+    const double fx = std::floor(ux), fy = std::floor(uy), fz = std::floor(uz);
+    const int64_t i = int64_t(fx), j = int64_t(fy), k = int64_t(fz);
+    const double tx = ux - fx, ty = uy - fy, tz = uz - fz;
+    double c[2][2][2];
+    if (i >= 0 && j >= 0 && k >= 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {
+      const VoxelCode* base = codes + linear(i, j, k);
+      const int64_t sy = nx, sz = int64_t(nx) * ny;
+      c[0][0][0] = base[0], c[1][0][0] = base[1], c[0][1][0] = base[sy], c[1][1][0] = base[sy + 1];
+      c[0][0][1] = base[sz], c[1][0][1] = base[sz + 1], c[0][1][1] = base[sz + sy], c[1][1][1] = base[sz + sy + 1];
+    } else {
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+          for (int d = 0; d < 2; ++d) c[a][b][d] = codeAtCell(i + a, j + b, k + d);
+    }
+    const double c00 = c[0][0][0] + tx * (c[1][0][0] - c[0][0][0]);
+    const double c10 = c[0][1][0] + tx * (c[1][1][0] - c[0][1][0]);
+    const double c01 = c[0][0][1] + tx * (c[1][0][1] - c[0][0][1]);
+    const double c11 = c[0][1][1] + tx * (c[1][1][1] - c[0][1][1]);
+    const double c0 = c00 + ty * (c10 - c00), c1 = c01 + ty * (c11 - c01);
+    if (gradient) {
+      const double dx0 = (c[1][0][0] - c[0][0][0]) + ty * ((c[1][1][0] - c[0][1][0]) - (c[1][0][0] - c[0][0][0]));
+      const double dx1 = (c[1][0][1] - c[0][0][1]) + ty * ((c[1][1][1] - c[0][1][1]) - (c[1][0][1] - c[0][0][1]));
+      (*gradient)[0] = (dx0 + tz * (dx1 - dx0)) * inverseSpacing.x();
+      (*gradient)[1] = ((c10 - c00) + tz * ((c11 - c01) - (c10 - c00))) * inverseSpacing.y();
+      (*gradient)[2] = (c1 - c0) * inverseSpacing.z();
+    }
+    return c0 + tz * (c1 - c0);
+  }
+  // The voxel whose centre is nearest to p, or -1 outside the grid.
+  int64_t nearestVoxel(const Vec3& p) const { return voxelOf(p); }
   Vec3 centerOf(int64_t linearIndex) const {
     const int64_t i = linearIndex % nx, j = (linearIndex / nx) % ny, k = linearIndex / (int64_t(nx) * ny);
     return corner + Vec3((i + 0.5) * spacing.x(), (j + 0.5) * spacing.y(), (k + 0.5) * spacing.z());

@@ -77,12 +77,26 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
     for (size_t h = first; h < last; ++h) {
       const ShellPoint& point = shell[m_hits[h].point];
       const Vec3 p = R * point.position + X_WT.position;
-      const Vec3 normal = R * point.inwardNormal;  // out of the bone, towards the tool centre
+      Vec3 normal = R * point.inwardNormal;  // out of the bone, towards the tool centre
       if (algorithm1) {
         // McNeely tangent plane: through the voxel centre with the point's normal.
         depthSum += (center - p).dot(normal);
+      } else if (m_grid.smooth) {
+        // Smooth surface: the surface normal and the first-order distance to the isosurface.
+        Vec3 gradient;
+        const double code = m_grid.codeAt(p, &gradient);
+        const double slope = gradient.norm();  // codes per mm
+        if (slope * m_grid.smallestSide() > 1e-3 * std::max(1.0, std::abs(m_grid.isoCode))) {
+          normal = -gradient / slope;
+          m_depths[h] = std::min((code - m_grid.isoCode) / slope, reach);
+        } else {
+          // Flat density deep in bone: no gradient; measured along the tool's normal instead.
+          m_depths[h] = reach * firstFreeOnSegment(m_grid, p, p + reach * normal);
+        }
+        m_normals[h] = normal;
       } else {
         m_depths[h] = depthToFreeVoxel(m_grid, p, voxel, normal, reach);
+        m_normals[h] = normal;
       }
       voxelNormal += normal;
     }
@@ -104,10 +118,8 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   contact.normal = sumLength > 1e-3 * voxels ? Vec3(normalSum / sumLength) : Vec3::Zero();
   if (!algorithm1) {
     // The deepest point measured along the contact normal.
-    for (size_t h = 0; h < hits; ++h) {
-      const Vec3 normal = R * shell[m_hits[h].point].inwardNormal;
-      penetration = std::max(penetration, m_depths[h] * std::max(0.0, normal.dot(contact.normal)));
-    }
+    for (size_t h = 0; h < hits; ++h)
+      penetration = std::max(penetration, m_depths[h] * std::max(0.0, m_normals[h].dot(contact.normal)));
   }
   contact.primitives = voxels;
   contact.removed = removed;

@@ -32,7 +32,9 @@ void VoxelSkull::init(InitContext& context) {
 
 void VoxelSkull::setVolume(DensityVolume volume) {
   m_volume = std::move(volume);
-  m_grid = SolidGrid::of(m_volume, d_isovalue.value());
+  const bool smooth = d_surface.is("smooth");
+  m_grid = SolidGrid::of(m_volume, d_isovalue.value(), smooth);
+  m_pointTest = bestShellPointTest(smooth);
   // Drilling works on the stored codes: at least one code step per frame.
   m_drillStep = std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
 }
@@ -56,6 +58,7 @@ void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   m_voxels.resize(n);
   m_solid.resize(n);
   m_depths.resize(n);
+  m_normals.resize(n);
   m_wasSolid.resize(n);
 }
 

@@ -68,11 +68,50 @@ bool traverse(const SolidGrid& grid, const Vec3& a, const Vec3& b, Visit&& visit
   return false;
 }
 
+// Smooth surface: samples at half the smallest voxel side (a one-voxel wall is
+// at least one voxel wide at the isovalue, so no wall fits between two
+// samples), then bisection between the last sample outside and the first
+// inside. Returns the fraction where `inside(t)` first becomes true after
+// `skipInitial` samples that already were, or a value > 1.
+template <class Inside>
+double marchSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitial, Inside&& inside) {
+  const double length = (b - a).norm();
+  if (!std::isfinite(length)) return 2.0;
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * grid.smallestSide()))));
+  bool skipping = skipInitial;
+  double previous = 0;
+  for (int k = 0; k <= steps; ++k) {
+    const double t = double(k) / steps;
+    if (inside(a + t * (b - a))) {
+      if (skipping) continue;
+      if (k == 0) return 0.0;
+      double lo = previous, hi = t;
+      for (int iteration = 0; iteration < 20; ++iteration) {
+        const double mid = 0.5 * (lo + hi);
+        (inside(a + mid * (b - a)) ? hi : lo) = mid;
+      }
+      return hi;
+    }
+    skipping = false;
+    previous = t;
+  }
+  return 2.0;
+}
+
 }  // namespace
 
 SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitialSolid) {
   SegmentHit result;
   result.startsSolid = grid.solidAt(a);
+  if (grid.smooth) {
+    const double t = marchSegment(grid, a, b, skipInitialSolid, [&](const Vec3& p) { return grid.solidAt(p); });
+    if (t <= 1.0) {
+      result.hit = true;
+      result.t = t;
+      result.voxel = grid.voxelOf(a + t * (b - a));
+    }
+    return result;
+  }
   bool skipping = skipInitialSolid;
   traverse(grid, a, b, [&](int64_t voxel, bool solid, double tEnter, int enteredAxis) {
     if (solid && !skipping) {
@@ -86,6 +125,9 @@ SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3&
 }
 
 double firstFreeOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b) {
+  if (grid.smooth) {
+    return std::min(1.0, marchSegment(grid, a, b, false, [&](const Vec3& p) { return !grid.solidAt(p); }));
+  }
   double found = 1.0;
   const bool stopped = traverse(grid, a, b, [&](int64_t, bool solid, double tEnter, int) {
     if (!solid) found = tEnter;

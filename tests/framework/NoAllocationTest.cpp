@@ -33,11 +33,11 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 namespace trephine {
 namespace {
 
-size_t allocationsDuringRun(double durationS) {
+size_t allocationsDuringRun(const char* scene, double durationS) {
   Diagnostics d;
   SimulationOptions options;
   options.duration = durationS;
-  auto simulation = Simulation::fromFile(test::sourceDir() / "scenes/examples/plane_touch.xml", options, d);
+  auto simulation = Simulation::fromFile(test::sourceDir() / scene, options, d);
   EXPECT_TRUE(simulation) << test::messages(d);
   if (!simulation) return 0;
   g_allocations = 0;
@@ -49,8 +49,16 @@ size_t allocationsDuringRun(double durationS) {
 }
 
 TEST(NoAllocationTest, RunningMoreFramesAllocatesNothingMore) {
-  const size_t shortRun = allocationsDuringRun(0.2);  // 200 haptic frames, 12 recorder ticks
-  const size_t longRun = allocationsDuringRun(2.0);   // 2000 haptic frames, 120 recorder ticks
+  const size_t shortRun = allocationsDuringRun("scenes/examples/plane_touch.xml", 0.2);  // 200 haptic frames
+  const size_t longRun = allocationsDuringRun("scenes/examples/plane_touch.xml", 2.0);   // 2000 haptic frames
+  EXPECT_EQ(longRun, shortRun) << "allocations grow with frames: the loop allocates";
+  EXPECT_LE(shortRun, 4u) << "only the run's own set-up may allocate";
+}
+
+TEST(NoAllocationTest, TouchingAndDrillingTheSkullAllocatesNothingPerFrame) {
+  // craniotomy.xml: approach, touch, drill with the cylinder sweep, retract.
+  const size_t shortRun = allocationsDuringRun("scenes/craniotomy.xml", 1.0);
+  const size_t longRun = allocationsDuringRun("scenes/craniotomy.xml", 5.0);
   EXPECT_EQ(longRun, shortRun) << "allocations grow with frames: the loop allocates";
   EXPECT_LE(shortRun, 4u) << "only the run's own set-up may allocate";
 }

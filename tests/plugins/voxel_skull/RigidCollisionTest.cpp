@@ -253,21 +253,28 @@ TEST(RigidCollisionTest, NaNDevicePoseIsRejectedAndTheForceHeld) {
 }
 
 TEST(RigidCollisionTest, CapsuleShaftTouchingAWallPushesBack) {
-  // A burr on a 20 mm shaft along +x sits level with a wall whose face is at z = 0.25;
+  // A burr on a 20 mm shaft along +x lies level over a 2 mm wall (faces at z = +-1);
   // the shaft, not the burr, rests on the wall.
   SceneParts p;
-  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=0.5&size=40.5" isovalue="500")";
+  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500")";
   p.tool = R"(<CapsuleTool name="burr" radius="2.5" shaftRadius="1.0" shaftLength="20" axis="1 0 0" device="@device"/>)";
-  // Burr centre beyond the wall's edge (x = -25, the grid spans 40 mm), shaft across it.
-  p.device = R"(path="waypoints" waypoints="0 -25 0 4  0.5 -25 0 0.9  1.0 -25 0 0.9")";
-  auto simulation = run(p);
-  ASSERT_TRUE(simulation);
-  const HapticFrameLog& log = simulation->hapticLog();
-  expectStable(log, "capsule");
-  const HapticFrame& f = log[log.size() - 1];
-  EXPECT_GT(f.contacts, 0) << "the shaft touches";
-  EXPECT_GT(f.force.z(), 0.0);
-  EXPECT_NEAR(f.penetration, 0.35, 0.1) << "shaft bottom at 0.9 - 1.0 = -0.1, face at 0.25";
+  // Burr centre beyond the wall's edge (x = -25, the grid spans 40.5 mm), shaft across it,
+  // its underside at 1.65 - 1.0 = 0.65: 0.35 mm into the wall.
+  p.device = R"(path="waypoints" waypoints="0 -25 0 4  0.5 -25 0 1.65  1.0 -25 0 1.65")";
+  for (const char* surface : {"smooth", "voxels"}) {
+    p.skull = std::string(R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500" surface=")") +
+              surface + R"(")";
+    auto simulation = run(p);
+    ASSERT_TRUE(simulation);
+    const HapticFrameLog& log = simulation->hapticLog();
+    expectStable(log, "capsule");
+    const HapticFrame& f = log[log.size() - 1];
+    EXPECT_GT(f.contacts, 0) << surface << ": the shaft touches";
+    EXPECT_GT(f.force.z(), 0.0) << surface;
+    // The voxel centres at z = +-1 hold exactly the isovalue (half-filled): as voxels
+    // the wall ends at +-0.75 (0.10 mm deep), as a smooth surface at +-1 (0.35 mm).
+    EXPECT_NEAR(f.penetration, std::string(surface) == "voxels" ? 0.10 : 0.35, 0.02) << surface;
+  }
 }
 
 }  // namespace
