@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Rigid collision experiments (thesis section 3.4) on scenes/bench/rigid_circle.xml.
 
-usage: tools/bench_rigid.py [--quick] [--out DIR] [--ct PATH]
+usage: tools/bench_rigid.py [--quick] [--out DIR] [--ct PATH] [--surfaces smooth,voxels]
 
 Runs the same 2,500-frame path on Cube100..Cube500 (Table 3.1), Skull1..Skull5
 (Table 3.2, phantom) and, when present, the real CT head, each for the touch
-and the drill task, with `build/bin/trephine run` in virtual time. From each
+and the drill task, and for each bone surface of VoxelSkull (smooth: the
+project's trilinear isosurface; voxels: the thesis's voxel boxes), with
+`build/bin/trephine run` in virtual time. From each
 run's timings.csv, trace.csv and summary.json it writes DIR/rigid.csv (one row
 per model and task: haptic group and proxy time p50/p99/max in us, colliding
 voxels, force figures) and the figures DIR/rigid_{cube,skull}_{touch,drill}.png
@@ -16,6 +18,7 @@ penetration, force and change of force per frame, Fig. 3.17 to 3.26).
 """
 import argparse
 import csv
+import itertools
 import json
 import os
 import subprocess
@@ -50,10 +53,11 @@ def read_rows(path):
         return list(csv.DictReader(f))
 
 
-def run(name, task, settings, out):
-    run_dir = out / f"{name}_{task}"
+def run(name, task, surface, settings, out):
+    run_dir = out / f"{name}_{task}_{surface}"
     command = [str(PROGRAM), "run", str(SCENE), "--quiet", "--out", str(run_dir)]
-    for s in settings + [f"/patient/skull.drill={'true' if task == 'drill' else 'false'}"]:
+    for s in settings + [f"/patient/skull.drill={'true' if task == 'drill' else 'false'}",
+                         f"/patient/skull.surface={surface}"]:
         command += ["--set", s]
     subprocess.run(command, check=True)
     summary = json.loads((run_dir / "summary.json").read_text())
@@ -80,6 +84,7 @@ def main():
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--out", default=str(ROOT / "runs/bench_rigid"))
     parser.add_argument("--ct", default=str(DEFAULT_CT))
+    parser.add_argument("--surfaces", default="smooth,voxels")
     args = parser.parse_args()
     ensure_matplotlib()
     import matplotlib
@@ -102,57 +107,56 @@ def main():
 
     results = {}
     rows = []
-    for family, name, settings in models:
-        for task in ("touch", "drill"):
-            r = run(name, task, settings, out)
-            results[(name, task)] = (family, r)
-            h = r["summary"]["haptics"]
-            voxels = [int(t["primitives"]) for t in r["trace"]]
-            rows.append({
-                "model": name, "task": task,
-                "step_p50_us": percentile(r["step_us"], 0.5), "step_p99_us": percentile(r["step_us"], 0.99),
-                "step_max_us": max(r["step_us"]),
-                "proxy_p50_us": percentile(r["proxy_us"], 0.5), "proxy_p99_us": percentile(r["proxy_us"], 0.99),
-                "proxy_max_us": max(r["proxy_us"]),
-                "frames_over_1ms": sum(1 for s in r["step_us"] if s > 1000.0),
-                "max_colliding_voxels": max(voxels), "contact_frames": h["contact_frames"],
-                "force_max_N": h["force_N"]["max"], "force_step_max_N": h["force_step_N"]["max"],
-                "force_step_p99_N": h["force_step_N"]["p99"], "nan_frames": h["nan_frames"],
-                "proxy_inside_frames": h["proxy_inside_frames"],
-                "voxels_removed": r["summary"]["drilling"]["voxels_removed"],
-            })
-            print(f"{name:16s} {task:5s} step p50 {rows[-1]['step_p50_us']:7.2f} us  p99 {rows[-1]['step_p99_us']:7.2f}"
-                  f"  max {rows[-1]['step_max_us']:8.1f}  voxels<= {rows[-1]['max_colliding_voxels']:4d}"
-                  f"  |F|max {rows[-1]['force_max_N']:.2f} N  dF max {rows[-1]['force_step_max_N']:.3f} N"
-                  f"  inside {rows[-1]['proxy_inside_frames']}")
+    surfaces = args.surfaces.split(",")
+    for (family, name, settings), surface, task in itertools.product(models, surfaces, ("touch", "drill")):
+        r = run(name, task, surface, settings, out)
+        results[(name, task, surface)] = (family, r)
+        h = r["summary"]["haptics"]
+        voxels = [int(t["primitives"]) for t in r["trace"]]
+        rows.append({
+            "model": name, "task": task, "surface": surface,
+            "step_p50_us": percentile(r["step_us"], 0.5), "step_p99_us": percentile(r["step_us"], 0.99),
+            "step_max_us": max(r["step_us"]),
+            "proxy_p50_us": percentile(r["proxy_us"], 0.5), "proxy_p99_us": percentile(r["proxy_us"], 0.99),
+            "proxy_max_us": max(r["proxy_us"]),
+            "frames_over_1ms": sum(1 for s in r["step_us"] if s > 1000.0),
+            "max_colliding_voxels": max(voxels), "contact_frames": h["contact_frames"],
+            "force_max_N": h["force_N"]["max"], "force_step_max_N": h["force_step_N"]["max"],
+            "force_step_p99_N": h["force_step_N"]["p99"], "nan_frames": h["nan_frames"],
+            "proxy_inside_frames": h["proxy_inside_frames"],
+            "voxels_removed": r["summary"]["drilling"]["voxels_removed"],
+        })
+        print(f"{name:16s} {surface:6s} {task:5s} step p50 {rows[-1]['step_p50_us']:7.2f} us  p99 {rows[-1]['step_p99_us']:7.2f}"
+              f"  max {rows[-1]['step_max_us']:8.1f}  voxels<= {rows[-1]['max_colliding_voxels']:4d}"
+              f"  |F|max {rows[-1]['force_max_N']:.2f} N  dF max {rows[-1]['force_step_max_N']:.3f} N"
+              f"  inside {rows[-1]['proxy_inside_frames']}")
     with open(out / "rigid.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
 
-    for family in ("cube", "skull", "ct"):
-        for task in ("touch", "drill"):
-            chosen = [(n, r) for (n, t), (fam, r) in results.items() if fam == family and t == task]
-            if not chosen:
-                continue
-            fig, (a, b) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
-            for name, r in chosen:
-                a.plot(r["proxy_us"], lw=0.6, label=name)
-                b.plot([int(t["primitives"]) for t in r["trace"]], lw=0.6, label=name)
-            a.set_ylabel("collision handling (us)")
-            a.set_title(f"{family} models, {task}: proxy step per frame")
-            a.legend(fontsize=7)
-            b.set_ylabel("colliding voxels")
-            b.set_xlabel("frame")
-            fig.tight_layout()
-            fig.savefig(out / f"rigid_{family}_{task}.png", dpi=110)
-            plt.close(fig)
+    for family, surface, task in itertools.product(("cube", "skull", "ct"), surfaces, ("touch", "drill")):
+        chosen = [(n, r) for (n, t, sf), (fam, r) in results.items() if fam == family and t == task and sf == surface]
+        if not chosen:
+            continue
+        fig, (a, b) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+        for name, r in chosen:
+            a.plot(r["proxy_us"], lw=0.6, label=name)
+            b.plot([int(t["primitives"]) for t in r["trace"]], lw=0.6, label=name)
+        a.set_ylabel("collision handling (us)")
+        a.set_title(f"{family} models, {surface} surface, {task}: proxy step per frame")
+        a.legend(fontsize=7)
+        b.set_ylabel("colliding voxels")
+        b.set_xlabel("frame")
+        fig.tight_layout()
+        fig.savefig(out / f"rigid_{family}_{surface}_{task}.png", dpi=110)
+        plt.close(fig)
 
-    force_model = next((n for n in ("CT-head-1.0mm", "Skull5", "Skull3") if (n, "touch") in results), None)
+    force_model = next((n for n in ("Skull5", "Skull3") if (n, "touch", surfaces[0]) in results), None)
     if force_model is None:
         force_model = next(iter(results))[0]
-    for task in ("touch", "drill"):
-        r = results[(force_model, task)][1]
+    for surface, task in itertools.product(surfaces, ("touch", "drill")):
+        r = results[(force_model, task, surface)][1]
         t = [float(x["t"]) for x in r["trace"]]
         fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True)
         for k in ("normal_x", "normal_y", "normal_z"):
@@ -174,9 +178,9 @@ def main():
         axes[3].plot(t, steps, lw=0.6)
         axes[3].set_ylabel("|F_k - F_k-1| (N)")
         axes[3].set_xlabel("t (s)")
-        axes[0].set_title(f"force parameters, {force_model}, {task}")
+        axes[0].set_title(f"force parameters, {force_model}, {surface} surface, {task}")
         fig.tight_layout()
-        fig.savefig(out / f"rigid_force_{task}.png", dpi=110)
+        fig.savefig(out / f"rigid_force_{surface}_{task}.png", dpi=110)
         plt.close(fig)
     print(f"wrote {out / 'rigid.csv'} and figures in {out}")
 

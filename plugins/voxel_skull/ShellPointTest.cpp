@@ -1,5 +1,7 @@
 #include "plugins/voxel_skull/ShellPointTest.h"
 
+#include <algorithm>
+
 namespace trephine::voxel {
 
 void ShellArrays::assign(std::span<const ShellPoint> shell) {
@@ -25,28 +27,36 @@ namespace {
     c[r] = (X_WT.position[r] - grid.corner[r]) * grid.inverseSpacing[r];
   }
   const double nx = grid.nx, ny = grid.ny, nz = grid.nz;
-  const int64_t strideY = grid.nx, strideZ = int64_t(grid.nx) * grid.ny;
+  // 32-bit indices: volumes hold fewer than 2^31 voxels, and 32-bit conversions
+  // vectorise (SSE2 cvttpd2dq) where 64-bit ones need AVX-512.
+  const int32_t strideY = grid.nx, strideZ = grid.nx * grid.ny;
   const double* __restrict px = shell.x.data();
   const double* __restrict py = shell.y.data();
   const double* __restrict pz = shell.z.data();
-  int64_t* __restrict voxel = out.voxel;
   const size_t n = shell.size();
-  for (size_t i = 0; i < n; ++i) {
-    const double gx = m[0][0] * px[i] + m[0][1] * py[i] + m[0][2] * pz[i] + c[0];
-    const double gy = m[1][0] * px[i] + m[1][1] * py[i] + m[1][2] * pz[i] + c[1];
-    const double gz = m[2][0] * px[i] + m[2][1] * py[i] + m[2][2] * pz[i] + c[2];
-    const bool inside = gx >= 0 && gy >= 0 && gz >= 0 && gx < nx && gy < ny && gz < nz;
-    // Truncation is floor here: negative coordinates are outside anyway.
-    const int64_t linear = int64_t(inside ? gx : 0) + strideY * int64_t(inside ? gy : 0) +
-                           strideZ * int64_t(inside ? gz : 0);
-    voxel[i] = inside ? linear : -1;
-  }
+  constexpr size_t kChunk = 64;
+  alignas(64) int32_t index[kChunk];
   const VoxelCode* __restrict codes = grid.codes;
-  uint8_t* __restrict solid = out.solid;
   const int32_t threshold = grid.threshold;
-  for (size_t i = 0; i < n; ++i) {
-    const int64_t v = voxel[i];
-    solid[i] = v >= 0 && codes[v >= 0 ? v : 0] >= threshold;
+  for (size_t start = 0; start < n; start += kChunk) {
+    const size_t count = std::min(kChunk, n - start);
+    for (size_t i = 0; i < count; ++i) {
+      const size_t k = start + i;
+      const double gx = m[0][0] * px[k] + m[0][1] * py[k] + m[0][2] * pz[k] + c[0];
+      const double gy = m[1][0] * px[k] + m[1][1] * py[k] + m[1][2] * pz[k] + c[1];
+      const double gz = m[2][0] * px[k] + m[2][1] * py[k] + m[2][2] * pz[k] + c[2];
+      // Non-short-circuit tests and selects keep the loop free of branches (vectorisable).
+      const bool inside = (gx >= 0) & (gy >= 0) & (gz >= 0) & (gx < nx) & (gy < ny) & (gz < nz);
+      // Truncation is floor here: negative coordinates are outside anyway.
+      const int32_t linear = int32_t(inside ? gx : 0.0) + strideY * int32_t(inside ? gy : 0.0) +
+                             strideZ * int32_t(inside ? gz : 0.0);
+      index[i] = inside ? linear : -1;
+    }
+    for (size_t i = 0; i < count; ++i) {
+      const int32_t v = index[i];
+      out.voxel[start + i] = v;
+      out.solid[start + i] = v >= 0 && codes[v >= 0 ? v : 0] >= threshold;
+    }
   }
 }
 

@@ -107,6 +107,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   const ReservedShell* findShell(std::span<const ShellPoint> shell) const;
   std::vector<ReservedShell> m_shells;
   ShellPointTestFunction m_pointTest = bestShellPointTest(false);
+  ShellPointTestFunction m_voxelPointTest = bestShellPointTest(false);
   std::vector<Hit> m_hits;
   mutable std::vector<int64_t> m_voxels;
   mutable std::vector<uint8_t> m_solid;

@@ -1,13 +1,13 @@
 // The inner kernels of rigid voxel collision on the Skull5-size phantom
-// (425 x 403 x 283 voxels of 0.5 mm): the per-point voxel test of a 466-point
-// shell (baseline SSE2 and AVX2 versions, ns per point), and the line sweep of
-// the leading point over typical per-frame moves.
+// (425 x 403 x 283 voxels of 0.5 mm): the per-point test of a 466-point shell
+// against the voxel and the smooth surface (baseline SSE2 and AVX2 versions,
+// ns per point), and the line sweep of the leading point over per-frame moves.
 //   build/bin/voxel_kernels_benchmark [--benchmark_repetitions=10]
 // TREPHINE_BENCH_VOXEL (mm, default 0.5) sets the phantom's voxel size.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdlib>
-#include <random>
 
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
@@ -30,14 +30,17 @@ DensityVolume& phantom() {
   return volume;
 }
 
-// Burr placements on the top of the skull, touching the bone (centres 2.2 mm above the top surface).
+constexpr size_t kPlacements = 2048;  // a power of two
+
+// Burr placements along a 5 mm circle on the top of the skull, 15 um apart (15
+// mm/s at 1 kHz), each pressing 0.3 mm into the bone: consecutive calls touch
+// neighbouring voxels, as consecutive haptic frames do.
 std::vector<Pose> placements(const SolidGrid& grid) {
   std::vector<Pose> out;
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> offset(-10, 10);
-  while (out.size() < 256) {
-    Vec3 p(offset(random), offset(random), 80);
-    while (p.z() > -80 && !grid.solidAt(p)) p.z() -= 0.05;
+  for (size_t k = 0; k < kPlacements; ++k) {
+    const double angle = 2 * 3.14159265358979 * double(k) / kPlacements * 0.4;
+    Vec3 p(5 * std::cos(angle), 5 * std::sin(angle), 80);
+    while (p.z() > -80 && !grid.solidAt(p)) p.z() -= 0.01;
     p.z() += kRadius - 0.3;
     Pose pose;
     pose.position = p;
@@ -46,9 +49,9 @@ std::vector<Pose> placements(const SolidGrid& grid) {
   return out;
 }
 
-template <ShellPointTestFunction test>
+template <ShellPointTestFunction test, bool smooth>
 void BM_ShellPointTest(benchmark::State& state) {
-  const SolidGrid grid = SolidGrid::of(phantom(), 400.0);
+  const SolidGrid grid = SolidGrid::of(phantom(), 400.0, smooth);
   std::vector<ShellPoint> shell;
   for (const Vec3& d : haptics::evenDirections(kShellPoints)) shell.push_back({kRadius * d, -d});
   ShellArrays arrays;
@@ -58,7 +61,7 @@ void BM_ShellPointTest(benchmark::State& state) {
   const std::vector<Pose> poses = placements(grid);
   size_t k = 0, touching = 0;
   for (auto _ : state) {
-    test(grid, arrays, poses[k++ & 255], {voxels.data(), solid.data()});
+    test(grid, arrays, poses[k++ & (kPlacements - 1)], {voxels.data(), solid.data()});
     touching += solid[0];
     benchmark::DoNotOptimize(solid.data());
     benchmark::ClobberMemory();
@@ -66,26 +69,30 @@ void BM_ShellPointTest(benchmark::State& state) {
   state.counters["ns_per_point"] = benchmark::Counter(double(state.iterations()) * kShellPoints,
                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_ShellPointTest<testShellPointsBaseline>)->Name("ShellPointTest/sse2");
+BENCHMARK(BM_ShellPointTest<testShellPointsBaseline, false>)->Name("ShellPointTest/voxels/sse2");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothBaseline, true>)->Name("ShellPointTest/smooth/sse2");
 #ifdef TREPHINE_HAS_AVX2_PATH
-BENCHMARK(BM_ShellPointTest<testShellPointsAvx2>)->Name("ShellPointTest/avx2");
+BENCHMARK(BM_ShellPointTest<testShellPointsAvx2, false>)->Name("ShellPointTest/voxels/avx2");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothAvx2, true>)->Name("ShellPointTest/smooth/avx2");
 #endif
 
-// The leading point of the burr swept over a move of state.range(0) um per frame.
+// The leading point of the burr swept over a move of state.range(0) um per frame
+// (20 um: 20 mm/s at 1 kHz), against the voxel (range(1) = 0) or smooth surface.
 void BM_LineSweep(benchmark::State& state) {
-  const SolidGrid grid = SolidGrid::of(phantom(), 400.0);
+  const SolidGrid grid = SolidGrid::of(phantom(), 400.0, state.range(1) != 0);
   const std::vector<Pose> poses = placements(grid);
   const double move = state.range(0) * 1e-3;  // mm
   size_t k = 0, hits = 0;
   for (auto _ : state) {
-    const Vec3 from = poses[k++ & 255].position;
+    // From 1 mm above the contact towards the bone: the free part is traversed.
+    const Vec3 from = poses[k++ & (kPlacements - 1)].position + Vec3(0, 0, 1.0);
     const Vec3 to = from + Vec3(0.6, 0.3, -0.74).normalized() * move;
     const Vec3 lead = (to - from).normalized() * kRadius;
     hits += firstSolidOnSegment(grid, from + lead, to + lead, false).hit;
   }
   benchmark::DoNotOptimize(hits);
 }
-BENCHMARK(BM_LineSweep)->Arg(20)->Arg(200)->Arg(5000);
+BENCHMARK(BM_LineSweep)->ArgsProduct({{20, 200, 5000}, {0, 1}})->ArgNames({"move_um", "smooth"});
 
 }  // namespace
 }  // namespace trephine::bench
