@@ -39,18 +39,33 @@ def plot_trace(run, rows):
         math.sqrt(sum((float(b[f"force_{a}"]) - float(a_[f"force_{a}"])) ** 2 for a in "xyz"))
         for a_, b in zip(rows, rows[1:])
     ]
-    fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True)
+    # Colliding primitives and drilled voxels when the run has them (after the contract's columns).
+    contact_panel = "primitives" in rows[0]
+    fig, axes = plt.subplots(5 if contact_panel else 4, 1, figsize=(9, 11 if contact_panel else 9), sharex=True)
     axes[0].plot(t, [float(r["device_z"]) for r in rows], label="device z")
     axes[0].plot(t, [float(r["proxy_z"]) for r in rows], label="proxy z", linestyle="--")
     axes[0].set_ylabel("height (mm)")
     axes[0].legend(loc="upper right")
     axes[1].plot(t, force, color="tab:red")
     axes[1].set_ylabel("|F| (N)")
-    axes[2].plot(t, [float(r["penetration"]) for r in rows], color="tab:green")
+    axes[2].plot(t, [float(r["penetration"]) for r in rows], color="tab:green", label="rendered")
+    if "penetration_raw" in rows[0]:
+        axes[2].plot(t, [float(r["penetration_raw"]) for r in rows], color="tab:olive", linewidth=0.7,
+                     label="raw (detection)")
+        axes[2].legend(loc="upper right")
     axes[2].set_ylabel("penetration (mm)")
     axes[3].plot(t, steps, color="tab:purple")
     axes[3].set_ylabel("|ΔF| per frame (N)")
-    axes[3].set_xlabel("time (s)")
+    if contact_panel:
+        axes[4].plot(t, [int(r["primitives"]) for r in rows], label="colliding primitives", linewidth=0.7)
+        removed, total = [], 0
+        for r in rows:
+            total += int(r["removed"])
+            removed.append(total)
+        axes[4].plot(t, removed, label="removed so far", linewidth=0.9)
+        axes[4].set_ylabel("voxels")
+        axes[4].legend(loc="upper left")
+    axes[-1].set_xlabel("time (s)")
     fig.suptitle(f"{run.name}: haptic trace")
     fig.tight_layout()
     fig.savefig(run / "force.png", dpi=110)

@@ -9,6 +9,10 @@ namespace trephine::haptics {
 namespace {
 // Below this the proxy and the device coincide (mm).
 constexpr double kSamePlace = 1e-9;
+// Fraction of the way to the god-object position the proxy moves each frame.
+constexpr double kProxyRelaxation = 0.5;
+// Planes whose normals are closer than this (cosine, about 2.6 degrees) are one plane.
+constexpr double kSamePlane = 0.999;
 }  // namespace
 
 void GodObjectProxy::init(InitContext& context) { l_target->reserveShell(l_tool->shellPoints()); }
@@ -82,7 +86,33 @@ void GodObjectProxy::tick(const TickContext&) {
     const double skin = std::min(c.penetration, target.contactDepth());
     const Vec3 onPlane = P1 + (c.penetration - skin) * normal;
     Vec3 goal = P1;
-    if (d_godObject.value()) goal = D + std::max(0.0, (onPlane - D).dot(normal)) * normal;
+    bool crease = false;
+    if (d_godObject.value()) {
+      goal = D + std::max(0.0, (onPlane - D).dot(normal)) * normal;
+      // In a crease the new plane's projection crosses the last frame's plane:
+      // the god-object then sits on both (their intersection nearest the device),
+      // instead of alternating between them frame by frame.
+      if (m_hadPlane && m_lastNormal.dot(normal) < kSamePlane && (goal - m_lastPlanePoint).dot(m_lastNormal) < 0) {
+        const double a = normal.dot(m_lastNormal);
+        const double det = 1.0 - a * a;
+        const double b0 = (onPlane - D).dot(normal), b1 = (m_lastPlanePoint - D).dot(m_lastNormal);
+        const double l0 = (b0 - a * b1) / det, l1 = (b1 - a * b0) / det;
+        // Opposite planes (a near -1) have no useful intersection near the device.
+        if (det > 1e-3 && l0 >= 0 && l1 >= 0) {
+          goal = D + l0 * normal + l1 * m_lastNormal;
+          crease = true;
+        }
+      }
+    }
+    // Half the slide along the surface each frame (the lift off it in full): on
+    // a curved or rough surface the normal depends on where the proxy is, and a
+    // full step lets proxy and normal chase each other frame by frame (the
+    // projection moves the proxy by the device depth times the change of
+    // normal). Halving converges geometrically and lags a steady slide by one
+    // frame's motion at most.
+    const Vec3 step = goal - P1;
+    const Vec3 lift = step.dot(normal) * normal;
+    goal = P1 + lift + kProxyRelaxation * (step - lift);
     // 4. Rectifying sweep to the new position.
     P2 = goal;
     const Vec3 move = goal - P1;
@@ -91,10 +121,21 @@ void GodObjectProxy::tick(const TickContext&) {
       const SweepResult r = sweepPath(P1, goal, q);
       if (r.blocked) P2 = P1 + r.freeFraction * move;
     }
-    // 5. Rendered penetration.
-    s.penetration = std::max(0.0, (P2 - D).dot(normal)) + skin;
-    s.normal = normal;
+    // 5. Rendered penetration: along the normal, or, held by two planes, the
+    // device-proxy distance in its own direction.
+    const Vec3 offset = P2 - D;
+    if (crease && offset.norm() > kSamePlace) {
+      s.normal = offset.normalized();
+      s.penetration = offset.norm() + skin;
+      ++m_creaseFrames;
+    } else {
+      s.normal = normal;
+      s.penetration = std::max(0.0, offset.dot(normal)) + skin;
+    }
     s.contact = true;
+    m_planePoint = onPlane;
+    m_planeNormal = normal;
+    m_hasPlane = true;
   } else if (blocked) {
     // Conflicting case: the proxy is free where the sweep stopped it but the device is beyond.
     ++m_conflictFrames;
@@ -102,9 +143,18 @@ void GodObjectProxy::tick(const TickContext&) {
     s.penetration = (D - P1).norm();
     s.contact = true;
   }
-  if (s.contact) {
-    ++m_contactFrames;
-    m_lastNormal = s.normal;
+  if (s.contact) ++m_contactFrames;
+  // The constraint plane of this frame, for the next one.
+  m_hadPlane = m_hasPlane;
+  m_lastPlanePoint = m_planePoint;
+  m_lastNormal = m_hasPlane ? m_planeNormal : (s.contact ? s.normal : m_lastNormal);
+  m_hasPlane = false;
+  if (!P2.allFinite() || !s.normal.allFinite() || !std::isfinite(s.penetration)) {
+    // Never expected; if it happens the proxy and the force hold, and it is counted.
+    ++m_nonFiniteFrames;
+    s = m_state;
+    s.device = D;
+    P2 = m_state.proxy;
   }
   s.proxy = P2;
   s.proxyInside = target.overlaps({P2, q}, tool.shellPoints());
@@ -116,6 +166,8 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"blocked_sweeps", double(m_blockedSweeps)});
   counters.push_back({"conflict_frames", double(m_conflictFrames)});
   counters.push_back({"degenerate_normals", double(m_degenerateNormals)});
+  counters.push_back({"crease_frames", double(m_creaseFrames)});
+  if (m_nonFiniteFrames) counters.push_back({"non_finite_frames", double(m_nonFiniteFrames)});
 }
 
 }  // namespace trephine::haptics

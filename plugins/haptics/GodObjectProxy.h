@@ -12,6 +12,10 @@
 //     never crosses another part of the target;
 //  5. penetration = the depth of the device below the constraint plane (the
 //     device-proxy distance along the normal) plus the proxy's own contact depth.
+// In a crease, where this frame's projection would cross the last frame's
+// constraint plane, the proxy goes to the nearest point on both planes (the
+// god-object with two constraints, Zilles and Salisbury) and the force points
+// from the device to it.
 // When the sweep stopped the proxy but no shell point collides there (the two
 // conflicting cases of the rigid method), the normal is against the sweep
 // direction and the penetration is the device-proxy distance.
@@ -75,8 +79,12 @@ class GodObjectProxy final : public Component {
 
   ProxyState m_state;
   Vec3 m_lastNormal = Vec3::Zero();
+  // This frame's and the last frame's constraint plane (a point on it and its normal).
+  Vec3 m_planePoint = Vec3::Zero(), m_planeNormal = Vec3::Zero(), m_lastPlanePoint = Vec3::Zero();
+  bool m_hasPlane = false, m_hadPlane = false;
   bool m_started = false;
-  uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0;
+  uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0,
+           m_creaseFrames = 0, m_nonFiniteFrames = 0;
 };
 
 }  // namespace trephine::haptics

@@ -65,6 +65,9 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   // Deepest-point depths are searched along the normal up to the tool's diameter.
   const double reach = 2.0 * reserved->radius + m_grid.spacing.maxCoeff();
   Vec3 normalSum = Vec3::Zero();
+  // Deepest-point variants weight each point's normal by its depth, so a point
+  // entering or leaving the bone (depth near 0) does not turn the normal at once.
+  Vec3 weightedSum = Vec3::Zero();
   double penetration = 0;
   int voxels = 0, removed = 0;
   for (size_t first = 0; first < hits;) {
@@ -99,6 +102,7 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
         m_normals[h] = normal;
       }
       voxelNormal += normal;
+      if (!algorithm1) weightedSum += m_depths[h] * normal;
     }
     // Algorithm 1: the deepest of the per-voxel mean depths.
     if (algorithm1) penetration = std::max(penetration, depthSum / double(last - first));
@@ -116,6 +120,8 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   // The average vanishes when contacts surround the tool: no direction is given then.
   const double sumLength = normalSum.norm();
   contact.normal = sumLength > 1e-3 * voxels ? Vec3(normalSum / sumLength) : Vec3::Zero();
+  const double weightedLength = weightedSum.norm();
+  if (!algorithm1 && weightedLength > 1e-9) contact.normal = weightedSum / weightedLength;
   if (!algorithm1) {
     // The deepest point measured along the contact normal.
     for (size_t h = 0; h < hits; ++h)
