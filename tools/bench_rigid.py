@@ -96,10 +96,12 @@ def main():
     models = [("cube", n, [f"/patient/skull.file={f}"]) for n, f in CUBES]
     models += [("skull", n, [f"/patient/skull.file={f}"]) for n, f in SKULLS]
     if Path(args.ct).exists():
-        # The real CT (raw units, bone above about 1150), resampled to 1 mm and 0.5 mm voxels.
+        # The real CT (raw units, bone above about 1150), resampled to 1 mm and 0.5 mm voxels. Its top is
+        # cropped (a vertical approach enters the open skull), so the burr comes from the side.
         for size in ("1.0", "0.5"):
             models.append(("ct", f"CT-head-{size}mm", [f"/patient/skull.file={args.ct}", "/patient/skull.isovalue=1150",
-                                                       f"/patient/skull.voxelSize={size}"]))
+                                                       f"/patient/skull.voxelSize={size}",
+                                                       "/tool/device.direction=-1 0 0"]))
     else:
         print(f"bench_rigid.py: {args.ct} not found, the real CT head is skipped", file=sys.stderr)
     if args.quick:
