@@ -165,7 +165,7 @@ def main():
             axes[0].plot(t, [float(x[k]) for x in r["trace"]], lw=0.6, label=k)
         axes[0].set_ylabel("contact normal")
         axes[0].legend(fontsize=7)
-        axes[1].plot(t, [float(x["penetration_raw"]) for x in r["trace"]], lw=0.6, label="raw (Algorithm 1)")
+        axes[1].plot(t, [float(x["penetration_raw"]) for x in r["trace"]], lw=0.6, label="raw (detection)")
         axes[1].plot(t, [float(x["penetration"]) for x in r["trace"]], lw=0.6, label="rectified")
         axes[1].set_ylabel("penetration (mm)")
         axes[1].legend(fontsize=7)

@@ -60,7 +60,7 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
             [](const Hit& a, const Hit& b) { return a.voxel < b.voxel || (a.voxel == b.voxel && a.point < b.point); });
 
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
-  const bool algorithm1 = d_penetration.is("algorithm1");
+  const bool algorithm1 = d_penetration.is("algorithm1") || (d_penetration.is("auto") && !m_grid.smooth);
   const bool drilling = removeMaterial && d_drill.value();
   // Deepest-point depths are searched along the normal up to the tool's diameter.
   const double reach = 2.0 * reserved->radius + m_grid.spacing.maxCoeff();

@@ -69,13 +69,15 @@ class VoxelSkull final : public Component, public ShellContactTarget {
                              .minExclusive = true}};
   EnumField d_penetration{this,
                           "penetration",
-                          {"deepest-point", "algorithm1"},
-                          "deepest-point",
+                          {"auto", "deepest-point", "algorithm1"},
+                          "auto",
                           {.help = "Penetration of a contact. algorithm1 (thesis, McNeely tangent planes): per "
                                    "colliding voxel the mean distance of its points to the plane through the voxel "
                                    "centre along their normals, the largest voxel mean taken. deepest-point: each "
-                                   "colliding point's distance along its normal to the first voxel out of the bone, "
-                                   "projected on the contact normal, the largest taken (exact on voxel faces)"}};
+                                   "colliding point's distance along its normal to where the bone ends, projected "
+                                   "on the contact normal, the largest taken. auto: deepest-point on the smooth "
+                                   "surface, algorithm1 on voxels (the more accurate of the two on each, see "
+                                   "docs/results.md)"}};
   EnumField d_surface{this,
                       "surface",
                       {"smooth", "voxels"},

@@ -262,8 +262,8 @@ TEST(RigidCollisionTest, CapsuleShaftTouchingAWallPushesBack) {
   // its underside at 1.65 - 1.0 = 0.65: 0.35 mm into the wall.
   p.device = R"(path="waypoints" waypoints="0 -25 0 4  0.5 -25 0 1.65  1.0 -25 0 1.65")";
   for (const char* surface : {"smooth", "voxels"}) {
-    p.skull = std::string(R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500" surface=")") +
-              surface + R"(")";
+    p.skull = std::string(R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500" )") +
+              R"(penetration="deepest-point" surface=")" + surface + R"(")";
     auto simulation = run(p);
     ASSERT_TRUE(simulation);
     const HapticFrameLog& log = simulation->hapticLog();
