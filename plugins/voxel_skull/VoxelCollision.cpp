@@ -111,8 +111,11 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
     ++voxels;
     if (drilling) {
       VoxelCode& code = m_volume.codes()[voxel];
-      const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::numeric_limits<VoxelCode>::min());
-      if (lowered < m_grid.threshold) ++removed;
+      // Never below the emptiest voxel of the volume (air): on the smooth surface the
+      // voxels next to the bone take part in the interpolation and are cut too.
+      const int32_t floor = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
+      const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
+      if (code >= m_grid.threshold && lowered < m_grid.threshold) ++removed;  // bone that became empty
       code = static_cast<VoxelCode>(lowered);
     }
     first = last;
