@@ -35,6 +35,16 @@ double depthToFreeVoxel(const SolidGrid& grid, const Vec3& p, int64_t voxel, con
 
 }  // namespace
 
+int VoxelSkull::lowerVoxel(int64_t voxel) {
+  VoxelCode& code = m_volume.codes()[voxel];
+  // Never below the emptiest voxel of the volume (air).
+  const int32_t floor = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
+  const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
+  const bool emptied = code >= m_grid.threshold && lowered < m_grid.threshold;  // bone that became empty
+  code = static_cast<VoxelCode>(lowered);
+  return emptied ? 1 : 0;
+}
+
 ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
   ShellContact contact;
   const ReservedShell* reserved = findShell(shell);
@@ -109,16 +119,25 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
     const double length = voxelNormal.norm();
     if (length > 1e-12) normalSum += voxelNormal / length;  // Eq. 3.4: one unit normal per voxel
     ++voxels;
-    if (drilling) {
-      VoxelCode& code = m_volume.codes()[voxel];
-      // Never below the emptiest voxel of the volume (air): on the smooth surface the
-      // voxels next to the bone take part in the interpolation and are cut too.
-      const int32_t floor = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
-      const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
-      if (code >= m_grid.threshold && lowered < m_grid.threshold) ++removed;  // bone that became empty
-      code = static_cast<VoxelCode>(lowered);
-    }
+    if (drilling && !m_grid.smooth) removed += lowerVoxel(voxel);
     first = last;
+  }
+  if (drilling && m_grid.smooth) {
+    // Smooth surface: the density at a point comes from the 8 voxel centres
+    // around it, so the burr cuts all of them (each once per frame).
+    size_t count = 0;
+    for (size_t h = 0; h < hits; ++h) {
+      const Vec3 p = R * shell[m_hits[h].point].position + X_WT.position;
+      const Vec3 u = (p - m_grid.corner).cwiseProduct(m_grid.inverseSpacing) - Vec3::Constant(0.5);
+      const int64_t i = int64_t(std::floor(u.x())), j = int64_t(std::floor(u.y())), k = int64_t(std::floor(u.z()));
+      for (int corner = 0; corner < 8; ++corner) {
+        const int64_t a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + (corner >> 2);
+        if (m_grid.inside(a, b, c)) m_cutVoxels[count++] = m_grid.linear(a, b, c);
+      }
+    }
+    std::sort(m_cutVoxels.begin(), m_cutVoxels.begin() + count);
+    const auto end = std::unique(m_cutVoxels.begin(), m_cutVoxels.begin() + count);
+    for (auto it = m_cutVoxels.begin(); it != end; ++it) removed += lowerVoxel(*it);
   }
   // The average vanishes when contacts surround the tool: no direction is given then.
   const double sumLength = normalSum.norm();

@@ -59,6 +59,7 @@ void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   m_solid.resize(n);
   m_depths.resize(n);
   m_normals.resize(n);
+  m_cutVoxels.resize(8 * n);
   m_wasSolid.resize(n);
 }
 

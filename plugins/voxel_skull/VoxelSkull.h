@@ -40,6 +40,8 @@ class VoxelSkull final : public Component, public ShellContactTarget {
 
  private:
   Vec3 densityGradient(const Vec3& p) const;
+  // Drills one voxel by m_drillStep; 1 if it was bone and is not any more.
+  int lowerVoxel(int64_t voxel);
 
   FilePathField d_file{this,
                        "file",
@@ -115,6 +117,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   mutable std::vector<uint8_t> m_solid;
   std::vector<double> m_depths;  // per hit, mm
   std::vector<Vec3> m_normals;   // per hit, unit, out of the bone
+  std::vector<int64_t> m_cutVoxels;  // voxels cut this frame (8 per hit at most)
   mutable std::vector<uint8_t> m_wasSolid;
   uint64_t m_voxelsRemoved = 0, m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;
 };

@@ -127,7 +127,8 @@ TEST(VoxelSkullTest, DrillingOnlyWhenTheSceneAsksAndTheDrilledVolumeIsSaved) {
       EXPECT_FALSE(std::filesystem::exists(out / "drilled.mha"));
       continue;
     }
-    EXPECT_EQ(summary.find("\"voxels_removed\": 0"), std::string::npos) << "drilling removes bone";
+    // (On the smooth surface the burr advances as the density falls, before whole voxels
+    // cross the isovalue: the removed density, not the count of emptied voxels, is the test.)
     const DensityVolume original = voxel::makePhantom("skull?voxel=1");
     const DensityVolume drilled = voxel::readVolume(out / "drilled.mha");
     ASSERT_EQ(drilled.dims(), original.dims());
