@@ -106,6 +106,39 @@ TEST(TrephineProgramTest, GeneratedSchemaAcceptsEveryShippedSceneAndRejectsMista
       0);
 }
 
+TEST(TrephineProgramTest, PhantomWritesAVolumeTheSceneCanLoad) {
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(runProgram({"phantom", "skull?voxel=4", "--out", (dir / "skull.mha").string()}, &out), 0) << out;
+  EXPECT_NE(out.find("54 x 51 x 36 voxels of 4 mm"), std::string::npos) << out;
+  // The same skull as a file and as a phantom source give the same run.
+  const std::string scene = R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <VoxelSkull name="skull" file="SOURCE"/>
+  <ScriptedDevice name="device" target="@skull" tipOffset="2.5" record="false"/>
+  <PointshellTool name="burr" radius="2.5" device="@device"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@skull"/>
+  <ForceFeedback name="force" proxy="@proxy"/>
+</Node>)";
+  std::string fileTrace;
+  for (const std::string source : {"skull.mha", "phantom:skull?voxel=4"}) {
+    std::string xml = scene;
+    xml.replace(xml.find("SOURCE"), 6, source);
+    dir.write("scene.xml", xml);
+    ASSERT_EQ(runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--out", (dir / "run").string()}, &out), 0)
+        << out;
+    if (source == "skull.mha") {
+      fileTrace = test::readFile(dir / "run/trace.csv");
+    } else {
+      EXPECT_EQ(test::readFile(dir / "run/trace.csv"), fileTrace) << "file and phantom differ";
+    }
+  }
+  EXPECT_EQ(runProgram({"phantom", "sphere", "--out", (dir / "x.mha").string()}, &out), 1);
+  EXPECT_NE(out.find("unknown phantom 'sphere'"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"phantom", "skull?voxel=4"}, &out), 2) << "no --out";
+}
+
 TEST(TrephineProgramTest, TheSceneReferenceInTheDocsIsCurrent) {
   std::string generated;
   ASSERT_EQ(runProgram({"components", "--markdown"}, &generated, "env -u TREPHINE_PLUGIN_PATH"), 0);
