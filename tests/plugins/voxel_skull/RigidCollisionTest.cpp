@@ -74,23 +74,26 @@ double counter(const Simulation& simulation, const std::string& type, const std:
 }
 
 TEST(RigidCollisionTest, OneVoxelWallCrossedAtTenVoxelsPerFrameDoesNotPopThrough) {
-  SceneParts p;
-  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=0.5&size=40.5" isovalue="500")";
-  // 5 mm per 1 ms frame = 10 voxels per frame, from 10 mm above the wall to 10 mm below.
-  p.device = verticalWaypoints({{0, 10}, {0.004, -10}, {0.1, -10}});
-  auto simulation = run(p);
-  ASSERT_TRUE(simulation);
-  const HapticFrameLog& log = simulation->hapticLog();
-  expectStable(log, "thin wall");
-  EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
-  for (size_t i = 0; i < log.size(); ++i) {
-    // The wall spans z in [-0.25, 0.25]: the burr centre stays above it.
-    EXPECT_GT(log[i].proxy.z(), 0.25) << "frame " << i;
-    if (log[i].device.z() < 0) {
-      EXPECT_GT(log[i].force.z(), 0.0) << "force points back up, frame " << i;
+  for (const char* surface : {"smooth", "voxels"}) {
+    SceneParts p;
+    p.skull = std::string(R"(file="phantom:wall?voxel=0.5&thickness=0.5&size=40.5" isovalue="500" surface=")") +
+              surface + "\"";
+    // 5 mm per 1 ms frame = 10 voxels per frame, from 10 mm above the wall to 10 mm below.
+    p.device = verticalWaypoints({{0, 10}, {0.004, -10}, {0.1, -10}});
+    auto simulation = run(p);
+    ASSERT_TRUE(simulation);
+    const HapticFrameLog& log = simulation->hapticLog();
+    expectStable(log, surface);
+    EXPECT_EQ(log.stats().proxyInsideFrames, 0u) << surface;
+    for (size_t i = 0; i < log.size(); ++i) {
+      // The wall spans z in [-0.25, 0.25]: the burr centre stays above it.
+      ASSERT_GT(log[i].proxy.z(), 0.25) << surface << ", frame " << i;
+      if (log[i].device.z() < 0) {
+        ASSERT_GT(log[i].force.z(), 0.0) << surface << ": force points back up, frame " << i;
+      }
     }
+    EXPECT_NEAR(log[log.size() - 1].force.norm(), kMaxForce, 1e-9) << surface << ": 12 mm past the surface";
   }
-  EXPECT_NEAR(log[log.size() - 1].force.norm(), kMaxForce, 1e-9) << "device 12 mm past the surface: saturated";
 }
 
 TEST(RigidCollisionTest, ToolStartingInsideBoneIsBoundedAndLeaves) {
@@ -211,19 +214,22 @@ TEST(RigidCollisionTest, CavityNarrowerThanTheToolLineAndCylinderSweeps) {
 }
 
 TEST(RigidCollisionTest, DrillingThroughAPlateUntilTheToolPasses) {
-  SceneParts p;
-  p.skull = R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500" drill="true" drillRate="50")";
-  // Feed from 5 mm above to 8 mm below the plate at 2 mm/s.
-  p.device = verticalWaypoints({{0, 5}, {0.2, 3.6}, {6.0, -8}, {6.5, -8}});
-  auto simulation = run(p);
-  ASSERT_TRUE(simulation);
-  const HapticFrameLog& log = simulation->hapticLog();
-  expectStable(log, "drill");
-  EXPECT_GT(counter(*simulation, "VoxelSkull", "voxels_removed"), 0.0);
-  const HapticFrame& last = log[log.size() - 1];
-  EXPECT_LT(last.proxy.z(), -1.0 - kRadius + 0.5) << "the burr went through the plate";
-  EXPECT_EQ(last.contacts, 0);
-  EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
+  for (const char* surface : {"smooth", "voxels"}) {
+    SceneParts p;
+    p.skull = std::string(R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500" drill="true" )") +
+              R"(drillRate="50" surface=")" + surface + "\"";
+    // Feed from 5 mm above to 8 mm below the plate at 2 mm/s.
+    p.device = verticalWaypoints({{0, 5}, {0.2, 3.6}, {6.0, -8}, {6.5, -8}});
+    auto simulation = run(p);
+    ASSERT_TRUE(simulation);
+    const HapticFrameLog& log = simulation->hapticLog();
+    expectStable(log, surface);
+    EXPECT_GT(counter(*simulation, "VoxelSkull", "voxels_removed"), 0.0) << surface;
+    const HapticFrame& last = log[log.size() - 1];
+    EXPECT_LT(last.proxy.z(), -1.0 - kRadius + 0.5) << surface << ": the burr went through the plate";
+    EXPECT_EQ(last.contacts, 0) << surface;
+    EXPECT_EQ(log.stats().proxyInsideFrames, 0u) << surface;
+  }
 }
 
 TEST(RigidCollisionTest, IsovalueAboveTheDensestVoxelMeansNoContact) {

@@ -139,6 +139,43 @@ TEST(VoxelSkullTest, DrillingOnlyWhenTheSceneAsksAndTheDrilledVolumeIsSaved) {
   }
 }
 
+TEST(VoxelSkullTest, TheDrillCutsOnlyWhileItsPedalIsHeld) {
+  // Pressing 1 mm into a half-space for 1 s; the pedal (button 1) never, or from 0.3 s to 0.6 s.
+  auto removed = [](const std::string& pedal) {
+    const std::string xml = R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <VoxelSkull name="skull" file="phantom:halfspace?voxel=0.5" isovalue="500" drill="true" drillRate="50"/>
+  <ScriptedDevice name="device" record="false" path="waypoints" waypoints="0 0 0 4  0.2 0 0 1.5  1 0 0 1.5" )" +
+                            pedal + R"(/>
+  <PointshellTool name="burr" radius="2.5" device="@device"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@skull" drillButton="1"/>
+  <ForceFeedback name="force" proxy="@proxy"/>
+</Node>)";
+    Diagnostics d;
+    auto simulation = test::loadScene(xml, d);
+    EXPECT_TRUE(simulation) << test::messages(d);
+    if (!simulation) return -1.0;
+    simulation->run();
+    double cutBefore = 0, cutDuring = 0, cutAfter = 0;
+    const HapticFrameLog& log = simulation->hapticLog();
+    for (size_t i = 0; i < log.size(); ++i)
+      (log[i].t < 0.3 ? cutBefore : log[i].t < 0.6 ? cutDuring : cutAfter) += log[i].removed;
+    EXPECT_EQ(cutBefore, 0.0) << pedal;
+    EXPECT_EQ(cutAfter, 0.0) << pedal;
+    return cutDuring;
+  };
+  EXPECT_EQ(removed(""), 0.0) << "pedal never pressed";
+  EXPECT_GT(removed(R"(buttonTimes="0.3 0.6")"), 0.0) << "pedal held from 0.3 s to 0.6 s";
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="haptics"/>
+  <ScriptedDevice name="device" path="waypoints" waypoints="0 0 0 0" buttonTimes="0.6 0.3"/>
+</Node>)",
+                               d));
+  EXPECT_NE(test::messages(d).find("strictly increasing"), std::string::npos) << test::messages(d);
+}
+
 TEST(VoxelSkullTest, SaveDrilledWithoutDrillingIsALoadError) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(skullScene(R"(file="phantom:skull?voxel=2" saveDrilled="out.mha")"), d));
