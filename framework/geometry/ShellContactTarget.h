@@ -16,11 +16,11 @@ namespace trephine {
 
 // What a tool placement collides with this frame.
 struct ShellContact {
-  int points = 0;               // shell points inside the target
-  int primitives = 0;           // colliding primitives (voxels, tetrahedra)
-  int removed = 0;              // primitives removed this frame (drilling)
-  Vec3 normal = Vec3::Zero();   // unit, out of the target towards the tool; zero if undefined
-  double penetration = 0;       // mm, depth of the tool in the target as the target measures it
+  int points = 0;              // shell points inside the target
+  int primitives = 0;          // colliding primitives (voxels, tetrahedra)
+  int removed = 0;             // primitives removed this frame (drilling)
+  Vec3 normal = Vec3::Zero();  // unit, out of the target towards the tool; zero if undefined
+  double penetration = 0;      // mm, depth of the tool in the target as the target measures it
 };
 
 // How the sweep probes the path of a tool.
@@ -31,17 +31,17 @@ enum class SweepProbe {
 };
 
 struct SweepQuery {
-  Vec3 from;                           // mm, tool reference point at the start
-  Vec3 to;                             // mm, and at the end
+  Vec3 from;                            // mm, tool reference point at the start
+  Vec3 to;                              // mm, and at the end
   Quat orientation = Quat::Identity();  // tool orientation along the path
   SweepProbe probe = SweepProbe::Line;
-  double leadingRadius = 0;             // mm
-  std::span<const ShellPoint> shell;    // tool frame (used by Spheres)
+  double leadingRadius = 0;           // mm
+  std::span<const ShellPoint> shell;  // tool frame (used by Spheres)
 };
 
 struct SweepResult {
-  double freeFraction = 1;  // fraction of the segment travelled before entering the target
-  bool blocked = false;     // the target stops the tool before `to`
+  double freeFraction = 1;    // fraction of the segment travelled before entering the target
+  bool blocked = false;       // the target stops the tool before `to`
   bool startsInside = false;  // blocked right at `from` (the tool already presses in this direction)
 };
 

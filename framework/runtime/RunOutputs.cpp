@@ -207,10 +207,9 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     out << "realtime  rate_hz  calls/s  wake_late_p50_us  p99_us  max_us  skipped  SCHED_FIFO\n";
     for (const RateGroup& g : scheduler.groups()) {
       const TimingSummary late = g.wakeLateness.summary();
-      out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9)
-          << g.callsPerSecond() << std::setprecision(3) << std::setw(18) << late.p50
-          << std::setw(8) << late.p99 << std::setw(8) << late.max << std::setw(9) << g.skippedTicks << std::setw(12)
-          << (g.realtimePriority ? "yes" : "no") << "\n";
+      out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9) << g.callsPerSecond()
+          << std::setprecision(3) << std::setw(18) << late.p50 << std::setw(8) << late.p99 << std::setw(8) << late.max
+          << std::setw(9) << g.skippedTicks << std::setw(12) << (g.realtimePriority ? "yes" : "no") << "\n";
     }
   }
   if (simulation.hapticLogOwner()) {

@@ -25,19 +25,20 @@ class CapsuleTool final : public Component, public PointShellTool {
 
  private:
   Link<HapticDevice> l_device{this, "device", {.help = "Device that moves the tool", .required = true}};
-  Field<double> d_radius{
-      this, "radius", 2.5, {.help = "Burr radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
+  Field<double> d_radius{this, "radius", 2.5, {.help = "Burr radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
   Field<double> d_shaftRadius{
-      this, "shaftRadius", 1.0, {.help = "Shaft radius (at most the burr radius)", .unit = "mm", .min = 0.0,
-                                 .minExclusive = true}};
+      this,
+      "shaftRadius",
+      1.0,
+      {.help = "Shaft radius (at most the burr radius)", .unit = "mm", .min = 0.0, .minExclusive = true}};
   Field<double> d_shaftLength{
       this, "shaftLength", 20.0, {.help = "Shaft length from the burr centre", .unit = "mm", .min = 0.0}};
   Field<Vec3> d_axis{this, "axis", Vec3::UnitZ(), {.help = "Shaft direction from the burr, device frame (normalised)"}};
-  Field<double> d_pointSpacing{this,
-                               "pointSpacing",
-                               0.4,
-                               {.help = "Distance between neighbouring shell points", .unit = "mm", .min = 0.0,
-                                .minExclusive = true}};
+  Field<double> d_pointSpacing{
+      this,
+      "pointSpacing",
+      0.4,
+      {.help = "Distance between neighbouring shell points", .unit = "mm", .min = 0.0, .minExclusive = true}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Burr centre in the device frame", .unit = "mm"}};
 
   std::vector<ShellPoint> m_points;

@@ -12,9 +12,8 @@ void ForceFeedback::init(InitContext& context) {
 }
 
 std::vector<std::string> ForceFeedback::sampleColumns() const {
-  return {"device_x", "device_y", "device_z", "proxy_x",  "proxy_y",  "proxy_z",  "force_x",
-          "force_y",  "force_z",  "normal_x", "normal_y", "normal_z", "penetration", "penetration_raw",
-          "points",   "primitives"};
+  return {"device_x", "device_y", "device_z", "proxy_x",  "proxy_y",     "proxy_z",         "force_x", "force_y",
+          "force_z",  "normal_x", "normal_y", "normal_z", "penetration", "penetration_raw", "points",  "primitives"};
 }
 
 void ForceFeedback::tick(const TickContext& context) {

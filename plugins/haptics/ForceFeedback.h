@@ -31,14 +31,15 @@ class ForceFeedback final : public Component, public SampleSource {
   Field<double> d_damping{
       this, "damping", 0.002, {.help = "Viscosity b along the contact normal", .unit = "N*s/mm", .min = 0.0}};
   Field<double> d_maxForce{
-      this, "maxForce", 3.3, {.help = "Largest force sent to the device (3.3 N for a Phantom Omni)", .unit = "N",
-                              .min = 0.0}};
-  Field<double> d_maxForceStep{this,
-                               "maxForceStep",
-                               0.0,
-                               {.help = "Largest change of the force vector between two frames; 0 for no limit",
-                                .unit = "N",
-                                .min = 0.0}};
+      this,
+      "maxForce",
+      3.3,
+      {.help = "Largest force sent to the device (3.3 N for a Phantom Omni)", .unit = "N", .min = 0.0}};
+  Field<double> d_maxForceStep{
+      this,
+      "maxForceStep",
+      0.0,
+      {.help = "Largest change of the force vector between two frames; 0 for no limit", .unit = "N", .min = 0.0}};
   RateField d_rate{this, 1000.0, "Haptic rate"};
 
   HapticFrameLog* m_log = nullptr;

@@ -83,8 +83,8 @@ class GodObjectProxy final : public Component {
   Vec3 m_planePoint = Vec3::Zero(), m_planeNormal = Vec3::Zero(), m_lastPlanePoint = Vec3::Zero();
   bool m_hasPlane = false, m_hadPlane = false;
   bool m_started = false;
-  uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0,
-           m_creaseFrames = 0, m_nonFiniteFrames = 0;
+  uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0, m_creaseFrames = 0,
+           m_nonFiniteFrames = 0;
 };
 
 }  // namespace trephine::haptics

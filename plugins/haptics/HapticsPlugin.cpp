@@ -17,8 +17,8 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<SphereTool>("SphereTool", "Sphere tool following a device");
   registrar.add<PointshellTool>("PointshellTool", "Spherical burr covered by a pointshell (angle-step or even points)");
   registrar.add<CapsuleTool>("CapsuleTool", "Spherical burr on a cylindrical shaft, covered by a pointshell");
-  registrar.add<GodObjectProxy>(
-      "GodObjectProxy", "God-object proxy of a pointshell tool: sweep, detection, constraint-plane projection");
+  registrar.add<GodObjectProxy>("GodObjectProxy",
+                                "God-object proxy of a pointshell tool: sweep, detection, constraint-plane projection");
   registrar.add<ForceFeedback>("ForceFeedback", "Viscoelastic force F = k p n - b (v.n) n of a proxy contact");
   registrar.add<SpringForce>("SpringForce", "Penalty spring-damper force of a sphere tool against an implicit surface");
 }

@@ -23,8 +23,7 @@ class PointshellTool final : public Component, public PointShellTool {
 
  private:
   Link<HapticDevice> l_device{this, "device", {.help = "Device that moves the tool", .required = true}};
-  Field<double> d_radius{
-      this, "radius", 2.5, {.help = "Burr radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
+  Field<double> d_radius{this, "radius", 2.5, {.help = "Burr radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
   Field<double> d_angleStep{this,
                             "angleStep",
                             10.0,
@@ -32,11 +31,11 @@ class PointshellTool final : public Component, public PointShellTool {
                              .unit = "deg",
                              .min = 1.0,
                              .max = 90.0}};
-  Field<int> d_pointCount{this,
-                          "pointCount",
-                          0,
-                          {.help = "Number of evenly spread points; 0 uses angleStep instead", .min = 0.0,
-                           .max = 100000.0}};
+  Field<int> d_pointCount{
+      this,
+      "pointCount",
+      0,
+      {.help = "Number of evenly spread points; 0 uses angleStep instead", .min = 0.0, .max = 100000.0}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Burr centre in the device frame", .unit = "mm"}};
 
   std::vector<ShellPoint> m_points;

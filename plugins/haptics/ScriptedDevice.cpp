@@ -48,7 +48,8 @@ std::optional<ScriptedDevice::Aim> ScriptedDevice::aimAt(const Vec3& offset, Ini
 // nanTimes, which every path has). Setting another is an error: it would be
 // silently ignored.
 const std::map<std::string, std::set<std::string>>& fieldsOfPath() {
-  static const std::set<std::string> aimed = {"target", "center", "direction", "standoff", "depth", "tipOffset", "speed"};
+  static const std::set<std::string> aimed = {"target", "center",    "direction", "standoff",
+                                              "depth",  "tipOffset", "speed"};
   static const auto with = [](std::set<std::string> extra) {
     extra.insert(aimed.begin(), aimed.end());
     return extra;

@@ -15,7 +15,7 @@ constexpr int32_t kCodeMax = std::numeric_limits<VoxelCode>::max();
 int32_t DensityEncoding::thresholdCode(double density) const {
   // code > (density - offset) / scale  <=>  code >= floor(...) + 1
   const double c = std::floor((density - offset) / scale) + 1.0;
-  if (!(c > kCodeMin)) return kCodeMin;  // also NaN: everything is solid
+  if (!(c > kCodeMin)) return kCodeMin;   // also NaN: everything is solid
   if (c > kCodeMax) return kCodeMax + 1;  // nothing is solid
   return static_cast<int32_t>(c);
 }

@@ -44,7 +44,9 @@ class DensityVolume {
 
   // Linear index of voxel (i, j, k): i fastest.
   size_t index(int32_t i, int32_t j, int32_t k) const {
-    return static_cast<size_t>(i) + static_cast<size_t>(m_dims[0]) * (static_cast<size_t>(j) + static_cast<size_t>(m_dims[1]) * static_cast<size_t>(k));
+    return static_cast<size_t>(i) +
+           static_cast<size_t>(m_dims[0]) *
+               (static_cast<size_t>(j) + static_cast<size_t>(m_dims[1]) * static_cast<size_t>(k));
   }
   VoxelCode code(size_t linear) const { return m_codes[linear]; }
   double density(int32_t i, int32_t j, int32_t k) const { return m_encoding.density(m_codes[index(i, j, k)]); }

@@ -95,9 +95,8 @@ DensityVolume makeHalfSpacePhantom(double voxel, const Vec3& normal, double size
 }
 
 DensityVolume makeWallPhantom(double voxel, double thickness, double size, double density) {
-  return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
-    return density * insideFraction(std::abs(p.z()) - 0.5 * thickness, voxel);
-  });
+  return fill(Vec3::Constant(size), voxel,
+              [&](const Vec3& p) { return density * insideFraction(std::abs(p.z()) - 0.5 * thickness, voxel); });
 }
 
 DensityVolume makeChannelPhantom(double voxel, double width, double size, double density) {
@@ -132,7 +131,8 @@ PhantomKeys parseKeys(const std::string& name, const std::string& query,
       for (const auto& [k, v] : defaults) known += (known.empty() ? "" : ", ") + k;
       throw std::invalid_argument("phantom '" + name + "' has no key '" + key + "' (keys: " + known + ")");
     }
-    if (eq == std::string::npos) throw std::invalid_argument("phantom key '" + key + "' needs a value (" + key + "=...)");
+    if (eq == std::string::npos)
+      throw std::invalid_argument("phantom key '" + key + "' needs a value (" + key + "=...)");
     const std::string text = pair.substr(eq + 1);
     size_t used = 0;
     double value = 0;

@@ -48,8 +48,8 @@ namespace {
       // Non-short-circuit tests and selects keep the loop free of branches (vectorisable).
       const bool inside = (gx >= 0) & (gy >= 0) & (gz >= 0) & (gx < nx) & (gy < ny) & (gz < nz);
       // Truncation is floor here: negative coordinates are outside anyway.
-      const int32_t linear = int32_t(inside ? gx : 0.0) + strideY * int32_t(inside ? gy : 0.0) +
-                             strideZ * int32_t(inside ? gz : 0.0);
+      const int32_t linear =
+          int32_t(inside ? gx : 0.0) + strideY * int32_t(inside ? gy : 0.0) + strideZ * int32_t(inside ? gz : 0.0);
       index[i] = inside ? linear : -1;
     }
     for (size_t i = 0; i < count; ++i) {
@@ -61,8 +61,8 @@ namespace {
 }
 
 // Smooth surface: the trilinear density at each point against the isovalue.
-[[gnu::always_inline]] inline void testPointsSmooth(const SolidGrid& grid, const ShellArrays& shell,
-                                                    const Pose& X_WT, PointTestOutput out) {
+[[gnu::always_inline]] inline void testPointsSmooth(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT,
+                                                    PointTestOutput out) {
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   for (size_t i = 0; i < shell.size(); ++i) {
     const Vec3 p = R * Vec3(shell.x[i], shell.y[i], shell.z[i]) + X_WT.position;
@@ -80,7 +80,7 @@ void testShellPointsSmoothBaseline(const SolidGrid& grid, const ShellArrays& she
 
 #ifdef TREPHINE_HAS_AVX2_PATH
 __attribute__((target("avx2"))) void testShellPointsSmoothAvx2(const SolidGrid& grid, const ShellArrays& shell,
-                                                                const Pose& X_WT, PointTestOutput out) {
+                                                               const Pose& X_WT, PointTestOutput out) {
   testPointsSmooth(grid, shell, X_WT, out);
 }
 #endif
@@ -91,7 +91,7 @@ void testShellPointsBaseline(const SolidGrid& grid, const ShellArrays& shell, co
 
 #ifdef TREPHINE_HAS_AVX2_PATH
 __attribute__((target("avx2"))) void testShellPointsAvx2(const SolidGrid& grid, const ShellArrays& shell,
-                                                              const Pose& X_WT, PointTestOutput out) {
+                                                         const Pose& X_WT, PointTestOutput out) {
   testPoints(grid, shell, X_WT, out);
 }
 #endif

@@ -37,8 +37,7 @@ void testShellPointsSmoothBaseline(const SolidGrid& grid, const ShellArrays& she
 #if defined(__x86_64__) && defined(__GNUC__)
 #define TREPHINE_HAS_AVX2_PATH 1
 void testShellPointsAvx2(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT, PointTestOutput out);
-void testShellPointsSmoothAvx2(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT,
-                               PointTestOutput out);
+void testShellPointsSmoothAvx2(const SolidGrid& grid, const ShellArrays& shell, const Pose& X_WT, PointTestOutput out);
 #endif
 // The fastest version this processor runs, and its instruction set ("avx2" or "sse2").
 ShellPointTestFunction bestShellPointTest(bool smooth = false);

@@ -17,10 +17,10 @@ namespace trephine::voxel {
 struct SolidGrid {
   VoxelCode* codes = nullptr;
   int32_t nx = 0, ny = 0, nz = 0;
-  Vec3 corner = Vec3::Zero();  // mm, outer corner of voxel (0, 0, 0)
-  Vec3 spacing = Vec3::Ones();  // mm
+  Vec3 corner = Vec3::Zero();          // mm, outer corner of voxel (0, 0, 0)
+  Vec3 spacing = Vec3::Ones();         // mm
   Vec3 inverseSpacing = Vec3::Ones();  // 1/mm
-  int32_t threshold = 0;  // codes >= threshold are solid
+  int32_t threshold = 0;               // codes >= threshold are solid
   bool smooth = false;
   double isoCode = 0;      // the isovalue in code units (smooth surface)
   double outsideCode = 0;  // code of the space around the grid (the volume's lowest)
@@ -37,7 +37,8 @@ struct SolidGrid {
     g.threshold = volume.encoding().thresholdCode(isovalue);
     g.smooth = smoothSurface;
     g.isoCode = (isovalue - volume.encoding().offset) / volume.encoding().scale;
-    g.outsideCode = volume.voxelCount() ? (volume.minDensity() - volume.encoding().offset) / volume.encoding().scale : 0;
+    g.outsideCode =
+        volume.voxelCount() ? (volume.minDensity() - volume.encoding().offset) / volume.encoding().scale : 0;
     return g;
   }
 

@@ -25,7 +25,8 @@ void VoxelSkull::init(InitContext& context) {
     const std::string& name = d_saveDrilled.value();
     const bool meta = name.size() > 4 && (name.ends_with(".mha") || name.ends_with(".mhd"));
     if (!meta) context.error(d_saveDrilled, "expected a MetaImage file name ending in .mha or .mhd");
-    if (!d_drill.value()) context.error(d_saveDrilled, "nothing is drilled: set drill=\"true\" or leave saveDrilled empty");
+    if (!d_drill.value())
+      context.error(d_saveDrilled, "nothing is drilled: set drill=\"true\" or leave saveDrilled empty");
   }
   setVolume(std::move(volume));
 }
@@ -36,7 +37,8 @@ void VoxelSkull::setVolume(DensityVolume volume) {
   m_grid = SolidGrid::of(m_volume, d_isovalue.value(), smooth);
   m_pointTest = bestShellPointTest(smooth);
   // Drilling works on the stored codes: at least one code step per frame.
-  m_drillStep = std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
+  m_drillStep =
+      std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
 }
 
 void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {

@@ -51,12 +51,11 @@ class VoxelSkull final : public Component, public ShellContactTarget {
                        FilePathField::Role::Input,
                        {"phantom"}};
   Field<double> d_isovalue{this, "isovalue", 400.0, {.help = "Voxels denser than this are bone", .unit = "density"}};
-  Field<double> d_voxelSize{this,
-                            "voxelSize",
-                            0.0,
-                            {.help = "Resample to cubic voxels of this size on load; 0 keeps the file's voxels",
-                             .unit = "mm",
-                             .min = 0.0}};
+  Field<double> d_voxelSize{
+      this,
+      "voxelSize",
+      0.0,
+      {.help = "Resample to cubic voxels of this size on load; 0 keeps the file's voxels", .unit = "mm", .min = 0.0}};
   Field<bool> d_drill{this, "drill", false, {.help = "Remove the bone the tool touches"}};
   // 10 per frame: the thesis removed 1.0 per frame from bone a few hundred above
   // its isovalue, about 0.1 s of contact per voxel; CT cortical bone (about
@@ -115,8 +114,8 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   std::vector<Hit> m_hits;
   mutable std::vector<int64_t> m_voxels;
   mutable std::vector<uint8_t> m_solid;
-  std::vector<double> m_depths;  // per hit, mm
-  std::vector<Vec3> m_normals;   // per hit, unit, out of the bone
+  std::vector<double> m_depths;      // per hit, mm
+  std::vector<Vec3> m_normals;       // per hit, unit, out of the bone
   std::vector<int64_t> m_cutVoxels;  // voxels cut this frame (8 per hit at most)
   mutable std::vector<uint8_t> m_wasSolid;
   uint64_t m_voxelsRemoved = 0, m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;

@@ -90,8 +90,7 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
       for (int i = 0; i < count; ++i) {
         const double phi = 2 * std::numbers::pi * i / count;
         const Vec3 offset = r * (std::cos(phi) * e1 + std::sin(phi) * e2) + ahead * R * u;
-        const SegmentHit ring =
-            firstSolidOnSegment(m_grid, query.from + offset, query.to + offset, buried || !front);
+        const SegmentHit ring = firstSolidOnSegment(m_grid, query.from + offset, query.to + offset, buried || !front);
         if (!ring.hit) continue;
         if (front && ring.startsSolid && !buried) {
           result.blocked = result.startsInside = true;

@@ -136,8 +136,8 @@ double firstFreeOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b) {
   if (stopped) return found;
   // The segment left the grid (outside is free) or stayed in bone to its end.
   const Vec3 ga = (b - grid.corner).cwiseProduct(grid.inverseSpacing);
-  const bool endsInGrid = ga.x() >= 0 && ga.y() >= 0 && ga.z() >= 0 && ga.x() < grid.nx && ga.y() < grid.ny &&
-                          ga.z() < grid.nz;
+  const bool endsInGrid =
+      ga.x() >= 0 && ga.y() >= 0 && ga.z() >= 0 && ga.x() < grid.nx && ga.y() < grid.ny && ga.z() < grid.nz;
   if (endsInGrid) return 1.0;
   // Where the segment leaves the grid box.
   const Vec3 g0 = (a - grid.corner).cwiseProduct(grid.inverseSpacing);

@@ -30,7 +30,8 @@ std::string sceneXml(const SceneParts& p) {
          p.skull + R"(/>
   <ScriptedDevice name="device" record="false" )" +
          p.device + R"(/>
-  )" + p.tool + R"(
+  )" + p.tool +
+         R"(
   <GodObjectProxy name="proxy" tool="@burr" target="@skull" )" +
          p.proxy + R"(/>
   <ForceFeedback name="force" proxy="@proxy" )" +
@@ -158,7 +159,8 @@ TEST(RigidCollisionTest, ShellPointsExactlyOnVoxelFacesAndCorners) {
 TEST(RigidCollisionTest, AnisotropicSpacingOfTheOriginalSkull) {
   // A half-space written with the thesis's original spacing 0.984 x 1.584 x 0.997 mm.
   test::TempDir dir;
-  voxel::DensityVolume volume({60, 40, 40}, Vec3(0.984, 1.584, 0.997), Vec3(-29.5 * 0.984, -19.5 * 1.584, -19.5 * 0.997));
+  voxel::DensityVolume volume({60, 40, 40}, Vec3(0.984, 1.584, 0.997),
+                              Vec3(-29.5 * 0.984, -19.5 * 1.584, -19.5 * 0.997));
   for (int k = 0; k < 40; ++k)
     for (int j = 0; j < 40; ++j)
       for (int i = 0; i < 60; ++i) volume.setDensity(i, j, k, volume.voxelCenter(i, j, k).z() < 0 ? 1000.0 : 0.0);
@@ -263,7 +265,8 @@ TEST(RigidCollisionTest, CapsuleShaftTouchingAWallPushesBack) {
   // the shaft, not the burr, rests on the wall.
   SceneParts p;
   p.skull = R"(file="phantom:wall?voxel=0.5&thickness=2&size=40.5" isovalue="500")";
-  p.tool = R"(<CapsuleTool name="burr" radius="2.5" shaftRadius="1.0" shaftLength="20" axis="1 0 0" device="@device"/>)";
+  p.tool =
+      R"(<CapsuleTool name="burr" radius="2.5" shaftRadius="1.0" shaftLength="20" axis="1 0 0" device="@device"/>)";
   // Burr centre beyond the wall's edge (x = -25, the grid spans 40.5 mm), shaft across it,
   // its underside at 1.65 - 1.0 = 0.65: 0.35 mm into the wall.
   p.device = R"(path="waypoints" waypoints="0 -25 0 4  0.5 -25 0 1.65  1.0 -25 0 1.65")";

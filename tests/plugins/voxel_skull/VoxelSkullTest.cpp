@@ -93,8 +93,9 @@ TEST(VoxelSkullTest, BadVolumeSourcesAreLoadErrorsAtTheAttribute) {
   EXPECT_NE(test::messages(d).find("'abc' is not a number"), std::string::npos) << test::messages(d);
 
   test::TempDir dir;
-  dir.write("broken.mha", "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
-                          "ElementDataFile = LOCAL\nxx");
+  dir.write("broken.mha",
+            "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
+            "ElementDataFile = LOCAL\nxx");
   dir.write("scene.xml", skullScene(R"(file="broken.mha")"));
   Diagnostics d2;
   EXPECT_FALSE(Simulation::fromFile(dir / "scene.xml", {}, d2));
