@@ -104,8 +104,7 @@ struct SolidGrid {
     }
     return c0 + tz * (c1 - c0);
   }
-  // The voxel whose centre is nearest to p, or -1 outside the grid.
-  int64_t nearestVoxel(const Vec3& p) const { return voxelOf(p); }
+
   Vec3 centerOf(int64_t linearIndex) const {
     const int64_t i = linearIndex % nx, j = (linearIndex / nx) % ny, k = linearIndex / (int64_t(nx) * ny);
     return corner + Vec3((i + 0.5) * spacing.x(), (j + 0.5) * spacing.y(), (k + 0.5) * spacing.z());

@@ -29,6 +29,15 @@ void VoxelSkull::init(InitContext& context) {
       context.error(d_saveDrilled, "nothing is drilled: set drill=\"true\" or leave saveDrilled empty");
   }
   setVolume(std::move(volume));
+  if (d_drill.value()) {
+    // drillRate is in the volume's density units: a default meant for CT
+    // units would wipe a volume normalised to [0, 1] in one frame. Say so.
+    m_framesToDrillDensest =
+        std::max(0.0, m_volume.maxDensity() - d_isovalue.value()) / (m_drillStep * m_volume.encoding().scale);
+    if (m_framesToDrillDensest < 10)
+      context.events().log(0, "drill_rate_fast", "the densest bone is cut through in under 10 frames", this,
+                           m_framesToDrillDensest);
+  }
 }
 
 void VoxelSkull::setVolume(DensityVolume volume) {
@@ -98,6 +107,7 @@ void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"bytes_per_voxel", double(sizeof(VoxelCode))});
   counters.push_back({"voxels_removed", double(m_voxelsRemoved)});
   counters.push_back({"contact_frames", double(m_contactFrames)});
+  if (d_drill.value()) counters.push_back({"frames_to_cut_densest_voxel", m_framesToDrillDensest});
   counters.push_back({"max_colliding_voxels", double(m_maxCollidingVoxels)});
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
 }

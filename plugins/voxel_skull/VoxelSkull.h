@@ -95,6 +95,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   DensityVolume m_volume;
   SolidGrid m_grid;
   int32_t m_drillStep = 1;  // codes removed per frame
+  double m_framesToDrillDensest = 0;  // frames of contact that empty the densest voxel
   // Per-frame working memory, sized by reserveShell().
   struct Hit {
     int64_t voxel;

@@ -7,6 +7,7 @@
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/io/VolumeReader.h"
+#include "plugins/voxel_skull/io/VolumeWriter.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -175,6 +176,22 @@ TEST(VoxelSkullTest, TheDrillCutsOnlyWhileItsPedalIsHeld) {
 </Node>)",
                                d));
   EXPECT_NE(test::messages(d).find("strictly increasing"), std::string::npos) << test::messages(d);
+}
+
+TEST(VoxelSkullTest, ADrillRateThatCutsBoneAtOnceIsReported) {
+  // A volume normalised to [0, 1] (float samples) with the CT-unit default drillRate of 10.
+  test::TempDir dir;
+  DensityVolume volume({20, 20, 20}, Vec3::Constant(1.0), Vec3::Zero(), voxel::DensityEncoding::fit(0, 1, false));
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i) volume.setDensity(i, j, k, k < 10 ? 1.0 : 0.0);
+  voxel::writeMetaImage(volume, dir / "normalised.mha", false);
+  dir.write("scene.xml", skullScene(R"(file="normalised.mha" isovalue="0.5" drill="true")"));
+  std::string output;
+  ASSERT_EQ(
+      test::runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--out", (dir / "run").string()}, &output), 0)
+      << output;
+  EXPECT_NE(test::readFile(dir / "run/summary.json").find("drill_rate_fast"), std::string::npos);
 }
 
 TEST(VoxelSkullTest, SaveDrilledWithoutDrillingIsALoadError) {
