@@ -40,9 +40,10 @@ struct SweepQuery {
 };
 
 struct SweepResult {
-  double freeFraction = 1;    // fraction of the segment travelled before entering the target
-  bool blocked = false;       // the target stops the tool before `to`
-  bool startsInside = false;  // blocked right at `from` (the tool already presses in this direction)
+  double freeFraction = 1;           // fraction of the segment travelled before entering the target
+  bool blocked = false;              // the target stops the tool before `to`
+  bool startsInside = false;         // blocked right at `from` (the tool already presses in this direction)
+  Vec3 contactPoint = Vec3::Zero();  // mm, where the probe that stopped the tool met the target
 };
 
 class ShellContactTarget : public SurfaceTarget {
@@ -58,6 +59,10 @@ class ShellContactTarget : public SurfaceTarget {
   // that cannot be cut, or is not set to, ignores it.
   virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) = 0;
   virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
+  // The tool cuts where a sweep stopped it although none of its shell points
+  // is inside there (the probe is between them): returns the primitives
+  // removed. A target that cannot be cut, or is not set to, does nothing.
+  virtual int cutAt(const Vec3& point_W) { return 0; }
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;

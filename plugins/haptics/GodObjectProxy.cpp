@@ -54,6 +54,7 @@ void GodObjectProxy::tick(const TickContext&) {
   // 1. Sweep before moving.
   Vec3 P1 = D;
   bool blocked = false;
+  Vec3 blockedAt = Vec3::Zero();
   const Vec3 path = D - P;
   const double length = path.norm();
   if (!d_sweep.is("none") && length > kSamePlace) {
@@ -62,6 +63,7 @@ void GodObjectProxy::tick(const TickContext&) {
       const double travel = r.freeFraction * length + (r.startsInside ? 0.0 : target.contactDepth());
       P1 = P + std::min(travel, length) / length * path;
       blocked = (D - P1).norm() > kSamePlace;
+      blockedAt = r.contactPoint;
       if (blocked) ++m_blockedSweeps;
     }
   }
@@ -139,6 +141,8 @@ void GodObjectProxy::tick(const TickContext&) {
   } else if (blocked) {
     // Conflicting case: the proxy is free where the sweep stopped it but the device is beyond.
     ++m_conflictFrames;
+    // A cutting tool cuts what stopped it, even between its shell points.
+    if (cutting) s.removed += target.cutAt(blockedAt);
     s.normal = (P1 - D).normalized();
     s.penetration = (D - P1).norm();
     s.contact = true;

@@ -45,6 +45,25 @@ int VoxelSkull::lowerVoxel(int64_t voxel) {
   return emptied ? 1 : 0;
 }
 
+int VoxelSkull::cutAt(const Vec3& point_W) {
+  if (!d_drill.value() || !point_W.allFinite()) return 0;
+  int removed = 0;
+  if (!m_grid.smooth) {
+    // The probe met the bone at a voxel face: the voxel just beyond, within a tenth of a voxel.
+    const int64_t voxel = m_grid.voxelOf(point_W);
+    if (voxel >= 0 && m_grid.codes[voxel] >= m_grid.threshold) removed = lowerVoxel(voxel);
+  } else {
+    const Vec3 u = (point_W - m_grid.corner).cwiseProduct(m_grid.inverseSpacing) - Vec3::Constant(0.5);
+    const int64_t i = int64_t(std::floor(u.x())), j = int64_t(std::floor(u.y())), k = int64_t(std::floor(u.z()));
+    for (int corner = 0; corner < 8; ++corner) {
+      const int64_t a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + (corner >> 2);
+      if (m_grid.inside(a, b, c)) removed += lowerVoxel(m_grid.linear(a, b, c));
+    }
+  }
+  m_voxelsRemoved += removed;
+  return removed;
+}
+
 ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
   ShellContact contact;
   const ReservedShell* reserved = findShell(shell);

@@ -31,6 +31,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return 0.1 * m_grid.smallestSide(); }
+  int cutAt(const Vec3& point_W) override;
 
   const DensityVolume& volume() const { return m_volume; }
   const SolidGrid& grid() const { return m_grid; }
@@ -94,7 +95,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
 
   DensityVolume m_volume;
   SolidGrid m_grid;
-  int32_t m_drillStep = 1;  // codes removed per frame
+  int32_t m_drillStep = 1;            // codes removed per frame
   double m_framesToDrillDensest = 0;  // frames of contact that empty the densest voxel
   // Per-frame working memory, sized by reserveShell().
   struct Hit {

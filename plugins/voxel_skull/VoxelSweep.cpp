@@ -48,11 +48,13 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
           if (solid && !buried && -(Rm * point.inwardNormal).dot(u) > 0.5) {
             result.blocked = result.startsInside = true;
             result.freeFraction = 0;
+            result.contactPoint = Rm * point.position + offset;
             return result;
           }
         } else if (solid && !m_wasSolid[i]) {
           result.blocked = true;
           result.freeFraction = std::max(0.0, (k - 1) * step / length);
+          result.contactPoint = Rm * point.position + offset;
           return result;
         }
         m_wasSolid[i] = solid;
@@ -66,10 +68,12 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
   const Vec3 lead = R * u;
   double first = 2.0;
   const SegmentHit hit = firstSolidOnSegment(m_grid, query.from + lead, query.to + lead, buried);
+  Vec3 firstProbe = lead;  // where, relative to the tool's reference point, the blocking probe starts
   if (hit.hit) {
     if (hit.startsSolid && !buried) {
       result.blocked = result.startsInside = true;
       result.freeFraction = 0;
+      result.contactPoint = query.from + lead;
       return result;
     }
     first = hit.t;
@@ -95,15 +99,20 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
         if (front && ring.startsSolid && !buried) {
           result.blocked = result.startsInside = true;
           result.freeFraction = 0;
+          result.contactPoint = query.from + offset;
           return result;
         }
-        first = std::min(first, ring.t);
+        if (ring.t < first) {
+          first = ring.t;
+          firstProbe = offset;
+        }
       }
     }
   }
   if (first <= 1.0) {
     result.blocked = true;
     result.freeFraction = first;
+    result.contactPoint = query.from + firstProbe + first * path;
   }
   return result;
 }

@@ -234,6 +234,32 @@ TEST(RigidCollisionTest, DrillingThroughAPlateUntilTheToolPasses) {
   }
 }
 
+TEST(RigidCollisionTest, SlowDrillingWithTheCylinderSweepNeverEntersTheBone) {
+  // The feed (2 mm/s) outruns the cut (1 per frame on bone of 1500 over an isovalue of 400):
+  // the burr presses a pit narrower than itself. The line sweep lets it slip into the pit
+  // (its documented limit); the cylinder sweep keeps it out and still cuts what stops it.
+  size_t inside[2];
+  double lowest[2];
+  int k = 0;
+  for (const char* sweep : {"line", "cylinder"}) {
+    SceneParts p;
+    p.skull = R"(file="phantom:wall?voxel=0.5&thickness=6&size=40.5&density=1500" isovalue="400" )"
+              R"(drill="true" drillRate="1")";
+    p.proxy = std::string(R"(sweep=")") + sweep + "\"";
+    p.device = verticalWaypoints({{0, 8}, {0.5, 5.5}, {2.5, 1.5}, {5.0, 1.5}});
+    auto simulation = run(p);
+    ASSERT_TRUE(simulation);
+    const HapticFrameLog& log = simulation->hapticLog();
+    expectStable(log, sweep);
+    inside[k] = log.stats().proxyInsideFrames;
+    lowest[k] = log[log.size() - 1].proxy.z();
+    ++k;
+  }
+  EXPECT_GT(inside[0], 0u) << "line: the burr slips into its pit";
+  EXPECT_EQ(inside[1], 0u) << "cylinder: never inside the bone";
+  EXPECT_LT(lowest[1], 3.0 + kRadius - 0.5) << "cylinder: the burr cut into the wall (top face at 3)";
+}
+
 TEST(RigidCollisionTest, IsovalueAboveTheDensestVoxelMeansNoContact) {
   SceneParts p;
   p.skull = R"(file="phantom:halfspace?voxel=0.5" isovalue="5000")";
