@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "framework/core/SourceSpec.h"
+
 namespace trephine::voxel {
 
 namespace {
@@ -107,87 +109,28 @@ DensityVolume makeChannelPhantom(double voxel, double width, double size, double
   });
 }
 
-namespace {
-
-struct PhantomKeys {
-  std::map<std::string, double> values;
-  std::string name;
-
-  double take(const std::string& key) const { return values.at(key); }
-};
-
-// Parses "name?k=v&k=v" against the allowed keys and their defaults.
-PhantomKeys parseKeys(const std::string& name, const std::string& query,
-                      const std::map<std::string, double>& defaults) {
-  PhantomKeys keys{defaults, name};
-  std::stringstream stream(query);
-  std::string pair;
-  while (std::getline(stream, pair, '&')) {
-    if (pair.empty()) continue;
-    const size_t eq = pair.find('=');
-    const std::string key = pair.substr(0, eq);
-    if (!defaults.count(key)) {
-      std::string known;
-      for (const auto& [k, v] : defaults) known += (known.empty() ? "" : ", ") + k;
-      throw std::invalid_argument("phantom '" + name + "' has no key '" + key + "' (keys: " + known + ")");
-    }
-    if (eq == std::string::npos)
-      throw std::invalid_argument("phantom key '" + key + "' needs a value (" + key + "=...)");
-    const std::string text = pair.substr(eq + 1);
-    size_t used = 0;
-    double value = 0;
-    try {
-      value = std::stod(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != text.size() || text.empty() || !std::isfinite(value))
-      throw std::invalid_argument("phantom key '" + key + "': '" + text + "' is not a number");
-    keys.values[key] = value;
-  }
-  return keys;
-}
-
-void requirePositive(const PhantomKeys& keys, const std::string& key) {
-  if (!(keys.take(key) > 0)) throw std::invalid_argument("phantom key '" + key + "' must be > 0");
-}
-
-}  // namespace
-
 DensityVolume makePhantom(const std::string& specification) {
-  const size_t mark = specification.find('?');
-  const std::string name = specification.substr(0, mark);
-  const std::string query = mark == std::string::npos ? "" : specification.substr(mark + 1);
+  const auto [name, query] = SourceSpec::split(specification);
   if (name == "cube") {
-    const PhantomKeys k = parseKeys(name, query, {{"voxels", 200}, {"density", 1200}});
-    const double voxels = k.take("voxels");
-    if (voxels != std::floor(voxels)) throw std::invalid_argument("phantom key 'voxels' must be a whole number");
-    return makeCubePhantom(static_cast<int>(voxels), k.take("density"));
+    const SourceSpec k(name, query, {{"voxels", 200}, {"density", 1200}});
+    return makeCubePhantom(k.wholeNumber("voxels", 2, 2000), k.number("density"));
   }
   if (name == "skull") {
-    const PhantomKeys k = parseKeys(name, query, {{"voxel", 1.0}});
-    requirePositive(k, "voxel");
-    return makeSkullPhantom(k.take("voxel"));
+    const SourceSpec k(name, query, {{"voxel", 1.0}});
+    return makeSkullPhantom(k.positive("voxel"));
   }
   if (name == "halfspace") {
-    const PhantomKeys k =
-        parseKeys(name, query, {{"voxel", 0.5}, {"nx", 0}, {"ny", 0}, {"nz", 1}, {"size", 40}, {"density", 1000}});
-    requirePositive(k, "voxel");
-    requirePositive(k, "size");
-    return makeHalfSpacePhantom(k.take("voxel"), Vec3(k.take("nx"), k.take("ny"), k.take("nz")), k.take("size"),
-                                k.take("density"));
+    const SourceSpec k(name, query, {{"voxel", 0.5}, {"nx", 0}, {"ny", 0}, {"nz", 1}, {"size", 40}, {"density", 1000}});
+    return makeHalfSpacePhantom(k.positive("voxel"), Vec3(k.number("nx"), k.number("ny"), k.number("nz")),
+                                k.positive("size"), k.number("density"));
   }
   if (name == "wall") {
-    const PhantomKeys k = parseKeys(name, query, {{"voxel", 0.5}, {"thickness", 0.5}, {"size", 40}, {"density", 1000}});
-    requirePositive(k, "voxel");
-    requirePositive(k, "size");
-    return makeWallPhantom(k.take("voxel"), k.take("thickness"), k.take("size"), k.take("density"));
+    const SourceSpec k(name, query, {{"voxel", 0.5}, {"thickness", 0.5}, {"size", 40}, {"density", 1000}});
+    return makeWallPhantom(k.positive("voxel"), k.number("thickness"), k.positive("size"), k.number("density"));
   }
   if (name == "channel") {
-    const PhantomKeys k = parseKeys(name, query, {{"voxel", 0.5}, {"width", 3}, {"size", 40}, {"density", 1000}});
-    requirePositive(k, "voxel");
-    requirePositive(k, "size");
-    return makeChannelPhantom(k.take("voxel"), k.take("width"), k.take("size"), k.take("density"));
+    const SourceSpec k(name, query, {{"voxel", 0.5}, {"width", 3}, {"size", 40}, {"density", 1000}});
+    return makeChannelPhantom(k.positive("voxel"), k.number("width"), k.positive("size"), k.number("density"));
   }
   throw std::invalid_argument("unknown phantom '" + name + "' (cube, skull, halfspace, wall, channel)");
 }
