@@ -1,0 +1,174 @@
+#include "plugins/tetra_brain/io/TextCursor.h"
+
+#include <charconv>
+#include <cstdlib>
+
+#include "plugins/tetra_brain/io/TetMeshReader.h"
+
+namespace trephine::tetra {
+
+namespace {
+
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+char lowerAscii(char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; }
+
+// A leading '+' is not accepted by from_chars; a sign after it must not be.
+std::string_view withoutPlus(std::string_view token) {
+  if (token.size() >= 2 && token[0] == '+' && token[1] != '-' && token[1] != '+') token.remove_prefix(1);
+  return token;
+}
+
+}  // namespace
+
+TextCursor::TextCursor(std::string_view text, const std::filesystem::path& file, char comment)
+    : m_text(text), m_file(file), m_comment(comment) {}
+
+void TextCursor::skipBlank() {
+  while (m_pos < m_text.size()) {
+    const char c = m_text[m_pos];
+    if (c == '\n') {
+      ++m_line;
+      ++m_pos;
+    } else if (isBlank(c)) {
+      ++m_pos;
+    } else if (c == m_comment && c != '\0') {
+      while (m_pos < m_text.size() && m_text[m_pos] != '\n') ++m_pos;
+    } else {
+      return;
+    }
+  }
+}
+
+bool TextCursor::atEnd() {
+  skipBlank();
+  return m_pos == m_text.size();
+}
+
+std::string_view TextCursor::next() {
+  skipBlank();
+  m_tokenLine = m_line;
+  const size_t start = m_pos;
+  while (m_pos < m_text.size()) {
+    const char c = m_text[m_pos];
+    if (c == '\n' || isBlank(c) || (c == m_comment && c != '\0')) break;
+    ++m_pos;
+  }
+  return m_text.substr(start, m_pos - start);
+}
+
+std::string_view TextCursor::peek() {
+  const size_t pos = m_pos;
+  const size_t line = m_line;
+  const size_t tokenLine = m_tokenLine;
+  const std::string_view token = next();
+  m_pos = pos;
+  m_line = line;
+  m_tokenLine = tokenLine;
+  return token;
+}
+
+bool TextCursor::nextLine(std::vector<std::string_view>& tokens) {
+  tokens.clear();
+  while (m_pos < m_text.size()) {
+    m_tokenLine = m_line;
+    bool inComment = false;
+    size_t start = std::string_view::npos;
+    while (m_pos < m_text.size() && m_text[m_pos] != '\n') {
+      const char c = m_text[m_pos];
+      if (!inComment && (isBlank(c) || (c == m_comment && c != '\0'))) {
+        if (start != std::string_view::npos) tokens.push_back(m_text.substr(start, m_pos - start));
+        start = std::string_view::npos;
+        inComment = c == m_comment && c != '\0';
+      } else if (!inComment && start == std::string_view::npos) {
+        start = m_pos;
+      }
+      ++m_pos;
+    }
+    if (start != std::string_view::npos) tokens.push_back(m_text.substr(start, m_pos - start));
+    if (m_pos < m_text.size()) {
+      ++m_pos;  // the '\n'
+      ++m_line;
+    }
+    if (!tokens.empty()) return true;
+  }
+  return false;
+}
+
+std::string_view TextCursor::restOfLine() {
+  m_tokenLine = m_line;
+  const size_t start = m_pos;
+  while (m_pos < m_text.size() && m_text[m_pos] != '\n') ++m_pos;
+  const std::string_view rest = m_text.substr(start, m_pos - start);
+  if (m_pos < m_text.size()) {
+    ++m_pos;
+    ++m_line;
+  }
+  return rest;
+}
+
+std::string_view TextCursor::take(size_t count) {
+  if (count > bytesLeft()) fail("internal error: read past the end of the data");
+  const std::string_view bytes = m_text.substr(m_pos, count);
+  m_pos += count;
+  // Newline bytes inside binary data still count, as an editor would show the lines after it.
+  for (const char c : bytes) m_line += c == '\n' ? 1 : 0;
+  return bytes;
+}
+
+void TextCursor::fail(const std::string& problem) const { throw TetMeshReadError(m_file, m_tokenLine, problem); }
+
+void TextCursor::checkCount(int64_t count, int64_t maxCount, uint64_t minBytesEach, const std::string& what) const {
+  if (count < 0) fail("the number of " + what + " is " + std::to_string(count) + ", expected 0 or more");
+  if (count > maxCount)
+    fail("the file declares " + std::to_string(count) + " " + what + ", more than the " + std::to_string(maxCount) +
+         " supported");
+  if (uint64_t(count) * minBytesEach > bytesLeft() + 1)
+    fail("the file declares " + std::to_string(count) + " " + what + " but only " + std::to_string(bytesLeft()) +
+         " bytes follow (truncated file or corrupt count)");
+}
+
+bool equalsIgnoreCase(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (lowerAscii(a[i]) != lowerAscii(b[i])) return false;
+  return true;
+}
+
+bool startsWithIgnoreCase(std::string_view text, std::string_view prefix) {
+  return text.size() >= prefix.size() && equalsIgnoreCase(text.substr(0, prefix.size()), prefix);
+}
+
+std::optional<int64_t> parseInteger(std::string_view token) {
+  token = withoutPlus(token);
+  int64_t value = 0;
+  const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (token.empty() || result.ec != std::errc() || result.ptr != token.data() + token.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<double> parseReal(std::string_view token) {
+  token = withoutPlus(token);
+  double value = 0;
+  const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (token.empty() || result.ptr != token.data() + token.size()) return std::nullopt;
+  if (result.ec == std::errc::result_out_of_range) {
+    // from_chars leaves the value alone: strtod gives the infinity or the underflowed tiny value.
+    const std::string copy(token);
+    return std::strtod(copy.c_str(), nullptr);
+  }
+  if (result.ec != std::errc()) return std::nullopt;
+  return value;
+}
+
+std::string quoteForMessage(std::string_view text) {
+  constexpr size_t kMaxShown = 40;
+  std::string out = "'";
+  for (size_t i = 0; i < text.size() && i < kMaxShown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out += c >= 0x20 && c < 0x7f ? char(c) : '?';
+  }
+  if (text.size() > kMaxShown) out += "...";
+  return out + "'";
+}
+
+}  // namespace trephine::tetra

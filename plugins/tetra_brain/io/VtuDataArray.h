@@ -1,0 +1,37 @@
+#pragma once
+// The values of one VTK XML <DataArray>: ascii text, or inline binary
+// (base64 of a byte-count header and the packed values, or of a block
+// header and zlib-compressed blocks). The array is described by plain
+// strings so that the XML parser stays inside VtuReader.cpp.
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace trephine::tetra {
+
+// How the file encodes binary arrays (attributes of <VTKFile>).
+struct VtuEncoding {
+  bool bigEndian = false;  // byte_order="BigEndian"
+  bool header64 = false;   // header_type="UInt64" (default UInt32)
+  bool zlib = false;       // compressor="vtkZLibDataCompressor"
+};
+
+struct VtuArray {
+  std::string_view name;    // Name attribute, for messages
+  std::string_view type;    // "Float32", "Int64", ...
+  std::string_view format;  // "ascii", "binary" or "appended"
+  std::string_view text;    // the element's text
+  size_t line = 0;          // line of the <DataArray> tag
+};
+
+// Exactly `count` values of the array, or a TetMeshReadError naming the file,
+// the line and the array. Counts come from the caller (NumberOfPoints, ...)
+// and are checked against the data before anything is allocated for them.
+std::vector<double> readVtuReals(const VtuArray& array, int64_t count, const VtuEncoding& encoding,
+                                 const std::filesystem::path& file);
+// Integer-typed arrays only (connectivity, offsets, types, labels).
+std::vector<int64_t> readVtuIntegers(const VtuArray& array, int64_t count, const VtuEncoding& encoding,
+                                     const std::filesystem::path& file);
+
+}  // namespace trephine::tetra

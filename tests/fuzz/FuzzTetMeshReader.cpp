@@ -1,0 +1,77 @@
+// libFuzzer target: arbitrary bytes as a tetrahedral mesh file. The first
+// byte picks the extension (.node, .mesh, .msh, .vtk or .vtu; the reader
+// detects the format from the content, so the extension only matters for
+// finding a TetGen pair); the rest is the file. For .node the first half of
+// the rest is the node file and the second half the .ele file next to it.
+// The files live in a directory of their own per process. Any crash,
+// sanitizer report, hang or exception other than TetMeshReadError is a
+// reader bug; so is a mesh that breaks the TetMesh contract.
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "plugins/tetra_brain/io/TetMeshReader.h"
+
+namespace {
+
+// Created on first use, removed at exit (never destroyed before that: the exit handler needs it).
+const std::filesystem::path& inputDirectory() {
+  static const auto* const directory = [] {
+    auto* path = new std::filesystem::path(std::filesystem::temp_directory_path() /
+                                           ("fuzz_tet_mesh_reader_" + std::to_string(::getpid())));
+    std::filesystem::create_directories(*path);
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(inputDirectory(), ignored);
+    });
+    return path;
+  }();
+  return *directory;
+}
+
+void writeFile(const std::filesystem::path& file, const uint8_t* data, size_t size) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size == 0) return 0;
+  static const char* const kExtensions[] = {".node", ".mesh", ".msh", ".vtk", ".vtu"};
+  const std::string extension = kExtensions[data[0] % 5];
+  const std::filesystem::path file = inputDirectory() / ("input" + extension);
+  const std::filesystem::path ele = inputDirectory() / "input.ele";
+  const uint8_t* content = data + 1;
+  const size_t contentSize = size - 1;
+  if (extension == ".node") {
+    const size_t half = contentSize / 2;
+    writeFile(file, content, half);
+    writeFile(ele, content + half, contentSize - half);
+  } else {
+    writeFile(file, content, contentSize);
+  }
+  try {
+    const trephine::tetra::TetMesh mesh = trephine::tetra::readTetMesh(file);
+    // A mesh that was read is usable: tetrahedra, in-range indices, finite nodes, a label per tetrahedron or none.
+    if (mesh.tets.empty()) __builtin_trap();
+    if (!mesh.labels.empty() && mesh.labels.size() != mesh.tets.size()) __builtin_trap();
+    for (const trephine::tetra::TetIndices& tet : mesh.tets)
+      for (const int32_t index : tet)
+        if (index < 0 || size_t(index) >= mesh.nodes.size()) __builtin_trap();
+    for (const trephine::Vec3& node : mesh.nodes)
+      if (!node.allFinite()) __builtin_trap();
+  } catch (const trephine::tetra::TetMeshReadError& error) {
+    // The message names the file before the problem.
+    if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
+  }
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+  std::filesystem::remove(ele, ignored);
+  return 0;
+}

@@ -1,0 +1,144 @@
+// Hard cases of the tetrahedral brain: points on faces, edges and vertices,
+// degenerate tetrahedra, a sharp ridge, tools much smaller and larger than the
+// tetrahedra, a mesh far from the origin, a tool deep inside.
+#include <gtest/gtest.h>
+
+#include "plugins/tetra_brain/CubePhantom.h"
+#include "plugins/tetra_brain/TetraBrain.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine::tetra {
+namespace {
+
+std::vector<ShellPoint> sphereShell(double radius, int count) {
+  std::vector<ShellPoint> shell;
+  const double golden = 3.14159265358979 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / count, r = std::sqrt(1 - z * z);
+    const Vec3 d(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    shell.push_back({radius * d, -d});
+  }
+  return shell;
+}
+
+// A 200 mm cube of cells^3 cells, its top face at z = 100.
+TetraBrain& cubeBrain(TetraBrain& brain, int cells, const Vec3& shift = Vec3::Zero()) {
+  TetMesh mesh = makeCubeMesh(cells);
+  for (Vec3& p : mesh.nodes) p += shift;
+  brain.setMesh(std::move(mesh));
+  return brain;
+}
+
+TEST(TetraBrainTest, PointsOnFacesEdgesAndVerticesAreCountedOnce) {
+  TetraBrain brain;
+  cubeBrain(brain, 2);  // nodes at -100, 0, 100 on each axis: faces, edges and vertices at 0
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0, 0, 50), Vec3(0, 30, 50), Vec3(20, 30, 0), Vec3(-100, -100, -100)}) {
+    const int32_t tet = brain.locate(p);
+    ASSERT_GE(tet, 0) << p.transpose();
+    // The tet reported is the lowest-numbered tet that holds the point.
+    for (int32_t t = 0; t < tet; ++t) {
+      const TetIndices& k = brain.mesh().tets[t];
+      const auto& n = brain.mesh().nodes;
+      const double tolerance = -1e-12 * signedVolume(n[k[0]], n[k[1]], n[k[2]], n[k[3]]);
+      const bool holds = signedVolume(p, n[k[1]], n[k[2]], n[k[3]]) >= tolerance &&
+                         signedVolume(n[k[0]], p, n[k[2]], n[k[3]]) >= tolerance &&
+                         signedVolume(n[k[0]], n[k[1]], p, n[k[3]]) >= tolerance &&
+                         signedVolume(n[k[0]], n[k[1]], n[k[2]], p) >= tolerance;
+      EXPECT_FALSE(holds) << "tet " << t << " holds " << p.transpose() << " before " << tet;
+    }
+  }
+  EXPECT_EQ(brain.locate(Vec3(0, 0, 100.001)), -1);
+  // A shell whose points sit on shared faces: each counted once, contact consistent.
+  std::vector<ShellPoint> shell = {{Vec3(0, 0, 0), Vec3(0, 0, 1)}, {Vec3(0, 50, 0), Vec3(0, 0, 1)}};
+  brain.reserveShell(shell);
+  const ShellContact c = brain.collide(Pose{Vec3(0, 0, 95), Quat::Identity()}, shell, false);
+  EXPECT_EQ(c.points, 2);
+  EXPECT_GT(c.normal.z(), 0.99);
+  EXPECT_NEAR(c.penetration, 5.0, 1e-9);
+}
+
+TEST(TetraBrainTest, DegenerateTetrahedraAreReportedAndHoldNoPoint) {
+  TetMesh mesh = makeCubeMesh(1);
+  mesh.nodes.push_back(Vec3(0, 0, 100));  // on the top face
+  const int32_t top = int32_t(mesh.nodes.size()) - 1;
+  mesh.tets.push_back({0, 1, 2, 3});  // zero volume: four corners of the bottom face
+  mesh.tets.push_back({mesh.tets[0][0], mesh.tets[0][1], mesh.tets[0][2], top});  // a sliver/duplicate user
+  TetraBrain brain;
+  brain.setMesh(mesh);
+  EXPECT_GE(brain.report().degenerateTets, 1u);
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 200);
+  brain.reserveShell(shell);
+  for (double z : {-99.0, 0.0, 99.0}) {
+    const ShellContact c = brain.collide(Pose{Vec3(1, 2, z), Quat::Identity()}, shell, false);
+    EXPECT_TRUE(c.normal.allFinite());
+    EXPECT_TRUE(std::isfinite(c.penetration));
+  }
+}
+
+TEST(TetraBrainTest, SharpRidgeFallsBackToTheNearestFace) {
+  // A ridge: two tets whose top faces meet at a sharp edge along y (a roof, 90 degrees).
+  TetMesh mesh;
+  mesh.nodes = {Vec3(-10, -10, 0), Vec3(10, -10, 0), Vec3(-10, 10, 0),
+                Vec3(10, 10, 0),   Vec3(0, -10, 10), Vec3(0, 10, 10)};
+  mesh.tets = {{0, 2, 4, 1}, {1, 2, 4, 5}, {1, 2, 5, 3}};
+  TetraBrain brain;
+  brain.setMesh(mesh);
+  const std::vector<ShellPoint> shell = sphereShell(2.0, 300);
+  brain.reserveShell(shell);
+  // The sphere pressed straight down onto the ridge line.
+  const ShellContact c = brain.collide(Pose{Vec3(0, 0, 11.0), Quat::Identity()}, shell, false);
+  ASSERT_GT(c.points, 0);
+  EXPECT_TRUE(c.normal.allFinite());
+  EXPECT_NEAR(c.normal.norm(), 1.0, 1e-9);
+  EXPECT_GT(c.normal.z(), 0.5) << "the ridge pushes the tool up";
+  EXPECT_GT(c.penetration, 0.0);
+}
+
+TEST(TetraBrainTest, ToolsSmallerAndLargerThanTheTetrahedraMeasureTheSameDepth) {
+  for (const auto& [cells, radius] : {std::pair{1, 2.5}, std::pair{7, 2.5}, std::pair{60, 10.0}, std::pair{60, 1.0}}) {
+    TetraBrain brain;
+    cubeBrain(brain, cells);
+    const std::vector<ShellPoint> shell = sphereShell(radius, 466);
+    brain.reserveShell(shell);
+    // Pressed 0.8 mm into the top face (z = 100).
+    const ShellContact c = brain.collide(Pose{Vec3(3, -7, 100 + radius - 0.8), Quat::Identity()}, shell, false);
+    EXPECT_NEAR(c.penetration, 0.8, 0.05) << cells << " cells, radius " << radius;
+    EXPECT_GT(c.normal.z(), 0.999) << cells << " cells, radius " << radius;
+  }
+}
+
+TEST(TetraBrainTest, AMeshFarFromTheOriginGivesTheSameContact) {
+  const Vec3 far(1e5, -2e5, 3e5);  // mm: 100 to 300 m away
+  TetraBrain near, away;
+  cubeBrain(near, 13);
+  cubeBrain(away, 13, far);
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 466);
+  near.reserveShell(shell);
+  away.reserveShell(shell);
+  const Vec3 centre(11.3, -4.7, 101.7);
+  const ShellContact a = near.collide(Pose{centre, Quat::Identity()}, shell, false);
+  const ShellContact b = away.collide(Pose{centre + far, Quat::Identity()}, shell, false);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_NEAR(a.penetration, b.penetration, 1e-6);
+  EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9);
+}
+
+TEST(TetraBrainTest, ToolDeepInsideMeasuresToTheNearestBoundaryFace) {
+  // Algorithm 2 only measures to boundary faces of the colliding tetrahedra; 12 mm
+  // under the top of a fine mesh they have none, so the nearest boundary face is used.
+  TetraBrain brain;
+  cubeBrain(brain, 22);  // 9 mm cells
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 466);
+  brain.reserveShell(shell);
+  const ShellContact c = brain.collide(Pose{Vec3(1, 1, 100 - 12), Quat::Identity()}, shell, false);
+  EXPECT_EQ(c.points, 466);
+  EXPECT_NEAR(c.penetration, 12 + 2.5, 0.1) << "the deepest point, below the top face";
+  EXPECT_GT(c.normal.z(), 0.99);
+  std::vector<Counter> counters;
+  brain.reportCounters(counters);
+  for (const Counter& k : counters)
+    if (k.name == "deep_fallbacks") EXPECT_EQ(k.value, 466.0) << "every point measured to the mesh's nearest face";
+}
+
+}  // namespace
+}  // namespace trephine::tetra
