@@ -175,9 +175,12 @@ class GmshParser {
     if (legacy) {
       if (m_tokens.size() < 5) m_text.fail(name + " is cut short, expected \"id type physical elementary n nodes...\"");
       const std::optional<int64_t> nodeCount = parseInteger(m_tokens[4]);
-      if (!nodeCount || *nodeCount != 4 || m_tokens.size() != 9)
+      if (!nodeCount || *nodeCount != 4)
         m_text.fail(name + " has " + (nodeCount ? std::to_string(*nodeCount) : quoteForMessage(m_tokens[4])) +
                     " nodes, expected a tetrahedron (type 4, 4 nodes)");
+      if (m_tokens.size() != 9)
+        m_text.fail(name + " lists " + std::to_string(m_tokens.size() - 5) +
+                    " node ids after its node count 4, expected 4");
       label = parseInteger(m_tokens[2]);
       if (!label) m_text.fail(name + ": physical tag " + quoteForMessage(m_tokens[2]) + " is not a whole number");
       firstNode = 5;

@@ -89,7 +89,10 @@ class MeditParser {
                       quoteForMessage(token) + " (expected a finite number of mm)");
         position[axis] = *value;
       }
-      field("Vertices", i, count);  // the vertex reference, unused
+      const std::string_view reference = field("Vertices", i, count);  // unused, but must be there
+      if (!parseInteger(reference))
+        m_text.fail("vertex " + std::to_string(i) + ": reference " + quoteForMessage(reference) +
+                    " is not a whole number (expected x y z reference)");
       m_mesh.nodes.push_back(position);
     }
   }

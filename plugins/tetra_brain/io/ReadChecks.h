@@ -25,7 +25,8 @@ std::optional<int32_t> labelFromReal(double value);
 std::optional<int32_t> labelFromInteger(int64_t value);
 
 // True for the names of per-cell arrays that hold a tissue label: "label",
-// "labels", "tissue", "gmsh:physical", "medit:ref", ... (case-insensitive).
+// "labels", "tissue", "gmsh:physical", "medit:ref", "CellEntityIds", ...
+// (case-insensitive).
 bool isLabelArrayName(std::string_view name);
 
 // "1..30871" for 30871 nodes numbered from 1; "none" for no nodes.
