@@ -120,9 +120,13 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
   }
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
-  for (size_t i = 0; i < shell.size(); ++i) {
-    const int32_t tet = locate(R * shell[i].position + X_WT.position);
-    if (tet >= 0) m_hits[hits++] = {tet, int32_t(i)};
+  if (d_search.is("grid")) {
+    for (size_t i = 0; i < shell.size(); ++i) {
+      const int32_t tet = locate(R * shell[i].position + X_WT.position);
+      if (tet >= 0) m_hits[hits++] = {tet, int32_t(i)};
+    }
+  } else {
+    hits = findHitsByScan(R, X_WT.position, shell);
   }
   if (hits == 0) return contact;
   ++m_contactFrames;
@@ -136,6 +140,59 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
   contact.primitives = tets;
   m_maxCollidingTets = std::max<uint64_t>(m_maxCollidingTets, tets);
   return contact;
+}
+
+size_t TetraBrain::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell) {
+  // The thesis's search: the tetrahedra in stored order (from the first, or from
+  // the last frame's first colliding one) until one whose box meets the tool's
+  // box holds a shell point; then that tetrahedron and its neighbours up to two
+  // rings are tested against every point. Points in other tetrahedra are missed.
+  Box3 toolBox;
+  for (size_t i = 0; i < shell.size(); ++i) {
+    m_points[i] = R * shell[i].position + t;
+    toolBox.extend(m_points[i]);
+  }
+  if (!toolBox.intersects(m_bounds)) return 0;
+  const int32_t n = int32_t(m_mesh.tetCount());
+  const int32_t start = d_search.is("previous-contact") ? m_lastFirstTet : 0;
+  int32_t first = -1;
+  for (int32_t s = 0; s < n && first < 0; ++s) {
+    const int32_t tet = (start + s) % n;
+    ++m_scannedTets;
+    if (!m_tetBoxes[tet].intersects(toolBox)) continue;
+    for (size_t i = 0; i < shell.size(); ++i) {
+      if (m_tetBoxes[tet].contains(m_points[i]) && inside(tet, m_points[i])) {
+        first = tet;
+        break;
+      }
+    }
+  }
+  if (first < 0) return 0;
+  m_lastFirstTet = first;
+  // Two rings of face neighbours, without repeats (a handful of tets: a linear check suffices).
+  size_t count = 0;
+  m_candidates[count++] = first;
+  size_t ringStart = 0;
+  for (int ring = 0; ring < 2; ++ring) {
+    const size_t ringEnd = count;
+    for (size_t c = ringStart; c < ringEnd; ++c)
+      for (int f = 0; f < 4; ++f) {
+        const int32_t nb = m_topology.neighbour(m_candidates[c], f);
+        if (nb < 0 || std::find(m_candidates.begin(), m_candidates.begin() + count, nb) != m_candidates.begin() + count)
+          continue;
+        m_candidates[count++] = nb;
+      }
+    ringStart = ringEnd;
+  }
+  std::sort(m_candidates.begin(), m_candidates.begin() + count);
+  size_t hits = 0;
+  for (size_t i = 0; i < shell.size(); ++i)
+    for (size_t c = 0; c < count; ++c)
+      if (m_tetBoxes[m_candidates[c]].contains(m_points[i]) && inside(m_candidates[c], m_points[i])) {
+        m_hits[hits++] = {m_candidates[c], int32_t(i)};
+        break;
+      }
+  return hits;
 }
 
 ShellContact TetraBrain::contactNearestFace(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,

@@ -74,11 +74,13 @@ void TetraBrain::buildAccelerations() {
 }
 
 void TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
+  m_candidates.resize(1 + 4 + 12);  // a tet, its 4 neighbours, their 12 others
   if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) m_shells.push_back(shell.data());
   if (m_hits.size() < shell.size()) {
     m_hits.resize(shell.size());
     m_depths.resize(shell.size());
     m_normals.resize(shell.size());
+    m_points.resize(shell.size());
   }
 }
 
@@ -96,6 +98,7 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"contact_frames", double(m_contactFrames)});
   counters.push_back({"max_colliding_tetrahedra", double(m_maxCollidingTets)});
   counters.push_back({"deep_fallbacks", double(m_deepFallbacks)});
+  if (!d_search.is("grid")) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
 }
 

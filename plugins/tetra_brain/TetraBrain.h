@@ -76,6 +76,15 @@ class TetraBrain final : public Component, public ShellContactTarget {
                            {.help = "Side of the uniform grid's cells; 0 uses half the mesh's average edge length",
                             .unit = "mm",
                             .min = 0.0}};
+  EnumField d_search{this,
+                     "search",
+                     {"grid", "first-tetrahedron", "previous-contact"},
+                     "grid",
+                     {.help = "How colliding tetrahedra are found. grid: every shell point looks up the tetrahedra "
+                              "of its cell (cost independent of the mesh size). first-tetrahedron (thesis): scan the "
+                              "tetrahedra from the first for one whose box meets the tool and holds a point, then "
+                              "test its neighbours up to two rings. previous-contact (thesis, improved): the same "
+                              "scan, started at the last frame's first colliding tetrahedron"}};
   EnumField d_penetration{this,
                           "penetration",
                           {"nearest-face", "algorithm2"},
@@ -110,7 +119,12 @@ class TetraBrain final : public Component, public ShellContactTarget {
     int32_t tet;
     int32_t point;
   };
+  size_t findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell);
   std::vector<Hit> m_hits;
+  std::vector<Vec3> m_points;         // per shell point, world (scan searches)
+  std::vector<int32_t> m_candidates;  // tets within two rings of the first colliding one
+  int32_t m_lastFirstTet = 0;
+  uint64_t m_scannedTets = 0;
   std::vector<double> m_depths;  // per hit, mm
   std::vector<Vec3> m_normals;   // per hit, outward unit normal of the face it measures to
   std::vector<const ShellPoint*> m_shells;

@@ -140,5 +140,27 @@ TEST(TetraBrainTest, ToolDeepInsideMeasuresToTheNearestBoundaryFace) {
     if (k.name == "deep_fallbacks") EXPECT_EQ(k.value, 466.0) << "every point measured to the mesh's nearest face";
 }
 
+TEST(TetraBrainTest, TheThesisSearchesFindTheSameContactsAsTheGrid) {
+  // A tool smaller than the tetrahedra: the first colliding tet and two rings of
+  // neighbours hold every colliding point, so the thesis's scans agree with the grid.
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 211);
+  for (const Vec3& centre : {Vec3(3, -7, 101.7), Vec3(-60, 40, 100.5), Vec3(99.5, 0, 30)}) {
+    ShellContact results[3];
+    int k = 0;
+    for (const char* search : {"grid", "first-tetrahedron", "previous-contact"}) {
+      TetraBrain brain;
+      ASSERT_TRUE(brain.findField("search")->assign(search, {}, {}) == std::nullopt);
+      cubeBrain(brain, 13);
+      brain.reserveShell(shell);
+      results[k++] = brain.collide(Pose{centre, Quat::Identity()}, shell, false);
+    }
+    for (int i = 1; i < 3; ++i) {
+      EXPECT_EQ(results[i].points, results[0].points) << centre.transpose() << " search " << i;
+      EXPECT_NEAR(results[i].penetration, results[0].penetration, 1e-12) << centre.transpose();
+    }
+    EXPECT_GT(results[0].points, 0) << centre.transpose();
+  }
+}
+
 }  // namespace
 }  // namespace trephine::tetra
