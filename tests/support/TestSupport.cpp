@@ -1,5 +1,6 @@
 #include "tests/support/TestSupport.h"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -69,6 +70,18 @@ std::string readFile(const std::filesystem::path& file) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+double componentCounter(const Simulation& simulation, const std::string& type, const std::string& name) {
+  for (const Component* c : simulation.scene().components()) {
+    if (c->typeName() != type) continue;
+    std::vector<Counter> counters;
+    c->reportCounters(counters);
+    for (const Counter& k : counters)
+      if (k.name == name) return k.value;
+  }
+  ADD_FAILURE() << "no counter " << name << " on a " << type;
+  return 0;
 }
 
 }  // namespace trephine::test

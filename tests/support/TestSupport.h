@@ -41,4 +41,8 @@ int runProgram(const std::vector<std::string>& arguments, std::string* output = 
 
 std::string readFile(const std::filesystem::path& file);
 
+// The counter `name` that the scene's component of type `type` reports (the
+// plugins' classes stay in their plugins); a test failure when there is none.
+double componentCounter(const Simulation& simulation, const std::string& type, const std::string& name);
+
 }  // namespace trephine::test

@@ -162,5 +162,34 @@ TEST(TetraBrainTest, TheThesisSearchesFindTheSameContactsAsTheGrid) {
   }
 }
 
+TEST(TetraBrainTest, BadMeshSourcesAreLoadErrorsAtTheAttribute) {
+  auto errors = [](const std::string& file, const std::string& extra = "") {
+    const std::string xml = R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <TetraBrain name="brain" file=")" +
+                            file + "\" " + extra + R"(/>
+</Node>)";
+    Diagnostics d;
+    EXPECT_FALSE(test::loadScene(xml, d)) << file;
+    return test::messages(d);
+  };
+  std::string m = errors("phantom:cube?cells=0");
+  EXPECT_NE(m.find("inline.xml:3:"), std::string::npos) << m;
+  EXPECT_NE(m.find("phantom key 'cells' must be in [1, 200]"), std::string::npos) << m;
+  m = errors("phantom:sphere");
+  EXPECT_NE(m.find("unknown phantom 'sphere' (cube, brain)"), std::string::npos) << m;
+  test::TempDir dir;
+  dir.write("broken.mesh", "MeshVersionFormatted 1\nDimension 3\nVertices\n2\n0 0 0 0\n");
+  m = errors((dir / "broken.mesh").string());
+  EXPECT_NE(m.find("broken.mesh"), std::string::npos) << m;
+  EXPECT_NE(m.find("inline.xml:3:"), std::string::npos) << m;
+  // An inverted tetrahedron refused on request, with its index.
+  dir.write("inverted.mesh",
+            "MeshVersionFormatted 1\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+            "Tetrahedra\n1\n1 3 2 4 0\nEnd\n");
+  m = errors((dir / "inverted.mesh").string(), R"(inverted="refuse")");
+  EXPECT_NE(m.find("1 tetrahedra with negative volume (first: 0)"), std::string::npos) << m;
+}
+
 }  // namespace
 }  // namespace trephine::tetra

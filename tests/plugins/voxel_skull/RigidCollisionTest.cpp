@@ -61,19 +61,6 @@ void expectStable(const HapticFrameLog& log, const char* what) {
   for (size_t i = 0; i < log.size(); ++i) ASSERT_TRUE(log[i].force.allFinite()) << what << " frame " << i;
 }
 
-// A counter of the scene's component of type `type` (the plugin's classes stay in the plugin).
-double counter(const Simulation& simulation, const std::string& type, const std::string& name) {
-  for (const Component* c : simulation.scene().components()) {
-    if (c->typeName() != type) continue;
-    std::vector<Counter> counters;
-    c->reportCounters(counters);
-    for (const Counter& k : counters)
-      if (k.name == name) return k.value;
-  }
-  ADD_FAILURE() << "no counter " << name << " on a " << type;
-  return 0;
-}
-
 TEST(RigidCollisionTest, OneVoxelWallCrossedAtTenVoxelsPerFrameDoesNotPopThrough) {
   for (const char* surface : {"smooth", "voxels"}) {
     SceneParts p;
@@ -226,7 +213,7 @@ TEST(RigidCollisionTest, DrillingThroughAPlateUntilTheToolPasses) {
     ASSERT_TRUE(simulation);
     const HapticFrameLog& log = simulation->hapticLog();
     expectStable(log, surface);
-    EXPECT_GT(counter(*simulation, "VoxelSkull", "voxels_removed"), 0.0) << surface;
+    EXPECT_GT(test::componentCounter(*simulation, "VoxelSkull", "voxels_removed"), 0.0) << surface;
     const HapticFrame& last = log[log.size() - 1];
     EXPECT_LT(last.proxy.z(), -1.0 - kRadius + 0.5) << surface << ": the burr went through the plate";
     EXPECT_EQ(last.contacts, 0) << surface;

@@ -29,18 +29,6 @@ std::string skullScene(const std::string& skullAttributes, const std::string& ex
 </Node>)";
 }
 
-double counter(const Simulation& simulation, const std::string& type, const std::string& name) {
-  for (const Component* c : simulation.scene().components()) {
-    if (c->typeName() != type) continue;
-    std::vector<Counter> counters;
-    c->reportCounters(counters);
-    for (const Counter& k : counters)
-      if (k.name == name) return k.value;
-  }
-  ADD_FAILURE() << "no counter " << name << " on a " << type;
-  return 0;
-}
-
 TEST(PhantomTest, SkullPhantomHasTheThesisDimensions) {
   // Table 3.2: Skull5 425 x 403 x 283 and Skull3 213 x 202 x 142 (Skull1, 143 x 135 x 95
   // in the thesis, is 142 x 135 x 95 here: the same extent at 1.5 mm rounds up to 142).
@@ -108,8 +96,8 @@ TEST(VoxelSkullTest, TwoBytesPerVoxelAndReportedDimensions) {
   Diagnostics d;
   auto simulation = test::loadScene(skullScene(R"(file="phantom:skull?voxel=2")"), d);
   ASSERT_TRUE(simulation) << test::messages(d);
-  EXPECT_EQ(counter(*simulation, "VoxelSkull", "bytes_per_voxel"), 2.0);
-  EXPECT_EQ(counter(*simulation, "VoxelSkull", "dims_x"), 107.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "VoxelSkull", "bytes_per_voxel"), 2.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "VoxelSkull", "dims_x"), 107.0);
 }
 
 TEST(VoxelSkullTest, DrillingOnlyWhenTheSceneAsksAndTheDrilledVolumeIsSaved) {
