@@ -47,14 +47,25 @@ class Channel final : public ChannelBase {
 
   // Adds a reader. Called during initialisation only (allocates).
   ChannelReader<T> addReader() {
-    m_buffers.push_back(std::make_unique<TripleBuffer<T>>());
+    m_buffers.push_back(m_prototype ? std::make_unique<TripleBuffer<T>>(*m_prototype)
+                                    : std::make_unique<TripleBuffer<T>>());
     return ChannelReader<T>(m_buffers.back().get());
+  }
+
+  // Fills every slot of every reader, present and future, with `prototype`.
+  // For values that own memory (vectors sized to their largest content): a
+  // copy into a slot that already holds as much never allocates, so the
+  // publisher's loop stays allocation-free. Initialisation only.
+  void reserve(const T& prototype) {
+    m_prototype = std::make_unique<T>(prototype);
+    for (auto& buffer : m_buffers) buffer->fillSlots(prototype);
   }
 
   size_t readerCount() const { return m_buffers.size(); }
 
  private:
   std::vector<std::unique_ptr<TripleBuffer<T>>> m_buffers;
+  std::unique_ptr<T> m_prototype;
 };
 
 }  // namespace trephine

@@ -20,6 +20,8 @@ class TripleBuffer {
  public:
   TripleBuffer() = default;
   explicit TripleBuffer(const T& initial) { m_slots.fill(initial); }
+  // Sets all three slots; only while neither side is running (initialisation).
+  void fillSlots(const T& value) { m_slots.fill(value); }
 
   // Writer side: fill the slot returned by writeSlot(), then publish().
   T& writeSlot() { return m_slots[m_writeIndex]; }

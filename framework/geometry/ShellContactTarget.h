@@ -66,6 +66,14 @@ class ShellContactTarget : public SurfaceTarget {
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;
+  // Called by each tool at the start of its haptic frame, before any query: a
+  // deforming target takes its latest shape here, so that every query of the
+  // frame sees the same one.
+  virtual void refresh() {}
+  // The force (N) the tool's contact exerts on the target this frame (the
+  // opposite of the force rendered to the user), from the last collide():
+  // for a deformable target to pass on to its deformation model.
+  virtual void applyContactForce(const Vec3& forceOnTarget_N, double t) {}
 };
 
 }  // namespace trephine

@@ -43,6 +43,7 @@ void ForceFeedback::tick(const TickContext& context) {
   if (!force.allFinite()) force = m_force;  // never send a NaN; hold the last force
   m_force = force;
   device.applyForce(force);
+  proxy.applyForce(force, context.t);
 
   HapticFrame frame;
   frame.t = context.t;

@@ -17,6 +17,10 @@ constexpr double kSamePlane = 0.999;
 
 void GodObjectProxy::init(InitContext& context) { l_target->reserveShell(l_tool->shellPoints()); }
 
+void GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) const {
+  if (m_state.contact) l_target->applyContactForce(-forceOnTool_N, t);
+}
+
 SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const {
   SweepQuery query;
   query.from = from;
@@ -33,6 +37,7 @@ SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Qu
 void GodObjectProxy::tick(const TickContext&) {
   PointShellTool& tool = *l_tool;
   ShellContactTarget& target = *l_target;
+  target.refresh();
   const DeviceState& device = tool.device().state();
   ProxyState s;
   s.deviceValid = device.valid;

@@ -49,6 +49,9 @@ class GodObjectProxy final : public Component {
 
   const ProxyState& state() const { return m_state; }
   PointShellTool& tool() const { return *l_tool; }
+  // The force rendered to the user this frame (N, on the tool); its opposite
+  // goes to the target (a deformable one passes it on to its nodes).
+  void applyForce(const Vec3& forceOnTool_N, double t) const;
 
  private:
   SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;

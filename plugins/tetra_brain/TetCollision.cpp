@@ -54,7 +54,7 @@ double segmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& 
 bool TetraBrain::inside(int32_t tet, const Vec3& p) const {
   if (m_degenerate[tet]) return false;
   const TetIndices& k = m_mesh.tets[tet];
-  const Vec3 &a = m_mesh.nodes[k[0]], &b = m_mesh.nodes[k[1]], &c = m_mesh.nodes[k[2]], &d = m_mesh.nodes[k[3]];
+  const Vec3 &a = m_nodes[k[0]], &b = m_nodes[k[1]], &c = m_nodes[k[2]], &d = m_nodes[k[3]];
   // Barycentric coordinates as sub-volumes; all of them non-negative inside (the
   // tets are positively oriented). A point on a face is inside both tets sharing it.
   const double tolerance = -1e-12 * signedVolume(a, b, c, d);
@@ -63,19 +63,86 @@ bool TetraBrain::inside(int32_t tet, const Vec3& p) const {
 }
 
 int32_t TetraBrain::locate(const Vec3& p) const {
-  const int64_t cell = m_tetGrid.cellOf(p);
-  if (cell < 0) return -1;
-  for (int32_t tet : m_tetGrid.items(cell)) {
-    const Box3& box = m_tetBoxes[tet];
-    if ((p.array() < box.min().array()).any() || (p.array() > box.max().array()).any()) continue;
-    if (inside(tet, p)) return tet;  // cells list tets in increasing order: the lowest index wins
+  // A tet holding p now had its rest box within the displacement bound of p.
+  const double slack = m_displacementBound;
+  auto nearBox = [&](int32_t tet) {
+    const Box3& box = m_restBoxes[tet];
+    return !((p.array() < box.min().array() - slack).any() || (p.array() > box.max().array() + slack).any());
+  };
+  if (m_queryGrowth == 0) {
+    const int64_t cell = m_tetGrid.cellOf(p);
+    if (cell < 0) return -1;
+    for (int32_t tet : m_tetGrid.items(cell))
+      if (nearBox(tet) && inside(tet, p)) return tet;  // cells list tets in increasing order: the lowest index wins
+    return -1;
   }
-  return -1;
+  // Nodes moved farther than the grid's margin: every cell within the excess.
+  const Vec3 e = Vec3::Constant(m_queryGrowth);
+  std::array<int32_t, 3> lo, hi;
+  if (!m_tetGrid.cellRange(Box3(p - e, p + e), lo, hi)) return -1;
+  int32_t found = -1;
+  for (int32_t k = lo[2]; k <= hi[2]; ++k)
+    for (int32_t j = lo[1]; j <= hi[1]; ++j)
+      for (int32_t i = lo[0]; i <= hi[0]; ++i)
+        for (int32_t tet : m_tetGrid.items(m_tetGrid.cellIndex(i, j, k))) {
+          if (found >= 0 && tet >= found) break;
+          if (nearBox(tet) && inside(tet, p)) found = tet;
+        }
+  return found;
+}
+
+bool TetraBrain::locatePoints(std::span<const Vec3> points, std::span<int32_t> tets, bool stopAtFirst) const {
+  bool any = false;
+  if (m_queryGrowth > 0 || points.size() > m_locator.capacity()) {
+    // Widened queries (nodes beyond the margin): point by point.
+    for (size_t i = 0; i < points.size(); ++i) {
+      tets[i] = locate(points[i]);
+      if (tets[i] >= 0) {
+        any = true;
+        if (stopAtFirst) return true;
+      }
+    }
+    return any;
+  }
+  std::fill(tets.begin(), tets.begin() + points.size(), -1);
+  m_locator.group(m_tetGrid, points);
+  const Vec3 slack = Vec3::Constant(m_displacementBound);
+  m_locator.forEachCell([&](int64_t cell, const Box3& pointsBox, int32_t first) {
+    if (any && stopAtFirst) return;
+    for (int32_t tet : m_tetGrid.items(cell)) {  // increasing: the first tet found for a point is the lowest
+      const Vec3 lo = m_restBoxes[tet].min() - slack, hi = m_restBoxes[tet].max() + slack;
+      if ((pointsBox.max().array() < lo.array()).any() || (pointsBox.min().array() > hi.array()).any()) continue;
+      for (int32_t i = first; i >= 0; i = m_locator.nextPoint(i)) {
+        if (tets[i] >= 0) continue;
+        const Vec3& p = points[i];
+        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any() || !inside(tet, p)) continue;
+        tets[i] = tet;
+        any = true;
+        if (stopAtFirst) return;
+      }
+    }
+  });
+  return any;
+}
+
+std::array<double, 4> TetraBrain::barycentric(int32_t tet, const Vec3& p) const {
+  const TetIndices& k = m_mesh.tets[tet];
+  const Vec3 &a = m_nodes[k[0]], &b = m_nodes[k[1]], &c = m_nodes[k[2]], &d = m_nodes[k[3]];
+  const double volume = signedVolume(a, b, c, d);
+  if (!(std::abs(volume) > 0)) return {0.25, 0.25, 0.25, 0.25};
+  std::array<double, 4> w{signedVolume(p, b, c, d) / volume, signedVolume(a, p, c, d) / volume,
+                          signedVolume(a, b, p, d) / volume, signedVolume(a, b, c, p) / volume};
+  // Clamp round-off just outside the tet and renormalise: the weights split a force.
+  double sum = 0;
+  for (double& x : w) sum += (x = std::max(0.0, x));
+  if (!(sum > 0)) return {0.25, 0.25, 0.25, 0.25};
+  for (double& x : w) x /= sum;
+  return w;
 }
 
 Vec3 TetraBrain::faceNormal(const BoundaryFace& face) const {
   const auto n = faceNodes(m_mesh.tets[face.tet], face.face);
-  const Vec3 normal = (m_mesh.nodes[n[1]] - m_mesh.nodes[n[0]]).cross(m_mesh.nodes[n[2]] - m_mesh.nodes[n[0]]);
+  const Vec3 normal = (m_nodes[n[1]] - m_nodes[n[0]]).cross(m_nodes[n[2]] - m_nodes[n[0]]);
   const double length = normal.norm();
   return length > 0 ? Vec3(normal / length) : Vec3::Zero();
 }
@@ -84,6 +151,13 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   // Rings of cells around p, nearest first, until no closer face can remain.
   const Vec3 g = (p - m_faceGrid.origin()) / m_faceGrid.cellSide();
   const auto& dims = m_faceGrid.dims();
+  // Faces sit in the cells of their rest boxes grown by the margin: a face may
+  // be up to the excess of the displacement bound farther than its cells say,
+  // and a point outside the grid is that much farther from every cell.
+  const Vec3 lo = m_faceGrid.origin();
+  const Vec3 hi = lo + m_faceGrid.cellSide() * Vec3(dims[0], dims[1], dims[2]);
+  const double outside = (lo - p).cwiseMax(p - hi).cwiseMax(0.0).maxCoeff();
+  const double slack = m_queryGrowth + outside;
   const int32_t ci = std::clamp(int32_t(std::floor(g.x())), 0, dims[0] - 1);
   const int32_t cj = std::clamp(int32_t(std::floor(g.y())), 0, dims[1] - 1);
   const int32_t ck = std::clamp(int32_t(std::floor(g.z())), 0, dims[2] - 1);
@@ -92,7 +166,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   const int32_t maxRing = std::max({dims[0], dims[1], dims[2]});
   const auto& faces = m_topology.boundaryFaces();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
-    if ((ring - 1) * m_faceGrid.cellSide() > best) break;
+    if ((ring - 1) * m_faceGrid.cellSide() - slack > best) break;
     for (int32_t k = ck - ring; k <= ck + ring; ++k)
       for (int32_t j = cj - ring; j <= cj + ring; ++j)
         for (int32_t i = ci - ring; i <= ci + ring; ++i) {
@@ -100,7 +174,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
           if (i < 0 || j < 0 || k < 0 || i >= dims[0] || j >= dims[1] || k >= dims[2]) continue;
           for (int32_t f : m_faceGrid.items(m_faceGrid.cellIndex(i, j, k))) {
             const auto n = faceNodes(m_mesh.tets[faces[f].tet], faces[f].face);
-            const Vec3 q = closestOnTriangle(p, m_mesh.nodes[n[0]], m_mesh.nodes[n[1]], m_mesh.nodes[n[2]]);
+            const Vec3 q = closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]);
             const double distance = (q - p).norm();
             if (distance < best) {
               best = distance;
@@ -121,13 +195,18 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
   if (d_search.is("grid")) {
-    for (size_t i = 0; i < shell.size(); ++i) {
-      const int32_t tet = locate(R * shell[i].position + X_WT.position);
-      if (tet >= 0) m_hits[hits++] = {tet, int32_t(i)};
-    }
+    for (size_t i = 0; i < shell.size(); ++i) m_points[i] = R * shell[i].position + X_WT.position;
+    const std::span<const Vec3> points(m_points.data(), shell.size());
+    if (locatePoints(points, m_pointTets, false))
+      for (size_t i = 0; i < shell.size(); ++i)
+        if (m_pointTets[i] >= 0) m_hits[hits++] = {m_pointTets[i], int32_t(i)};
   } else {
     hits = findHitsByScan(R, X_WT.position, shell);
   }
+  m_lastHits = hits;
+  m_lastRotation = R;
+  m_lastPosition = X_WT.position;
+  m_lastShell = shell.data();
   if (hits == 0) return contact;
   ++m_contactFrames;
   std::sort(m_hits.begin(), m_hits.begin() + hits,
@@ -211,7 +290,7 @@ ShellContact TetraBrain::contactNearestFace(const Eigen::Matrix3d& R, const Vec3
     for (int f = 0; f < 4; ++f) {
       if (!(mask & (1u << f))) continue;
       const Vec3 n = faceNormal({tet, int8_t(f)});
-      const double d = (m_mesh.nodes[faceNodes(m_mesh.tets[tet], f)[0]] - p).dot(n);
+      const double d = (m_nodes[faceNodes(m_mesh.tets[tet], f)[0]] - p).dot(n);
       if (d < depth) depth = d, normal = n;
     }
     if (!std::isfinite(depth)) {
@@ -244,6 +323,7 @@ ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3&
   Vec3 normalSum = Vec3::Zero();
   double penetration = 0;
   int faceCount = 0;
+  std::fill(m_depths.begin(), m_depths.begin() + hits, 0.0);  // per point, for the nodal force shares
   for (size_t first = 0; first < hits;) {
     size_t last = first;
     while (last < hits && m_hits[last].tet == m_hits[first].tet) ++last;
@@ -254,9 +334,11 @@ ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3&
       const Vec3 n = faceNormal({tet, int8_t(f)});
       normalSum += n;
       ++faceCount;
-      const Vec3& onFace = m_mesh.nodes[faceNodes(m_mesh.tets[tet], f)[0]];
-      for (size_t h = first; h < last; ++h)
-        penetration = std::max(penetration, std::abs((onFace - (R * shell[m_hits[h].point].position + t)).dot(n)));
+      const Vec3& onFace = m_nodes[faceNodes(m_mesh.tets[tet], f)[0]];
+      for (size_t h = first; h < last; ++h) {
+        m_depths[h] = std::max(m_depths[h], std::abs((onFace - (R * shell[m_hits[h].point].position + t)).dot(n)));
+        penetration = std::max(penetration, m_depths[h]);
+      }
     }
     first = last;
   }
@@ -281,6 +363,36 @@ ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3&
   return contact;
 }
 
+void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
+  // The reaction on the mesh: shared among the colliding points by depth (the
+  // points that press hardest carry most), then to the four nodes of each
+  // point's tet by its barycentric coordinates, so that the nodal forces sum to
+  // the contact force and act where it acts. Computed only for a reader.
+  if (m_nodeSlot.empty() || m_lastHits == 0 || !forceOnTarget_N.allFinite()) return;
+  double depthSum = 0;
+  for (size_t h = 0; h < m_lastHits; ++h) depthSum += m_depths[h];
+  uint32_t count = 0;
+  for (size_t h = 0; h < m_lastHits; ++h) {
+    const double share = depthSum > 0 ? m_depths[h] / depthSum : 1.0 / double(m_lastHits);
+    if (share == 0) continue;
+    const Vec3 p = m_lastRotation * m_lastShell[m_hits[h].point].position + m_lastPosition;
+    const std::array<double, 4> w = barycentric(m_hits[h].tet, p);
+    const TetIndices& k = m_mesh.tets[m_hits[h].tet];
+    for (int i = 0; i < 4; ++i) {
+      int32_t& slot = m_nodeSlot[k[i]];
+      if (slot < 0) {
+        slot = int32_t(count++);
+        m_nodeForceValue.forces[slot] = {k[i], Vec3::Zero()};
+      }
+      m_nodeForceValue.forces[slot].force += (share * w[i]) * forceOnTarget_N;
+    }
+  }
+  for (uint32_t i = 0; i < count; ++i) m_nodeSlot[m_nodeForceValue.forces[i].node] = -1;
+  m_nodeForceValue.count = count;
+  m_nodeForceValue.t = t;
+  m_nodeForces->publish(m_nodeForceValue);
+}
+
 bool TetraBrain::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
   // Visible overlap: the tool's centre, or its shell pulled inwards by ten contact
   // depths, is inside the mesh.
@@ -293,11 +405,12 @@ bool TetraBrain::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) c
   }
   const double inset = 10 * d_contactDepth.value();
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
-  for (const ShellPoint& point : shell) {
-    const double pull = std::min(inset, point.position.norm());
-    if (locate(R * (point.position + pull * point.inwardNormal) + X_WT.position) >= 0) return true;
+  if (shell.size() > m_insetPoints.size()) return false;  // not a reserved shell
+  for (size_t i = 0; i < shell.size(); ++i) {
+    const double pull = std::min(inset, shell[i].position.norm());
+    m_insetPoints[i] = R * (shell[i].position + pull * shell[i].inwardNormal) + X_WT.position;
   }
-  return false;
+  return locatePoints({m_insetPoints.data(), shell.size()}, m_insetTets, true);
 }
 
 double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInside, bool& startsInside) const {
@@ -308,6 +421,7 @@ double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInsi
   Box3 box;
   box.extend(a);
   box.extend(b);
+  box = Box3(box.min() - Vec3::Constant(m_queryGrowth), box.max() + Vec3::Constant(m_queryGrowth));
   std::array<int32_t, 3> lo, hi;
   if (!m_faceGrid.cellRange(box, lo, hi)) return 2.0;
   const auto& faces = m_topology.boundaryFaces();
@@ -320,7 +434,7 @@ double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInsi
           const Vec3 n = faceNormal(faces[f]);
           if (direction.dot(n) >= 0) continue;  // leaving, or grazing
           const auto v = faceNodes(m_mesh.tets[faces[f].tet], faces[f].face);
-          const double t = segmentTriangle(a, b, m_mesh.nodes[v[0]], m_mesh.nodes[v[1]], m_mesh.nodes[v[2]]);
+          const double t = segmentTriangle(a, b, m_nodes[v[0]], m_nodes[v[1]], m_nodes[v[2]]);
           if (t < first && !(startsInside && t == 0)) first = t;
         }
   return first;

@@ -27,10 +27,49 @@ void TetraBrain::init(InitContext& context) {
     return;
   }
   setMesh(std::move(m_mesh));
+  connectChannels(context.channels());
+  if (d_boxRefresh.isSet() && d_search.is("grid"))
+    context.error(d_boxRefresh, "boxRefresh applies to the thesis's searches (search=\"first-tetrahedron\" or "
+                                "\"previous-contact\"); the grid search refreshes no boxes");
+}
+
+void TetraBrain::connectChannels(ChannelHub& channels) {
+  m_nodeForces = &channels.publish<NodeForces>(*this, kNodeForcesChannel);
+  if (!m_nodeForceValue.forces.empty()) m_nodeForces->reserve(m_nodeForceValue);
+}
+
+std::optional<std::string> TetraBrain::followDeformation(const Component& deformer, ChannelHub& channels) {
+  if (m_positions) return std::string("another component already deforms ") + path();
+  m_positions = channels.subscribe<NodePositions>(deformer, kNodePositionsChannel);
+  // Auto margin: a quarter of the average edge. Each cell then lists about
+  // (1.5 + 0.5)^3 / 1.5^3 = 2.4 times the tets of the rigid mesh (cells of half
+  // an edge, boxes of about an edge), and the frame costs about 1.5 times as
+  // much; a full edge would cost 10 times (measured on the Brain3 phantom).
+  m_margin = d_displacementMargin.value() > 0 ? d_displacementMargin.value() : 0.25 * m_averageEdge;
+  buildAccelerations();
+  if (!d_search.is("grid") && d_boxRefresh.is("moved")) {
+    // Node -> tets, compressed rows.
+    m_nodeTetStart.assign(m_mesh.nodeCount() + 1, 0);
+    for (const TetIndices& k : m_mesh.tets)
+      for (int32_t i : k) ++m_nodeTetStart[i + 1];
+    for (size_t n = 0; n < m_mesh.nodeCount(); ++n) m_nodeTetStart[n + 1] += m_nodeTetStart[n];
+    m_nodeTets.resize(m_nodeTetStart.back());
+    std::vector<uint32_t> fill(m_nodeTetStart.begin(), m_nodeTetStart.end() - 1);
+    for (size_t t = 0; t < m_mesh.tetCount(); ++t)
+      for (int32_t i : m_mesh.tets[t]) m_nodeTets[fill[i]++] = int32_t(t);
+    m_tetMarked.assign(m_mesh.tetCount(), 0);
+  }
+  return std::nullopt;
+}
+
+void TetraBrain::prepare(const RunPlan&) {
+  m_nodeSlot.assign(m_mesh.nodeCount(), -1);  // only read when a component takes the node forces
+  if (!m_nodeForces || m_nodeForces->readerCount() == 0) m_nodeSlot.clear();
 }
 
 void TetraBrain::setMesh(TetMesh mesh) {
   m_mesh = std::move(mesh);
+  m_nodes = m_mesh.nodes.data();
   m_topology = TetTopology(m_mesh);
   m_report = inspectMesh(m_mesh, m_topology);
   m_reoriented = m_report.invertedTets > 0 ? reorient(m_mesh) : 0;
@@ -40,9 +79,9 @@ void TetraBrain::setMesh(TetMesh mesh) {
 
 void TetraBrain::buildAccelerations() {
   const size_t n = m_mesh.tetCount();
-  m_tetBoxes.resize(n);
+  m_restBoxes.resize(n);
   m_degenerate.assign(n, 0);
-  m_bounds.setEmpty();
+  m_restBounds.setEmpty();
   double edges = 0, volumes = 0;
   for (const TetIndices& k : m_mesh.tets)
     volumes += std::abs(signedVolume(m_mesh.nodes[k[0]], m_mesh.nodes[k[1]], m_mesh.nodes[k[2]], m_mesh.nodes[k[3]]));
@@ -52,8 +91,8 @@ void TetraBrain::buildAccelerations() {
     const TetIndices& k = m_mesh.tets[t];
     Box3 box;
     for (int32_t i : k) box.extend(m_mesh.nodes[i]);
-    m_tetBoxes[t] = box;
-    m_bounds.extend(box);
+    m_restBoxes[t] = box;
+    m_restBounds.extend(box);
     edges += (m_mesh.nodes[k[0]] - m_mesh.nodes[k[1]]).norm() + (m_mesh.nodes[k[2]] - m_mesh.nodes[k[3]]).norm();
     const double v = signedVolume(m_mesh.nodes[k[0]], m_mesh.nodes[k[1]], m_mesh.nodes[k[2]], m_mesh.nodes[k[3]]);
     m_degenerate[t] = !(std::abs(v) > volumeTolerance);
@@ -62,25 +101,86 @@ void TetraBrain::buildAccelerations() {
   // Half the average edge by default: on the Brain3 phantom it halves the
   // haptic step of the full edge (fewer candidate tets per cell) at 8x the cells.
   const double cell = d_cellSize.value() > 0 ? d_cellSize.value() : 0.5 * m_averageEdge;
-  m_tetGrid.build(m_bounds, cell, m_tetBoxes);
-  std::vector<Box3> faceBoxes;
-  faceBoxes.reserve(m_topology.boundaryFaces().size());
+  m_tetBoxes = m_restBoxes;
+  m_bounds = m_restBounds;
+  // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
+  const Vec3 grow = Vec3::Constant(m_margin);
+  auto grown = [&](Box3 box) { return Box3(box.min() - grow, box.max() + grow); };
+  std::vector<Box3> boxes(n);
+  for (size_t t = 0; t < n; ++t) boxes[t] = grown(m_restBoxes[t]);
+  m_tetGrid.build(grown(m_restBounds), cell, boxes);
+  boxes.clear();
+  boxes.reserve(m_topology.boundaryFaces().size());
   for (const BoundaryFace& f : m_topology.boundaryFaces()) {
     Box3 box;
     for (int32_t i : faceNodes(m_mesh.tets[f.tet], f.face)) box.extend(m_mesh.nodes[i]);
-    faceBoxes.push_back(box);
+    boxes.push_back(grown(box));
   }
-  m_faceGrid.build(m_bounds, m_tetGrid.cellSide(), faceBoxes);
+  m_faceGrid.build(grown(m_restBounds), m_tetGrid.cellSide(), boxes);
+}
+
+Box3 TetraBrain::currentBox(int32_t tet) const {
+  Box3 box;
+  for (int32_t i : m_mesh.tets[tet]) box.extend(m_nodes[i]);
+  return box;
+}
+
+void TetraBrain::refresh() {
+  if (!m_positions || !m_positions->fetch()) return;
+  const NodePositions& frame = m_positions->read();
+  if (frame.positions.size() != m_mesh.nodeCount()) return;  // refused at the deformer's init; never here
+  const bool skipped = frame.step != m_lastStep + 1;  // a step in between was not seen: its moves are unknown
+  m_lastStep = frame.step;
+  m_nodes = frame.positions.data();
+  ++m_deformationFrames;
+  m_displacementBound = frame.displacementBound;
+  m_largestBound = std::max(m_largestBound, m_displacementBound);
+  m_queryGrowth = std::max(0.0, m_displacementBound - m_margin);
+  if (m_queryGrowth > 0) ++m_framesBeyondMargin;
+  const Vec3 grow = Vec3::Constant(m_displacementBound);
+  m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);
+  if (!d_search.is("grid")) refreshBoxes(frame, d_boxRefresh.is("all") || frame.allMoved || skipped);
+}
+
+void TetraBrain::refreshBoxes(const NodePositions& frame, bool all) {
+  // The thesis's update of the tetrahedra's boxes to the deformed shape.
+  if (all) {
+    for (size_t t = 0; t < m_tetBoxes.size(); ++t) m_tetBoxes[t] = currentBox(int32_t(t));
+    m_refreshedBoxes += m_tetBoxes.size();
+    return;
+  }
+  for (int32_t n : frame.movedNodes) {
+    if (n < 0 || size_t(n) >= m_mesh.nodeCount()) continue;
+    for (uint32_t e = m_nodeTetStart[n]; e < m_nodeTetStart[n + 1]; ++e) {
+      const int32_t t = m_nodeTets[e];
+      if (m_tetMarked[t]) continue;
+      m_tetMarked[t] = 1;
+      m_tetBoxes[t] = currentBox(t);
+      ++m_refreshedBoxes;
+    }
+  }
+  for (int32_t n : frame.movedNodes) {
+    if (n < 0 || size_t(n) >= m_mesh.nodeCount()) continue;
+    for (uint32_t e = m_nodeTetStart[n]; e < m_nodeTetStart[n + 1]; ++e) m_tetMarked[m_nodeTets[e]] = 0;
+  }
 }
 
 void TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
   m_candidates.resize(1 + 4 + 12);  // a tet, its 4 neighbours, their 12 others
+  if (m_nodeForceValue.forces.size() < 4 * shell.size()) {
+    m_nodeForceValue.forces.resize(4 * shell.size());
+    if (m_nodeForces) m_nodeForces->reserve(m_nodeForceValue);  // publishing copies into slots this large
+  }
   if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) m_shells.push_back(shell.data());
   if (m_hits.size() < shell.size()) {
     m_hits.resize(shell.size());
     m_depths.resize(shell.size());
     m_normals.resize(shell.size());
     m_points.resize(shell.size());
+    m_pointTets.resize(shell.size());
+    m_insetPoints.resize(shell.size());
+    m_insetTets.resize(shell.size());
+    m_locator.reserve(shell.size());
   }
 }
 
@@ -99,6 +199,13 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"max_colliding_tetrahedra", double(m_maxCollidingTets)});
   counters.push_back({"deep_fallbacks", double(m_deepFallbacks)});
   if (!d_search.is("grid")) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
+  if (m_positions) {
+    counters.push_back({"deformation_frames", double(m_deformationFrames)});
+    counters.push_back({"displacement_margin_mm", m_margin});
+    counters.push_back({"largest_displacement_bound_mm", m_largestBound});
+    counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
+    if (!d_search.is("grid")) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
+  }
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
 }
 

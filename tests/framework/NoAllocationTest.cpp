@@ -63,5 +63,14 @@ TEST(NoAllocationTest, TouchingAndDrillingTheSkullAllocatesNothingPerFrame) {
   EXPECT_LE(shortRun, 4u) << "only the run's own set-up may allocate";
 }
 
+TEST(NoAllocationTest, TouchingABrainWhoseEveryNodeMovesAllocatesNothingPerFrame) {
+  // tet_wave_circle.xml: the deformation publishes every node every frame, the
+  // brain reads them, the tool circles on the surface (node forces unread).
+  const size_t shortRun = allocationsDuringRun("scenes/bench/tet_wave_circle.xml", 0.5);
+  const size_t longRun = allocationsDuringRun("scenes/bench/tet_wave_circle.xml", 2.5);
+  EXPECT_EQ(longRun, shortRun) << "allocations grow with frames: the loop allocates";
+  EXPECT_LE(shortRun, 4u) << "only the run's own set-up may allocate";
+}
+
 }  // namespace
 }  // namespace trephine

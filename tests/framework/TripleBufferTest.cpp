@@ -29,6 +29,23 @@ TEST(TripleBufferTest, ChannelFansOutToEveryReader) {
   EXPECT_DOUBLE_EQ(b.latest(), 3.5);
 }
 
+TEST(TripleBufferTest, ReservedChannelSlotsKeepTheirCapacityForEveryReader) {
+  Channel<std::vector<int>> channel;
+  auto before = channel.addReader();
+  channel.reserve(std::vector<int>(1000, 0));
+  auto after = channel.addReader();
+  const std::vector<int> value(600, 7);
+  // Every slot a publication can land in already holds 1000 ints: copying 600 keeps the storage.
+  for (int i = 0; i < 6; ++i) {
+    channel.publish(value);
+    for (auto* reader : {&before, &after}) {
+      ASSERT_TRUE(reader->fetch());
+      EXPECT_EQ(reader->read().size(), 600u);
+      EXPECT_GE(reader->read().capacity(), 1000u) << "a slot was reallocated";
+    }
+  }
+}
+
 // A value written as a whole must be read as a whole: no torn reads across threads.
 TEST(TripleBufferTest, ConcurrentReaderNeverSeesATornValue) {
   struct Block {

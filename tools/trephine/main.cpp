@@ -22,9 +22,12 @@ usage:
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
   trephine phantom SPEC --out FILE.mha|FILE.mhd [--raw]
-      Write a generated phantom volume (the same as file="phantom:SPEC" in a
-      scene), e.g. skull?voxel=0.5 or cube?voxels=300; zlib-compressed
-      unless --raw. Run without arguments for the list of phantoms.
+  trephine phantom SPEC --out FILE.mesh|FILE.mesh.gz
+      Write a generated phantom (the same as file="phantom:SPEC" in a scene).
+      .mha/.mhd: a volume, e.g. skull?voxel=0.5 or cube?voxels=300,
+      zlib-compressed unless --raw. .mesh/.mesh.gz: a tetrahedral mesh as
+      Medit (gzipped for .gz), e.g. cube?cells=22 or brain?tets=22000.
+      Run without arguments for the list of phantoms.
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then

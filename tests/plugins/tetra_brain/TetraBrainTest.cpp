@@ -3,31 +3,14 @@
 // tetrahedra, a mesh far from the origin, a tool deep inside.
 #include <gtest/gtest.h>
 
-#include "plugins/tetra_brain/CubePhantom.h"
-#include "plugins/tetra_brain/TetraBrain.h"
+#include "tests/plugins/tetra_brain/TetTestShapes.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine::tetra {
 namespace {
 
-std::vector<ShellPoint> sphereShell(double radius, int count) {
-  std::vector<ShellPoint> shell;
-  const double golden = 3.14159265358979 * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / count, r = std::sqrt(1 - z * z);
-    const Vec3 d(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    shell.push_back({radius * d, -d});
-  }
-  return shell;
-}
-
-// A 200 mm cube of cells^3 cells, its top face at z = 100.
-TetraBrain& cubeBrain(TetraBrain& brain, int cells, const Vec3& shift = Vec3::Zero()) {
-  TetMesh mesh = makeCubeMesh(cells);
-  for (Vec3& p : mesh.nodes) p += shift;
-  brain.setMesh(std::move(mesh));
-  return brain;
-}
+using shapes::cubeBrain;
+using shapes::sphereShell;
 
 TEST(TetraBrainTest, PointsOnFacesEdgesAndVerticesAreCountedOnce) {
   TetraBrain brain;
@@ -136,8 +119,11 @@ TEST(TetraBrainTest, ToolDeepInsideMeasuresToTheNearestBoundaryFace) {
   EXPECT_GT(c.normal.z(), 0.99);
   std::vector<Counter> counters;
   brain.reportCounters(counters);
-  for (const Counter& k : counters)
-    if (k.name == "deep_fallbacks") EXPECT_EQ(k.value, 466.0) << "every point measured to the mesh's nearest face";
+  for (const Counter& k : counters) {
+    if (k.name == "deep_fallbacks") {
+      EXPECT_EQ(k.value, 466.0) << "every point measured to the mesh's nearest face";
+    }
+  }
 }
 
 TEST(TetraBrainTest, TheThesisSearchesFindTheSameContactsAsTheGrid) {

@@ -1,0 +1,40 @@
+#pragma once
+// What crosses between a tetrahedral mesh and the component that deforms it,
+// through the scheduler's channels (never shared state):
+//  - the deformer publishes NodePositions on its "node_positions" channel,
+//    which the TetraBrain it deforms reads at the start of each haptic frame;
+//  - the TetraBrain publishes NodeForces on its "node_forces" channel: the
+//    reaction of the tool's force on the mesh nodes, computed only when a
+//    component reads it.
+#include <cstdint>
+#include <vector>
+
+#include "framework/math/Math.h"
+
+namespace trephine::tetra {
+
+inline constexpr const char* kNodePositionsChannel = "node_positions";
+inline constexpr const char* kNodeForcesChannel = "node_forces";
+
+struct NodePositions {
+  uint64_t step = 0;             // the producer's tick count; 0 before the first
+  std::vector<Vec3> positions;   // mm, world, one per mesh node
+  double displacementBound = 0;  // mm, no node is farther than this from its rest position
+  // Nodes moved since the producer's previous step (`allMoved`: every node),
+  // for the thesis's refresh of only the moved tetrahedra's boxes.
+  bool allMoved = true;
+  std::vector<int32_t> movedNodes;
+};
+
+struct NodeForce {
+  int32_t node = -1;
+  Vec3 force = Vec3::Zero();  // N, on the mesh node
+};
+
+struct NodeForces {
+  double t = 0;                // s, haptic frame that produced them
+  uint32_t count = 0;          // entries of `forces` in use
+  std::vector<NodeForce> forces;  // fixed capacity: 4 nodes per shell point
+};
+
+}  // namespace trephine::tetra

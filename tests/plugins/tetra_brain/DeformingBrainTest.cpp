@@ -1,0 +1,239 @@
+// A TetraBrain whose nodes move: the grids stay those of the rest shape (boxes
+// grown by the displacement margin), so every query must give exactly what the
+// same shape gives as a rigid mesh, within the margin and beyond it. The
+// reaction on the nodes sums to the contact force and acts where it acts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "framework/core/ChannelHub.h"
+#include "framework/core/Diagnostics.h"
+#include "tests/plugins/tetra_brain/TetTestShapes.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine::tetra {
+namespace {
+
+using shapes::cubeBrain;
+using shapes::sphereShell;
+
+// Vertical spherical wave from (0, 0, 100): amplitude A (mm), wavelength 120 mm, at phase `phase`.
+std::vector<Vec3> waved(const std::vector<Vec3>& rest, double A, double phase) {
+  std::vector<Vec3> moved = rest;
+  for (Vec3& p : moved) p.z() += A * std::sin(2 * std::numbers::pi * (p - Vec3(0, 0, 100)).norm() / 120.0 - phase);
+  return moved;
+}
+
+// A brain following a deformation fed by hand through a channel.
+struct FollowingBrain {
+  Component producer;
+  ChannelHub hub;
+  TetraBrain brain;
+  Channel<NodePositions>* channel = nullptr;
+  uint64_t step = 0;
+
+  explicit FollowingBrain(int cells) {
+    cubeBrain(brain, cells);
+    channel = &hub.publish<NodePositions>(producer, kNodePositionsChannel);
+    EXPECT_FALSE(brain.followDeformation(producer, hub).has_value());
+  }
+  void moveTo(const std::vector<Vec3>& positions, double bound) {
+    NodePositions frame;
+    frame.step = ++step;
+    frame.positions = positions;
+    frame.displacementBound = bound;
+    channel->publish(frame);
+    brain.refresh();
+  }
+};
+
+void expectSameContact(const ShellContact& a, const ShellContact& b, const std::string& where) {
+  EXPECT_EQ(a.points, b.points) << where;
+  EXPECT_EQ(a.primitives, b.primitives) << where;
+  EXPECT_NEAR(a.penetration, b.penetration, 1e-9) << where;
+  EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9) << where;
+}
+
+TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
+  FollowingBrain following(22);  // 9 mm cells, average edge about 11 mm: auto margin about 2.8 mm
+  following.brain.reserveShell(shell);
+  const double margin = following.brain.displacementMargin();
+  ASSERT_GT(margin, 2.0);
+  const std::vector<Vec3> rest = following.brain.mesh().nodes;
+  // Within the margin (one grid cell per point) and far beyond it (widened queries).
+  for (const double amplitude : {0.5 * margin, 2.5 * margin}) {
+    for (const double phase : {0.0, 1.0, 2.5}) {
+      const std::vector<Vec3> moved = waved(rest, amplitude, phase);
+      following.moveTo(moved, amplitude);
+      TetMesh shape = following.brain.mesh();
+      shape.nodes = moved;
+      TetraBrain rigid;
+      rigid.setMesh(shape);
+      ASSERT_EQ(rigid.report().invertedTets, 0u);
+      rigid.reserveShell(shell);
+      for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(-70, 55, 0), Vec3(97.9, 3, 0)}) {
+        const double top = 100 + amplitude * std::sin(2 * std::numbers::pi * xy.norm() / 120.0 - phase);
+        for (const double press : {-0.5, 0.4, 1.3, 3.0}) {
+          const Pose pose{xy + Vec3(0, 0, top + 2.5 - press), Quat::Identity()};
+          const std::string where = "amplitude " + std::to_string(amplitude) + " phase " + std::to_string(phase) +
+                                    " at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " +
+                                    std::to_string(press);
+          expectSameContact(following.brain.collide(pose, shell, false), rigid.collide(pose, shell, false), where);
+          EXPECT_EQ(following.brain.overlaps(pose, shell), rigid.overlaps(pose, shell)) << where;
+          EXPECT_EQ(following.brain.locate(pose.position), rigid.locate(pose.position)) << where;
+          SweepQuery sweep;
+          sweep.from = pose.position + Vec3(0.3, -0.2, 6.0);
+          sweep.to = pose.position;
+          sweep.leadingRadius = 2.5;
+          const SweepResult a = following.brain.sweep(sweep), b = rigid.sweep(sweep);
+          EXPECT_EQ(a.blocked, b.blocked) << where;
+          EXPECT_NEAR(a.freeFraction, b.freeFraction, 1e-12) << where;
+          Vec3 na, nb;
+          EXPECT_NEAR(following.brain.depthBelowSurface(pose.position, na), rigid.depthBelowSurface(pose.position, nb),
+                      1e-9)
+              << where;
+        }
+      }
+    }
+  }
+  std::vector<Counter> counters;
+  following.brain.reportCounters(counters);
+  for (const Counter& k : counters) {
+    if (k.name == "frames_beyond_margin") {
+      EXPECT_EQ(k.value, 3.0) << "the three frames of the larger amplitude widened the queries";
+    }
+  }
+}
+
+TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
+  ChannelHub hub;
+  TetraBrain brain;
+  cubeBrain(brain, 22);
+  brain.connectChannels(hub);
+  ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
+  brain.reserveShell(shell);
+  brain.prepare(RunPlan{});
+  const Pose pose{Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()};
+  const ShellContact contact = brain.collide(pose, shell, false);
+  ASSERT_GT(contact.points, 10);
+  const Vec3 force(0.05, -0.02, -0.3);  // N, on the brain
+  brain.applyContactForce(force, 1.25);
+  ASSERT_TRUE(reader.fetch()) << "a reader is there: the node forces are published";
+  const NodeForces& forces = reader.read();
+  EXPECT_DOUBLE_EQ(forces.t, 1.25);
+  ASSERT_GE(forces.count, 3u);
+  Vec3 sum = Vec3::Zero(), moment = Vec3::Zero();
+  for (uint32_t i = 0; i < forces.count; ++i) {
+    sum += forces.forces[i].force;
+    moment += brain.node(forces.forces[i].node).cross(forces.forces[i].force);
+  }
+  EXPECT_NEAR((sum - force).norm(), 0.0, 1e-12);
+  // Where it acts: the colliding points averaged by their depth below the top face.
+  Vec3 centre = Vec3::Zero();
+  double depths = 0;
+  for (const ShellPoint& s : shell) {
+    const Vec3 p = pose.position + s.position;
+    if (brain.locate(p) < 0) continue;
+    centre += (100 - p.z()) * p;
+    depths += 100 - p.z();
+  }
+  centre /= depths;
+  EXPECT_NEAR((moment - centre.cross(force)).norm(), 0.0, 1e-9);
+  // Each node once.
+  for (uint32_t i = 0; i < forces.count; ++i)
+    for (uint32_t j = i + 1; j < forces.count; ++j) EXPECT_NE(forces.forces[i].node, forces.forces[j].node);
+}
+
+std::string deformingScene(const std::string& brain, const std::string& deformation) {
+  return R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file="phantom:cube?cells=13" )" +
+         brain + R"(/>
+    )" + deformation +
+         R"(
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
+                    tipOffset="2.5" standoff="5" depth="2" rate="1000"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)";
+}
+
+TEST(DeformingBrainTest, ASecondDeformationOfOneMeshIsRefusedAtItsLink) {
+  Diagnostics d;
+  const auto simulation = test::loadScene(
+      deformingScene("", R"(<ScriptedDeformation name="a" mesh="@brain" rate="1000"/>
+    <ScriptedDeformation name="b" mesh="@brain" rate="1000"/>)"),
+      d);
+  EXPECT_FALSE(simulation);
+  const std::string text = test::messages(d);
+  EXPECT_NE(text.find("inline.xml:7:41:"), std::string::npos) << text;
+  EXPECT_NE(text.find("already deforms"), std::string::npos) << text;
+}
+
+TEST(DeformingBrainTest, BoxRefreshWithTheGridSearchIsAnError) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(deformingScene(R"(boxRefresh="moved")", ""), d));
+  EXPECT_NE(test::messages(d).find("boxRefresh applies to the thesis's searches"), std::string::npos)
+      << test::messages(d);
+}
+
+TEST(DeformingBrainTest, ThesisRefreshOfMovedBoxesFindsWhatRefreshingAllFinds) {
+  // A bump under the tool moves a few nodes; refreshing only their tets' boxes
+  // must give the same contacts as refreshing every box, for far fewer boxes.
+  std::vector<HapticFrame> frames[2];
+  double refreshed[2] = {0, 0};
+  int k = 0;
+  for (const char* refresh : {"all", "moved"}) {
+    Diagnostics d;
+    SimulationOptions options;
+    options.duration = 1.5;
+    auto simulation = test::loadScene(
+        deformingScene(std::string(R"(search="previous-contact" boxRefresh=")") + refresh + "\"",
+                       R"(<ScriptedDeformation name="bump" mesh="@brain" shape="bump" center="5 5 100" radius="25"
+                            amplitude="1.5" period="0.4" rate="1000"/>)"),
+        d, options);
+    ASSERT_TRUE(simulation) << test::messages(d);
+    simulation->run();
+    const HapticFrameLog& log = simulation->hapticLog();
+    for (size_t i = 0; i < log.size(); ++i) frames[k].push_back(log[i]);
+    refreshed[k] = test::componentCounter(*simulation, "TetraBrain", "refreshed_boxes");
+    EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "contact_frames"), 200.0);
+    ++k;
+  }
+  ASSERT_EQ(frames[0].size(), frames[1].size());
+  for (size_t i = 0; i < frames[0].size(); ++i) {
+    ASSERT_EQ(frames[0][i].force, frames[1][i].force) << "frame " << i;
+  }
+  EXPECT_LT(refreshed[1] * 20, refreshed[0]) << "only the bump's tets are refreshed";
+}
+
+TEST(DeformingBrainTest, PokingAPulsatingBrainStaysStable) {
+  // Every node moves every frame (a 1 mm wave, 1 Hz) while the tool pokes.
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = 4.0;
+  auto simulation = test::loadScene(
+      deformingScene("", R"(<ScriptedDeformation name="wave" mesh="@brain" amplitude="1" center="5 5 100"
+                            rate="1000"/>)"),
+      d, options);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  const HapticStats s = simulation->hapticLog().stats();
+  EXPECT_EQ(s.nanFrames, 0u);
+  EXPECT_EQ(s.proxyInsideFrames, 0u);
+  EXPECT_GT(s.contactFrames, 1000u);
+  EXPECT_LE(s.forceStepMax, 0.8) << "N per frame, the thesis's largest peak";
+  EXPECT_EQ(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 4000.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "TetraBrain", "frames_beyond_margin"), 0.0);
+}
+
+}  // namespace
+}  // namespace trephine::tetra

@@ -1,0 +1,33 @@
+#pragma once
+// Shapes shared by the tetrahedral brain tests: an even spherical shell and the
+// cube phantom as a TetraBrain.
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "plugins/tetra_brain/CubePhantom.h"
+#include "plugins/tetra_brain/TetraBrain.h"
+
+namespace trephine::tetra::shapes {
+
+// `count` points evenly spread (Fibonacci) on a sphere of `radius` mm, inward normals.
+inline std::vector<ShellPoint> sphereShell(double radius, int count) {
+  std::vector<ShellPoint> shell;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / count, r = std::sqrt(1 - z * z);
+    const Vec3 d(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    shell.push_back({radius * d, -d});
+  }
+  return shell;
+}
+
+// A 200 mm cube of cells^3 cells, its top face at z = 100 (plus `shift`).
+inline TetraBrain& cubeBrain(TetraBrain& brain, int cells, const Vec3& shift = Vec3::Zero()) {
+  TetMesh mesh = makeCubeMesh(cells);
+  for (Vec3& p : mesh.nodes) p += shift;
+  brain.setMesh(std::move(mesh));
+  return brain;
+}
+
+}  // namespace trephine::tetra::shapes
