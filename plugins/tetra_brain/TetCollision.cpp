@@ -147,6 +147,26 @@ Vec3 TetraBrain::faceNormal(const BoundaryFace& face) const {
   return length > 0 ? Vec3(normal / length) : Vec3::Zero();
 }
 
+double TetraBrain::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const {
+  // A tet that touches the surface only at a node or an edge: the nearest of
+  // the boundary faces around its nodes (a handful), instead of a search of
+  // the whole neighbourhood. Infinite when no node of the tet is on the surface.
+  double best = std::numeric_limits<double>::infinity();
+  const auto& faces = m_topology.boundaryFaces();
+  for (int32_t node : m_mesh.tets[tet]) {
+    for (uint32_t e = m_nodeFaceStart[node]; e < m_nodeFaceStart[node + 1]; ++e) {
+      const BoundaryFace& face = faces[m_nodeFaces[e]];
+      const auto n = faceNodes(m_mesh.tets[face.tet], face.face);
+      const double distance = (closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm();
+      if (distance < best) {
+        best = distance;
+        normal = faceNormal(face);
+      }
+    }
+  }
+  return best;
+}
+
 double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   // Rings of cells around p, nearest first, until no closer face can remain.
   const Vec3 g = (p - m_faceGrid.origin()) / m_faceGrid.cellSide();
@@ -186,12 +206,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   return std::isfinite(best) ? best : 0.0;
 }
 
-ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
-  ShellContact contact;
-  if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) {
-    ++m_unreservedShellCalls;
-    return contact;
-  }
+size_t TetraBrain::findHits(const Pose& X_WT, std::span<const ShellPoint> shell) {
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
   if (d_search.is("grid")) {
@@ -207,6 +222,22 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
   m_lastRotation = R;
   m_lastPosition = X_WT.position;
   m_lastShell = shell.data();
+  return hits;
+}
+
+ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
+  ShellContact contact;
+  if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) {
+    ++m_unreservedShellCalls;
+    return contact;
+  }
+  return contactOfHits(shell, findHits(X_WT, shell));
+}
+
+ShellContact TetraBrain::contactOfHits(std::span<const ShellPoint> shell, size_t hits) {
+  ShellContact contact;
+  const Eigen::Matrix3d& R = m_lastRotation;
+  const Pose X_WT{m_lastPosition, Quat::Identity()};  // only the position is read below
   if (hits == 0) return contact;
   ++m_contactFrames;
   std::sort(m_hits.begin(), m_hits.begin() + hits,
@@ -293,6 +324,7 @@ ShellContact TetraBrain::contactNearestFace(const Eigen::Matrix3d& R, const Vec3
       const double d = (m_nodes[faceNodes(m_mesh.tets[tet], f)[0]] - p).dot(n);
       if (d < depth) depth = d, normal = n;
     }
+    if (!std::isfinite(depth)) depth = depthToIncidentFaces(tet, p, normal);
     if (!std::isfinite(depth)) {
       ++m_deepFallbacks;
       depth = depthBelowSurface(p, normal);

@@ -117,6 +117,16 @@ void TetraBrain::buildAccelerations() {
     boxes.push_back(grown(box));
   }
   m_faceGrid.build(grown(m_restBounds), m_tetGrid.cellSide(), boxes);
+  // Node -> boundary faces, compressed rows.
+  const auto& faces = m_topology.boundaryFaces();
+  m_nodeFaceStart.assign(m_mesh.nodeCount() + 1, 0);
+  for (const BoundaryFace& f : faces)
+    for (int32_t i : faceNodes(m_mesh.tets[f.tet], f.face)) ++m_nodeFaceStart[i + 1];
+  for (size_t i = 0; i < m_mesh.nodeCount(); ++i) m_nodeFaceStart[i + 1] += m_nodeFaceStart[i];
+  m_nodeFaces.resize(m_nodeFaceStart.back());
+  std::vector<uint32_t> fill(m_nodeFaceStart.begin(), m_nodeFaceStart.end() - 1);
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int32_t i : faceNodes(m_mesh.tets[faces[f].tet], faces[f].face)) m_nodeFaces[fill[i]++] = int32_t(f);
 }
 
 Box3 TetraBrain::currentBox(int32_t tet) const {

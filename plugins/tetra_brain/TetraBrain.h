@@ -59,6 +59,14 @@ class TetraBrain final : public Component, public ShellContactTarget {
   bool isDeformable() const { return m_positions.has_value(); }
   double displacementMargin() const { return m_margin; }  // mm
 
+  // The search step of collide(), alone (benchmarks split the frame with it):
+  // the colliding shell points and their tets; returns how many. The shell
+  // must have been reserved.
+  size_t findHits(const Pose& X_WT, std::span<const ShellPoint> shell);
+  // The rest of collide(): contact normal and penetration of the hits the last
+  // findHits() found (`hits` is what it returned).
+  ShellContact contactOfHits(std::span<const ShellPoint> shell, size_t hits);
+
   // Replaces the mesh (tests and tools): validates, reorients and rebuilds the grids.
   void setMesh(TetMesh mesh);
   const TetMesh& mesh() const { return m_mesh; }
@@ -74,6 +82,8 @@ class TetraBrain final : public Component, public ShellContactTarget {
   const Vec3& node(int32_t index) const { return m_nodes[index]; }
   // Depth of p below the nearest boundary face (mm, > 0 inside) and that face's outward normal.
   double depthBelowSurface(const Vec3& p, Vec3& normal) const;
+  // Distance of p to the nearest boundary face around the nodes of `tet`, or infinity when none.
+  double depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const;
 
  private:
   void buildAccelerations();
@@ -165,6 +175,8 @@ class TetraBrain final : public Component, public ShellContactTarget {
   std::vector<Box3> m_tetBoxes;   // per tet, current: maintained only for the thesis's scans
   std::vector<uint8_t> m_degenerate;  // 1: zero-volume tetrahedron, never contains a point
   UniformGrid m_tetGrid, m_faceGrid;  // tetrahedra and boundary faces by cell
+  std::vector<uint32_t> m_nodeFaceStart;  // node -> boundary faces holding it (compressed rows)
+  std::vector<int32_t> m_nodeFaces;
   double m_averageEdge = 0;           // mm
 
   // Deformation (followDeformation).

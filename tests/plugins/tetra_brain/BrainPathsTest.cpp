@@ -1,0 +1,36 @@
+// The three paths of Table 4.3 on scenes/brain.xml (the Brain3-size phantom,
+// k = 0.3 N/mm): slight moves over the surface, free hand with slight and
+// strong contacts, repeated pokes. The thesis's stability figures are the
+// targets: no NaN, change of force per frame p99 at most 0.1 N and at most
+// 0.8 N (its largest peak), and the proxy never visibly inside the brain.
+#include <gtest/gtest.h>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+TEST(BrainPathsTest, TheThreePathsOfTheThesisStayStable) {
+  for (const char* path : {"circle", "random-walk", "pokes"}) {
+    Diagnostics d;
+    SimulationOptions options;
+    options.overrides = {std::string("/tool/device.path=") + path};
+    auto simulation = Simulation::fromFile(test::sourceDir() / "scenes/brain.xml", options, d);
+    ASSERT_TRUE(simulation) << test::messages(d);
+    simulation->run();
+    ASSERT_TRUE(simulation->complete()) << path;
+    const HapticFrameLog& log = simulation->hapticLog();
+    std::vector<double> steps;
+    for (size_t i = 1; i < log.size(); ++i) steps.push_back((log[i].force - log[i - 1].force).norm());
+    std::sort(steps.begin(), steps.end());
+    const HapticStats s = log.stats();
+    EXPECT_EQ(s.nanFrames, 0u) << path;
+    EXPECT_EQ(s.proxyInsideFrames, 0u) << path;
+    EXPECT_GT(s.contactFrames, log.size() / 4) << path << ": the path touches the brain";
+    EXPECT_LE(steps[size_t(0.99 * double(steps.size()))], 0.1) << path << ": |dF| p99 (N)";
+    EXPECT_LE(steps.back(), 0.8) << path << ": |dF| max (N)";
+  }
+}
+
+}  // namespace
+}  // namespace trephine

@@ -1,0 +1,319 @@
+#!/usr/bin/env python3
+"""Deformable collision experiments (thesis section 4.4) on the tetrahedral brain.
+
+usage: tools/bench_brain.py [--quick] [--out DIR] [--skip-split]
+
+1. The step split into refresh, search and the rest (Fig. 4.8 to 4.14):
+   build/bin/tet_collision_benchmark on Cube1..Cube7 (Table 4.1) and
+   Brain1..Brain5 (Table 4.2) for the grid search and the thesis's scans, on a
+   rigid mesh, a mesh whose every node moves every frame (wave) and a local
+   bump -> DIR/tet_split.csv, DIR/tet_split_{cube,brain}.png, DIR/tet_moving.png.
+2. The whole haptic step per frame in a scene: scenes/bench/tet_circle.xml on
+   every mesh for each search, and scenes/bench/tet_wave_circle.xml (every
+   node moves) for the grid and the thesis refreshing every box, with
+   `build/bin/trephine run` in virtual time -> DIR/tet_scene.csv and
+   DIR/tet_frames_{cube,brain}.png (time per frame along the path).
+3. Paths 1 to 3 of Table 4.3 (scenes/brain.xml: circle, random-walk, pokes)
+   on Brain2, Brain3, Brain4 -> DIR/tet_paths.csv (force change per frame p99
+   and max, NaN frames, ...), DIR/tet_path{1,2,3}.png (normal, penetration,
+   force and change of force per frame on Brain3, Fig. 4.15 to 4.17, 4.20,
+   4.21) and DIR/tet_paths_penetration.png (Brain2 to 4, Fig. 4.18).
+--quick keeps Cube1 and Brain1 and path 1 (a smoke test).
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PROGRAM = ROOT / "build/bin/trephine"
+SPLIT_BENCHMARK = ROOT / "build/bin/tet_collision_benchmark"
+CIRCLE = ROOT / "scenes/bench/tet_circle.xml"
+WAVE = ROOT / "scenes/bench/tet_wave_circle.xml"
+BRAIN_SCENE = ROOT / "scenes/brain.xml"
+
+CUBES = [("Cube1", "phantom:cube?cells=7"), ("Cube2", "phantom:cube?cells=13"), ("Cube3", "phantom:cube?cells=22"),
+         ("Cube4", "phantom:cube?cells=30"), ("Cube5", "phantom:cube?cells=40"), ("Cube6", "phantom:cube?cells=50"),
+         ("Cube7", "phantom:cube?cells=60")]
+BRAINS = [("Brain1", "phantom:brain?tets=3500"), ("Brain2", "phantom:brain?tets=12500"),
+          ("Brain3", "phantom:brain?tets=22000"), ("Brain4", "phantom:brain?tets=40500"),
+          ("Brain5", "phantom:brain?tets=50000")]
+SEARCHES = ["grid", "first-tetrahedron", "previous-contact"]
+PATHS = [("path1", "circle"), ("path2", "random-walk"), ("path3", "pokes")]
+
+
+def ensure_matplotlib():
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
+            os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
+        sys.exit("bench_brain.py: matplotlib is missing; install python3-matplotlib")
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def percentile(values, q):
+    ordered = sorted(values)
+    if not ordered:
+        return 0.0
+    rank = max(1, int(-(-q * len(ordered) // 1)))
+    return ordered[min(rank, len(ordered)) - 1]
+
+
+def run_scene(scene, run_dir, settings):
+    command = [str(PROGRAM), "run", str(scene), "--quiet", "--out", str(run_dir)]
+    for s in settings:
+        command += ["--set", s]
+    subprocess.run(command, check=True)
+    summary = json.loads((run_dir / "summary.json").read_text())
+    per_call = defaultdict(dict)
+    for row in read_rows(run_dir / "timings.csv"):
+        per_call[row["component"]][int(row["call"])] = float(row["duration_us"])
+    proxy = per_call["/tool/proxy"]
+    frames = sorted(proxy)
+    # The haptic step: device, proxy (the collision) and force; the wave's own
+    # work (it publishes every node) is the deformation's, not the collision's.
+    step = [sum(per_call[c].get(i, 0.0) for c in ("/tool/device", "/tool/proxy", "/tool/force")) for i in frames]
+    return {"summary": summary, "trace": read_rows(run_dir / "trace.csv"), "proxy_us": [proxy[i] for i in frames],
+            "step_us": step, "deformation_us": list(per_call.get("/patient/wave", {}).values())}
+
+
+def split_experiment(out, quick, plt):
+    json_path = out / "tet_collision.json"
+    command = [str(SPLIT_BENCHMARK), "--benchmark_format=console", f"--benchmark_out={json_path}",
+               "--benchmark_out_format=json"]
+    if quick:
+        command.append("--benchmark_filter=BM_TetCollisionStep/(0|7)/")
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    data = json.loads(json_path.read_text())
+    rows = []
+    for b in data["benchmarks"]:
+        if b.get("error_occurred"):
+            continue
+        mesh, method, motion = b["label"].split("/")
+        row = {"mesh": mesh, "tetrahedra": int(b["tetrahedra"]), "method": method, "motion": motion,
+               "contact_frames": int(b["contact_frames"]), "frames": int(b["frames"])}
+        for part in ("refresh", "search", "rest", "total"):
+            for stat in ("p50", "p99", "max"):
+                row[f"{part}_{stat}_us"] = round(b[f"{part}_{stat}_us"], 3)
+        rows.append(row)
+    with open(out / "tet_split.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    context = data.get("context", {})
+    print(f"split: {len(rows)} cases on {context.get('num_cpus')} x {context.get('mhz_per_cpu')} MHz -> {out / 'tet_split.csv'}")
+
+    for family in ("Cube", "Brain"):
+        chosen = [r for r in rows if r["mesh"].startswith(family) and r["motion"] == "rigid"]
+        if not chosen:
+            continue
+        meshes = sorted({r["mesh"] for r in chosen}, key=lambda m: int(m[len(family):]))
+        methods = ["grid", "first-tetrahedron", "previous-contact"]
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+        width = 0.8 / len(methods)
+        for k, method in enumerate(methods):
+            by_mesh = {r["mesh"]: r for r in chosen if r["method"] == method}
+            xs = [i + (k - 1) * width for i in range(len(meshes))]
+            search = [by_mesh[m]["search_p50_us"] if m in by_mesh else 0 for m in meshes]
+            rest = [by_mesh[m]["rest_p50_us"] if m in by_mesh else 0 for m in meshes]
+            axes[0].bar(xs, search, width, label=f"{method}: search", color=f"C{k}")
+            axes[0].bar(xs, rest, width, bottom=search, color=f"C{k}", alpha=0.45,
+                        label=f"{method}: rest")
+            axes[1].bar(xs, [by_mesh[m]["total_p99_us"] if m in by_mesh else 0 for m in meshes], width,
+                        label=method, color=f"C{k}")
+        for a, title in zip(axes, ("median frame: search + rest", "p99 frame")):
+            a.set_xticks(range(len(meshes)))
+            a.set_xticklabels([f"{m}\n{next(r['tetrahedra'] for r in chosen if r['mesh'] == m):,}" for m in meshes],
+                              fontsize=7)
+            a.set_yscale("log")
+            a.set_ylabel("us per frame")
+            a.set_title(title, fontsize=9)
+            a.axhline(1000, color="red", lw=0.6, ls="--")
+        axes[0].legend(fontsize=6)
+        fig.suptitle(f"{family} meshes, rigid: collision step per frame (211-point tool, 2,500 frames)", fontsize=10)
+        fig.tight_layout()
+        fig.savefig(out / f"tet_split_{family.lower()}.png", dpi=110)
+        plt.close(fig)
+
+    moving = [r for r in rows if r["motion"] != "rigid"]
+    if moving:
+        meshes = [m for m, _ in CUBES + BRAINS if any(r["mesh"] == m for r in moving)]
+        variants = [("grid", "wave"), ("previous-contact", "wave"), ("previous-contact", "bump"),
+                    ("previous-contact+moved", "bump")]
+        fig, a = plt.subplots(figsize=(11, 4.2))
+        width = 0.8 / len(variants)
+        for k, (method, motion) in enumerate(variants):
+            by_mesh = {r["mesh"]: r for r in moving if r["method"] == method and r["motion"] == motion}
+            xs = [i + (k - 1.5) * width for i in range(len(meshes))]
+            a.bar(xs, [by_mesh[m]["total_p99_us"] if m in by_mesh else 0 for m in meshes], width,
+                  label=f"{method}, {motion} (p99)", color=f"C{k}")
+            a.plot(xs, [by_mesh[m]["total_p50_us"] if m in by_mesh else 0 for m in meshes], "k_", ms=6)
+        a.set_xticks(range(len(meshes)))
+        a.set_xticklabels(meshes, fontsize=7)
+        a.set_yscale("log")
+        a.set_ylabel("us per frame (bar p99, dash p50)")
+        a.axhline(50, color="green", lw=0.6, ls="--")
+        a.axhline(100, color="orange", lw=0.6, ls="--")
+        a.legend(fontsize=7)
+        a.set_title("moving meshes: refresh + search + rest per frame (wave: every node moves every frame)",
+                    fontsize=10)
+        fig.tight_layout()
+        fig.savefig(out / "tet_moving.png", dpi=110)
+        plt.close(fig)
+
+
+def scene_experiment(out, quick, plt):
+    meshes = [CUBES[0], BRAINS[0]] if quick else CUBES + BRAINS
+    rows, series = [], defaultdict(dict)
+    cases = [(CIRCLE, "rigid", s, []) for s in SEARCHES]
+    cases += [(WAVE, "wave", "grid", []), (WAVE, "wave", "previous-contact", ["/patient/brain.boxRefresh=all"])]
+    for (name, spec) in meshes:
+        for scene, motion, search, extra in cases:
+            run_dir = out / f"scene_{name}_{search}_{motion}"
+            r = run_scene(scene, run_dir, [f"/patient/brain.file={spec}", f"/patient/brain.search={search}"] + extra)
+            h = r["summary"]["haptics"]
+            brain = r["summary"]["components"]["/patient/brain"]["counters"]
+            row = {"mesh": name, "tetrahedra": int(brain["tetrahedra"]), "search": search, "motion": motion,
+                   "proxy_p50_us": percentile(r["proxy_us"], 0.5), "proxy_p99_us": percentile(r["proxy_us"], 0.99),
+                   "proxy_max_us": max(r["proxy_us"]), "step_p50_us": percentile(r["step_us"], 0.5),
+                   "step_p99_us": percentile(r["step_us"], 0.99), "step_max_us": max(r["step_us"]),
+                   "frames_over_1ms": sum(1 for s in r["step_us"] if s > 1000.0),
+                   "deformation_p50_us": percentile(r["deformation_us"], 0.5) if r["deformation_us"] else 0.0,
+                   "contact_frames": h["contact_frames"], "force_step_max_N": h["force_step_N"]["max"],
+                   "nan_frames": h["nan_frames"], "proxy_inside_frames": h["proxy_inside_frames"]}
+            rows.append(row)
+            series[(motion, search)][name] = r["proxy_us"]
+            print(f"{name:7s} {motion:5s} {search:17s} step p50 {row['step_p50_us']:8.2f} us  p99 "
+                  f"{row['step_p99_us']:8.2f}  max {row['step_max_us']:9.1f}  over 1 ms {row['frames_over_1ms']}")
+    with open(out / "tet_scene.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    for family in ("Cube", "Brain"):
+        keys = [k for k in series if any(m.startswith(family) for m in series[k])]
+        if not keys:
+            continue
+        fig, axes = plt.subplots(len(keys), 1, figsize=(9, 2.2 * len(keys)), sharex=True)
+        for a, key in zip(axes, keys):
+            for name, values in series[key].items():
+                if name.startswith(family):
+                    a.plot(values, lw=0.5, label=name)
+            a.set_yscale("log")
+            a.set_ylabel("us")
+            a.set_title(f"{key[1]}, {key[0]} mesh: collision (proxy) step per frame", fontsize=8)
+            a.axhline(1000, color="red", lw=0.6, ls="--")
+        axes[0].legend(fontsize=6, ncol=4)
+        axes[-1].set_xlabel("frame")
+        fig.tight_layout()
+        fig.savefig(out / f"tet_frames_{family.lower()}.png", dpi=110)
+        plt.close(fig)
+
+
+def force_steps(trace):
+    steps = [0.0]
+    for i in range(1, len(trace)):
+        d = [float(trace[i][k]) - float(trace[i - 1][k]) for k in ("force_x", "force_y", "force_z")]
+        steps.append(sum(v * v for v in d) ** 0.5)
+    return steps
+
+
+def paths_experiment(out, quick, plt):
+    meshes = [BRAINS[0]] if quick else BRAINS[1:4]
+    paths = PATHS[:1] if quick else PATHS
+    rows, traces = [], {}
+    for (name, spec) in meshes:
+        for label, path in paths:
+            run_dir = out / f"path_{name}_{label}"
+            r = run_scene(BRAIN_SCENE, run_dir, [f"/patient/brain.file={spec}", f"/tool/device.path={path}"])
+            h = r["summary"]["haptics"]
+            steps = force_steps(r["trace"])
+            contact = [float(t["penetration"]) for t in r["trace"] if int(t["contacts"]) > 0]
+            rows.append({"mesh": name, "path": f"{label} ({path})", "frames": h["frames"],
+                         "contact_frames": h["contact_frames"], "force_max_N": round(h["force_N"]["max"], 4),
+                         "force_step_p99_N": round(percentile(steps, 0.99), 4),
+                         "force_step_max_N": round(max(steps), 4),
+                         "penetration_max_mm": round(max(contact) if contact else 0.0, 4),
+                         "nan_frames": h["nan_frames"], "proxy_inside_frames": h["proxy_inside_frames"],
+                         "step_p99_us": round(percentile(r["step_us"], 0.99), 2)})
+            traces[(name, label)] = r["trace"]
+            print(f"{name:7s} {label} dF p99 {rows[-1]['force_step_p99_N']:.4f} N  max {rows[-1]['force_step_max_N']:.4f}"
+                  f"  |F| max {rows[-1]['force_max_N']:.3f}  NaN {rows[-1]['nan_frames']}")
+    with open(out / "tet_paths.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    shown = "Brain3" if not quick else meshes[0][0]
+    for label, path in paths:
+        trace = traces[(shown, label)]
+        t = [float(x["t"]) for x in trace]
+        fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True)
+        for k in ("normal_x", "normal_y", "normal_z"):
+            axes[0].plot(t, [float(x[k]) for x in trace], lw=0.6, label=k)
+        axes[0].set_ylabel("contact normal")
+        axes[0].legend(fontsize=7)
+        axes[1].plot(t, [float(x["penetration_raw"]) for x in trace], lw=0.6, label="raw (detection)")
+        axes[1].plot(t, [float(x["penetration"]) for x in trace], lw=0.6, label="rendered")
+        axes[1].set_ylabel("penetration (mm)")
+        axes[1].legend(fontsize=7)
+        for k in ("force_x", "force_y", "force_z"):
+            axes[2].plot(t, [float(x[k]) for x in trace], lw=0.6, label=k)
+        axes[2].set_ylabel("force (N)")
+        axes[2].legend(fontsize=7)
+        for k in ("force_x", "force_y", "force_z"):
+            v = [float(x[k]) for x in trace]
+            axes[3].plot(t, [0.0] + [v[i] - v[i - 1] for i in range(1, len(v))], lw=0.6, label=f"d{k}")
+        axes[3].set_ylabel("change per frame (N)")
+        axes[3].legend(fontsize=7)
+        axes[3].set_xlabel("t (s)")
+        axes[0].set_title(f"{shown}, {label} ({path}), k = 0.3 N/mm", fontsize=10)
+        fig.tight_layout()
+        fig.savefig(out / f"tet_{label}.png", dpi=110)
+        plt.close(fig)
+    fig, axes = plt.subplots(len(paths), 1, figsize=(9, 2.6 * len(paths)), squeeze=False)
+    for a, (label, path) in zip(axes[:, 0], paths):
+        for (name, _) in meshes:
+            trace = traces[(name, label)]
+            a.plot([float(x["t"]) for x in trace], [float(x["penetration"]) for x in trace], lw=0.6, label=name)
+        a.set_ylabel("penetration (mm)")
+        a.set_title(f"{label} ({path})", fontsize=9)
+        a.legend(fontsize=7)
+    axes[-1, 0].set_xlabel("t (s)")
+    fig.tight_layout()
+    fig.savefig(out / "tet_paths_penetration.png", dpi=110)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--out", default=str(ROOT / "runs/bench_brain"))
+    parser.add_argument("--skip-split", action="store_true", help="do not run the split benchmark")
+    parser.add_argument("--only", choices=["split", "scene", "paths"], help="run one experiment")
+    args = parser.parse_args()
+    ensure_matplotlib()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if not args.skip_split and args.only in (None, "split"):
+        split_experiment(out, args.quick, plt)
+    if args.only in (None, "scene"):
+        scene_experiment(out, args.quick, plt)
+    if args.only in (None, "paths"):
+        paths_experiment(out, args.quick, plt)
+    print(f"wrote CSV files and figures in {out}")
+
+
+if __name__ == "__main__":
+    main()
