@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Deformable collision experiments (thesis section 4.4) on the tetrahedral brain.
 
-usage: tools/bench_brain.py [--quick] [--out DIR] [--skip-split]
+usage: tools/bench_brain.py [--quick] [--out DIR] [--only split|scene|paths] [--reuse-split]
 
 1. The step split into refresh, search and the rest (Fig. 4.8 to 4.14):
    build/bin/tet_collision_benchmark on Cube1..Cube7 (Table 4.1) and
@@ -9,12 +9,14 @@ usage: tools/bench_brain.py [--quick] [--out DIR] [--skip-split]
    rigid mesh, a mesh whose every node moves every frame (wave) and a local
    bump -> DIR/tet_split.csv, DIR/tet_split_{cube,brain}.png, DIR/tet_moving.png.
 2. The whole haptic step per frame in a scene: scenes/bench/tet_circle.xml on
-   every mesh for each search, and scenes/bench/tet_wave_circle.xml (every
+   every mesh (and the real atlas brain, when present) for each search, and
+   scenes/bench/tet_wave_circle.xml (every
    node moves) for the grid and the thesis refreshing every box, with
    `build/bin/trephine run` in virtual time -> DIR/tet_scene.csv and
    DIR/tet_frames_{cube,brain}.png (time per frame along the path).
 3. Paths 1 to 3 of Table 4.3 (scenes/brain.xml: circle, random-walk, pokes)
-   on Brain2, Brain3, Brain4 -> DIR/tet_paths.csv (force change per frame p99
+   on Brain2, Brain3, Brain4 (and the real atlas mesh when ../shared/data has
+   it) -> DIR/tet_paths.csv (force change per frame p99
    and max, NaN frames, ...), DIR/tet_path{1,2,3}.png (normal, penetration,
    force and change of force per frame on Brain3, Fig. 4.15 to 4.17, 4.20,
    4.21) and DIR/tet_paths_penetration.png (Brain2 to 4, Fig. 4.18).
@@ -42,6 +44,9 @@ CUBES = [("Cube1", "phantom:cube?cells=7"), ("Cube2", "phantom:cube?cells=13"), 
 BRAINS = [("Brain1", "phantom:brain?tets=3500"), ("Brain2", "phantom:brain?tets=12500"),
           ("Brain3", "phantom:brain?tets=22000"), ("Brain4", "phantom:brain?tets=40500"),
           ("Brain5", "phantom:brain?tets=50000")]
+ATLAS = ROOT.parent / "shared/data/brain_tetmesh_mmc_head_atlas/brain_gm_wm.node"
+# The real mesh, aimed at the left hemisphere beside the fissure (as scenes/brain_atlas.xml).
+ATLAS_SETTINGS = ["/tool/device.center=111 96 180", "/patient/wave.center=111 96 190"]
 SEARCHES = ["grid", "first-tetrahedron", "previous-contact"]
 PATHS = [("path1", "circle"), ("path2", "random-walk"), ("path3", "pokes")]
 
@@ -86,13 +91,14 @@ def run_scene(scene, run_dir, settings):
             "step_us": step, "deformation_us": list(per_call.get("/patient/wave", {}).values())}
 
 
-def split_experiment(out, quick, plt):
+def split_experiment(out, quick, plt, rerun):
     json_path = out / "tet_collision.json"
     command = [str(SPLIT_BENCHMARK), "--benchmark_format=console", f"--benchmark_out={json_path}",
                "--benchmark_out_format=json"]
     if quick:
         command.append("--benchmark_filter=BM_TetCollisionStep/(0|7)/")
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    if rerun or not json_path.exists():
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     data = json.loads(json_path.read_text())
     rows = []
     for b in data["benchmarks"]:
@@ -100,7 +106,8 @@ def split_experiment(out, quick, plt):
             continue
         mesh, method, motion = b["label"].split("/")
         row = {"mesh": mesh, "tetrahedra": int(b["tetrahedra"]), "method": method, "motion": motion,
-               "contact_frames": int(b["contact_frames"]), "frames": int(b["frames"])}
+               "contact_frames": int(b["contact_frames"]), "frames": int(b["frames"]),
+               "colliding_points": int(b.get("colliding_points", 0))}
         for part in ("refresh", "search", "rest", "total"):
             for stat in ("p50", "p99", "max"):
                 row[f"{part}_{stat}_us"] = round(b[f"{part}_{stat}_us"], 3)
@@ -173,13 +180,19 @@ def split_experiment(out, quick, plt):
 
 def scene_experiment(out, quick, plt):
     meshes = [CUBES[0], BRAINS[0]] if quick else CUBES + BRAINS
+    if not quick:
+        if ATLAS.exists():
+            meshes.append(("Atlas", str(ATLAS)))
+        else:
+            print(f"bench_brain.py: {ATLAS} not found, the real brain mesh is skipped", file=sys.stderr)
     rows, series = [], defaultdict(dict)
     cases = [(CIRCLE, "rigid", s, []) for s in SEARCHES]
     cases += [(WAVE, "wave", "grid", []), (WAVE, "wave", "previous-contact", ["/patient/brain.boxRefresh=all"])]
     for (name, spec) in meshes:
         for scene, motion, search, extra in cases:
             run_dir = out / f"scene_{name}_{search}_{motion}"
-            r = run_scene(scene, run_dir, [f"/patient/brain.file={spec}", f"/patient/brain.search={search}"] + extra)
+            place = [x for x in ATLAS_SETTINGS if scene == WAVE or "/tool/" in x] if name == "Atlas" else []
+            r = run_scene(scene, run_dir, [f"/patient/brain.file={spec}", f"/patient/brain.search={search}"] + extra + place)
             h = r["summary"]["haptics"]
             brain = r["summary"]["components"]["/patient/brain"]["counters"]
             row = {"mesh": name, "tetrahedra": int(brain["tetrahedra"]), "search": search, "motion": motion,
@@ -198,14 +211,14 @@ def scene_experiment(out, quick, plt):
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
-    for family in ("Cube", "Brain"):
+    for family in ("Cube", "Brain"):  # (the atlas is drawn with the brains)
         keys = [k for k in series if any(m.startswith(family) for m in series[k])]
         if not keys:
             continue
         fig, axes = plt.subplots(len(keys), 1, figsize=(9, 2.2 * len(keys)), sharex=True)
         for a, key in zip(axes, keys):
             for name, values in series[key].items():
-                if name.startswith(family):
+                if name.startswith(family) or (family == "Brain" and name == "Atlas"):
                     a.plot(values, lw=0.5, label=name)
             a.set_yscale("log")
             a.set_ylabel("us")
@@ -228,12 +241,15 @@ def force_steps(trace):
 
 def paths_experiment(out, quick, plt):
     meshes = [BRAINS[0]] if quick else BRAINS[1:4]
+    if not quick and ATLAS.exists():
+        meshes.append(("Atlas", str(ATLAS)))
     paths = PATHS[:1] if quick else PATHS
     rows, traces = [], {}
     for (name, spec) in meshes:
         for label, path in paths:
             run_dir = out / f"path_{name}_{label}"
-            r = run_scene(BRAIN_SCENE, run_dir, [f"/patient/brain.file={spec}", f"/tool/device.path={path}"])
+            place = ATLAS_SETTINGS[:1] if name == "Atlas" else []
+            r = run_scene(BRAIN_SCENE, run_dir, [f"/patient/brain.file={spec}", f"/tool/device.path={path}"] + place)
             h = r["summary"]["haptics"]
             steps = force_steps(r["trace"])
             contact = [float(t["penetration"]) for t in r["trace"] if int(t["contacts"]) > 0]
@@ -296,7 +312,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--out", default=str(ROOT / "runs/bench_brain"))
-    parser.add_argument("--skip-split", action="store_true", help="do not run the split benchmark")
+    parser.add_argument("--reuse-split", action="store_true",
+                        help="draw the split from DIR/tet_collision.json of an earlier run instead of running it")
     parser.add_argument("--only", choices=["split", "scene", "paths"], help="run one experiment")
     args = parser.parse_args()
     ensure_matplotlib()
@@ -306,8 +323,8 @@ def main():
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    if not args.skip_split and args.only in (None, "split"):
-        split_experiment(out, args.quick, plt)
+    if args.only in (None, "split"):
+        split_experiment(out, args.quick, plt, rerun=not args.reuse_split)
     if args.only in (None, "scene"):
         scene_experiment(out, args.quick, plt)
     if args.only in (None, "paths"):

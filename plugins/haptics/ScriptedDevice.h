@@ -62,7 +62,9 @@ class ScriptedDevice final : public HapticDevice {
                             "tipOffset",
                             0.0,
                             {.help = "Distance from the device point to the tool surface along the approach (the "
-                                     "radius for a sphere tool centred on the device), so depths are the tool's",
+                                     "radius for a sphere tool centred on the device), so depths are the tool's; "
+                                     "paths are aimed where a sphere of this radius first touches the target, not "
+                                     "where the approach ray does (a slot narrower than the tool holds it at the rims)",
                              .unit = "mm",
                              .min = 0.0}};
   Field<double> d_speed{

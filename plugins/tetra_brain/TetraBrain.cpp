@@ -138,7 +138,16 @@ Box3 TetraBrain::currentBox(int32_t tet) const {
 void TetraBrain::refresh() {
   if (!m_positions || !m_positions->fetch()) return;
   const NodePositions& frame = m_positions->read();
-  if (frame.positions.size() != m_mesh.nodeCount()) return;  // refused at the deformer's init; never here
+  if (frame.positions.size() != m_mesh.nodeCount()) {
+    // Not this mesh's nodes (a faulty deformation). The slot of the last good
+    // shape went back to the writer with this fetch, so the rest shape it is.
+    ++m_rejectedFrames;
+    m_nodes = m_mesh.nodes.data();
+    m_displacementBound = m_queryGrowth = 0;
+    m_bounds = m_restBounds;
+    if (!d_search.is("grid")) m_tetBoxes = m_restBoxes;  // same size: no allocation
+    return;
+  }
   const bool skipped = frame.step != m_lastStep + 1;  // a step in between was not seen: its moves are unknown
   m_lastStep = frame.step;
   m_nodes = frame.positions.data();
@@ -214,6 +223,7 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
     counters.push_back({"displacement_margin_mm", m_margin});
     counters.push_back({"largest_displacement_bound_mm", m_largestBound});
     counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
+    if (m_rejectedFrames) counters.push_back({"rejected_position_frames", double(m_rejectedFrames)});
     if (!d_search.is("grid")) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
   }
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});

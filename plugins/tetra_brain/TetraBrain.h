@@ -188,7 +188,7 @@ class TetraBrain final : public Component, public ShellContactTarget {
   std::vector<uint32_t> m_nodeTetStart;  // node -> tets (compressed rows), for boxRefresh="moved"
   std::vector<int32_t> m_nodeTets;
   std::vector<uint8_t> m_tetMarked;
-  uint64_t m_deformationFrames = 0, m_framesBeyondMargin = 0, m_refreshedBoxes = 0;
+  uint64_t m_deformationFrames = 0, m_framesBeyondMargin = 0, m_refreshedBoxes = 0, m_rejectedFrames = 0;
   double m_largestBound = 0;
 
   // Reaction forces on the nodes (computed only when a component reads them).

@@ -173,5 +173,46 @@ TEST(ScriptedDeviceTest, ReportsMalformedWaypoints) {
       << test::messages(d);
 }
 
+TEST(ScriptedDeviceTest, AimsTheToolsSphereNotItsAxisAtASlotNarrowerThanTheTool) {
+  // A 20 x 20 x 10 mm bone block (0.5 mm voxels) with a 3 mm slot, 5 mm deep,
+  // across its top (isosurface walls at x = 8.25 and 11.25 mm). Aimed down the
+  // middle of the slot, a ray reaches its floor, but the 2.5 mm sphere rests
+  // on the rims: its centre 2 mm above the top (sqrt(2.5^2 - 1.5^2)). The
+  // axis ray alone would press it to 6.75 mm, into the slot.
+  test::TempDir dir;
+  std::string voxels;
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 40; ++x) {
+        const bool slot = x >= 17 && x < 23 && z >= 10;
+        const int16_t value = slot ? 0 : 1000;
+        voxels.append(reinterpret_cast<const char*>(&value), 2);
+      }
+  dir.write("slot.raw", voxels);
+  const auto header = dir.write("slot.mhd",
+                                "ObjectType = Image\nNDims = 3\nDimSize = 40 40 20\nElementSpacing = 0.5 0.5 0.5\n"
+                                "ElementType = MET_SHORT\nElementByteOrderMSB = False\nElementDataFile = slot.raw\n");
+  Diagnostics d;
+  auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <VoxelSkull name="block" file=")" + header.string() + R"(" isovalue="500" drill="false"/>
+  <ScriptedDevice name="device" target="@block" tipOffset="2.5" center="9.75 10 0" direction="0 0 -1"
+                  path="approach-press-slide" depth="0.5" slideDistance="0" rate="1000"/>
+  <PointshellTool name="burr" radius="2.5" pointCount="466" device="@device"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@block" sweep="cylinder" rate="1000"/>
+  <ForceFeedback name="force" proxy="@proxy" stiffness="2" rate="1000"/>
+</Node>)",
+                                    d);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  const HapticFrameLog& log = simulation->hapticLog();
+  double lowest = 1e9;
+  for (size_t i = 0; i < log.size(); ++i) lowest = std::min(lowest, log[i].device.z());
+  // The block's top is at about 9.75 mm (the isosurface half a voxel above the last bone centre).
+  // 0.2 mm lower here: the smooth isosurface rounds the rims (and the aim may sit 0.05 mm low).
+  EXPECT_NEAR(lowest, 9.75 + 2.0 - 0.5, 0.3) << "pressed 0.5 mm onto the rims, not into the slot";
+}
+
 }  // namespace
 }  // namespace trephine

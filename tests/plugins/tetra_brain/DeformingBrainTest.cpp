@@ -106,6 +106,25 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
   }
 }
 
+TEST(DeformingBrainTest, PositionsOfAnotherSizeAreIgnoredAndCounted) {
+  FollowingBrain following(7);
+  const std::vector<Vec3> rest = following.brain.mesh().nodes;
+  following.moveTo(waved(rest, 1.0, 0.3), 1.0);
+  EXPECT_NE(following.brain.node(5), rest[5]);
+  following.moveTo(std::vector<Vec3>(rest.size() - 1, Vec3::Zero()), 1.0);
+  EXPECT_EQ(following.brain.node(5), rest[5]) << "back to the rest shape, never a slot the writer owns";
+  std::vector<Counter> counters;
+  following.brain.reportCounters(counters);
+  bool reported = false;
+  for (const Counter& k : counters) {
+    if (k.name == "rejected_position_frames") {
+      EXPECT_EQ(k.value, 1.0);
+      reported = true;
+    }
+  }
+  EXPECT_TRUE(reported);
+}
+
 TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   ChannelHub hub;
   TetraBrain brain;
