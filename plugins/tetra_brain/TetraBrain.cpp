@@ -42,9 +42,9 @@ std::optional<std::string> TetraBrain::followDeformation(const Component& deform
   if (m_positions) return std::string("another component already deforms ") + path();
   m_positions = channels.subscribe<NodePositions>(deformer, kNodePositionsChannel);
   // Auto margin: a quarter of the average edge. Each cell then lists about
-  // (1.5 + 0.5)^3 / 1.5^3 = 2.4 times the tets of the rigid mesh (cells of half
-  // an edge, boxes of about an edge), and the frame costs about 1.5 times as
-  // much; a full edge would cost 10 times (measured on the Brain3 phantom).
+  // (1.5 + 0.5)^3 / 1.5^3 = 2.4 times the tets of a rigid mesh (cells of half
+  // an edge, boxes of about an edge); with every node moving, a frame costs 1
+  // to 2.6 times the rigid one (docs/results.md). A full edge lists about 13 times.
   m_margin = d_displacementMargin.value() > 0 ? d_displacementMargin.value() : 0.25 * m_averageEdge;
   buildAccelerations();
   if (!d_search.is("grid") && d_boxRefresh.is("moved")) {
