@@ -14,32 +14,21 @@ configuration: penetration error mean/p95/max in mm, normal error mean/p95/max
 in degrees, proxy time p50/p99 in us) and DIR/accuracy.png.
 """
 import argparse
-import csv
 import itertools
-import json
 import math
-import os
 import subprocess
-import sys
 from collections import defaultdict
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from bench_common import PROGRAM, ROOT, ensure_matplotlib, percentile, read_rows, write_rows
+
 SCENE = ROOT / "scenes/bench/rigid_halfspace_accuracy.xml"
-PROGRAM = ROOT / "build/bin/trephine"
 RADIUS = 2.5  # mm, the burr of the scene
 PLANE = (0.3, 0.2, 0.93)
 # Collision variants: (name, VoxelSkull surface, VoxelSkull penetration)
 VARIANTS = [("thesis: voxels + Algorithm 1", "voxels", "algorithm1"),
             ("voxels + deepest point", "voxels", "deepest-point"),
             ("smooth + deepest point", "smooth", "deepest-point")]
-
-
-def percentile(values, q):
-    ordered = sorted(values)
-    if not ordered:
-        return float("nan")
-    return ordered[min(len(ordered), max(1, math.ceil(q * len(ordered)))) - 1]
 
 
 def measure(voxel, points, variant, out):
@@ -54,20 +43,18 @@ def measure(voxel, points, variant, out):
     norm = math.sqrt(sum(c * c for c in PLANE))
     n = [c / norm for c in PLANE]
     depth_errors, angle_errors = [], []
-    with open(run_dir / "trace.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            centre = [float(row[f"device_{a}"]) for a in "xyz"]
-            exact = RADIUS - sum(a * b for a, b in zip(n, centre))
-            if exact < 0.05:
-                continue
-            depth_errors.append(abs(float(row["penetration"]) - exact))
-            measured = [float(row[f"normal_{a}"]) for a in "xyz"]
-            cosine = max(-1.0, min(1.0, sum(a * b for a, b in zip(n, measured))))
-            angle_errors.append(math.degrees(math.acos(cosine)))
+    for row in read_rows(run_dir / "trace.csv"):
+        centre = [float(row[f"device_{a}"]) for a in "xyz"]
+        exact = RADIUS - sum(a * b for a, b in zip(n, centre))
+        if exact < 0.05:
+            continue
+        depth_errors.append(abs(float(row["penetration"]) - exact))
+        measured = [float(row[f"normal_{a}"]) for a in "xyz"]
+        cosine = max(-1.0, min(1.0, sum(a * b for a, b in zip(n, measured))))
+        angle_errors.append(math.degrees(math.acos(cosine)))
     times = defaultdict(list)
-    with open(run_dir / "timings.csv", newline="") as f:
-        for row in csv.DictReader(f):
-            times[row["component"]].append(float(row["duration_us"]))
+    for row in read_rows(run_dir / "timings.csv"):
+        times[row["component"]].append(float(row["duration_us"]))
     proxy = times["/tool/proxy"]
     return {"variant": name, "voxel_mm": voxel, "shell_points": points, "frames": len(depth_errors),
             "depth_err_mean_mm": sum(depth_errors) / max(1, len(depth_errors)),
@@ -82,13 +69,7 @@ def main():
     parser.add_argument("--quick", action="store_true", help="one voxel size and shell only (smoke test)")
     parser.add_argument("--out", default=str(ROOT / "runs/accuracy_rigid"))
     args = parser.parse_args()
-    try:
-        import matplotlib
-    except ImportError:
-        # Another python3 earlier on PATH may lack Debian's matplotlib (tools/setup installs it).
-        if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
-            os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
-        sys.exit("accuracy_rigid.py: matplotlib is missing; install python3-matplotlib")
+    plt = ensure_matplotlib("accuracy_rigid.py")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     voxels = [1.0] if args.quick else [1.0, 0.5, 0.25]
@@ -101,12 +82,7 @@ def main():
               f"{row['depth_err_mean_mm']:.3f} p95 {row['depth_err_p95_mm']:.3f} max {row['depth_err_max_mm']:.3f} mm"
               f"  normal err mean {row['normal_err_mean_deg']:5.2f} p95 {row['normal_err_p95_deg']:5.2f} deg"
               f"  proxy p50 {row['proxy_p50_us']:6.2f} p99 {row['proxy_p99_us']:6.2f} us")
-    with open(out / "accuracy.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    write_rows(out / "accuracy.csv", rows)
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.5))
     for variant, marker in zip(VARIANTS, "osD"):
         chosen = [r for r in rows if r["variant"] == variant[0]]

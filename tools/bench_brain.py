@@ -23,16 +23,14 @@ usage: tools/bench_brain.py [--quick] [--out DIR] [--only split|scene|paths] [--
 --quick keeps Cube1 and Brain1 and path 1 (a smoke test).
 """
 import argparse
-import csv
 import json
-import os
 import subprocess
 import sys
 from collections import defaultdict
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-PROGRAM = ROOT / "build/bin/trephine"
+from bench_common import ROOT, ensure_matplotlib, force_steps, percentile, run_scene, write_rows
+
 SPLIT_BENCHMARK = ROOT / "build/bin/tet_collision_benchmark"
 CIRCLE = ROOT / "scenes/bench/tet_circle.xml"
 WAVE = ROOT / "scenes/bench/tet_wave_circle.xml"
@@ -49,46 +47,6 @@ ATLAS = ROOT.parent / "shared/data/brain_tetmesh_mmc_head_atlas/brain_gm_wm.node
 ATLAS_SETTINGS = ["/tool/device.center=111 96 180", "/patient/wave.center=111 96 190"]
 SEARCHES = ["grid", "first-tetrahedron", "previous-contact"]
 PATHS = [("path1", "circle"), ("path2", "random-walk"), ("path3", "pokes")]
-
-
-def ensure_matplotlib():
-    try:
-        import matplotlib  # noqa: F401
-    except ImportError:
-        if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
-            os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
-        sys.exit("bench_brain.py: matplotlib is missing; install python3-matplotlib")
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def percentile(values, q):
-    ordered = sorted(values)
-    if not ordered:
-        return 0.0
-    rank = max(1, int(-(-q * len(ordered) // 1)))
-    return ordered[min(rank, len(ordered)) - 1]
-
-
-def run_scene(scene, run_dir, settings):
-    command = [str(PROGRAM), "run", str(scene), "--quiet", "--out", str(run_dir)]
-    for s in settings:
-        command += ["--set", s]
-    subprocess.run(command, check=True)
-    summary = json.loads((run_dir / "summary.json").read_text())
-    per_call = defaultdict(dict)
-    for row in read_rows(run_dir / "timings.csv"):
-        per_call[row["component"]][int(row["call"])] = float(row["duration_us"])
-    proxy = per_call["/tool/proxy"]
-    frames = sorted(proxy)
-    # The haptic step: device, proxy (the collision) and force; the wave's own
-    # work (it publishes every node) is the deformation's, not the collision's.
-    step = [sum(per_call[c].get(i, 0.0) for c in ("/tool/device", "/tool/proxy", "/tool/force")) for i in frames]
-    return {"summary": summary, "trace": read_rows(run_dir / "trace.csv"), "proxy_us": [proxy[i] for i in frames],
-            "step_us": step, "deformation_us": list(per_call.get("/patient/wave", {}).values())}
 
 
 def split_experiment(out, quick, plt, rerun):
@@ -112,10 +70,7 @@ def split_experiment(out, quick, plt, rerun):
             for stat in ("p50", "p99", "max"):
                 row[f"{part}_{stat}_us"] = round(b[f"{part}_{stat}_us"], 3)
         rows.append(row)
-    with open(out / "tet_split.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out / "tet_split.csv", rows)
     context = data.get("context", {})
     print(f"split: {len(rows)} cases on {context.get('num_cpus')} x {context.get('mhz_per_cpu')} MHz -> {out / 'tet_split.csv'}")
 
@@ -200,17 +155,16 @@ def scene_experiment(out, quick, plt):
                    "proxy_max_us": max(r["proxy_us"]), "step_p50_us": percentile(r["step_us"], 0.5),
                    "step_p99_us": percentile(r["step_us"], 0.99), "step_max_us": max(r["step_us"]),
                    "frames_over_1ms": sum(1 for s in r["step_us"] if s > 1000.0),
-                   "deformation_p50_us": percentile(r["deformation_us"], 0.5) if r["deformation_us"] else 0.0,
+                   # The wave's own tick (it publishes every node): the deformation's cost, not the collision's.
+                   "deformation_p50_us": percentile(list(r["per_call"].get("/patient/wave", {}).values()), 0.5)
+                   if "/patient/wave" in r["per_call"] else 0.0,
                    "contact_frames": h["contact_frames"], "force_step_max_N": h["force_step_N"]["max"],
                    "nan_frames": h["nan_frames"], "proxy_inside_frames": h["proxy_inside_frames"]}
             rows.append(row)
             series[(motion, search)][name] = r["proxy_us"]
             print(f"{name:7s} {motion:5s} {search:17s} step p50 {row['step_p50_us']:8.2f} us  p99 "
                   f"{row['step_p99_us']:8.2f}  max {row['step_max_us']:9.1f}  over 1 ms {row['frames_over_1ms']}")
-    with open(out / "tet_scene.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out / "tet_scene.csv", rows)
     for family in ("Cube", "Brain"):  # (the atlas is drawn with the brains)
         keys = [k for k in series if any(m.startswith(family) for m in series[k])]
         if not keys:
@@ -229,14 +183,6 @@ def scene_experiment(out, quick, plt):
         fig.tight_layout()
         fig.savefig(out / f"tet_frames_{family.lower()}.png", dpi=110)
         plt.close(fig)
-
-
-def force_steps(trace):
-    steps = [0.0]
-    for i in range(1, len(trace)):
-        d = [float(trace[i][k]) - float(trace[i - 1][k]) for k in ("force_x", "force_y", "force_z")]
-        steps.append(sum(v * v for v in d) ** 0.5)
-    return steps
 
 
 def paths_experiment(out, quick, plt):
@@ -263,10 +209,7 @@ def paths_experiment(out, quick, plt):
             traces[(name, label)] = r["trace"]
             print(f"{name:7s} {label} dF p99 {rows[-1]['force_step_p99_N']:.4f} N  max {rows[-1]['force_step_max_N']:.4f}"
                   f"  |F| max {rows[-1]['force_max_N']:.3f}  NaN {rows[-1]['nan_frames']}")
-    with open(out / "tet_paths.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out / "tet_paths.csv", rows)
     shown = "Brain3" if not quick else meshes[0][0]
     for label, path in paths:
         trace = traces[(shown, label)]
@@ -316,10 +259,7 @@ def main():
                         help="draw the split from DIR/tet_collision.json of an earlier run instead of running it")
     parser.add_argument("--only", choices=["split", "scene", "paths"], help="run one experiment")
     args = parser.parse_args()
-    ensure_matplotlib()
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = ensure_matplotlib("bench_brain.py")
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

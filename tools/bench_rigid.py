@@ -17,18 +17,13 @@ penetration, force and change of force per frame, Fig. 3.17 to 3.26).
 --quick runs two small models only (a smoke test).
 """
 import argparse
-import csv
 import itertools
-import json
-import os
-import subprocess
 import sys
-from collections import defaultdict
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from bench_common import ROOT, ensure_matplotlib, force_steps, percentile, run_scene, write_rows
+
 SCENE = ROOT / "scenes/bench/rigid_circle.xml"
-PROGRAM = ROOT / "build/bin/trephine"
 DEFAULT_CT = ROOT.parent / "shared/data/ct_head_vtk_headsq/quarter.nhdr"
 
 CUBES = [("Cube100", "phantom:cube?voxels=100"), ("Cube200", "phantom:cube?voxels=200"),
@@ -39,44 +34,10 @@ SKULLS = [("Skull1", "phantom:skull?voxel=1.5"), ("Skull2", "phantom:skull?voxel
           ("Skull5", "phantom:skull?voxel=0.5")]
 
 
-def ensure_matplotlib():
-    try:
-        import matplotlib  # noqa: F401
-    except ImportError:
-        if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
-            os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
-        sys.exit("bench_rigid.py: matplotlib is missing; install python3-matplotlib")
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
 def run(name, task, surface, settings, out):
-    run_dir = out / f"{name}_{task}_{surface}"
-    command = [str(PROGRAM), "run", str(SCENE), "--quiet", "--out", str(run_dir)]
-    for s in settings + [f"/patient/skull.drill={'true' if task == 'drill' else 'false'}",
-                         f"/patient/skull.surface={surface}"]:
-        command += ["--set", s]
-    subprocess.run(command, check=True)
-    summary = json.loads((run_dir / "summary.json").read_text())
-    trace = read_rows(run_dir / "trace.csv")
-    per_call = defaultdict(dict)
-    for row in read_rows(run_dir / "timings.csv"):
-        per_call[row["component"]][int(row["call"])] = float(row["duration_us"])
-    proxy = per_call["/tool/proxy"]
-    frames = sorted(proxy)
-    step = [sum(per_call[c].get(i, 0.0) for c in ("/tool/device", "/tool/proxy", "/tool/force")) for i in frames]
-    return {"summary": summary, "trace": trace, "proxy_us": [proxy[i] for i in frames], "step_us": step}
-
-
-def percentile(values, q):
-    ordered = sorted(values)
-    if not ordered:
-        return 0.0
-    rank = max(1, int(-(-q * len(ordered) // 1)))
-    return ordered[min(rank, len(ordered)) - 1]
+    return run_scene(SCENE, out / f"{name}_{task}_{surface}",
+                     settings + [f"/patient/skull.drill={'true' if task == 'drill' else 'false'}",
+                                 f"/patient/skull.surface={surface}"])
 
 
 def main():
@@ -86,10 +47,7 @@ def main():
     parser.add_argument("--ct", default=str(DEFAULT_CT))
     parser.add_argument("--surfaces", default="smooth,voxels")
     args = parser.parse_args()
-    ensure_matplotlib()
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = ensure_matplotlib("bench_rigid.py")
 
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -132,10 +90,7 @@ def main():
               f"  max {rows[-1]['step_max_us']:8.1f}  voxels<= {rows[-1]['max_colliding_voxels']:4d}"
               f"  |F|max {rows[-1]['force_max_N']:.2f} N  dF max {rows[-1]['force_step_max_N']:.3f} N"
               f"  inside {rows[-1]['proxy_inside_frames']}")
-    with open(out / "rigid.csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(out / "rigid.csv", rows)
 
     for family, surface, task in itertools.product(("cube", "skull", "ct"), surfaces, ("touch", "drill")):
         chosen = [(n, r) for (n, t, sf), (fam, r) in results.items() if fam == family and t == task and sf == surface]
@@ -173,11 +128,7 @@ def main():
                  for x in r["trace"]]
         axes[2].plot(t, force, lw=0.6)
         axes[2].set_ylabel("|F| (N)")
-        steps = [0.0]
-        for i in range(1, len(r["trace"])):
-            d = [float(r["trace"][i][k]) - float(r["trace"][i - 1][k]) for k in ("force_x", "force_y", "force_z")]
-            steps.append(sum(v * v for v in d) ** 0.5)
-        axes[3].plot(t, steps, lw=0.6)
+        axes[3].plot(t, force_steps(r["trace"]), lw=0.6)
         axes[3].set_ylabel("|F_k - F_k-1| (N)")
         axes[3].set_xlabel("t (s)")
         axes[0].set_title(f"force parameters, {force_model}, {surface} surface, {task}")

@@ -1,70 +1,18 @@
 #include "plugins/tetra_brain/io/MeditWriter.h"
 
-#include <unistd.h>
 #include <zlib.h>
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <string_view>
-#include <system_error>
 
 namespace trephine::tetra {
-
-TetMeshWriteError::TetMeshWriteError(const std::filesystem::path& file, const std::string& problem)
-    : std::runtime_error(file.string() + ": " + problem) {}
 
 namespace {
 
 // Text is handed to the file (or to zlib) in pieces of about this size, so a
 // million-tetrahedron mesh never exists twice in memory.
 constexpr size_t kFlushBytes = size_t(1) << 20;
-
-std::string systemError() { return std::strerror(errno); }
-
-// A file written through a temporary name in the same directory (so the
-// rename cannot cross file systems), renamed into place only once everything
-// is written and closed; removed if anything fails before that.
-class AtomicFile {
- public:
-  explicit AtomicFile(const std::filesystem::path& file)
-      : m_file(file), m_temporary(file.string() + ".partial-" + std::to_string(::getpid())) {
-    m_stream.open(m_temporary, std::ios::binary | std::ios::trunc);
-    if (!m_stream) throw TetMeshWriteError(m_file, "cannot create " + m_temporary.string() + ": " + systemError());
-  }
-  ~AtomicFile() {
-    if (m_committed) return;
-    m_stream.close();
-    std::error_code ignored;
-    std::filesystem::remove(m_temporary, ignored);
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-
-  const std::filesystem::path& path() const { return m_file; }
-
-  void write(const char* bytes, size_t size) {
-    m_stream.write(bytes, static_cast<std::streamsize>(size));
-    if (!m_stream) throw TetMeshWriteError(m_file, "write failed: " + systemError());
-  }
-
-  void commit() {
-    m_stream.close();
-    if (!m_stream) throw TetMeshWriteError(m_file, "write failed: " + systemError());
-    std::error_code error;
-    std::filesystem::rename(m_temporary, m_file, error);
-    if (error) throw TetMeshWriteError(m_file, "cannot rename the written file into place: " + error.message());
-    m_committed = true;
-  }
-
- private:
-  std::filesystem::path m_file;
-  std::filesystem::path m_temporary;
-  std::ofstream m_stream;
-  bool m_committed = false;
-};
 
 // Buffers text and passes it to the file, through a gzip stream when asked.
 class MeshTextOutput {

@@ -9,16 +9,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "framework/core/AtomicFile.h"
 #include "plugins/tetra_brain/TetMesh.h"
 
 namespace trephine::tetra {
 
 // A mesh that cannot be written: the message starts with the file, then says
 // what failed ("out/brain.mesh: cannot create ...: No such file or directory").
-class TetMeshWriteError : public std::runtime_error {
- public:
-  TetMeshWriteError(const std::filesystem::path& file, const std::string& problem);
-};
+using TetMeshWriteError = FileWriteError;
 
 // Writes `mesh` to `file`, gzip-compressed when the name ends in .gz. The file
 // is written under a temporary name in the same directory and renamed into

@@ -1,12 +1,10 @@
 #include "plugins/voxel_skull/io/VolumeWriter.h"
 
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <span>
@@ -15,9 +13,6 @@
 #include "framework/core/Strings.h"
 
 namespace trephine::voxel {
-
-VolumeWriteError::VolumeWriteError(const std::filesystem::path& file, const std::string& problem)
-    : std::runtime_error(file.string() + ": " + problem) {}
 
 namespace {
 
@@ -97,46 +92,6 @@ std::string headerText(const DensityVolume& volume, bool compressed, uint64_t co
   text += "ElementDataFile = " + dataFile + "\n";
   return text;
 }
-
-// Writes a file through a temporary name in the same directory, renamed into
-// place only once everything is written and closed.
-class AtomicFile {
- public:
-  explicit AtomicFile(const std::filesystem::path& file)
-      : m_file(file), m_temporary(file.string() + ".partial-" + std::to_string(::getpid())) {
-    m_stream.open(m_temporary, std::ios::binary | std::ios::trunc);
-    if (!m_stream)
-      throw VolumeWriteError(m_file, "cannot create " + m_temporary.string() + ": " + std::strerror(errno));
-  }
-  ~AtomicFile() {
-    if (m_committed) return;
-    m_stream.close();
-    std::error_code ignored;
-    std::filesystem::remove(m_temporary, ignored);
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-
-  void write(std::span<const uint8_t> bytes) {
-    m_stream.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!m_stream) throw VolumeWriteError(m_file, std::string("write failed: ") + std::strerror(errno));
-  }
-  void write(const std::string& text) { write(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size())); }
-  void commit() {
-    m_stream.close();
-    if (!m_stream) throw VolumeWriteError(m_file, std::string("write failed: ") + std::strerror(errno));
-    std::error_code error;
-    std::filesystem::rename(m_temporary, m_file, error);
-    if (error) throw VolumeWriteError(m_file, "cannot rename the written file into place: " + error.message());
-    m_committed = true;
-  }
-
- private:
-  std::filesystem::path m_file;
-  std::filesystem::path m_temporary;
-  std::ofstream m_stream;
-  bool m_committed = false;
-};
 
 }  // namespace
 

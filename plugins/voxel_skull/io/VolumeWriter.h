@@ -7,14 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "framework/core/AtomicFile.h"
 #include "plugins/voxel_skull/DensityVolume.h"
 
 namespace trephine::voxel {
 
-class VolumeWriteError : public std::runtime_error {
- public:
-  VolumeWriteError(const std::filesystem::path& file, const std::string& problem);
-};
+using VolumeWriteError = FileWriteError;  // the message starts with the file
 
 // `file` ending in .mha: one file (ElementDataFile = LOCAL); ending in .mhd:
 // the header plus <stem>.raw, or <stem>.zraw when `compress` (zlib). Each file

@@ -1,0 +1,44 @@
+#pragma once
+// A file written through a temporary name in the same directory (so the
+// rename cannot cross file systems) and renamed into place only once all of
+// it is written and closed: a failed write leaves neither a partial file nor
+// the temporary one. For outputs other tools read (volumes, meshes).
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+namespace trephine {
+
+// A file that cannot be written: the message starts with the file, then says
+// what failed ("out/brain.mesh: cannot create ...: No such file or directory").
+class FileWriteError : public std::runtime_error {
+ public:
+  FileWriteError(const std::filesystem::path& file, const std::string& problem);
+};
+
+class AtomicFile {
+ public:
+  // Opens the temporary file; throws FileWriteError when it cannot.
+  explicit AtomicFile(const std::filesystem::path& file);
+  ~AtomicFile();  // removes the temporary file unless committed
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  void write(const char* bytes, size_t size);
+  void write(std::span<const uint8_t> bytes) { write(reinterpret_cast<const char*>(bytes.data()), bytes.size()); }
+  void write(const std::string& text) { write(text.data(), text.size()); }
+  // Closes the temporary file and renames it to the final name.
+  void commit();
+  const std::filesystem::path& path() const { return m_file; }
+
+ private:
+  std::filesystem::path m_file;
+  std::filesystem::path m_temporary;
+  std::ofstream m_stream;
+  bool m_committed = false;
+};
+
+}  // namespace trephine
