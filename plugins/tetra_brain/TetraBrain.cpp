@@ -214,6 +214,8 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"average_edge_mm", m_averageEdge});
   counters.push_back({"cell_size_mm", m_tetGrid.cellSide()});
   counters.push_back({"grid_cells", double(m_tetGrid.cellCount())});
+  // Memory of the tetrahedron grid: 4 bytes per entry and per cell.
+  counters.push_back({"grid_entries", double(m_tetGrid.entryCount())});
   counters.push_back({"contact_frames", double(m_contactFrames)});
   counters.push_back({"max_colliding_tetrahedra", double(m_maxCollidingTets)});
   counters.push_back({"deep_fallbacks", double(m_deepFallbacks)});
