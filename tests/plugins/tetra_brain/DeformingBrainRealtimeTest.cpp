@@ -1,0 +1,46 @@
+// A deforming brain in real time: the deformation runs in its own rate group
+// (its own thread) and the haptic group reads the node positions it publishes
+// through the channel. Run under ThreadSanitizer in CI (label "threaded"): a
+// haptic frame reading a slot the deformation is writing would be reported.
+#include <gtest/gtest.h>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcrossThreads) {
+  SimulationOptions options;
+  options.realtime = true;
+  options.duration = 1.0;  // s
+  Diagnostics d;
+  auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file="phantom:cube?cells=13"/>
+    <ScriptedDeformation name="wave" mesh="@brain" amplitude="1" center="5 5 100" period="0.25" rate="250"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
+                    tipOffset="2.5" standoff="3" depth="2" speed="40" rate="1000"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)",
+                                    d, options);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  ASSERT_EQ(simulation->scheduler().groups().size(), 2u) << "a haptic thread and a deformation thread";
+  simulation->run();
+  EXPECT_TRUE(simulation->complete()) << simulation->incompleteReason();
+  const HapticStats s = simulation->hapticLog().stats();
+  EXPECT_EQ(s.nanFrames, 0u);
+  EXPECT_GT(s.contactFrames, 50u);
+  // The brain took new shapes from the other thread (about 250 of them; fewer
+  // if the machine stalls).
+  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 100.0);
+}
+
+}  // namespace
+}  // namespace trephine
