@@ -8,6 +8,10 @@
 namespace trephine::tetra {
 
 void ScriptedDeformation::init(InitContext& context) {
+  // A field the shape does not read would be silently ignored: refuse it.
+  if (d_shape.is("wave") && d_radius.isSet()) context.error(d_radius, "has no effect with shape=\"wave\" (bump only)");
+  if (d_shape.is("bump") && d_wavelength.isSet())
+    context.error(d_wavelength, "has no effect with shape=\"bump\" (wave only)");
   const double length = d_direction.value().norm();
   if (!(length > 0) || !std::isfinite(length)) {
     context.error(d_direction, "the direction must be a non-zero vector");

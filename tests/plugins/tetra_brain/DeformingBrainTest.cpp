@@ -197,6 +197,15 @@ TEST(DeformingBrainTest, ASecondDeformationOfOneMeshIsRefusedAtItsLink) {
   EXPECT_NE(text.find("already deforms"), std::string::npos) << text;
 }
 
+TEST(DeformingBrainTest, ADeformationRefusesAZeroDirectionAndFieldsItsShapeIgnores) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(
+      deformingScene("", R"(<ScriptedDeformation name="a" mesh="@brain" direction="0 0 0" radius="3" rate="1000"/>)"), d));
+  const std::string text = test::messages(d);
+  EXPECT_NE(text.find("direction must be a non-zero vector"), std::string::npos) << text;
+  EXPECT_NE(text.find("has no effect with shape=\"wave\""), std::string::npos) << text;
+}
+
 TEST(DeformingBrainTest, BoxRefreshWithTheGridSearchIsAnError) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(deformingScene(R"(boxRefresh="moved")", ""), d));
