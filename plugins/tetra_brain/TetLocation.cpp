@@ -97,6 +97,11 @@ std::array<double, 4> TetraBrain::barycentric(int32_t tet, const Vec3& p) const 
 }
 
 size_t TetraBrain::findHits(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  if (shell.size() > m_hits.size()) {  // working memory is sized by reserveShell()
+    ++m_unreservedShellCalls;
+    m_lastHits = 0;
+    return 0;
+  }
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
   if (d_search.is("grid")) {

@@ -2,11 +2,12 @@
 // A brain as a tetrahedral mesh, touched by a pointshell tool (thesis chapter
 // 4). Shell points are located in tetrahedra through a uniform grid of cells
 // listing the tetrahedra whose boxes overlap them, so the cost of a frame
-// depends on the tool's neighbourhood, not on the size of the mesh. The
-// contact normal averages the outward normals of the boundary faces of the
-// colliding tetrahedra; the penetration is the deepest colliding point below
-// those faces (Algorithm 2), or below the nearest boundary face when its
-// tetrahedra have none (the tool deep in the mesh).
+// depends on the tool's neighbourhood, not on the size of the mesh. Normal and
+// penetration come from the boundary faces: each colliding point measures to
+// the nearest one (its tetrahedron's, the ones around its nodes, else the
+// mesh's), or, as the thesis's Algorithm 2, the normals of the colliding
+// tetrahedra's boundary faces are averaged and the deepest point below them
+// gives the penetration.
 //
 // A deformation component may move the nodes (followDeformation): the grids
 // stay those of the rest shape, with every box grown by a displacement margin,
@@ -60,8 +61,8 @@ class TetraBrain final : public Component, public ShellContactTarget {
   double displacementMargin() const { return m_margin; }  // mm
 
   // The search step of collide(), alone (benchmarks split the frame with it):
-  // the colliding shell points and their tets; returns how many. The shell
-  // must have been reserved.
+  // the colliding shell points and their tets; returns how many (0 for a shell
+  // larger than any reserved).
   size_t findHits(const Pose& X_WT, std::span<const ShellPoint> shell);
   // The rest of collide(): contact normal and penetration of the hits the last
   // findHits() found (`hits` is what it returned).
