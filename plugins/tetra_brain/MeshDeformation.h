@@ -33,8 +33,10 @@ struct NodeForce {
 
 struct NodeForces {
   double t = 0;                // s, haptic frame that produced them
-  uint32_t count = 0;          // entries of `forces` in use
-  std::vector<NodeForce> forces;  // fixed capacity: 4 nodes per shell point
+  // One entry per node the contact touches. The publisher's channel slots are
+  // reserved at 4 nodes per shell point, so a copy never allocates and costs
+  // only the entries in use.
+  std::vector<NodeForce> forces;
 };
 
 }  // namespace trephine::tetra

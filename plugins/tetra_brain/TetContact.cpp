@@ -225,6 +225,8 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   if (m_nodeSlot.empty() || m_lastHits == 0 || !forceOnTarget_N.allFinite()) return;
   double depthSum = 0;
   for (size_t h = 0; h < m_lastHits; ++h) depthSum += m_depths[h];
+  std::vector<NodeForce>& forces = m_nodeForceValue.forces;
+  forces.resize(4 * m_lastHits);  // within the capacity reserveShell() gave it: no allocation
   uint32_t count = 0;
   for (size_t h = 0; h < m_lastHits; ++h) {
     const double share = depthSum > 0 ? m_depths[h] / depthSum : 1.0 / double(m_lastHits);
@@ -236,13 +238,13 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
       int32_t& slot = m_nodeSlot[k[i]];
       if (slot < 0) {
         slot = int32_t(count++);
-        m_nodeForceValue.forces[slot] = {k[i], Vec3::Zero()};
+        forces[slot] = {k[i], Vec3::Zero()};
       }
-      m_nodeForceValue.forces[slot].force += (share * w[i]) * forceOnTarget_N;
+      forces[slot].force += (share * w[i]) * forceOnTarget_N;
     }
   }
-  for (uint32_t i = 0; i < count; ++i) m_nodeSlot[m_nodeForceValue.forces[i].node] = -1;
-  m_nodeForceValue.count = count;
+  forces.resize(count);
+  for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
   m_nodeForceValue.t = t;
   m_nodeForces->publish(m_nodeForceValue);
 }

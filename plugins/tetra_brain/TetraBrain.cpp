@@ -35,7 +35,17 @@ void TetraBrain::init(InitContext& context) {
 
 void TetraBrain::connectChannels(ChannelHub& channels) {
   m_nodeForces = &channels.publish<NodeForces>(*this, kNodeForcesChannel);
-  if (!m_nodeForceValue.forces.empty()) m_nodeForces->reserve(m_nodeForceValue);
+  reserveNodeForces(m_nodeForceValue.forces.capacity());
+}
+
+void TetraBrain::reserveNodeForces(size_t entries) {
+  // Every slot of the channel, and the value filled each frame, hold as many
+  // entries as a frame can need: publishing then never allocates.
+  if (entries > m_nodeForceValue.forces.capacity()) m_nodeForceValue.forces.reserve(entries);
+  if (!m_nodeForces || entries == 0) return;
+  NodeForces prototype;
+  prototype.forces.resize(m_nodeForceValue.forces.capacity());
+  m_nodeForces->reserve(prototype);
 }
 
 std::optional<std::string> TetraBrain::followDeformation(const Component& deformer, ChannelHub& channels) {
@@ -186,10 +196,7 @@ void TetraBrain::refreshBoxes(const NodePositions& frame, bool all) {
 
 void TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
   m_candidates.resize(1 + 4 + 12);  // a tet, its 4 neighbours, their 12 others
-  if (m_nodeForceValue.forces.size() < 4 * shell.size()) {
-    m_nodeForceValue.forces.resize(4 * shell.size());
-    if (m_nodeForces) m_nodeForces->reserve(m_nodeForceValue);  // publishing copies into slots this large
-  }
+  if (m_nodeForceValue.forces.capacity() < 4 * shell.size()) reserveNodeForces(4 * shell.size());
   if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) m_shells.push_back(shell.data());
   if (m_hits.size() < shell.size()) {
     m_hits.resize(shell.size());

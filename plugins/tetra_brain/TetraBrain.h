@@ -88,6 +88,7 @@ class TetraBrain final : public Component, public ShellContactTarget {
 
  private:
   void buildAccelerations();
+  void reserveNodeForces(size_t entries);
   void refreshBoxes(const NodePositions& frame, bool all);
   Box3 currentBox(int32_t tet) const;
   // Barycentric coordinates of p in a tet (current nodes).
