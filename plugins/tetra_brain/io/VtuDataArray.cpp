@@ -141,10 +141,9 @@ class ArrayDecoder {
     for (uint64_t b = 0; b < blocks; ++b) {
       const uint64_t size = headerValue(decoded, size_t(3 + b));
       const uint64_t outSize = b + 1 == blocks ? last : blockSize;
-      std::string problem;
-      if (!inflateExactly(std::string_view(decoded).substr(size_t(offset), size_t(size)),
-                          std::span<char>(out.data() + produced, size_t(outSize)), problem))
-        fail("compressed block " + std::to_string(b) + ": " + problem);
+      const std::span<const uint8_t> block(reinterpret_cast<const uint8_t*>(decoded.data()) + offset, size_t(size));
+      if (auto problem = inflateExactly(block, {reinterpret_cast<uint8_t*>(out.data()) + produced, size_t(outSize)}))
+        fail("compressed block " + std::to_string(b) + ": " + *problem);
       offset += size;
       produced += outSize;
     }
