@@ -2,36 +2,20 @@
 // scene runs and check they do not grow with the number of frames.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
+#include "tests/support/AllocationCounter.h"
 #include "tests/support/TestSupport.h"
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<size_t> g_allocations{0};
-}  // namespace
-
-// Replacements of the global allocation functions for this test program only.
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-// These replacements pair with the malloc in operator new above; GCC cannot see
-// that and warns about free() on memory from new.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace trephine {
 namespace {
+
+TEST(NoAllocationTest, TheCounterSeesAnAllocation) {
+  // Without this, a counter that never counts would pass every test below.
+  test::startCountingAllocations();
+  auto* volatile value = new int(7);
+  const size_t counted = test::stopCountingAllocations();
+  delete value;
+  EXPECT_EQ(counted, 1u);
+}
 
 size_t allocationsDuringRun(const char* scene, double durationS) {
   Diagnostics d;
@@ -40,12 +24,11 @@ size_t allocationsDuringRun(const char* scene, double durationS) {
   auto simulation = Simulation::fromFile(test::sourceDir() / scene, options, d);
   EXPECT_TRUE(simulation) << test::messages(d);
   if (!simulation) return 0;
-  g_allocations = 0;
-  g_counting = true;
+  test::startCountingAllocations();
   simulation->run();
-  g_counting = false;
+  const size_t allocations = test::stopCountingAllocations();
   EXPECT_TRUE(simulation->complete());
-  return g_allocations.load();
+  return allocations;
 }
 
 TEST(NoAllocationTest, RunningMoreFramesAllocatesNothingMore) {

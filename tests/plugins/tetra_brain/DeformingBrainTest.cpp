@@ -4,35 +4,13 @@
 // reaction on the nodes sums to the contact force and acts where it acts.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Diagnostics.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"
+#include "tests/support/AllocationCounter.h"
 #include "tests/support/TestSupport.h"
-
-// Allocations are counted while g_counting is set (replacements of the global
-// allocation functions for this test program only).
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<size_t> g_allocations{0};
-}  // namespace
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
 
 namespace trephine::tetra {
 namespace {
@@ -198,8 +176,7 @@ TEST(DeformingBrainTest, PublishingNodeForcesEveryFrameAllocatesNothing) {
   brain.reserveShell(shell);
   brain.prepare(RunPlan{});
   size_t published = 0, largest = 0;
-  g_allocations = 0;
-  g_counting = true;
+  test::startCountingAllocations();
   // Contacts from none to deep and back: the number of nodes touched varies.
   for (int frame = 0; frame < 400; ++frame) {
     const double press = 6.0 * std::sin(frame * 0.05);
@@ -210,8 +187,7 @@ TEST(DeformingBrainTest, PublishingNodeForcesEveryFrameAllocatesNothing) {
       largest = std::max(largest, reader.read().forces.size());
     }
   }
-  g_counting = false;
-  EXPECT_EQ(g_allocations.load(), 0u);
+  EXPECT_EQ(test::stopCountingAllocations(), 0u);
   EXPECT_GT(published, 100u);
   EXPECT_GT(largest, 20u) << "deep contacts touch many nodes";
 }
