@@ -6,39 +6,16 @@
 // The files live in a directory of their own per process. Any crash,
 // sanitizer report, hang or exception other than TetMeshReadError is a
 // reader bug; so is a mesh that breaks the TetMesh contract.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "tests/fuzz/FuzzInputFiles.h"
 
 namespace {
-
-// Created on first use, removed at exit (never destroyed before that: the exit handler needs it).
-const std::filesystem::path& inputDirectory() {
-  static const auto* const directory = [] {
-    auto* path = new std::filesystem::path(std::filesystem::temp_directory_path() /
-                                           ("fuzz_tet_mesh_reader_" + std::to_string(::getpid())));
-    std::filesystem::create_directories(*path);
-    std::atexit([] {
-      std::error_code ignored;
-      std::filesystem::remove_all(inputDirectory(), ignored);
-    });
-    return path;
-  }();
-  return *directory;
-}
-
-void writeFile(const std::filesystem::path& file, const uint8_t* data, size_t size) {
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-}
-
+const std::filesystem::path& inputDirectory() { return trephine::fuzz::inputDirectory("fuzz_tet_mesh_reader"); }
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -51,10 +28,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const size_t contentSize = size - 1;
   if (extension == ".node") {
     const size_t half = contentSize / 2;
-    writeFile(file, content, half);
-    writeFile(ele, content + half, contentSize - half);
+    trephine::fuzz::writeInputFile(file, content, half);
+    trephine::fuzz::writeInputFile(ele, content + half, contentSize - half);
   } else {
-    writeFile(file, content, contentSize);
+    trephine::fuzz::writeInputFile(file, content, contentSize);
   }
   try {
     const trephine::tetra::TetMesh mesh = trephine::tetra::readTetMesh(file);

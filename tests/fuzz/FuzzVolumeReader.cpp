@@ -4,45 +4,24 @@
 // file lives in a directory of its own per process, so relative data file
 // names in fuzzed headers resolve inside it. Any crash, sanitizer report,
 // hang or exception other than VolumeReadError is a reader bug.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "plugins/voxel_skull/io/VolumeReader.h"
+#include "tests/fuzz/FuzzInputFiles.h"
 
 namespace {
-
-// Created on first use, removed at exit (never destroyed before that: the exit handler needs it).
-const std::filesystem::path& inputDirectory() {
-  static const auto* const directory = [] {
-    auto* path = new std::filesystem::path(std::filesystem::temp_directory_path() /
-                                           ("fuzz_volume_reader_" + std::to_string(::getpid())));
-    std::filesystem::create_directories(*path);
-    std::atexit([] {
-      std::error_code ignored;
-      std::filesystem::remove_all(inputDirectory(), ignored);
-    });
-    return path;
-  }();
-  return *directory;
-}
-
+const std::filesystem::path& inputDirectory() { return trephine::fuzz::inputDirectory("fuzz_volume_reader"); }
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   static const char* const kExtensions[] = {".mha", ".nrrd", ".nii"};
   const std::filesystem::path file = inputDirectory() / (std::string("input") + kExtensions[data[0] % 3]);
-  {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
-  }
+  trephine::fuzz::writeInputFile(file, data + 1, size - 1);
   try {
     const trephine::voxel::DensityVolume volume = trephine::voxel::readVolume(file);
     // A volume that was read is usable: codes for every voxel, positive spacing, finite bounds.
