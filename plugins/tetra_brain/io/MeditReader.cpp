@@ -53,13 +53,7 @@ class MeditParser {
   }
 
  private:
-  int64_t integer(const std::string& what) {
-    const std::string_view token = m_text.next();
-    if (token.empty()) m_text.fail("the file ends where " + what + " should be (truncated)");
-    const std::optional<int64_t> value = parseInteger(token);
-    if (!value) m_text.fail(what + " is " + quoteForMessage(token) + ", expected a whole number");
-    return *value;
-  }
+  int64_t integer(const std::string& what) { return m_text.nextInteger(what); }
 
   // The next token of record `ordinal` of a section; fails on a truncated file.
   std::string_view field(const char* section, int64_t ordinal, int64_t count) {

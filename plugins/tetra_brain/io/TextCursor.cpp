@@ -117,6 +117,14 @@ std::string_view TextCursor::take(size_t count) {
 
 void TextCursor::fail(const std::string& problem) const { throw TetMeshReadError(m_file, m_tokenLine, problem); }
 
+int64_t TextCursor::nextInteger(const std::string& what) {
+  const std::string_view token = next();
+  if (token.empty()) fail("the file ends where " + what + " should be (truncated)");
+  const std::optional<int64_t> value = parseInteger(token);
+  if (!value) fail(what + " is " + quoteForMessage(token) + ", expected a whole number");
+  return *value;
+}
+
 void TextCursor::checkCount(int64_t count, int64_t maxCount, uint64_t minBytesEach, const std::string& what) const {
   if (count < 0) fail("the number of " + what + " is " + std::to_string(count) + ", expected 0 or more");
   if (count > maxCount)

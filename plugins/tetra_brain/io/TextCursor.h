@@ -38,6 +38,10 @@ class TextCursor {
   // checked bytesLeft().
   std::string_view take(size_t count);
 
+  // The next token as a whole number; fails naming `what` when the text ends
+  // (truncated) or the token is not one.
+  int64_t nextInteger(const std::string& what);
+
   // Throws TetMeshReadError naming the file and line().
   [[noreturn]] void fail(const std::string& problem) const;
   // Refuses a count read from the file before anything is reserved for it:

@@ -82,13 +82,7 @@ class VtkLegacyParser {
       m_text.fail("DATASET " + std::string(quoteForMessage(kind)) + " is not supported, expected UNSTRUCTURED_GRID");
   }
 
-  int64_t integer(const std::string& what) {
-    const std::string_view token = m_text.next();
-    if (token.empty()) m_text.fail("the file ends where " + what + " should be (truncated)");
-    const std::optional<int64_t> value = parseInteger(token);
-    if (!value) m_text.fail(what + " is " + quoteForMessage(token) + ", expected a whole number");
-    return *value;
-  }
+  int64_t integer(const std::string& what) { return m_text.nextInteger(what); }
 
   NumberType numberType(std::string_view token, bool integerOnly, const std::string& what) {
     const std::optional<NumberType> type = legacyNumberType(token);
