@@ -29,7 +29,9 @@ DensityEncoding DensityEncoding::fit(double minValue, double maxValue, bool allI
     return e;
   }
   const double span = maxValue - minValue;
-  e.scale = span > 0 ? span / (double(kCodeMax) - double(kCodeMin)) : 1.0;
+  // Never below the smallest normal double: a subnormal scale has no finite
+  // reciprocal, and encoding divides by it.
+  e.scale = span > 0 ? std::max(span / (double(kCodeMax) - double(kCodeMin)), std::numeric_limits<double>::min()) : 1.0;
   e.offset = minValue - e.scale * kCodeMin;
   return e;
 }

@@ -72,10 +72,12 @@ void encodeTyped(std::span<const uint8_t> bytes, bool swap, SampleScaling scalin
                  const SamplePlacement& placement, std::span<VoxelCode> codes) {
   constexpr double kCodeMin = std::numeric_limits<VoxelCode>::min();
   constexpr double kCodeMax = std::numeric_limits<VoxelCode>::max();
-  // code = (density - offset) / scale, folded into one multiply-add per sample.
+  // code = (density - offset) / scale. Not folded into one multiply-add: with
+  // a tiny scale, slope / scale can overflow and inf * 0 is NaN. Unfolded,
+  // each density is finite and inside the range pass one found, so
+  // |density - offset| is at most about half the range and the code at most
+  // about 32768 (the scale is a normal double, its reciprocal finite).
   const double perCode = 1.0 / encoding.scale;
-  const double codeSlope = scaling.slope * perCode;
-  const double codeIntercept = (scaling.intercept - encoding.offset) * perCode;
   const auto [ni, nj, nk] = placement.dims;
   const auto [si, sj, sk] = placement.step;
   const uint8_t* p = bytes.data();
@@ -84,7 +86,8 @@ void encodeTyped(std::span<const uint8_t> bytes, bool swap, SampleScaling scalin
     for (int64_t j = 0; j < nj; ++j) {
       int64_t target = placement.base + j * sj + k * sk;
       for (int64_t i = 0; i < ni; ++i, p += sizeof(T), target += si) {
-        const double code = std::round(codeSlope * double(loadSample<T>(p, swap)) + codeIntercept);
+        const double density = scaling.slope * double(loadSample<T>(p, swap)) + scaling.intercept;
+        const double code = std::round((density - encoding.offset) * perCode);
         out[target] = static_cast<VoxelCode>(std::clamp(code, kCodeMin, kCodeMax));
       }
     }

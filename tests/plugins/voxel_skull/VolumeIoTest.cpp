@@ -393,6 +393,29 @@ TEST(MetaImageReader, FloatRangeIsSpreadOverTheCodes) {
     EXPECT_NEAR(volume.density(n % 3, (n / 3) % 4, n / 12), values[size_t(n)], 0.5 * volume.encoding().scale + 1e-12);
 }
 
+TEST(MetaImageReader, SubnormalDensityRangesEncodeWithoutNaN) {
+  // Densities that differ by subnormal amounts: range / 65535 underflows, and
+  // a scale with no finite reciprocal turned every code into NaN (found by
+  // fuzzing). The scale is now at least the smallest normal double: finer
+  // differences are lost (the volume reads as nearly constant), coarser ones kept.
+  TempDir dir;
+  for (const double largest : {5e-324, 1e-312, std::numeric_limits<double>::min(), 1e-300}) {
+    std::vector<double> values(kVoxels, 0.0);
+    values[5] = largest;   // voxel (2, 1, 0)
+    values[7] = -largest;  // voxel (1, 2, 0)
+    const DensityVolume volume = readVolume(
+        writeFile(dir / "tiny.mha", text(metaHeader("MET_DOUBLE", "", "LOCAL")) + encodeAs<double>(values, false)));
+    const double scale = volume.encoding().scale;
+    ASSERT_TRUE(scale > 0 && std::isfinite(1.0 / scale)) << largest;
+    for (int n = 0; n < kVoxels; ++n)
+      EXPECT_NEAR(volume.density(n % 3, (n / 3) % 4, n / 12), values[size_t(n)], scale) << largest << " voxel " << n;
+    if (largest >= std::numeric_limits<double>::min()) {
+      EXPECT_GT(volume.density(2, 1, 0), volume.density(0, 0, 0)) << largest;
+      EXPECT_LT(volume.density(1, 2, 0), volume.density(0, 0, 0)) << largest;
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------
 // NRRD
 
