@@ -41,7 +41,7 @@ TetMesh readContent(const std::filesystem::path& file, std::string content) {
   }
   throw TetMeshReadError(file, "not a recognised tetrahedral mesh: the content starts with " +
                                    quoteForMessage(content.substr(0, 24)) +
-                                   " (expected TetGen .node/.ele, Medit .mesh, Gmsh .msh legacy or 2.x ASCII, VTK "
+                                   " (expected TetGen .node/.ele, Medit .mesh, Gmsh .msh ASCII (4.1, 4.0, 2.x or legacy), VTK "
                                    "legacy .vtk or VTK XML .vtu)");
 }
 

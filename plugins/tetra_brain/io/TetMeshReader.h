@@ -1,7 +1,7 @@
 #pragma once
 // Reading tetrahedral meshes from the file formats that surgical simulation
-// data sets come in: TetGen .node + .ele, Medit .mesh, Gmsh .msh (legacy v1
-// and v2 ASCII), VTK legacy .vtk (ASCII or big-endian binary) and VTK XML
+// data sets come in: TetGen .node + .ele, Medit .mesh, Gmsh .msh (ASCII
+// 4.1, 4.0, 2.x and the legacy format), VTK legacy .vtk (ASCII or big-endian binary) and VTK XML
 // .vtu (ascii or base64 binary, optionally zlib-compressed).
 //
 // The format is recognised from the content, never from the extension: data

@@ -1,6 +1,6 @@
 // Tetrahedral mesh files: a cube cut into five tetrahedra written by hand in
 // every supported format and variant (TetGen 0- and 1-based, Medit, Gmsh
-// legacy and 2.x, VTK legacy ASCII and binary, VTK XML ascii and base64 with
+// legacy, 2.x, 4.0 and 4.1 (and files Gmsh wrote), VTK legacy ASCII and binary, VTK XML ascii and base64 with
 // and without zlib, gzip), read back and compared; the format found from
 // the content whatever the file's name; every kind of error naming the file
 // and the place; and the real meshes of ../shared/data with the counts
@@ -583,12 +583,123 @@ TEST(GmshReader, Version2WithoutTagsHasNoLabels) {
   expectCube(readTetMesh(dir.write("plain.msh", text + "$EndElements\n")), false);
 }
 
-TEST(GmshReader, BinaryAndVersion4AreRefused) {
+TEST(GmshReader, BinaryAndOtherVersionsAreRefused) {
   TempDir dir;
-  expectError(dir.write("binary.msh", "$MeshFormat\n2.2 1 8\n\x01\0\0\0\n$EndMeshFormat\n"), 2,
-              {"binary Gmsh files are not supported", "Version 2 ASCII"});
-  expectError(dir.write("v4.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n"), 2,
-              {"Gmsh format 4.1 is not supported", "expected 2.x ASCII or the legacy format"});
+  expectError(dir.write("binary.msh", "$MeshFormat\n4.1 1 8\n\x01\0\0\0\n$EndMeshFormat\n"), 2,
+              {"binary Gmsh files are not supported", "Version 4 ASCII"});
+  expectError(dir.write("v3.msh", "$MeshFormat\n3.0 0 8\n$EndMeshFormat\n$Entities\n"), 2,
+              {"Gmsh format 3.0 is not supported", "expected 4.1, 4.0, 2.x or the legacy format"});
+  expectError(dir.write("v42.msh", "$MeshFormat\n4.2 0 8\n$EndMeshFormat\n"), 2, {"Gmsh format 4.2 is not supported"});
+}
+
+// Format 4: the cube's nodes in two entity blocks (a point, and the volume's
+// nodes with parametric u v w), its tetrahedra in blocks of volume entities 1
+// (physical tag 5) and 2 (physical tag 6), among blocks of other elements.
+std::string gmshVersion4(bool v41) {
+  const TetMesh mesh = cube();
+  std::string text = std::string("$MeshFormat\n") + (v41 ? "4.1" : "4") + " 0 8\n$EndMeshFormat\n";
+  text += "$PhysicalNames\n2\n3 5 \"grey\"\n3 6 \"white\"\n$EndPhysicalNames\n";
+  text += "$Entities\n1 0 1 3\n";
+  text += v41 ? "1 -1.5 2.25 100 0\n" : "1 -1.5 2.25 100 -1.5 2.25 100 0\n";
+  text += "4 0 0 0 1 1 1 1 3 1 -2\n";                       // a surface in physical group 3
+  text += "1 -1.5 2.25 100 8.5 12.25 110.125 1 5 2 1 4\n";  // volume 1: physical 5
+  text += "2 -1.5 2.25 100 8.5 12.25 110.125 2 6 7 0\n";    // volume 2: physical 6 (then 7)
+  text += "3 0 0 0 1 1 1 0 0\n";                             // volume 3: no physical group
+  text += "$EndEntities\n";
+  auto blockHead = [&](int dim, int tag, int third, size_t n) {
+    return v41 ? std::to_string(dim) + " " + std::to_string(tag) + " " + std::to_string(third) + " " + std::to_string(n)
+               : std::to_string(tag) + " " + std::to_string(dim) + " " + std::to_string(third) + " " + std::to_string(n);
+  };
+  text += v41 ? "$Nodes\n2 8 2 3000000000\n" : "$Nodes\n2 8\n";
+  text += blockHead(0, 1, 0, 1) + "\n";
+  text += v41 ? std::to_string(kGmshIds[0]) + "\n" + xyz(mesh.nodes[0]) + "\n"
+              : std::to_string(kGmshIds[0]) + " " + xyz(mesh.nodes[0]) + "\n";
+  text += blockHead(3, 1, 1, 7) + "\n";
+  if (v41) {
+    for (size_t i = 1; i < 8; ++i) text += std::to_string(kGmshIds[i]) + "\n";
+    for (size_t i = 1; i < 8; ++i) text += xyz(mesh.nodes[i]) + " 0.5 0.25 0\n";
+  } else {
+    for (size_t i = 1; i < 8; ++i) text += std::to_string(kGmshIds[i]) + " " + xyz(mesh.nodes[i]) + " 0.5 0.25 0\n";
+  }
+  text += "$EndNodes\n";
+  text += v41 ? "$Elements\n5 6 1 90\n" : "$Elements\n5 6\n";
+  text += blockHead(2, 4, 2, 1) + "\n1 101 7 3000000000\n";
+  text += blockHead(3, 1, 4, 2) + "\n20" + gmshTet(0) + "\n21" + gmshTet(1) + "\n";
+  text += blockHead(3, 2, 4, 2) + "\n22" + gmshTet(2) + "\n23" + gmshTet(3) + "\n";
+  text += blockHead(3, 1, 4, 1) + "\n24" + gmshTet(4) + "\n";
+  text += blockHead(0, 1, 15, 0) + "\n";
+  return text + "$EndElements\n";
+}
+
+TEST(GmshReader, Version41And40WithEntityBlocksAndPhysicalTags) {
+  TempDir dir;
+  expectCube(readTetMesh(dir.write("cube41.msh", gmshVersion4(true))), true);
+  expectCube(readTetMesh(dir.write("cube40.msh", gmshVersion4(false))), true);
+  expectCube(readTetMesh(writeBytes(dir / "cube41.msh.gz", gzipped(gmshVersion4(true)))), true);
+}
+
+TEST(GmshReader, Version4WithoutPhysicalGroupsHasNoLabels) {
+  TempDir dir;
+  std::string text = gmshVersion4(true);
+  const size_t entities = text.find("$Entities");
+  text.erase(entities, text.find("$Nodes") - entities);
+  expectCube(readTetMesh(dir.write("plain.msh", text)), false);
+  EXPECT_TRUE(readTetMesh(dir / "plain.msh").labels.empty());
+}
+
+TEST(GmshReader, TheVersionsGmshWritesReadAlike) {
+  // tests/plugins/tetra_brain/data/two_volumes.geo meshed by Gmsh 4.8 into
+  // formats 4.1, 4.0 and 2.2: the same nodes, tetrahedra and physical tags.
+  const std::filesystem::path data = test::sourceDir() / "tests/plugins/tetra_brain/data";
+  const TetMesh v41 = readTetMesh(data / "two_volumes_v41.msh");
+  const TetMesh v40 = readTetMesh(data / "two_volumes_v40.msh");
+  const TetMesh v22 = readTetMesh(data / "two_volumes_v22.msh");
+  ASSERT_GT(v41.tetCount(), 20u);
+  for (const TetMesh* other : {&v40, &v22}) {
+    ASSERT_EQ(other->tetCount(), v41.tetCount());
+    EXPECT_EQ(other->labels, v41.labels);
+    for (size_t t = 0; t < v41.tetCount(); ++t)
+      for (size_t k = 0; k < 4; ++k)
+        ASSERT_EQ(other->nodes[size_t(other->tets[t][k])], v41.nodes[size_t(v41.tets[t][k])]) << t;
+  }
+  // Both physical volumes are there, and they fill the 4 x 2 x 2 mm box.
+  EXPECT_EQ(std::count(v41.labels.begin(), v41.labels.end(), 5) + std::count(v41.labels.begin(), v41.labels.end(), 6),
+            std::ptrdiff_t(v41.tetCount()));
+  EXPECT_GT(std::count(v41.labels.begin(), v41.labels.end(), 5), 0);
+  EXPECT_GT(std::count(v41.labels.begin(), v41.labels.end(), 6), 0);
+  double volume = 0;
+  for (const TetIndices& tet : v41.tets)
+    volume += std::abs(signedVolume(v41.nodes[size_t(tet[0])], v41.nodes[size_t(tet[1])], v41.nodes[size_t(tet[2])],
+                                    v41.nodes[size_t(tet[3])]));
+  EXPECT_NEAR(volume, 16.0, 1e-9);
+}
+
+TEST(GmshReader, Version4ErrorsNameTheBlockAndLine) {
+  TempDir dir;
+  const std::string good = gmshVersion4(true);
+  auto broken = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  // Lines: $Entities 9, volume entity 1 on 13, $Nodes 17, the volume's node block 22, its tags 23-29
+  // and coordinates 30-36, $Elements 38, the blocks of volume 2 on 45 and of volume 1 again on 48.
+  expectError(dir.write("count.msh", broken("$Nodes\n2 8 2", "$Nodes\n2 9 2")), 36,
+              {"the blocks hold 8 nodes, but $Nodes declares 9"});
+  expectError(dir.write("block.msh", broken("3 1 1 7\n", "3 1 1 8\n")), 22,
+              {"the block holds 8 nodes, expected 0 to the 7 left of the 8 $Nodes declares"});
+  expectError(dir.write("tags.msh", broken("\n7\n3000000000\n", "\n7 8\n3000000000\n")), 23,
+              {"expected one node tag on the line, found 2 values"});
+  expectError(dir.write("uvw.msh", broken("8.5 2.25 100 0.5 0.25 0\n", "8.5 2.25 100 0.5\n")), 30,
+              {"has 4 values, expected x y z and its 3 parametric coordinates"});
+  expectError(dir.write("physical.msh", broken("1 5 2 1 4\n", "9 5 2 1 4\n")), 13,
+              {"volume entity 1: 9 physical tags do not fit the line"});
+  expectError(dir.write("elements.msh", broken("3 1 4 1\n24", "3 1 4 2\n24")), 48,
+              {"expected 0 to the 1 left of the 6 $Elements declares"});
+  expectError(dir.write("node.msh", broken("22 7 56", "22 7 57")), 46,
+              {"element 22 refers to node 57", "not in the node section"});
+  expectError(dir.write("dimension.msh", broken("3 1 1 7\n", "4 1 1 7\n")), 22,
+              {"entity dimension 4, expected 0 to 3"});
 }
 
 TEST(GmshReader, ErrorsNameTheElementAndLine) {
