@@ -2,7 +2,8 @@
 // Reading tetrahedral meshes from the file formats that surgical simulation
 // data sets come in: TetGen .node + .ele, Medit .mesh, Gmsh .msh (ASCII
 // 4.1, 4.0, 2.x and the legacy format), VTK legacy .vtk (ASCII or big-endian binary) and VTK XML
-// .vtu (ascii or base64 binary, optionally zlib-compressed).
+// .vtu (ascii, inline base64 or appended raw or base64 binary, optionally
+// zlib-compressed).
 //
 // The format is recognised from the content, never from the extension: data
 // sets mislabel files (a VTK XML file named .vtk). gzip-wrapped files are

@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -31,15 +32,14 @@ class VtuParser {
   VtuParser(const std::filesystem::path& file, std::string_view content) : m_file(file), m_content(content) {}
 
   TetMesh read() {
+    // <AppendedData> holds raw bytes or base64 text, not XML: it is cut out
+    // and the XML before and after it parsed (line numbers stay those of the file).
+    std::string cut;
+    const std::string_view xml = withoutAppendedData(cut);
     tinyxml2::XMLDocument document;
-    if (document.Parse(m_content.data(), m_content.size()) != tinyxml2::XML_SUCCESS) {
-      // Raw appended data is not XML text: name the real cause rather than the parse error it causes.
-      const bool appended = m_content.find("<AppendedData") != std::string_view::npos;
+    if (document.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS)
       throw TetMeshReadError(m_file, size_t(std::max(document.ErrorLineNum(), 1)),
-                             appended ? std::string("<AppendedData> (raw appended binary data) is not supported, "
-                                                    "expected DataArrays in format \"ascii\" or \"binary\"")
-                                      : std::string("not well-formed XML (") + document.ErrorName() + ")");
-    }
+                             std::string("not well-formed XML (") + document.ErrorName() + ")");
     const XMLElement* root = document.RootElement();
     if (!root || std::string_view(root->Name()) != "VTKFile")
       fail(root, "the XML root is <" + std::string(root ? root->Name() : "") +
@@ -49,6 +49,7 @@ class VtuParser {
       fail(root, "VTKFile type " + quoteForMessage(type) + ", expected \"UnstructuredGrid\" (a .vtu file" +
                      (type == "PUnstructuredGrid" ? "; a .pvtu only lists the .vtu pieces)" : ")"));
     readEncoding(root);
+    if (m_encoding.hasAppended) readAppendedEncoding(root);
     const XMLElement* grid = root->FirstChildElement("UnstructuredGrid");
     if (!grid) fail(root, "VTKFile has no <UnstructuredGrid> element");
     const XMLElement* piece = grid->FirstChildElement("Piece");
@@ -82,6 +83,44 @@ class VtuParser {
                      " is not supported, expected none or \"vtkZLibDataCompressor\"");
   }
 
+  size_t lineAt(size_t position) const {
+    return size_t(std::count(m_content.begin(), m_content.begin() + std::ptrdiff_t(position), '\n')) + 1;
+  }
+
+  // The file's XML: the content, or with the data of <AppendedData> removed
+  // (kept in m_encoding.appended) into `cut`.
+  std::string_view withoutAppendedData(std::string& cut) {
+    const size_t tag = m_content.find("<AppendedData");
+    if (tag == std::string_view::npos) return m_content;
+    const size_t tagEnd = m_content.find('>', tag);
+    if (tagEnd == std::string_view::npos)
+      throw TetMeshReadError(m_file, lineAt(tag), "the <AppendedData> tag is not closed (truncated?)");
+    size_t marker = tagEnd + 1;
+    while (marker < m_content.size() && std::isspace(static_cast<unsigned char>(m_content[marker]))) ++marker;
+    if (marker >= m_content.size() || m_content[marker] != '_')
+      throw TetMeshReadError(m_file, lineAt(tag),
+                             "<AppendedData> has no '_' before its data (expected \"<AppendedData "
+                             "encoding=...>\" then \"_\" and the data)");
+    const size_t close = m_content.rfind("</AppendedData>");
+    if (close == std::string_view::npos || close < marker)
+      throw TetMeshReadError(m_file, lineAt(tag), "<AppendedData> has no closing </AppendedData> (truncated?)");
+    m_encoding.hasAppended = true;
+    m_encoding.appended = m_content.substr(marker + 1, close - marker - 1);
+    cut = std::string(m_content.substr(0, marker + 1)) + std::string(m_content.substr(close));
+    return cut;
+  }
+
+  void readAppendedEncoding(const XMLElement* root) {
+    const XMLElement* appended = root->FirstChildElement("AppendedData");
+    if (!appended) fail(root, "<AppendedData> is not inside <VTKFile>");
+    const std::string_view encoding = attribute(appended, "encoding");
+    if (encoding == "base64")
+      m_encoding.appendedBase64 = true;
+    else if (encoding != "raw")
+      fail(appended, "<AppendedData> encoding " + (encoding.data() ? quoteForMessage(encoding) : "missing") +
+                         ", expected \"raw\" or \"base64\"");
+  }
+
   int64_t count(const XMLElement* piece, const char* name, int64_t maxCount) const {
     const std::string_view text = attribute(piece, name);
     const std::optional<int64_t> value = parseInteger(text);
@@ -102,6 +141,15 @@ class VtuParser {
     const char* text = array->GetText();
     described.text = text ? std::string_view(text) : std::string_view();
     described.line = size_t(array->GetLineNum());
+    if (described.format == "appended") {
+      const std::string_view offset = attribute(array, "offset");
+      const std::optional<int64_t> value = parseInteger(offset);
+      if (!value || *value < 0)
+        fail(array, "DataArray \"" + std::string(described.name) + "\": offset " +
+                        (offset.data() ? quoteForMessage(offset) : "missing") +
+                        ", expected the position of its data in <AppendedData> (a whole number from 0)");
+      described.offset = uint64_t(*value);
+    }
     return described;
   }
 

@@ -1,7 +1,7 @@
 // Tetrahedral mesh files: a cube cut into five tetrahedra written by hand in
 // every supported format and variant (TetGen 0- and 1-based, Medit, Gmsh
-// legacy, 2.x, 4.0 and 4.1 (and files Gmsh wrote), VTK legacy ASCII and binary, VTK XML ascii and base64 with
-// and without zlib, gzip), read back and compared; the format found from
+// legacy, 2.x, 4.0 and 4.1 (and files Gmsh wrote), VTK legacy ASCII and binary, VTK XML ascii, base64
+// and appended raw or base64 data, with and without zlib, gzip), read back and compared; the format found from
 // the content whatever the file's name; every kind of error naming the file
 // and the place; and the real meshes of ../shared/data with the counts
 // their provenance files give.
@@ -324,7 +324,10 @@ std::string vtkLegacyBinary() {
 }
 
 // VTK XML arrays.
-enum class VtuData { kAscii, kBase64, kBase64Zlib };
+enum class VtuData { kAscii, kBinary, kBinaryZlib };
+
+// Where binary arrays go: inline as base64, or in <AppendedData> (raw or base64).
+enum class VtuPlace { kInline, kAppendedRaw, kAppendedBase64 };
 
 struct VtuOptions {
   VtuData data = VtuData::kAscii;
@@ -332,6 +335,8 @@ struct VtuOptions {
   bool bigEndian = false;
   bool separateHeader = true;  // base64 of the header, then of the data (else one stream)
   size_t blockSize = 32768;    // zlib block size
+  VtuPlace place = VtuPlace::kInline;
+  std::string* appended = nullptr;  // kAppended*: collects the <AppendedData> content
 };
 
 std::string header(uint64_t value, const VtuOptions& options) {
@@ -343,12 +348,10 @@ std::string header(uint64_t value, const VtuOptions& options) {
   return out;
 }
 
-std::string encodedArray(const Bytes& data, const VtuOptions& options) {
-  if (options.data == VtuData::kBase64) {
-    const Bytes size = header(data.size(), options);
-    return options.separateHeader ? base64(size) + base64(data) : base64(size + data);
-  }
-  // Blocks of blockSize bytes (the last may be shorter), each compressed on its own.
+// What VTK writes for a binary array: the byte-count header and the data, or
+// the block header and the blocks, each compressed on its own.
+std::pair<Bytes, Bytes> binaryArray(const Bytes& data, const VtuOptions& options) {
+  if (options.data == VtuData::kBinary) return {header(data.size(), options), data};
   Bytes blocks;
   std::vector<uint64_t> sizes;
   for (size_t start = 0; start < data.size(); start += options.blockSize) {
@@ -359,11 +362,24 @@ std::string encodedArray(const Bytes& data, const VtuOptions& options) {
   Bytes head = header(sizes.size(), options) + header(options.blockSize, options) +
                header(data.size() % options.blockSize, options);
   for (const uint64_t size : sizes) head += header(size, options);
-  return base64(head) + base64(blocks);
+  return {head, blocks};
+}
+
+std::string encodedArray(const Bytes& data, const VtuOptions& options) {
+  const auto [head, body] = binaryArray(data, options);
+  if (options.place == VtuPlace::kAppendedRaw) return head + body;
+  // VTK encodes an uncompressed array as one stream; compressed ones always in two.
+  return options.data == VtuData::kBinary && !options.separateHeader ? base64(head + body)
+                                                                      : base64(head) + base64(body);
 }
 
 template <typename T>
 std::string vtuArray(const std::string& attributes, const std::vector<double>& values, const VtuOptions& options) {
+  if (options.place != VtuPlace::kInline && options.data != VtuData::kAscii) {
+    const std::string offset = std::to_string(options.appended->size());
+    *options.appended += encodedArray(packed<T>(values, options.bigEndian), options);
+    return "        <DataArray " + attributes + " format=\"appended\" offset=\"" + offset + "\"/>\n";
+  }
   std::string text = "        <DataArray " + attributes + " format=\"" +
                      (options.data == VtuData::kAscii ? "ascii" : "binary") + "\">\n          ";
   if (options.data == VtuData::kAscii) {
@@ -410,12 +426,20 @@ std::string vtuFile(const std::string& pieces, const VtuOptions& options) {
       "<?xml version=\"1.0\"?>\n<!-- written by hand -->\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\"";
   text += std::string(" byte_order=\"") + (options.bigEndian ? "BigEndian" : "LittleEndian") + "\"";
   if (options.header64) text += " header_type=\"UInt64\"";
-  if (options.data == VtuData::kBase64Zlib) text += " compressor=\"vtkZLibDataCompressor\"";
-  return text + ">\n  <UnstructuredGrid>\n" + pieces + "  </UnstructuredGrid>\n</VTKFile>\n";
+  if (options.data == VtuData::kBinaryZlib) text += " compressor=\"vtkZLibDataCompressor\"";
+  text += ">\n  <UnstructuredGrid>\n" + pieces + "  </UnstructuredGrid>\n";
+  if (options.appended) {
+    text += std::string("  <AppendedData encoding=\"") + (options.place == VtuPlace::kAppendedRaw ? "raw" : "base64") +
+            "\">\n   _" + *options.appended + "\n  </AppendedData>\n";
+  }
+  return text + "</VTKFile>\n";
 }
 
-std::string vtu(const VtuOptions& options, bool labels = true) {
-  return vtuFile(vtuPiece(cube(), vtkCells(), options, labels), options);
+std::string vtu(VtuOptions options, bool labels = true) {
+  std::string appended;
+  if (options.place != VtuPlace::kInline) options.appended = &appended;
+  const std::string pieces = vtuPiece(cube(), vtkCells(), options, labels);
+  return vtuFile(pieces, options);
 }
 
 // ---------------------------------------------------------------------------
@@ -798,7 +822,7 @@ TEST(VtuReader, Base64WithEveryHeaderLayoutAndByteOrder) {
       for (const bool separateHeader : {false, true}) {
         SCOPED_TRACE(testing::Message() << "header64 " << header64 << " bigEndian " << bigEndian << " separate "
                                         << separateHeader);
-        VtuOptions options{VtuData::kBase64, header64, bigEndian, separateHeader};
+        VtuOptions options{VtuData::kBinary, header64, bigEndian, separateHeader};
         expectCube(readTetMesh(dir.write("binary.vtu", vtu(options))), true);
       }
     }
@@ -810,9 +834,48 @@ TEST(VtuReader, ZlibCompressedInOneOrManyBlocks) {
   for (const size_t blockSize : {size_t(32768), size_t(16), size_t(8)}) {  // 8: sizes are multiples, last block full
     for (const bool header64 : {false, true}) {
       SCOPED_TRACE(testing::Message() << "block " << blockSize << " header64 " << header64);
-      VtuOptions options{VtuData::kBase64Zlib, header64, blockSize == 16, true, blockSize};
+      VtuOptions options{VtuData::kBinaryZlib, header64, blockSize == 16, true, blockSize};
       expectCube(readTetMesh(dir.write("zlib.vtu", vtu(options))), true);
     }
+  }
+}
+
+TEST(VtuReader, AppendedDataRawAndBase64CompressedOrNot) {
+  // ParaView's and VTK's writers put the arrays in <AppendedData> by default.
+  TempDir dir;
+  for (const VtuPlace place : {VtuPlace::kAppendedRaw, VtuPlace::kAppendedBase64}) {
+    for (const VtuData data : {VtuData::kBinary, VtuData::kBinaryZlib}) {
+      for (const bool header64 : {false, true}) {
+        for (const size_t blockSize : {size_t(32768), size_t(16)}) {
+          SCOPED_TRACE(testing::Message() << "raw " << (place == VtuPlace::kAppendedRaw) << " zlib "
+                                          << (data == VtuData::kBinaryZlib) << " header64 " << header64 << " block "
+                                          << blockSize);
+          VtuOptions options{data, header64, blockSize == 16, blockSize == 16, blockSize};
+          options.place = place;
+          expectCube(readTetMesh(dir.write("appended.vtu", vtu(options))), true);
+        }
+      }
+    }
+  }
+  // Raw data may hold anything, "<" and "</AppendedData>" included.
+  VtuOptions options{VtuData::kBinary};
+  options.place = VtuPlace::kAppendedRaw;
+  std::string text = vtu(options);
+  text.insert(text.find("</AppendedData>"), "</AppendedData> <\x01");
+  expectCube(readTetMesh(dir.write("tricky.vtu", text)), true);
+}
+
+TEST(VtuReader, EveryLayoutVtkWritesReadsAsTheGmshFile) {
+  // tests/plugins/tetra_brain/data/write_vtu.py: two_volumes_v22.msh written
+  // by VTK 9.1's own writer, appended (raw, base64) or inline, compressed or not.
+  const std::filesystem::path data = test::sourceDir() / "tests/plugins/tetra_brain/data";
+  const TetMesh gmsh = readTetMesh(data / "two_volumes_v22.msh");
+  for (const char* name : {"default", "raw", "raw_plain", "b64_plain64", "inline"}) {
+    SCOPED_TRACE(name);
+    const TetMesh vtu = readTetMesh(data / (std::string("two_volumes_") + name + ".vtu"));
+    EXPECT_EQ(vtu.nodes, gmsh.nodes);
+    EXPECT_EQ(vtu.tets, gmsh.tets);
+    EXPECT_EQ(vtu.labels, gmsh.labels);
   }
 }
 
@@ -834,17 +897,36 @@ TEST(VtuReader, ErrorsNameTheArrayAndLine) {
   TempDir dir;
   std::string text = vtu({});
   text.replace(text.find("format=\"ascii\""), 14, "format=\"appended\" offset=\"0\"");
-  expectError(dir.write("appended.vtu", text), 7, {"DataArray \"Points\": format=\"appended\"", "not supported"});
-  expectError(dir.write("raw.vtu",
-                        "<VTKFile type=\"UnstructuredGrid\">\n<AppendedData encoding=\"raw\">\n_\x01<\x02"
-                        "</AppendedData></VTKFile>"),
-              3, {"<AppendedData> (raw appended binary data) is not supported"});
+  expectError(dir.write("appended.vtu", text), 7,
+              {"DataArray \"Points\": format=\"appended\" but the file has no <AppendedData>"});
+  VtuOptions raw{VtuData::kBinaryZlib};
+  raw.place = VtuPlace::kAppendedRaw;
+  text = vtu(raw);
+  text.replace(text.find("offset=\"0\""), 10, "offset=\"99999\"");
+  expectError(dir.write("offset.vtu", text), 7, {"DataArray \"Points\": offset 99999 is beyond the"});
+  text = vtu(raw);
+  text.replace(text.find("offset=\"0\""), 10, "offset=\"-1\"");
+  expectError(dir.write("negative.vtu", text), 7, {"offset '-1', expected the position of its data"});
+  text = vtu(raw);
+  text.erase(text.find("   _") + 3, 1);
+  expectError(dir.write("marker.vtu", text), 20, {"<AppendedData> has no '_' before its data"});
+  text = vtu(raw);
+  expectError(dir.write("unclosed.vtu", text.substr(0, text.find("</AppendedData>"))), 20,
+              {"no closing </AppendedData> (truncated?)"});
+  text = vtu(raw);
+  text.replace(text.find("encoding=\"raw\""), 14, "encoding=\"hex\"");
+  expectError(dir.write("hex.vtu", text), 20, {"<AppendedData> encoding 'hex', expected \"raw\" or \"base64\""});
+  VtuOptions encoded{VtuData::kBinary};
+  encoded.place = VtuPlace::kAppendedBase64;
+  text = vtu(encoded);
+  expectError(dir.write("short.vtu", text.substr(0, text.find("   _") + 24) + "</AppendedData></VTKFile>"), 7,
+              {"DataArray \"Points\": the base64 data from offset 0 has 12 characters left, expected at least 128"});
   expectError(dir.write("poly.vtu", "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\"><PolyData/></VTKFile>"), 2,
               {"VTKFile type 'PolyData', expected \"UnstructuredGrid\""});
-  text = vtu({VtuData::kBase64Zlib});
+  text = vtu({VtuData::kBinaryZlib});
   text.replace(text.find("vtkZLibDataCompressor"), 21, "vtkLZ4DataCompressor");
   expectError(dir.write("lz4.vtu", text), 3, {"compressor 'vtkLZ4DataCompressor' is not supported"});
-  text = vtu({VtuData::kBase64});
+  text = vtu({VtuData::kBinary});
   const size_t data = text.find('\n', text.find("Name=\"offsets\"")) + 11;
   text.replace(data + 4, 1, "*");
   expectError(dir.write("base64.vtu", text), 15, {"DataArray \"offsets\"", "invalid character", "'*'"});
@@ -859,7 +941,7 @@ TEST(VtuReader, ErrorsNameTheArrayAndLine) {
   text = vtu({});
   text.replace(text.find("NumberOfCells=\"8\""), 17, "NumberOfCells=\"9\"");
   expectError(dir.write("count.vtu", text), 15, {"DataArray \"offsets\": holds 8 values, expected 9"});
-  text = vtu({VtuData::kBase64Zlib});
+  text = vtu({VtuData::kBinaryZlib});
   const size_t points = text.find('\n', text.find("NumberOfComponents=\"3\"")) + 11;
   text.replace(points + 30, 4, "AAAA");
   expectError(dir.write("zlib.vtu", text), 7, {"DataArray \"Points\": compressed block 0", "corrupt zlib data"});
@@ -873,7 +955,7 @@ TEST(VtuReader, ErrorsNameTheArrayAndLine) {
 
 TEST(TetMeshReader, TheContentDecidesNotTheExtension) {
   TempDir dir;
-  expectCube(readTetMesh(dir.write("really_vtu.vtk", vtu({VtuData::kBase64}))), true);
+  expectCube(readTetMesh(dir.write("really_vtu.vtk", vtu({VtuData::kBinary}))), true);
   expectCube(readTetMesh(dir.write("really_medit.msh", medit())), true);
   expectCube(readTetMesh(dir.write("really_gmsh.txt", gmshLegacy())), true);
   expectCube(readTetMesh(dir.write("really_legacy.vtu", vtkLegacyAscii(true))), true);

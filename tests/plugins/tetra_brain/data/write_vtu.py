@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""Writes two_volumes_v22.msh (Gmsh) again as VTK XML files, with VTK's own
+writer in each of its binary layouts, for the reader tests:
+  two_volumes_default.vtu      appended, base64, zlib (VTK's defaults)
+  two_volumes_raw.vtu          appended, raw, zlib (ParaView's default)
+  two_volumes_raw_plain.vtu    appended, raw, uncompressed
+  two_volumes_b64_plain64.vtu  appended, base64, uncompressed, 64-bit headers
+  two_volumes_inline.vtu       inline base64, zlib
+The triangles of the Gmsh file are kept too (readers skip them); the cell
+array gmsh:physical holds the physical tags. Needs python3-vtk9:
+  /usr/bin/python3 tests/plugins/tetra_brain/data/write_vtu.py
+"""
+import os
+
+import vtk
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+GMSH_TRIANGLE, GMSH_TETRAHEDRON = 2, 4
+
+
+def read_gmsh22(path):
+    """The points, and the cells as (VTK type, point indices, physical tag), of a Gmsh 2.2 ASCII file."""
+    lines = open(path).read().split('\n')
+    start = lines.index('$Nodes')
+    points, index_of = [], {}
+    for line in lines[start + 2:start + 2 + int(lines[start + 1])]:
+        tag, x, y, z = line.split()
+        index_of[int(tag)] = len(points)
+        points.append((float(x), float(y), float(z)))
+    start = lines.index('$Elements')
+    cells = []
+    for line in lines[start + 2:start + 2 + int(lines[start + 1])]:
+        values = [int(v) for v in line.split()]
+        element_type, tag_count = values[1], values[2]
+        nodes = [index_of[n] for n in values[3 + tag_count:]]
+        if element_type == GMSH_TETRAHEDRON:
+            cells.append((vtk.VTK_TETRA, nodes, values[3]))
+        elif element_type == GMSH_TRIANGLE:
+            cells.append((vtk.VTK_TRIANGLE, nodes, values[3]))
+    return points, cells
+
+
+def grid_of(points, cells):
+    vtk_points = vtk.vtkPoints()
+    vtk_points.SetDataTypeToDouble()
+    for p in points:
+        vtk_points.InsertNextPoint(*p)
+    grid = vtk.vtkUnstructuredGrid()
+    grid.SetPoints(vtk_points)
+    labels = vtk.vtkIntArray()
+    labels.SetName('gmsh:physical')
+    for cell_type, nodes, label in cells:
+        grid.InsertNextCell(cell_type, len(nodes), nodes)
+        labels.InsertNextValue(label)
+    grid.GetCellData().AddArray(labels)
+    return grid
+
+
+def write(grid, name, appended, encoded, compressed, header64=False):
+    writer = vtk.vtkXMLUnstructuredGridWriter()
+    writer.SetFileName(os.path.join(HERE, 'two_volumes_' + name + '.vtu'))
+    writer.SetInputData(grid)
+    if appended:
+        writer.SetDataModeToAppended()
+    else:
+        writer.SetDataModeToBinary()
+    writer.SetEncodeAppendedData(encoded)
+    if not compressed:
+        writer.SetCompressorTypeToNone()
+    if header64:
+        writer.SetHeaderTypeToUInt64()
+    writer.Write()
+
+
+def main():
+    grid = grid_of(*read_gmsh22(os.path.join(HERE, 'two_volumes_v22.msh')))
+    write(grid, 'default', appended=True, encoded=True, compressed=True)
+    write(grid, 'raw', appended=True, encoded=False, compressed=True)
+    write(grid, 'raw_plain', appended=True, encoded=False, compressed=False)
+    write(grid, 'b64_plain64', appended=True, encoded=True, compressed=False, header64=True)
+    write(grid, 'inline', appended=False, encoded=True, compressed=True)
+
+
+if __name__ == '__main__':
+    main()
