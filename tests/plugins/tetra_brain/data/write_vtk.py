@@ -1,14 +1,16 @@
 #!/usr/bin/python3
-"""Writes two_volumes_v22.msh (Gmsh) again as VTK XML files, with VTK's own
-writer in each of its binary layouts, for the reader tests:
-  two_volumes_default.vtu      appended, base64, zlib (VTK's defaults)
-  two_volumes_raw.vtu          appended, raw, zlib (ParaView's default)
-  two_volumes_raw_plain.vtu    appended, raw, uncompressed
-  two_volumes_b64_plain64.vtu  appended, base64, uncompressed, 64-bit headers
-  two_volumes_inline.vtu       inline base64, zlib
+"""Writes two_volumes_v22.msh (Gmsh) again as VTK files, with VTK's own
+writers in each of their layouts, for the reader tests:
+  two_volumes_default.vtu      XML, appended, base64, zlib (VTK's defaults)
+  two_volumes_raw.vtu          XML, appended, raw, zlib (ParaView's default)
+  two_volumes_raw_plain.vtu    XML, appended, raw, uncompressed
+  two_volumes_b64_plain64.vtu  XML, appended, base64, uncompressed, 64-bit headers
+  two_volumes_inline.vtu       XML, inline base64, zlib
+  two_volumes_legacy51.vtk     legacy 5.1 (VTK 9's default), binary
+  two_volumes_legacy42.vtk     legacy 4.2, ASCII
 The triangles of the Gmsh file are kept too (readers skip them); the cell
 array gmsh:physical holds the physical tags. Needs python3-vtk9:
-  /usr/bin/python3 tests/plugins/tetra_brain/data/write_vtu.py
+  /usr/bin/python3 tests/plugins/tetra_brain/data/write_vtk.py
 """
 import os
 
@@ -72,6 +74,17 @@ def write(grid, name, appended, encoded, compressed, header64=False):
     writer.Write()
 
 
+def write_legacy(grid, name, binary, version=None):
+    writer = vtk.vtkUnstructuredGridWriter()
+    writer.SetFileName(os.path.join(HERE, 'two_volumes_' + name + '.vtk'))
+    writer.SetInputData(grid)
+    if binary:
+        writer.SetFileTypeToBinary()
+    if version:
+        writer.SetFileVersion(version)
+    writer.Write()
+
+
 def main():
     grid = grid_of(*read_gmsh22(os.path.join(HERE, 'two_volumes_v22.msh')))
     write(grid, 'default', appended=True, encoded=True, compressed=True)
@@ -79,6 +92,8 @@ def main():
     write(grid, 'raw_plain', appended=True, encoded=False, compressed=False)
     write(grid, 'b64_plain64', appended=True, encoded=True, compressed=False, header64=True)
     write(grid, 'inline', appended=False, encoded=True, compressed=True)
+    write_legacy(grid, 'legacy51', binary=True)
+    write_legacy(grid, 'legacy42', binary=False, version=42)
 
 
 if __name__ == '__main__':
