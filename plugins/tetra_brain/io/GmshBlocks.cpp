@@ -57,26 +57,40 @@ void GmshParser::readEntities() {
   expectEnd("$EndEntities", total, "entities");
 }
 
+std::pair<int64_t, int64_t> GmshParser::blockSectionHeader(const char* section, const char* countFields41,
+                                                           const char* what, int64_t maxCount, uint64_t minBytesEach) {
+  const bool v41 = m_version == Version::k41;
+  if (!m_text.nextLine(m_tokens)) m_text.fail(std::string("the file ends after ") + section + " (truncated)");
+  if (m_tokens.size() != (v41 ? 4u : 2u)) {
+    const std::string fields41(countFields41);
+    m_text.fail("expected \"numEntityBlocks " + (v41 ? fields41 : fields41.substr(0, fields41.find(' '))) +
+                "\" after " + section + (v41 ? " (format 4.1)" : " (format 4.0)"));
+  }
+  const int64_t blocks = integerToken(0, "the number of entity blocks");
+  m_text.checkCount(blocks, kMaxRecords, kMinEntityLineBytes, std::string(what) + " entity blocks");
+  const int64_t count = integerToken(1, std::string("the number of ") + what);
+  m_text.checkCount(count, maxCount, minBytesEach, what);
+  return {blocks, count};
+}
+
+void GmshParser::blockLine(const char* section, int64_t block, int64_t blocks, const char* lastFields) {
+  recordLine(section, block, blocks, "entity blocks");
+  if (m_tokens.size() != 4)
+    m_text.fail(std::string("expected a block line \"") +
+                (m_version == Version::k41 ? "entityDim entityTag " : "entityTag entityDim ") + lastFields + "\"");
+}
+
 void GmshParser::readNodeBlocks() {
   const bool v41 = m_version == Version::k41;
   if (m_haveNodes) m_text.fail("a second node section (expected one)");
   m_haveNodes = true;
-  if (!m_text.nextLine(m_tokens)) m_text.fail("the file ends after $Nodes (truncated)");
-  if (m_tokens.size() != (v41 ? 4u : 2u))
-    m_text.fail(v41 ? "expected \"numEntityBlocks numNodes minNodeTag maxNodeTag\" after $Nodes (format 4.1)"
-                    : "expected \"numEntityBlocks numNodes\" after $Nodes (format 4.0)");
-  const int64_t blocks = integerToken(0, "the number of entity blocks");
-  m_text.checkCount(blocks, kMaxRecords, kMinEntityLineBytes, "node entity blocks");
-  const int64_t count = integerToken(1, "the number of nodes");
-  m_text.checkCount(count, kMaxNodes, kMinNodeBytes, "nodes");
+  const auto [blocks, count] =
+      blockSectionHeader("$Nodes", "numNodes minNodeTag maxNodeTag", "nodes", kMaxNodes, kMinNodeBytes);
   std::vector<int64_t> ids;
   ids.reserve(size_t(count));
   m_mesh.nodes.reserve(size_t(count));
   for (int64_t b = 0; b < blocks; ++b) {
-    recordLine("$Nodes", b, blocks, "entity blocks");
-    if (m_tokens.size() != 4)
-      m_text.fail(v41 ? "expected a node block line \"entityDim entityTag parametric numNodesInBlock\""
-                      : "expected a node block line \"entityTag entityDim parametric numNodesInBlock\"");
+    blockLine("$Nodes", b, blocks, "parametric numNodesInBlock");
     const int64_t dimension = integerToken(v41 ? 0 : 1, "entity dimension");
     if (dimension < 0 || dimension > 3)
       m_text.fail("entity dimension " + std::to_string(dimension) + ", expected 0 to 3");
@@ -121,21 +135,11 @@ void GmshParser::readElementBlocks() {
   if (m_haveElements) m_text.fail("a second element section $Elements (expected one)");
   if (!m_haveNodes) m_text.fail("$Elements comes before the nodes (expected the node section first)");
   m_haveElements = true;
-  if (!m_text.nextLine(m_tokens)) m_text.fail("the file ends after $Elements (truncated)");
-  if (m_tokens.size() != (v41 ? 4u : 2u))
-    m_text.fail(v41 ? "expected \"numEntityBlocks numElements minElementTag maxElementTag\" after $Elements "
-                      "(format 4.1)"
-                    : "expected \"numEntityBlocks numElements\" after $Elements (format 4.0)");
-  const int64_t blocks = integerToken(0, "the number of entity blocks");
-  m_text.checkCount(blocks, kMaxRecords, kMinEntityLineBytes, "element entity blocks");
-  const int64_t count = integerToken(1, "the number of elements");
-  m_text.checkCount(count, kMaxRecords, kMinElementBytes, "elements");
+  const auto [blocks, count] = blockSectionHeader("$Elements", "numElements minElementTag maxElementTag", "elements",
+                                                  kMaxRecords, kMinElementBytes);
   int64_t read = 0;
   for (int64_t b = 0; b < blocks; ++b) {
-    recordLine("$Elements", b, blocks, "entity blocks");
-    if (m_tokens.size() != 4)
-      m_text.fail(v41 ? "expected an element block line \"entityDim entityTag elementType numElementsInBlock\""
-                      : "expected an element block line \"entityTag entityDim elementType numElementsInBlock\"");
+    blockLine("$Elements", b, blocks, "elementType numElementsInBlock");
     const int64_t dimension = integerToken(v41 ? 0 : 1, "entity dimension");
     const int64_t entity = integerToken(v41 ? 1 : 0, "entity tag");
     const int64_t type = integerToken(2, "element type");

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "plugins/tetra_brain/TetMesh.h"
@@ -39,6 +40,12 @@ class GmshParser {
   void readNodeBlocks();
   void readElementBlocks();
   Vec3 readCoordinates(size_t firstToken, int64_t nodeId, int64_t extraValues);
+  // The line after $Nodes or $Elements: the numbers of entity blocks and of
+  // `what` (4.1 adds the smallest and largest tag: `countFields41`).
+  std::pair<int64_t, int64_t> blockSectionHeader(const char* section, const char* countFields41, const char* what,
+                                                 int64_t maxCount, uint64_t minBytesEach);
+  // The header line of entity block `block`: four values, the last two `lastFields`.
+  void blockLine(const char* section, int64_t block, int64_t blocks, const char* lastFields);
 
   // Shared record handling.
   int64_t sectionCount(const char* section, int64_t maxCount, uint64_t minBytesEach, const char* what);

@@ -128,22 +128,14 @@ int64_t GmshParser::integerToken(size_t index, const std::string& what) {
 Vec3 GmshParser::readCoordinates(size_t firstToken, int64_t nodeId, int64_t extraValues) {
   const size_t expected = firstToken + 3 + size_t(extraValues);
   if (m_tokens.size() != expected)
-    m_text.fail("node " + std::to_string(nodeId) + " has " + std::to_string(m_tokens.size() - firstToken) +
-                " values, expected x y z" + (extraValues > 0 ? " and its " + std::to_string(extraValues) +
-                                                                   " parametric coordinates"
-                                                             : std::string()));
+    m_text.fail(
+        "node " + std::to_string(nodeId) + " has " + std::to_string(m_tokens.size() - firstToken) +
+        " values, expected x y z" +
+        (extraValues > 0 ? " and its " + std::to_string(extraValues) + " parametric coordinates" : std::string()));
   Vec3 position;
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::string_view token = m_tokens[firstToken + size_t(axis)];
-    const std::optional<double> value = parseReal(token);
-    if (!value)
-      m_text.fail("node " + std::to_string(nodeId) + ": " + "xyz"[axis] + " coordinate " + quoteForMessage(token) +
-                  " is not a number");
-    if (!std::isfinite(*value))
-      m_text.fail("node " + std::to_string(nodeId) + " has a non-finite " + "xyz"[axis] + " coordinate " +
-                  quoteForMessage(token) + " (expected a finite number of mm)");
-    position[axis] = *value;
-  }
+  const std::string owner = "node " + std::to_string(nodeId);
+  for (int axis = 0; axis < 3; ++axis)
+    position[axis] = m_text.coordinate(m_tokens[firstToken + size_t(axis)], axis, owner);
   return position;
 }
 

@@ -72,17 +72,8 @@ class MeditParser {
     m_mesh.nodes.reserve(size_t(count));
     for (int64_t i = 1; i <= count; ++i) {
       Vec3 position;
-      for (int axis = 0; axis < 3; ++axis) {
-        const std::string_view token = field("Vertices", i, count);
-        const std::optional<double> value = parseReal(token);
-        if (!value)
-          m_text.fail("vertex " + std::to_string(i) + ": " + "xyz"[axis] + " coordinate " + quoteForMessage(token) +
-                      " is not a number");
-        if (!std::isfinite(*value))
-          m_text.fail("vertex " + std::to_string(i) + " has a non-finite " + "xyz"[axis] + " coordinate " +
-                      quoteForMessage(token) + " (expected a finite number of mm)");
-        position[axis] = *value;
-      }
+      for (int axis = 0; axis < 3; ++axis)
+        position[axis] = m_text.coordinate(field("Vertices", i, count), axis, "vertex " + std::to_string(i));
       const std::string_view reference = field("Vertices", i, count);  // unused, but must be there
       if (!parseInteger(reference))
         m_text.fail("vertex " + std::to_string(i) + ": reference " + quoteForMessage(reference) +

@@ -61,16 +61,8 @@ TetGenNodes readNodes(TextCursor& text) {
       text.fail("node " + std::to_string(*id) + " has " + std::to_string(tokens.size() - 1) +
                 " values after its index, expected x y z");
     Vec3 position;
-    for (int axis = 0; axis < 3; ++axis) {
-      const std::optional<double> value = parseReal(tokens[size_t(axis) + 1]);
-      if (!value)
-        text.fail("node " + std::to_string(*id) + ": " + "xyz"[axis] + " coordinate " +
-                  quoteForMessage(tokens[size_t(axis) + 1]) + " is not a number");
-      if (!std::isfinite(*value))
-        text.fail("node " + std::to_string(*id) + " has a non-finite " + "xyz"[axis] + " coordinate " +
-                  quoteForMessage(tokens[size_t(axis) + 1]) + " (expected a finite number of mm)");
-      position[axis] = *value;
-    }
+    for (int axis = 0; axis < 3; ++axis)
+      position[axis] = text.coordinate(tokens[size_t(axis) + 1], axis, "node " + std::to_string(*id));
     ids.push_back(*id);
     read.push_back(position);
   }

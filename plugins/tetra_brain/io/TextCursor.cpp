@@ -1,6 +1,7 @@
 #include "plugins/tetra_brain/io/TextCursor.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 
 #include "plugins/tetra_brain/io/TetMeshReader.h"
@@ -122,6 +123,16 @@ int64_t TextCursor::nextInteger(const std::string& what) {
   if (token.empty()) fail("the file ends where " + what + " should be (truncated)");
   const std::optional<int64_t> value = parseInteger(token);
   if (!value) fail(what + " is " + quoteForMessage(token) + ", expected a whole number");
+  return *value;
+}
+
+double TextCursor::coordinate(std::string_view token, int axis, const std::string& owner) const {
+  const std::optional<double> value = parseReal(token);
+  const char name = "xyz"[axis];
+  if (!value) fail(owner + ": " + name + " coordinate " + quoteForMessage(token) + " is not a number");
+  if (!std::isfinite(*value))
+    fail(owner + " has a non-finite " + name + " coordinate " + quoteForMessage(token) +
+         " (expected a finite number of mm)");
   return *value;
 }
 

@@ -42,6 +42,10 @@ class TextCursor {
   // (truncated) or the token is not one.
   int64_t nextInteger(const std::string& what);
 
+  // `token` as coordinate `axis` (0, 1, 2: x, y, z; mm) of `owner` ("node
+  // 7"); fails when it is not a finite number.
+  double coordinate(std::string_view token, int axis, const std::string& owner) const;
+
   // Throws TetMeshReadError naming the file and line().
   [[noreturn]] void fail(const std::string& problem) const;
   // Refuses a count read from the file before anything is reserved for it:

@@ -97,8 +97,8 @@ class ArrayDecoder {
   std::string appendedBytes(uint64_t expectedBytes) const {
     if (!m_encoding.hasAppended) fail("format=\"appended\" but the file has no <AppendedData>");
     if (m_array.offset > m_encoding.appended.size())
-      fail("offset " + std::to_string(m_array.offset) + " is beyond the " +
-           std::to_string(m_encoding.appended.size()) + " bytes of <AppendedData>");
+      fail("offset " + std::to_string(m_array.offset) + " is beyond the " + std::to_string(m_encoding.appended.size()) +
+           " bytes of <AppendedData>");
     const std::string_view rest = m_encoding.appended.substr(size_t(m_array.offset));
     if (!m_encoding.appendedBase64)
       return m_encoding.zlib ? inflateBlocks(rest, expectedBytes) : uncompressed(rest, expectedBytes);

@@ -724,6 +724,12 @@ TEST(GmshReader, Version4ErrorsNameTheBlockAndLine) {
               {"element 22 refers to node 57", "not in the node section"});
   expectError(dir.write("dimension.msh", broken("3 1 1 7\n", "4 1 1 7\n")), 22,
               {"entity dimension 4, expected 0 to 3"});
+  expectError(dir.write("header.msh", broken("$Nodes\n2 8 2 3000000000", "$Nodes\n2 8 2")), 18,
+              {"expected \"numEntityBlocks numNodes minNodeTag maxNodeTag\" after $Nodes (format 4.1)"});
+  expectError(dir.write("header40.msh", broken("4.1 0 8", "4.0 0 8")), 18,
+              {"expected \"numEntityBlocks numNodes\" after $Nodes (format 4.0)"});
+  expectError(dir.write("blockline.msh", broken("3 2 4 2\n", "3 2 4\n")), 45,
+              {"expected a block line \"entityDim entityTag elementType numElementsInBlock\""});
 }
 
 TEST(GmshReader, ErrorsNameTheElementAndLine) {
