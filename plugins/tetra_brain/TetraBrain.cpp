@@ -20,7 +20,7 @@ void TetraBrain::init(InitContext& context) {
     context.error(d_file, "the mesh has no tetrahedra");
     return;
   }
-  for (Vec3& p : m_mesh.nodes) p += d_translation.value();
+  for (Vec3& p : m_mesh.nodes) p = d_scale.value() * p + d_translation.value();
   const MeshReport report = inspectMesh(m_mesh, TetTopology(m_mesh));
   if (report.invertedTets > 0 && d_inverted.is("refuse")) {
     context.error(d_inverted, report.describe() + "(inverted=\"reorient\" swaps two nodes of each)");

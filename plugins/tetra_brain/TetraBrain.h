@@ -116,7 +116,16 @@ class TetraBrain final : public Component, public ShellContactTarget {
                        "reorient",
                        {.help = "Tetrahedra with negative volume: swap two nodes (and report how many), or refuse "
                                 "the mesh"}};
-  Field<Vec3> d_translation{this, "translation", Vec3::Zero(), {.help = "Moves the mesh after loading", .unit = "mm"}};
+  Field<double> d_scale{this,
+                        "scale",
+                        1.0,
+                        {.help = "Multiplies the node coordinates of the file, before the translation: the size of "
+                                 "the file's unit in mm (1000 for a mesh in metres)",
+                         .unit = "mm per file unit",
+                         .min = 0.0,
+                         .minExclusive = true}};
+  Field<Vec3> d_translation{
+      this, "translation", Vec3::Zero(), {.help = "Moves the mesh after loading (and scaling)", .unit = "mm"}};
   Field<double> d_cellSize{this,
                            "cellSize",
                            0.0,

@@ -148,6 +148,29 @@ TEST(TetraBrainTest, TheThesisSearchesFindTheSameContactsAsTheGrid) {
   }
 }
 
+TEST(TetraBrainTest, ScaleConvertsTheFilesUnitToMillimetres) {
+  // The same cube phantom read as if in centimetres: every length ten times.
+  auto averageEdge = [](const std::string& scale) {
+    Diagnostics d;
+    auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <TetraBrain name="brain" file="phantom:cube?cells=7" translation="5 0 0" )" +
+                                          scale + R"(/>
+</Node>)",
+                                      d);
+    EXPECT_TRUE(simulation) << test::messages(d);
+    return simulation ? test::componentCounter(*simulation, "TetraBrain", "average_edge_mm") : 0.0;
+  };
+  EXPECT_NEAR(averageEdge(R"(scale="10")"), 10 * averageEdge(""), 1e-9);
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <TetraBrain name="brain" file="phantom:cube?cells=7" scale="-1"/>
+</Node>)",
+                               d));
+  EXPECT_NE(test::messages(d).find("inline.xml:3:"), std::string::npos) << test::messages(d);
+}
+
 TEST(TetraBrainTest, BadMeshSourcesAreLoadErrorsAtTheAttribute) {
   auto errors = [](const std::string& file, const std::string& extra = "") {
     const std::string xml = R"(<Node name="root">
