@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Deformable collision experiments (thesis section 4.4) on the tetrahedral brain.
 
-usage: tools/bench_brain.py [--quick] [--out DIR] [--only split|scene|paths] [--reuse-split]
+usage: tools/bench_brain.py [--quick] [--out DIR] [--only split|scene|paths|margin] [--reuse-split]
 
 1. The step split into refresh, search and the rest (Fig. 4.8 to 4.14):
    build/bin/tet_collision_benchmark on Cube1..Cube7 (Table 4.1) and
@@ -20,7 +20,12 @@ usage: tools/bench_brain.py [--quick] [--out DIR] [--only split|scene|paths] [--
    and max, NaN frames, ...), DIR/tet_path{1,2,3}.png (normal, penetration,
    force and change of force per frame on Brain3, Fig. 4.15 to 4.17, 4.20,
    4.21) and DIR/tet_paths_penetration.png (Brain2 to 4, Fig. 4.18).
---quick keeps Cube1 and Brain1 and path 1 (a smoke test).
+4. Deformations larger than the displacement margin: the wave of
+   scenes/bench/tet_wave_circle.xml at amplitudes of 0.25 to 4 mm on Brain3
+   and Cube7, with the automatic margin (a quarter of the average edge) and
+   margins of 1, 2 and 4 mm: the haptic step's time, the grid's memory and
+   the force -> DIR/tet_margin.csv, DIR/tet_margin.png.
+--quick keeps Cube1 and Brain1, path 1 and two amplitudes (a smoke test).
 """
 import argparse
 import json
@@ -251,13 +256,59 @@ def paths_experiment(out, quick, plt):
     plt.close(fig)
 
 
+def margin_experiment(out, quick, plt):
+    """The wave's amplitude bounds every node's displacement; queries widen
+    by whatever exceeds the grid's margin. Time against amplitude for each margin."""
+    meshes = [BRAINS[0]] if quick else [BRAINS[2], CUBES[6]]
+    amplitudes = [0.5, 2.0] if quick else [0.25, 0.5, 1.0, 2.0, 4.0]
+    margins = [0.0] if quick else [0.0, 1.0, 2.0, 4.0]  # mm; 0: automatic (a quarter of the average edge)
+    rows = []
+    for name, spec in meshes:
+        for margin in margins:
+            for amplitude in amplitudes:
+                run_dir = out / f"margin_{name}_{margin:g}_{amplitude:g}"
+                r = run_scene(WAVE, run_dir, [f"/patient/brain.file={spec}", f"/patient/wave.amplitude={amplitude}",
+                                             f"/patient/brain.displacementMargin={margin}"])
+                h = r["summary"]["haptics"]
+                brain = r["summary"]["components"]["/patient/brain"]["counters"]
+                row = {"mesh": name, "tetrahedra": int(brain["tetrahedra"]),
+                       "margin_mm": brain["displacement_margin_mm"], "margin_setting": "auto" if margin == 0 else margin,
+                       "amplitude_mm": amplitude, "frames_beyond_margin": int(brain["frames_beyond_margin"]),
+                       "grid_entries": int(brain["grid_entries"]),
+                       "step_p50_us": percentile(r["step_us"], 0.5), "step_p99_us": percentile(r["step_us"], 0.99),
+                       "step_max_us": max(r["step_us"]), "contact_frames": h["contact_frames"],
+                       "force_step_max_N": h["force_step_N"]["max"], "nan_frames": h["nan_frames"],
+                       "proxy_inside_frames": h["proxy_inside_frames"]}
+                rows.append(row)
+                print(f"{name:7s} margin {row['margin_mm']:5.2f} mm amplitude {amplitude:4.2f} mm: step p50 "
+                      f"{row['step_p50_us']:8.2f} us  p99 {row['step_p99_us']:8.2f}  max {row['step_max_us']:9.1f}  "
+                      f"grid entries {row['grid_entries']}  beyond {row['frames_beyond_margin']}")
+    write_rows(out / "tet_margin.csv", rows)
+    fig, axes = plt.subplots(1, len(meshes), figsize=(5 * len(meshes), 3.4), squeeze=False)
+    for a, (name, _) in zip(axes[0], meshes):
+        for margin in margins:
+            mine = [r for r in rows if r["mesh"] == name and r["margin_setting"] == ("auto" if margin == 0 else margin)]
+            label = f"margin auto ({mine[0]['margin_mm']:.2f} mm)" if margin == 0 else f"margin {margin:g} mm"
+            a.plot([r["amplitude_mm"] for r in mine], [r["step_p99_us"] for r in mine], marker="o", label=label)
+        a.set_xscale("log", base=2)
+        a.set_yscale("log")
+        a.axhline(1000, color="red", lw=0.6, ls="--")
+        a.set_xlabel("wave amplitude = displacement bound (mm)")
+        a.set_ylabel("haptic step p99 (us)")
+        a.set_title(f"{name}: every node moving, grid search", fontsize=9)
+        a.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "tet_margin.png", dpi=110)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--out", default=str(ROOT / "runs/bench_brain"))
     parser.add_argument("--reuse-split", action="store_true",
                         help="draw the split from DIR/tet_collision.json of an earlier run instead of running it")
-    parser.add_argument("--only", choices=["split", "scene", "paths"], help="run one experiment")
+    parser.add_argument("--only", choices=["split", "scene", "paths", "margin"], help="run one experiment")
     args = parser.parse_args()
     plt = ensure_matplotlib("bench_brain.py")
 
@@ -269,6 +320,8 @@ def main():
         scene_experiment(out, args.quick, plt)
     if args.only in (None, "paths"):
         paths_experiment(out, args.quick, plt)
+    if args.only in (None, "margin"):
+        margin_experiment(out, args.quick, plt)
     print(f"wrote CSV files and figures in {out}")
 
 
