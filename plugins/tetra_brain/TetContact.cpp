@@ -79,6 +79,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   normal.setZero();
   const int32_t maxRing = std::max({dims[0], dims[1], dims[2]});
   const auto& faces = m_topology.boundaryFaces();
+  m_faceVisits.begin();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
     if ((ring - 1) * m_faceGrid.cellSide() - slack > best) break;
     for (int32_t k = ck - ring; k <= ck + ring; ++k)
@@ -87,6 +88,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
           if (std::max({std::abs(i - ci), std::abs(j - cj), std::abs(k - ck)}) != ring) continue;  // shell only
           if (i < 0 || j < 0 || k < 0 || i >= dims[0] || j >= dims[1] || k >= dims[2]) continue;
           for (int32_t f : m_faceGrid.items(m_faceGrid.cellIndex(i, j, k))) {
+            if (!m_faceVisits.firstVisit(f)) continue;
             const auto n = faceNodes(m_mesh.tets[faces[f].tet], faces[f].face);
             const Vec3 q = closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]);
             const double distance = (q - p).norm();

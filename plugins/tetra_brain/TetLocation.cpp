@@ -37,12 +37,13 @@ int32_t TetraBrain::locate(const Vec3& p) const {
   std::array<int32_t, 3> lo, hi;
   if (!m_tetGrid.cellRange(Box3(p - e, p + e), lo, hi)) return -1;
   int32_t found = -1;
+  m_tetVisits.begin();
   for (int32_t k = lo[2]; k <= hi[2]; ++k)
     for (int32_t j = lo[1]; j <= hi[1]; ++j)
       for (int32_t i = lo[0]; i <= hi[0]; ++i)
         for (int32_t tet : m_tetGrid.items(m_tetGrid.cellIndex(i, j, k))) {
           if (found >= 0 && tet >= found) break;
-          if (nearBox(tet) && inside(tet, p)) found = tet;
+          if (m_tetVisits.firstVisit(tet) && nearBox(tet) && inside(tet, p)) found = tet;
         }
   return found;
 }

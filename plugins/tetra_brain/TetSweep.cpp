@@ -43,10 +43,12 @@ double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInsi
   const auto& faces = m_topology.boundaryFaces();
   const Vec3 direction = b - a;
   double first = 2.0;
+  m_faceVisits.begin();
   for (int32_t k = lo[2]; k <= hi[2]; ++k)
     for (int32_t j = lo[1]; j <= hi[1]; ++j)
       for (int32_t i = lo[0]; i <= hi[0]; ++i)
         for (int32_t f : m_faceGrid.items(m_faceGrid.cellIndex(i, j, k))) {
+          if (!m_faceVisits.firstVisit(f)) continue;
           const Vec3 n = faceNormal(faces[f]);
           if (direction.dot(n) >= 0) continue;  // leaving, or grazing
           const auto v = faceNodes(m_mesh.tets[faces[f].tet], faces[f].face);

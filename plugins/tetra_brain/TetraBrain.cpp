@@ -127,6 +127,8 @@ void TetraBrain::buildAccelerations() {
     boxes.push_back(grown(box));
   }
   m_faceGrid.build(grown(m_restBounds), m_tetGrid.cellSide(), boxes);
+  m_tetVisits.resize(n);
+  m_faceVisits.resize(m_topology.boundaryFaces().size());
   // Node -> boundary faces, compressed rows.
   const auto& faces = m_topology.boundaryFaces();
   m_nodeFaceStart.assign(m_mesh.nodeCount() + 1, 0);

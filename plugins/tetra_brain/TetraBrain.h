@@ -27,6 +27,7 @@
 #include "plugins/tetra_brain/TetMesh.h"
 #include "plugins/tetra_brain/TetTopology.h"
 #include "plugins/tetra_brain/UniformGrid.h"
+#include "plugins/tetra_brain/VisitStamps.h"
 
 namespace trephine::tetra {
 
@@ -222,6 +223,7 @@ class TetraBrain final : public Component, public ShellContactTarget {
   std::vector<int32_t> m_pointTets;   // per shell point, its tet or -1
   // Scratch of the const queries (the haptic thread only).
   mutable ShellLocator m_locator;
+  mutable VisitStamps m_tetVisits, m_faceVisits;  // blocks of cells: each item tested once
   mutable std::vector<Vec3> m_insetPoints;
   mutable std::vector<int32_t> m_insetTets;
   std::vector<int32_t> m_candidates;  // tets within two rings of the first colliding one
