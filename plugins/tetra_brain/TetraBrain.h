@@ -105,9 +105,9 @@ class TetraBrain final : public Component, public ShellContactTarget {
 
   FilePathField d_file{this,
                        "file",
-                       {.help = "Tetrahedral mesh: TetGen .node/.ele, Medit .mesh, Gmsh .msh (ASCII 4.1, 4.0, 2.x, legacy), VTK .vtk "
-                                "or .vtu (format read from the content, gzip allowed); or a phantom: "
-                                "phantom:cube?cells=22, phantom:brain?tets=22000",
+                       {.help = "Tetrahedral mesh: TetGen .node/.ele, Medit .mesh, Gmsh .msh (ASCII 4.1, 4.0, 2.x, "
+                                "legacy), VTK .vtk or .vtu (format read from the content, gzip allowed); or a "
+                                "phantom: phantom:cube?cells=22, phantom:brain?tets=22000",
                         .required = true},
                        FilePathField::Role::Input,
                        {"phantom"}};

@@ -41,8 +41,8 @@ TetMesh readContent(const std::filesystem::path& file, std::string content) {
   }
   throw TetMeshReadError(file, "not a recognised tetrahedral mesh: the content starts with " +
                                    quoteForMessage(content.substr(0, 24)) +
-                                   " (expected TetGen .node/.ele, Medit .mesh, Gmsh .msh ASCII (4.1, 4.0, 2.x or legacy), VTK "
-                                   "legacy .vtk or VTK XML .vtu)");
+                                   " (expected TetGen .node/.ele, Medit .mesh, Gmsh .msh ASCII (4.1, 4.0, 2.x or "
+                                   "legacy), VTK legacy .vtk or VTK XML .vtu)");
 }
 
 }  // namespace

@@ -630,9 +630,11 @@ std::string gmshVersion4(bool v41) {
   text += "2 -1.5 2.25 100 8.5 12.25 110.125 2 6 7 0\n";    // volume 2: physical 6 (then 7)
   text += "3 0 0 0 1 1 1 0 0\n";                             // volume 3: no physical group
   text += "$EndEntities\n";
+  // 4.1 writes the entity's dimension first, 4.0 its tag.
   auto blockHead = [&](int dim, int tag, int third, size_t n) {
-    return v41 ? std::to_string(dim) + " " + std::to_string(tag) + " " + std::to_string(third) + " " + std::to_string(n)
-               : std::to_string(tag) + " " + std::to_string(dim) + " " + std::to_string(third) + " " + std::to_string(n);
+    const std::string entity = v41 ? std::to_string(dim) + " " + std::to_string(tag)
+                                   : std::to_string(tag) + " " + std::to_string(dim);
+    return entity + " " + std::to_string(third) + " " + std::to_string(n);
   };
   text += v41 ? "$Nodes\n2 8 2 3000000000\n" : "$Nodes\n2 8\n";
   text += blockHead(0, 1, 0, 1) + "\n";
