@@ -27,6 +27,19 @@ std::string_view attribute(const XMLElement* element, const char* name) {
   return value ? std::string_view(value) : std::string_view();
 }
 
+// The first `needle` in `text` that is not inside an XML comment.
+size_t findOutsideComments(std::string_view text, std::string_view needle) {
+  size_t from = 0;
+  for (;;) {
+    const size_t hit = text.find(needle, from);
+    const size_t comment = text.find("<!--", from);
+    if (hit == std::string_view::npos || comment == std::string_view::npos || hit < comment) return hit;
+    const size_t commentEnd = text.find("-->", comment + 4);
+    if (commentEnd == std::string_view::npos) return std::string_view::npos;
+    from = commentEnd + 3;
+  }
+}
+
 class VtuParser {
  public:
   VtuParser(const std::filesystem::path& file, std::string_view content) : m_file(file), m_content(content) {}
@@ -90,7 +103,7 @@ class VtuParser {
   // The file's XML: the content, or with the data of <AppendedData> removed
   // (kept in m_encoding.appended) into `cut`.
   std::string_view withoutAppendedData(std::string& cut) {
-    const size_t tag = m_content.find("<AppendedData");
+    const size_t tag = findOutsideComments(m_content, "<AppendedData");
     if (tag == std::string_view::npos) return m_content;
     const size_t tagEnd = m_content.find('>', tag);
     if (tagEnd == std::string_view::npos)

@@ -865,6 +865,14 @@ TEST(VtuReader, AppendedDataRawAndBase64CompressedOrNot) {
       }
     }
   }
+  // A comment naming <AppendedData> before the real one, or in a file without one.
+  for (const VtuPlace place : {VtuPlace::kInline, VtuPlace::kAppendedRaw}) {
+    VtuOptions options{VtuData::kBinaryZlib};
+    options.place = place;
+    std::string text = vtu(options);
+    text.insert(text.find("<VTKFile"), "<!-- data in <AppendedData encoding=\"raw\"> or inline -->\n");
+    expectCube(readTetMesh(dir.write("commented.vtu", text)), true);
+  }
   // Raw data may hold anything, "<" and "</AppendedData>" included.
   VtuOptions options{VtuData::kBinary};
   options.place = VtuPlace::kAppendedRaw;
