@@ -150,12 +150,13 @@ void GmshParser::readElementBlocks() {
     std::optional<int64_t> label;
     if (const auto found = m_volumePhysical.find(entity); dimension == 3 && found != m_volumePhysical.end())
       label = found->second;
-    if (type != kGmshTetrahedron) m_skippedTypes[type] += inBlock;
+    const bool tetrahedra = gmshTetrahedronNodes(type) > 0;
+    if (!tetrahedra) m_skippedTypes[type] += inBlock;
     for (int64_t i = 0; i < inBlock; ++i, ++read) {
       recordLine("$Elements", read, count, "elements");
-      if (type != kGmshTetrahedron) continue;
+      if (!tetrahedra) continue;
       const int64_t id = integerToken(0, "element tag");
-      addTet("element " + std::to_string(id), 1, label);
+      addTet("element " + std::to_string(id), type, 1, label);
     }
   }
   if (read != count)

@@ -18,7 +18,14 @@
 
 namespace trephine::tetra {
 
-inline constexpr int64_t kGmshTetrahedron = 4;  // Gmsh element type of the 4-node tetrahedron
+// Gmsh element types of tetrahedra: 4 nodes, and 10 (the corners first, then
+// the edge midpoints; only the corners are kept).
+inline constexpr int64_t kGmshTetrahedron = 4;
+inline constexpr int64_t kGmshQuadraticTetrahedron = 11;
+// Nodes an element of `type` lists when it is a tetrahedron (4 or 10), else 0.
+inline int64_t gmshTetrahedronNodes(int64_t type) {
+  return type == kGmshTetrahedron ? 4 : type == kGmshQuadraticTetrahedron ? 10 : 0;
+}
 
 class GmshParser {
  public:
@@ -52,7 +59,8 @@ class GmshParser {
   void recordLine(const char* section, int64_t i, int64_t count, const char* what);
   void expectEnd(const char* end, int64_t count, const char* what);
   int64_t integerToken(size_t index, const std::string& what);
-  void addTet(const std::string& name, size_t firstNode, std::optional<int64_t> label);
+  // The tetrahedron of element `name` of `type` whose node ids start at token `firstNode`.
+  void addTet(const std::string& name, int64_t type, size_t firstNode, std::optional<int64_t> label);
 
   TextCursor m_text;
   std::vector<std::string_view> m_tokens;

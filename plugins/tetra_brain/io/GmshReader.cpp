@@ -56,7 +56,7 @@ TetMesh GmshParser::read() {
       }
       types += (types.empty() ? "" : ", ") + std::to_string(count) + " of type " + std::to_string(type);
     }
-    throw TetMeshReadError(m_text.file(), "the file has no tetrahedra (element type 4); its elements are " +
+    throw TetMeshReadError(m_text.file(), "the file has no tetrahedra (element type 4 or 11); its elements are " +
                                               (types.empty() ? std::string("none") : types));
   }
   if (!m_anyTagged) m_mesh.labels.clear();
@@ -183,7 +183,8 @@ void GmshParser::readElement(bool legacy) {
   const std::string name = "element " + std::to_string(id);
   if (m_tokens.size() < 3) m_text.fail(name + " has no type and tags, expected \"id type ...\"");
   const int64_t type = integerToken(1, name + ": type");
-  if (type != kGmshTetrahedron) {
+  const int64_t nodes = gmshTetrahedronNodes(type);
+  if (nodes == 0) {
     ++m_skippedTypes[type];
     return;
   }
@@ -192,12 +193,13 @@ void GmshParser::readElement(bool legacy) {
   if (legacy) {
     if (m_tokens.size() < 5) m_text.fail(name + " is cut short, expected \"id type physical elementary n nodes...\"");
     const std::optional<int64_t> nodeCount = parseInteger(m_tokens[4]);
-    if (!nodeCount || *nodeCount != 4)
+    if (!nodeCount || *nodeCount != nodes)
       m_text.fail(name + " has " + (nodeCount ? std::to_string(*nodeCount) : quoteForMessage(m_tokens[4])) +
-                  " nodes, expected a tetrahedron (type 4, 4 nodes)");
-    if (m_tokens.size() != 9)
-      m_text.fail(name + " lists " + std::to_string(m_tokens.size() - 5) +
-                  " node ids after its node count 4, expected 4");
+                  " nodes, expected a tetrahedron (type " + std::to_string(type) + ", " + std::to_string(nodes) +
+                  " nodes)");
+    if (m_tokens.size() != 5 + size_t(nodes))
+      m_text.fail(name + " lists " + std::to_string(m_tokens.size() - 5) + " node ids after its node count " +
+                  std::to_string(nodes) + ", expected " + std::to_string(nodes));
     label = integerToken(2, name + ": physical tag");
     firstNode = 5;
   } else {
@@ -208,13 +210,14 @@ void GmshParser::readElement(bool legacy) {
     firstNode = 3 + size_t(*tagCount);
     if (*tagCount > 0) label = integerToken(3, name + ": physical tag");
   }
-  addTet(name, firstNode, label);
+  addTet(name, type, firstNode, label);
 }
 
-void GmshParser::addTet(const std::string& name, size_t firstNode, std::optional<int64_t> label) {
-  if (m_tokens.size() - firstNode != 4)
-    m_text.fail(name + " has " + std::to_string(m_tokens.size() - firstNode) +
-                " nodes, expected a tetrahedron (type 4, 4 nodes)");
+void GmshParser::addTet(const std::string& name, int64_t type, size_t firstNode, std::optional<int64_t> label) {
+  const int64_t nodes = gmshTetrahedronNodes(type);
+  if (m_tokens.size() - firstNode != size_t(nodes))
+    m_text.fail(name + " has " + std::to_string(m_tokens.size() - firstNode) + " nodes, expected a tetrahedron (type " +
+                std::to_string(type) + ", " + std::to_string(nodes) + " nodes)");
   if (m_mesh.tets.size() >= size_t(kMaxTets))
     m_text.fail("more than " + std::to_string(kMaxTets) + " tetrahedra, more than supported");
   TetIndices tet;

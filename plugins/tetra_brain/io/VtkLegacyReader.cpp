@@ -9,13 +9,13 @@
 #include "plugins/tetra_brain/io/ReadChecks.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "plugins/tetra_brain/io/TextCursor.h"
+#include "plugins/tetra_brain/io/VtkCellTypes.h"
 
 namespace trephine::tetra {
 
 namespace {
 
 constexpr std::string_view kMagic = "# vtk DataFile Version";
-constexpr int64_t kVtkTetra = 10;
 
 // Cells as offsets into one connectivity array (the 5.1 layout; the classic one is converted).
 struct Cells {
@@ -364,13 +364,15 @@ class VtkLegacyParser {
     const auto pointCount = int64_t(m_mesh.nodes.size());
     const bool labelled = !m_labels.empty();
     for (int64_t cell = 0; cell < m_cells.count(); ++cell) {
-      if (m_types[size_t(cell)] != kVtkTetra) continue;
+      const int64_t type = m_types[size_t(cell)];
+      const int64_t points = vtkTetraPointCount(type);
+      if (points == 0) continue;
       const int64_t start = m_cells.offsets[size_t(cell)];
       const int64_t end = m_cells.offsets[size_t(cell) + 1];
-      if (end - start != 4)
+      if (end - start != points)
         throw TetMeshReadError(m_text.file(), m_cells.line,
-                               "cell " + std::to_string(cell) + " has type 10 (VTK_TETRA) but " +
-                                   std::to_string(end - start) + " points, expected 4");
+                               "cell " + std::to_string(cell) + " has " + vtkTetraTypeName(type) + " but " +
+                                   std::to_string(end - start) + " points, expected " + std::to_string(points));
       if (int64_t(m_mesh.tets.size()) >= kMaxTets)
         throw TetMeshReadError(m_text.file(), m_cells.line, "more than " + std::to_string(kMaxTets) + " tetrahedra");
       TetIndices tet;

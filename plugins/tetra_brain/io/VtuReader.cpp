@@ -12,6 +12,7 @@
 #include "plugins/tetra_brain/io/ReadChecks.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "plugins/tetra_brain/io/TextCursor.h"
+#include "plugins/tetra_brain/io/VtkCellTypes.h"
 #include "plugins/tetra_brain/io/VtuDataArray.h"
 
 namespace trephine::tetra {
@@ -19,8 +20,6 @@ namespace trephine::tetra {
 namespace {
 
 using tinyxml2::XMLElement;
-
-constexpr int64_t kVtkTetra = 10;
 
 std::string_view attribute(const XMLElement* element, const char* name) {
   const char* value = element->Attribute(name);
@@ -232,8 +231,9 @@ class VtuParser {
         fail(offsetsArray, "cell " + std::to_string(cell) + " ends at offset " + std::to_string(end) + ", expected " +
                                std::to_string(start) + " to " + std::to_string(connectivitySize) +
                                " (offsets must not decrease)");
-      if (types[size_t(cell)] == kVtkTetra)
-        addTet(connectivityArray, cell, connectivity, start, end, pointCount, firstNode, labels, labelsArray);
+      if (vtkTetraPointCount(types[size_t(cell)]) > 0)
+        addTet(connectivityArray, cell, types[size_t(cell)], connectivity, start, end, pointCount, firstNode, labels,
+               labelsArray);
       start = end;
     }
   }
@@ -259,12 +259,13 @@ class VtuParser {
     }
   }
 
-  void addTet(const XMLElement* connectivityArray, int64_t cell, const std::vector<int64_t>& connectivity,
+  void addTet(const XMLElement* connectivityArray, int64_t cell, int64_t type, const std::vector<int64_t>& connectivity,
               int64_t start, int64_t end, int64_t pointCount, int64_t firstNode, const std::vector<int64_t>& labels,
               const XMLElement* labelsArray) {
-    if (end - start != 4)
-      fail(connectivityArray, "cell " + std::to_string(cell) + " has type 10 (VTK_TETRA) but " +
-                                  std::to_string(end - start) + " points, expected 4");
+    const int64_t points = vtkTetraPointCount(type);
+    if (end - start != points)
+      fail(connectivityArray, "cell " + std::to_string(cell) + " has " + vtkTetraTypeName(type) + " but " +
+                                  std::to_string(end - start) + " points, expected " + std::to_string(points));
     if (int64_t(m_mesh.tets.size()) >= kMaxTets)
       fail(connectivityArray, "more than " + std::to_string(kMaxTets) + " tetrahedra, more than supported");
     TetIndices tet;

@@ -370,7 +370,7 @@ std::string encodedArray(const Bytes& data, const VtuOptions& options) {
   if (options.place == VtuPlace::kAppendedRaw) return head + body;
   // VTK encodes an uncompressed array as one stream; compressed ones always in two.
   return options.data == VtuData::kBinary && !options.separateHeader ? base64(head + body)
-                                                                      : base64(head) + base64(body);
+                                                                     : base64(head) + base64(body);
 }
 
 template <typename T>
@@ -628,12 +628,12 @@ std::string gmshVersion4(bool v41) {
   text += "4 0 0 0 1 1 1 1 3 1 -2\n";                       // a surface in physical group 3
   text += "1 -1.5 2.25 100 8.5 12.25 110.125 1 5 2 1 4\n";  // volume 1: physical 5
   text += "2 -1.5 2.25 100 8.5 12.25 110.125 2 6 7 0\n";    // volume 2: physical 6 (then 7)
-  text += "3 0 0 0 1 1 1 0 0\n";                             // volume 3: no physical group
+  text += "3 0 0 0 1 1 1 0 0\n";                            // volume 3: no physical group
   text += "$EndEntities\n";
   // 4.1 writes the entity's dimension first, 4.0 its tag.
   auto blockHead = [&](int dim, int tag, int third, size_t n) {
-    const std::string entity = v41 ? std::to_string(dim) + " " + std::to_string(tag)
-                                   : std::to_string(tag) + " " + std::to_string(dim);
+    const std::string entity =
+        v41 ? std::to_string(dim) + " " + std::to_string(tag) : std::to_string(tag) + " " + std::to_string(dim);
     return entity + " " + std::to_string(third) + " " + std::to_string(n);
   };
   text += v41 ? "$Nodes\n2 8 2 3000000000\n" : "$Nodes\n2 8\n";
@@ -700,6 +700,32 @@ TEST(GmshReader, TheVersionsGmshWritesReadAlike) {
   EXPECT_NEAR(volume, 16.0, 1e-9);
 }
 
+TEST(TetMeshReader, SecondOrderTetrahedraKeepTheirCorners) {
+  // The same mesh of second order (10-node tetrahedra: Gmsh type 11, VTK 24)
+  // as Gmsh 4.1 and 2.2 wrote it and as VTK's writers wrote that (XML and
+  // legacy): the corner tetrahedra of the linear mesh, with the same tags;
+  // the edge midpoints stay as nodes no tetrahedron uses.
+  const std::filesystem::path data = test::sourceDir() / "tests/plugins/tetra_brain/data";
+  const TetMesh linear = readTetMesh(data / "two_volumes_v41.msh");
+  for (const char* name :
+       {"two_volumes_o2_v41.msh", "two_volumes_o2_v22.msh", "two_volumes_o2.vtu", "two_volumes_o2_legacy51.vtk"}) {
+    SCOPED_TRACE(name);
+    const TetMesh quadratic = readTetMesh(data / name);
+    ASSERT_EQ(quadratic.tetCount(), linear.tetCount());
+    EXPECT_GT(quadratic.nodeCount(), linear.nodeCount());
+    EXPECT_EQ(quadratic.labels, linear.labels);
+    for (size_t t = 0; t < linear.tetCount(); ++t)
+      for (size_t k = 0; k < 4; ++k)
+        ASSERT_EQ(quadratic.nodes[size_t(quadratic.tets[t][k])], linear.nodes[size_t(linear.tets[t][k])]) << t;
+  }
+  // A 10-node element with a node missing says which type and how many.
+  TempDir dir;
+  std::string text = gmshVersion2();
+  text.replace(text.find("20 4 3 5 1 0"), 12, "20 11 3 5 1 0");
+  expectError(dir.write("short10.msh", text), 28,
+              {"element 20 has 4 nodes, expected a tetrahedron (type 11, 10 nodes)"});
+}
+
 TEST(GmshReader, Version4ErrorsNameTheBlockAndLine) {
   TempDir dir;
   const std::string good = gmshVersion4(true);
@@ -753,7 +779,7 @@ TEST(GmshReader, ErrorsNameTheElementAndLine) {
   text.replace(text.find("1000 -1.5 12.25"), 15, "1000 -1.5 -nan");
   expectError(dir.write("nan.msh", text), 9, {"node 1000 has a non-finite y coordinate '-nan'"});
   expectError(dir.write("flat.msh", "$NOD\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$ENDNOD\n$ELM\n1\n1 2 1 1 3 1 2 3\n$ENDELM\n"),
-              0, {"no tetrahedra (element type 4)", "1 of type 2"});
+              0, {"no tetrahedra (element type 4 or 11)", "1 of type 2"});
   expectError(dir.write("early.msh", "$NOD\n3\n1 0 0 0\n$ENDNOD\n$ELM\n0\n$ENDELM\n"), 4,
               {"$NOD ends with '$ENDNOD' after 1 of the 3 nodes"});
   expectError(dir.write("open.msh", "$Comments\nno end\n"), 1, {"'$Comments' has no $EndComments"});
@@ -855,9 +881,9 @@ TEST(VtuReader, AppendedDataRawAndBase64CompressedOrNot) {
     for (const VtuData data : {VtuData::kBinary, VtuData::kBinaryZlib}) {
       for (const bool header64 : {false, true}) {
         for (const size_t blockSize : {size_t(32768), size_t(16)}) {
-          SCOPED_TRACE(testing::Message() << "raw " << (place == VtuPlace::kAppendedRaw) << " zlib "
-                                          << (data == VtuData::kBinaryZlib) << " header64 " << header64 << " block "
-                                          << blockSize);
+          SCOPED_TRACE(testing::Message()
+                       << "raw " << (place == VtuPlace::kAppendedRaw) << " zlib " << (data == VtuData::kBinaryZlib)
+                       << " header64 " << header64 << " block " << blockSize);
           VtuOptions options{data, header64, blockSize == 16, blockSize == 16, blockSize};
           options.place = place;
           expectCube(readTetMesh(dir.write("appended.vtu", vtu(options))), true);
@@ -887,8 +913,8 @@ TEST(TetMeshReader, EveryLayoutVtkWritesReadsAsTheGmshFile) {
   // compressed or not; legacy 5.1 binary and 4.2 ASCII.
   const std::filesystem::path data = test::sourceDir() / "tests/plugins/tetra_brain/data";
   const TetMesh gmsh = readTetMesh(data / "two_volumes_v22.msh");
-  for (const char* name : {"default.vtu", "raw.vtu", "raw_plain.vtu", "b64_plain64.vtu", "inline.vtu",
-                           "legacy51.vtk", "legacy42.vtk"}) {
+  for (const char* name :
+       {"default.vtu", "raw.vtu", "raw_plain.vtu", "b64_plain64.vtu", "inline.vtu", "legacy51.vtk", "legacy42.vtk"}) {
     SCOPED_TRACE(name);
     const TetMesh vtu = readTetMesh(data / (std::string("two_volumes_") + name));
     // VTK's legacy ASCII writer keeps 6 significant digits; binary layouts are exact.

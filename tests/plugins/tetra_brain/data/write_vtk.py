@@ -8,8 +8,14 @@ writers in each of their layouts, for the reader tests:
   two_volumes_inline.vtu       XML, inline base64, zlib
   two_volumes_legacy51.vtk     legacy 5.1 (VTK 9's default), binary
   two_volumes_legacy42.vtk     legacy 4.2, ASCII
+  two_volumes_o2.vtu           two_volumes_o2_v22.msh (the same mesh of
+                               second order: 10-node tetrahedra) as XML,
+                               VTK's defaults
+  two_volumes_o2_legacy51.vtk  the same as legacy 5.1, binary
 The triangles of the Gmsh file are kept too (readers skip them); the cell
-array gmsh:physical holds the physical tags. Needs python3-vtk9:
+array gmsh:physical holds the physical tags. The Gmsh files come from
+two_volumes.geo: gmsh -3 [-order 2] two_volumes.geo -format msh22|msh40|msh41.
+Needs python3-vtk9:
   /usr/bin/python3 tests/plugins/tetra_brain/data/write_vtk.py
 """
 import os
@@ -17,7 +23,11 @@ import os
 import vtk
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-GMSH_TRIANGLE, GMSH_TETRAHEDRON = 2, 4
+# Gmsh element type -> VTK cell type and the Gmsh node order in VTK's
+# (second-order tetrahedra list their last two edge midpoints the other way).
+GMSH_TO_VTK = {2: (vtk.VTK_TRIANGLE, [0, 1, 2]), 4: (vtk.VTK_TETRA, [0, 1, 2, 3]),
+               9: (vtk.VTK_QUADRATIC_TRIANGLE, [0, 1, 2, 3, 4, 5]),
+               11: (vtk.VTK_QUADRATIC_TETRA, [0, 1, 2, 3, 4, 5, 6, 7, 9, 8])}
 
 
 def read_gmsh22(path):
@@ -35,10 +45,9 @@ def read_gmsh22(path):
         values = [int(v) for v in line.split()]
         element_type, tag_count = values[1], values[2]
         nodes = [index_of[n] for n in values[3 + tag_count:]]
-        if element_type == GMSH_TETRAHEDRON:
-            cells.append((vtk.VTK_TETRA, nodes, values[3]))
-        elif element_type == GMSH_TRIANGLE:
-            cells.append((vtk.VTK_TRIANGLE, nodes, values[3]))
+        if element_type in GMSH_TO_VTK:
+            cell_type, order = GMSH_TO_VTK[element_type]
+            cells.append((cell_type, [nodes[k] for k in order], values[3]))
     return points, cells
 
 
@@ -58,7 +67,7 @@ def grid_of(points, cells):
     return grid
 
 
-def write(grid, name, appended, encoded, compressed, header64=False):
+def write(grid, name, appended=True, encoded=True, compressed=True, header64=False):
     writer = vtk.vtkXMLUnstructuredGridWriter()
     writer.SetFileName(os.path.join(HERE, 'two_volumes_' + name + '.vtu'))
     writer.SetInputData(grid)
@@ -94,6 +103,9 @@ def main():
     write(grid, 'inline', appended=False, encoded=True, compressed=True)
     write_legacy(grid, 'legacy51', binary=True)
     write_legacy(grid, 'legacy42', binary=False, version=42)
+    second_order = grid_of(*read_gmsh22(os.path.join(HERE, 'two_volumes_o2_v22.msh')))
+    write(second_order, 'o2')
+    write_legacy(second_order, 'o2_legacy51', binary=True)
 
 
 if __name__ == '__main__':
