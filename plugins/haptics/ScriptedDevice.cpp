@@ -8,17 +8,11 @@
 #include <set>
 
 #include "framework/core/Lifecycle.h"
+#include "framework/geometry/FrontRings.h"
 
 namespace trephine::haptics {
 
 namespace {
-
-// Two unit vectors spanning the plane orthogonal to unit n.
-std::pair<Vec3, Vec3> tangentBasis(const Vec3& n) {
-  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 u = n.cross(helper).normalized();
-  return {u, n.cross(u)};
-}
 
 constexpr double kSettle = 0.1;    // s held at the start and end of each path
 constexpr double kEaseTime = 0.5;  // s to reach full speed on a circle or a walk
@@ -51,7 +45,7 @@ std::optional<ScriptedDevice::Aim> ScriptedDevice::aimAt(const Vec3& offset, Ini
   // may sit up to about r/20 too low (0.05 mm for a 2.5 mm tool at a 3 mm slot).
   double stop = hit->distance - r;
   Vec3 normal = hit->normal;
-  const auto [u, v] = tangentBasis(d);
+  const auto [u, v] = perpendicularBasis(d);
   constexpr int kRings = 8;
   for (int ring = 1; ring <= kRings; ++ring) {
     const double rho = r * ring / kRings;
@@ -149,7 +143,7 @@ void ScriptedDevice::buildApproachPressSlide(const Aim& aim, const Vec3& d) {
   const Vec3 pressed = aim.surface + d * d_depth.value();
   Vec3 slide = d_slideDirection.value() - d_slideDirection->dot(aim.normal) * aim.normal;
   if (slide.norm() < 1e-9)
-    slide = tangentBasis(aim.normal).first;  // slide direction along the normal: pick any tangent
+    slide = perpendicularBasis(aim.normal).first;  // slide direction along the normal: pick any tangent
   slide.normalize();
   const Vec3 slid = pressed + slide * d_slideDistance.value();
   const Vec3 end = slid - d * (d_depth.value() + d_standoff.value());
@@ -174,7 +168,7 @@ void ScriptedDevice::buildDrillIn(const Aim& aim, const Vec3& d) {
 }
 
 void ScriptedDevice::buildCircle(const Aim& aim, const Vec3& d) {
-  const auto [u, v] = tangentBasis(aim.normal);
+  const auto [u, v] = perpendicularBasis(aim.normal);
   const Vec3 center = aim.surface + d * d_depth.value();
   const double r = d_radius.value(), period = d_period.value();
   const Vec3 first = center + r * u;
@@ -214,7 +208,7 @@ void ScriptedDevice::buildRandomWalk(const Aim& aim, const Vec3& d, uint64_t see
     }
     for (Wave& w : axis) w.weight /= total;  // |sum| <= 1
   }
-  const auto [u, v] = tangentBasis(aim.normal);
+  const auto [u, v] = perpendicularBasis(aim.normal);
   const double r = d_radius.value(), depth = d_depth.value();
   const Vec3 surface = aim.surface;
   const Vec3 dd = d, uu = u, vv = v;
@@ -243,7 +237,7 @@ bool ScriptedDevice::buildPokes(const Vec3& d, uint64_t seed, InitContext& conte
   // Repeated pokes at seeded spots within `radius` of the aim point; each spot's
   // surface is found anew, so pokes follow a curved target.
   SeededRandom random(seed);
-  const auto [u, v] = tangentBasis(d);
+  const auto [u, v] = perpendicularBasis(d);
   const double speed = d_speed.value(), lift = d_lift.value(), depth = d_depth.value();
   bool first = true;
   for (int i = 0; i < d_count.value(); ++i) {

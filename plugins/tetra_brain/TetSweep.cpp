@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "framework/geometry/FrontRings.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 
 namespace trephine::tetra {
@@ -84,17 +85,9 @@ SweepResult TetraBrain::sweep(const SweepQuery& query) const {
   const double R = query.leadingRadius;
   if (probe(R * u, true)) return result;
   if (query.probe != SweepProbe::Line && R > 0) {
-    // Cylinder (and, here, spheres): lines from rings on the front hemisphere.
-    const Vec3 helper = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 e1 = u.cross(helper).normalized(), e2 = u.cross(e1);
-    for (const double ahead : {0.866, 0.5, 0.0}) {
-      const double r = R * std::sqrt(1.0 - ahead * ahead);
-      const int count = std::max(6, int(std::ceil(2 * std::numbers::pi * r / std::max(0.25, 0.5 * m_averageEdge))));
-      for (int i = 0; i < count; ++i) {
-        const double phi = 2 * std::numbers::pi * i / count;
-        if (probe(r * (std::cos(phi) * e1 + std::sin(phi) * e2) + ahead * R * u, ahead > 0)) return result;
-      }
-    }
+    // Cylinder (and, here, spheres): lines from rings on the front hemisphere,
+    // half an edge apart (no thinner than 0.25 mm).
+    forEachFrontRingPoint(u, R, std::max(0.25, 0.5 * m_averageEdge), probe);
   }
   return result;
 }

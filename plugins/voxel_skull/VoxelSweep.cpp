@@ -4,21 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "framework/geometry/FrontRings.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
 
 namespace trephine::voxel {
-
-namespace {
-
-// Two unit vectors perpendicular to u and to each other.
-void perpendicularBasis(const Vec3& u, Vec3& e1, Vec3& e2) {
-  const Vec3 helper = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  e1 = u.cross(helper).normalized();
-  e2 = u.cross(e1);
-}
-
-}  // namespace
 
 SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
   SweepResult result;
@@ -84,30 +74,22 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
     // dense enough that no voxel passes between two lines. Lines from the front
     // rings block like the leading point; lines from the equator may start in
     // the bone the tool slides on and block only on entering new bone.
-    Vec3 e1, e2;
-    perpendicularBasis(u, e1, e2);
-    const double h = m_grid.smallestSide();
-    for (const double ahead : {0.866, 0.5, 0.0}) {
-      const double r = R * std::sqrt(1.0 - ahead * ahead);
-      const bool front = ahead > 0;
-      const int count = std::max(6, static_cast<int>(std::ceil(2 * std::numbers::pi * r / h)));
-      for (int i = 0; i < count; ++i) {
-        const double phi = 2 * std::numbers::pi * i / count;
-        const Vec3 offset = r * (std::cos(phi) * e1 + std::sin(phi) * e2) + ahead * R * u;
-        const SegmentHit ring = firstSolidOnSegment(m_grid, query.from + offset, query.to + offset, buried || !front);
-        if (!ring.hit) continue;
-        if (front && ring.startsSolid && !buried) {
-          result.blocked = result.startsInside = true;
-          result.freeFraction = 0;
-          result.contactPoint = query.from + offset;
-          return result;
-        }
-        if (ring.t < first) {
-          first = ring.t;
-          firstProbe = offset;
-        }
+    const bool stopped = forEachFrontRingPoint(u, R, m_grid.smallestSide(), [&](const Vec3& offset, bool front) {
+      const SegmentHit ring = firstSolidOnSegment(m_grid, query.from + offset, query.to + offset, buried || !front);
+      if (!ring.hit) return false;
+      if (front && ring.startsSolid && !buried) {
+        result.blocked = result.startsInside = true;
+        result.freeFraction = 0;
+        result.contactPoint = query.from + offset;
+        return true;
       }
-    }
+      if (ring.t < first) {
+        first = ring.t;
+        firstProbe = offset;
+      }
+      return false;
+    });
+    if (stopped) return result;
   }
   if (first <= 1.0) {
     result.blocked = true;
