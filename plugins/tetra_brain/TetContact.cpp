@@ -119,8 +119,8 @@ ShellContact TetraBrain::contactOfHits(std::span<const ShellPoint> shell, size_t
   ++m_contactFrames;
   std::sort(m_hits.begin(), m_hits.begin() + hits,
             [](const Hit& a, const Hit& b) { return a.tet < b.tet || (a.tet == b.tet && a.point < b.point); });
-  contact = d_penetration.is("algorithm2") ? contactAlgorithm2(R, X_WT.position, shell, hits)
-                                           : contactNearestFace(R, X_WT.position, shell, hits);
+  contact = m_algorithm2 ? contactAlgorithm2(R, X_WT.position, shell, hits)
+                         : contactNearestFace(R, X_WT.position, shell, hits);
   contact.points = int(hits);
   int tets = 0;
   for (size_t h = 0; h < hits; ++h) tets += h == 0 || m_hits[h].tet != m_hits[h - 1].tet;

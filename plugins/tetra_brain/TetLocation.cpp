@@ -105,7 +105,7 @@ size_t TetraBrain::findHits(const Pose& X_WT, std::span<const ShellPoint> shell)
   }
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
-  if (d_search.is("grid")) {
+  if (m_search == Search::kGrid) {
     for (size_t i = 0; i < shell.size(); ++i) m_points[i] = R * shell[i].position + X_WT.position;
     const std::span<const Vec3> points(m_points.data(), shell.size());
     if (locatePoints(points, m_pointTets, false))
@@ -133,7 +133,7 @@ size_t TetraBrain::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::
   }
   if (!toolBox.intersects(m_bounds)) return 0;
   const int32_t n = int32_t(m_mesh.tetCount());
-  const int32_t start = d_search.is("previous-contact") ? m_lastFirstTet : 0;
+  const int32_t start = m_search == Search::kPreviousContact ? m_lastFirstTet : 0;
   int32_t first = -1;
   for (int32_t s = 0; s < n && first < 0; ++s) {
     const int32_t tet = (start + s) % n;

@@ -29,8 +29,9 @@ void TetraBrain::init(InitContext& context) {
   setMesh(std::move(m_mesh));
   connectChannels(context.channels());
   if (d_boxRefresh.isSet() && d_search.is("grid"))
-    context.error(d_boxRefresh, "boxRefresh applies to the thesis's searches (search=\"first-tetrahedron\" or "
-                                "\"previous-contact\"); the grid search refreshes no boxes");
+    context.error(d_boxRefresh,
+                  "boxRefresh applies to the thesis's searches (search=\"first-tetrahedron\" or "
+                  "\"previous-contact\"); the grid search refreshes no boxes");
 }
 
 void TetraBrain::connectChannels(ChannelHub& channels) {
@@ -78,6 +79,11 @@ void TetraBrain::prepare(const RunPlan&) {
 }
 
 void TetraBrain::setMesh(TetMesh mesh) {
+  m_search = d_search.is("grid")                ? Search::kGrid
+             : d_search.is("first-tetrahedron") ? Search::kFirstTetrahedron
+                                                : Search::kPreviousContact;
+  m_algorithm2 = d_penetration.is("algorithm2");
+  m_refreshEveryBox = d_boxRefresh.is("all");
   m_mesh = std::move(mesh);
   m_nodes = m_mesh.nodes.data();
   m_topology = TetTopology(m_mesh);
@@ -157,7 +163,7 @@ void TetraBrain::refresh() {
     m_nodes = m_mesh.nodes.data();
     m_displacementBound = m_queryGrowth = 0;
     m_bounds = m_restBounds;
-    if (!d_search.is("grid")) m_tetBoxes = m_restBoxes;  // same size: no allocation
+    if (m_search != Search::kGrid) m_tetBoxes = m_restBoxes;  // same size: no allocation
     return;
   }
   const bool skipped = frame.step != m_lastStep + 1;  // a step in between was not seen: its moves are unknown
@@ -170,7 +176,7 @@ void TetraBrain::refresh() {
   if (m_queryGrowth > 0) ++m_framesBeyondMargin;
   const Vec3 grow = Vec3::Constant(m_displacementBound);
   m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);
-  if (!d_search.is("grid")) refreshBoxes(frame, d_boxRefresh.is("all") || frame.allMoved || skipped);
+  if (m_search != Search::kGrid) refreshBoxes(frame, m_refreshEveryBox || frame.allMoved || skipped);
 }
 
 void TetraBrain::refreshBoxes(const NodePositions& frame, bool all) {

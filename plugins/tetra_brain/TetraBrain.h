@@ -19,8 +19,8 @@
 #include <optional>
 #include <vector>
 
-#include "framework/core/Component.h"
 #include "framework/core/ChannelHub.h"
+#include "framework/core/Component.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/tetra_brain/MeshDeformation.h"
 #include "plugins/tetra_brain/ShellLocator.h"
@@ -177,19 +177,25 @@ class TetraBrain final : public Component, public ShellContactTarget {
                                 .min = 0.0,
                                 .minExclusive = true}};
 
+  // The options the haptic frame branches on, read from their fields once in setMesh().
+  enum class Search { kGrid, kFirstTetrahedron, kPreviousContact };
+  Search m_search = Search::kGrid;
+  bool m_algorithm2 = false;      // penetration="algorithm2"
+  bool m_refreshEveryBox = true;  // boxRefresh="all"
+
   TetMesh m_mesh;  // rest shape
   TetTopology m_topology;
   const Vec3* m_nodes = nullptr;  // current node positions: the rest nodes, or the deformation's latest
   MeshReport m_report;
   size_t m_reoriented = 0;
-  Box3 m_restBounds, m_bounds;  // m_bounds: the rest bounds grown by the displacement bound
-  std::vector<Box3> m_restBoxes;  // per tet, at rest (the grids are built from them, grown by the margin)
-  std::vector<Box3> m_tetBoxes;   // per tet, current: maintained only for the thesis's scans
-  std::vector<uint8_t> m_degenerate;  // 1: zero-volume tetrahedron, never contains a point
-  UniformGrid m_tetGrid, m_faceGrid;  // tetrahedra and boundary faces by cell
+  Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
+  std::vector<Box3> m_restBoxes;          // per tet, at rest (the grids are built from them, grown by the margin)
+  std::vector<Box3> m_tetBoxes;           // per tet, current: maintained only for the thesis's scans
+  std::vector<uint8_t> m_degenerate;      // 1: zero-volume tetrahedron, never contains a point
+  UniformGrid m_tetGrid, m_faceGrid;      // tetrahedra and boundary faces by cell
   std::vector<uint32_t> m_nodeFaceStart;  // node -> boundary faces holding it (compressed rows)
   std::vector<int32_t> m_nodeFaces;
-  double m_averageEdge = 0;           // mm
+  double m_averageEdge = 0;  // mm
 
   // Deformation (followDeformation).
   std::optional<ChannelReader<NodePositions>> m_positions;
@@ -219,8 +225,8 @@ class TetraBrain final : public Component, public ShellContactTarget {
   };
   size_t findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell);
   std::vector<Hit> m_hits;
-  std::vector<Vec3> m_points;         // per shell point, world
-  std::vector<int32_t> m_pointTets;   // per shell point, its tet or -1
+  std::vector<Vec3> m_points;        // per shell point, world
+  std::vector<int32_t> m_pointTets;  // per shell point, its tet or -1
   // Scratch of the const queries (the haptic thread only).
   mutable ShellLocator m_locator;
   mutable VisitStamps m_tetVisits, m_faceVisits;  // blocks of cells: each item tested once
