@@ -3,9 +3,9 @@
 // that an item listed in several grid cells is tested once per query. Items
 // sit in every cell their grown box overlaps, so a query over a block of
 // cells meets most of them many times. Starting a query costs nothing: each
-// takes a new stamp value; the marks are cleared only when the 32-bit stamp
-// wraps.
-#include <algorithm>
+// takes a new stamp value. The stamps are 64-bit so that they never wrap (at
+// millions of queries a second, 32 bits would wrap within the hour and force
+// an O(items) clearing inside a haptic frame).
 #include <cstdint>
 #include <vector>
 
@@ -18,23 +18,18 @@ class VisitStamps {
     m_current = 0;
   }
   // Starts a query: nothing is marked.
-  void begin() {
-    if (++m_current == 0) {
-      std::fill(m_stamps.begin(), m_stamps.end(), 0u);
-      m_current = 1;
-    }
-  }
+  void begin() { ++m_current; }
   // True the first time `item` is met in this query (and marks it).
   bool firstVisit(int32_t item) {
-    uint32_t& stamp = m_stamps[size_t(item)];
+    uint64_t& stamp = m_stamps[size_t(item)];
     if (stamp == m_current) return false;
     stamp = m_current;
     return true;
   }
 
  private:
-  std::vector<uint32_t> m_stamps;
-  uint32_t m_current = 0;
+  std::vector<uint64_t> m_stamps;
+  uint64_t m_current = 0;
 };
 
 }  // namespace trephine::tetra
