@@ -22,6 +22,14 @@ class InitContext {
   // Report a problem at the component's element, or at a field's value.
   virtual void error(const Component& component, std::string message) = 0;
   virtual void error(const BaseField& field, std::string message) = 0;
+  // A setting that works but is doubtful (a rendering that may not be
+  // passive): reported at the field's value, and the run goes on unless it
+  // asked for --strict, which makes warnings errors. Contexts without a
+  // warning sink (a benchmark's) drop it.
+  virtual void warning(const BaseField& field, std::string message) {
+    (void)field;
+    (void)message;
+  }
   virtual uint64_t seed() const = 0;  // the run's seed (--seed)
   virtual bool isRealtime() const = 0;
   virtual ChannelHub& channels() = 0;

@@ -104,6 +104,16 @@ class Simulation::Context final : public InitContext {
     const std::string of = owner ? " of " + owner->typeName() + " '" + owner->name() + "'" : std::string();
     m_diagnostics.error(field.location(), "invalid " + field.name() + of + ": " + message);
   }
+  void warning(const BaseField& field, std::string message) override {
+    const auto* owner = dynamic_cast<const Component*>(&field.owner());
+    const std::string of = owner ? " of " + owner->typeName() + " '" + owner->name() + "'" : std::string();
+    std::string text = field.name() + of + ": " + message;
+    if (m_options.strict) {
+      m_diagnostics.error(field.location(), std::move(text) + " (an error with --strict)");
+    } else {
+      m_diagnostics.warning(field.location(), std::move(text));
+    }
+  }
   uint64_t seed() const override { return m_options.seed; }
   bool isRealtime() const override { return m_options.realtime; }
   ChannelHub& channels() override { return *m_simulation.m_channels; }

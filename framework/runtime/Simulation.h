@@ -33,6 +33,7 @@ struct SimulationOptions {
   bool realtime = false;
   uint64_t seed = 0;
   std::vector<std::string> overrides;  // "path.field=value"
+  bool strict = false;                 // warnings are errors (--strict)
 };
 
 // Registers the components that need no plugin (Recorder).

@@ -27,6 +27,7 @@ std::optional<SimulationOptions> readOptions(const Arguments& a, std::string& er
   SimulationOptions options;
   options.overrides = a.overrides;
   options.realtime = a.has("--realtime");
+  options.strict = a.has("--strict");
   if (auto d = a.get("--duration")) {
     double seconds = 0;
     if (FieldTraits<double>::parse(*d, seconds) || seconds <= 0) {
@@ -71,7 +72,7 @@ std::optional<std::string> prepareOutputDirectory(const std::filesystem::path& d
 
 int validateCommand(const Arguments& a) {
   if (a.positional.size() != 1) {
-    std::cerr << "usage: trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...]\n";
+    std::cerr << "usage: trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...] [--strict]\n";
     return kUsage;
   }
   std::string error;
@@ -94,7 +95,7 @@ int validateCommand(const Arguments& a) {
 int runCommand(const Arguments& a) {
   if (a.positional.size() != 1) {
     std::cerr << "usage: trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value "
-                 "...]\n";
+                 "...] [--strict]\n";
     return kUsage;
   }
   std::string error;

@@ -13,11 +13,14 @@ constexpr const char* kHelp = R"(trephine - haptic neurosurgery simulation frame
 
 usage:
   trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value ...] [--quiet]
+                    [--strict]
       Run a scene (virtual time unless --realtime) and write summary.json,
       trace.csv and timings.csv to DIR (default runs/<scene name>).
-  trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...]
+  trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...] [--strict]
       Load and initialise a scene as run would, without running it;
       print every error, or "ok".
+  Warnings (a rendering that may not be passive) are printed and the run goes
+  on; --strict makes them errors (exit 1).
   trephine components [NAME] [--json | --markdown | --xsd]
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
@@ -57,11 +60,11 @@ int main(int argc, char** argv) {
   arguments.command = command;
   std::optional<std::string> error;
   if (command == "run") {
-    error =
-        parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"}, {"--realtime", "--quiet"}, arguments);
+    error = parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"},
+                           {"--realtime", "--quiet", "--strict"}, arguments);
     if (!error) return runCommand(arguments);
   } else if (command == "validate") {
-    error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {}, arguments);
+    error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {"--strict"}, arguments);
     if (!error) return validateCommand(arguments);
   } else if (command == "components") {
     error = parseArguments(argc, argv, {}, {"--json", "--markdown", "--xsd"}, arguments);
