@@ -2,14 +2,77 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 
 namespace trephine {
 
 namespace {
+
+constexpr double kGenerationWindow = 0.1;  // s, window of max_generated_mJ_per_100ms
+constexpr double kReversalForce = 0.5;     // N, below this a sign change is noise around zero, not a reversal
+
 bool frameHasNaN(const HapticFrame& f) {
   return !f.device.allFinite() || !f.proxy.allFinite() || !f.force.allFinite() || !std::isfinite(f.penetration) ||
          !f.normal.allFinite();
 }
+
+// Nearest-rank percentile: the smallest value with at least q of the values at or below it.
+double percentile(std::vector<double>& values, double q) {
+  std::sort(values.begin(), values.end());
+  const size_t rank = static_cast<size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return values[std::max<size_t>(rank, 1) - 1];
+}
+
+// Passivity observer: E after each frame, the force of frame k held while the
+// device moved from x_k to x_{k+1}. Pairs with a non-finite value add nothing.
+void observePassivity(const HapticFrame* frames, size_t n, HapticStats& s) {
+  if (n == 0) return;
+  std::vector<double> energy(n, 0.0);  // mJ
+  for (size_t k = 1; k < n; ++k) {
+    const HapticFrame& a = frames[k - 1];
+    const HapticFrame& b = frames[k];
+    const bool finite = a.force.allFinite() && a.device.allFinite() && b.device.allFinite();
+    energy[k] = energy[k - 1] - (finite ? a.force.dot(b.device - a.device) : 0.0);
+  }
+  s.energyIn_mJ = energy.back();
+  s.minEnergyIn_mJ = *std::min_element(energy.begin(), energy.end());
+  // The largest fall of E within the window: for each frame, the highest E of
+  // the frames at most 100 ms before it (a deque of indices of falling E).
+  std::deque<size_t> highest;
+  for (size_t j = 0; j < n; ++j) {
+    while (!highest.empty() && frames[j].t - frames[highest.front()].t > kGenerationWindow + 1e-9) highest.pop_front();
+    while (!highest.empty() && energy[highest.back()] <= energy[j]) highest.pop_back();
+    highest.push_back(j);
+    s.maxGeneratedPer100ms_mJ = std::max(s.maxGeneratedPer100ms_mJ, energy[highest.front()] - energy[j]);
+  }
+}
+
+// |dF| - k |dx| - b |dv| per frame, with the device velocity by backward
+// differences as the device computes it (zero at the first frame).
+void unexplainedSteps(const HapticFrame* frames, size_t n, const RenderingGains& gains, HapticStats& s) {
+  std::vector<double> unexplained;
+  unexplained.reserve(n);
+  Vec3 velocity = Vec3::Zero();  // mm/s, of the previous frame
+  for (size_t k = 1; k < n; ++k) {
+    const HapticFrame& a = frames[k - 1];
+    const HapticFrame& b = frames[k];
+    if (frameHasNaN(a) || frameHasNaN(b)) {
+      velocity = Vec3::Zero();
+      continue;
+    }
+    const Vec3 dx = b.device - a.device;
+    const double dt = b.t - a.t;
+    const Vec3 v = dt > 0 ? Vec3(dx / dt) : Vec3::Zero();
+    const double explained = gains.stiffness * dx.norm() + gains.damping * (v - velocity).norm();
+    unexplained.push_back(std::max(0.0, (b.force - a.force).norm() - explained));
+    velocity = v;
+  }
+  s.hasUnexplainedSteps = true;
+  if (unexplained.empty()) return;
+  s.unexplainedStepMax = *std::max_element(unexplained.begin(), unexplained.end());
+  s.unexplainedStepP99 = percentile(unexplained, 0.99);
+}
+
 }  // namespace
 
 HapticStats HapticFrameLog::stats() const {
@@ -35,19 +98,20 @@ HapticStats HapticFrameLog::stats() const {
     }
     if (f.proxyInside) ++s.proxyInsideFrames;
     if (i > 0 && m_frames[i - 1].force.allFinite()) {
-      steps.push_back((f.force - m_frames[i - 1].force).norm());
+      const Vec3& previous = m_frames[i - 1].force;
+      steps.push_back((f.force - previous).norm());
+      if (force > kReversalForce && previous.norm() > kReversalForce && f.force.dot(previous) < 0) ++s.forceReversals;
     }
   }
   const size_t finite = m_size - s.nanFrames;
   if (finite > 0) s.forceMean = forceSum / static_cast<double>(finite);
   if (s.contactFrames > 0) s.penetrationMean = penetrationSum / static_cast<double>(s.contactFrames);
   if (!steps.empty()) {
-    std::sort(steps.begin(), steps.end());
+    s.forceStepP99 = percentile(steps, 0.99);
     s.forceStepMax = steps.back();
-    // Nearest-rank percentile: the smallest value with at least 99% of steps at or below it.
-    const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(steps.size())));
-    s.forceStepP99 = steps[std::max<size_t>(rank, 1) - 1];
   }
+  observePassivity(m_frames.data(), m_size, s);
+  if (m_gains) unexplainedSteps(m_frames.data(), m_size, *m_gains, s);
   return s;
 }
 

@@ -3,6 +3,7 @@
 // per tick without allocating; the run writes the log to trace.csv and derives
 // the summary's `haptics` figures from it after the run (or after an interrupt).
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "framework/logs/HapticFrame.h"
@@ -18,6 +19,27 @@ struct HapticStats {
   size_t nanFrames = 0;
   size_t proxyInsideFrames = 0;
   size_t droppedFrames = 0;  // frames beyond the preallocated capacity
+
+  // Hannaford and Ryu (2002) passivity observer with the force held over each
+  // frame: the energy the hand has put into the simulated environment by frame
+  // n, E(n) = -sum_{k<n} F_k . (x_{k+1} - x_k) (N on the hand, device mm: mJ).
+  // E rises while the environment stores or dissipates energy and falls while
+  // it gives energy back; an environment passive as sampled never goes below 0.
+  double energyIn_mJ = 0;              // final E
+  double minEnergyIn_mJ = 0;           // most negative E: energy the rendering generated
+  double maxGeneratedPer100ms_mJ = 0;  // largest fall of E within 100 ms (a limit cycle, even when cutting dissipates)
+  // Per frame |dF| - k |dx| - b |dv| (>= 0) with dv the change of the device's
+  // backward-difference velocity: the part of a force step the device's own
+  // motion does not explain (N). Only when the renderer handed its gains.
+  bool hasUnexplainedSteps = false;
+  double unexplainedStepMax = 0, unexplainedStepP99 = 0;
+  size_t forceReversals = 0;  // frames where F turns back (F_k . F_{k-1} < 0, both above 0.5 N)
+};
+
+// Stiffness k (N/mm) and damping b (N*s/mm) of the force renderer writing the log.
+struct RenderingGains {
+  double stiffness = 0;
+  double damping = 0;
 };
 
 class HapticFrameLog {
@@ -38,12 +60,16 @@ class HapticFrameLog {
   size_t dropped() const { return m_dropped; }
   const HapticFrame& operator[](size_t i) const { return m_frames[i]; }
 
+  // Set once during init by the component that writes the log.
+  void setRenderingGains(double stiffness, double damping) { m_gains = RenderingGains{stiffness, damping}; }
+
   HapticStats stats() const;
 
  private:
   std::vector<HapticFrame> m_frames;
   size_t m_size = 0;
   size_t m_dropped = 0;
+  std::optional<RenderingGains> m_gains;
 };
 
 }  // namespace trephine

@@ -41,6 +41,16 @@ void writeHaptics(JsonWriter& json, const Simulation& simulation) {
   json.key("penetration_mm").beginObject().field("max", s.penetrationMax).field("mean", s.penetrationMean).endObject();
   json.field("nan_frames", s.nanFrames).field("proxy_inside_frames", s.proxyInsideFrames);
   json.field("dropped_frames", s.droppedFrames);
+  json.key("passivity").beginObject();
+  json.field("energy_in_mJ", s.energyIn_mJ).field("min_energy_in_mJ", s.minEnergyIn_mJ);
+  json.field("max_generated_mJ_per_100ms", s.maxGeneratedPer100ms_mJ);
+  json.endObject();
+  if (s.hasUnexplainedSteps) {
+    json.key("force_step_unexplained_N").beginObject();
+    json.field("max", s.unexplainedStepMax).field("p99", s.unexplainedStepP99);
+    json.endObject();
+  }
+  json.field("force_reversals", s.forceReversals);
   json.endObject();
 }
 
@@ -217,6 +227,11 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     out << std::setprecision(3) << "haptics   " << h.frames << " frames, " << h.contactFrames << " in contact, |F| max "
         << h.forceMax << " N, step max " << h.forceStepMax << " N (p99 " << h.forceStepP99 << "), penetration max "
         << h.penetrationMax << " mm, NaN frames " << h.nanFrames << "\n";
+    out << "passivity energy in " << h.energyIn_mJ << " mJ, min " << h.minEnergyIn_mJ << " mJ, generated max "
+        << h.maxGeneratedPer100ms_mJ << " mJ per 100 ms, " << h.forceReversals << " force reversals";
+    if (h.hasUnexplainedSteps)
+      out << ", unexplained step max " << h.unexplainedStepMax << " N (p99 " << h.unexplainedStepP99 << ")";
+    out << "\n";
   }
   out.unsetf(std::ios::fixed);
 }
