@@ -5,6 +5,8 @@
 // when it rejects one, and records the raw stream so the run can be replayed
 // exactly with a ReplayDevice. Force goes back through applyForce().
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -31,6 +33,13 @@ class HapticDevice : public Component {
   // device forwards it; simulated devices keep it for inspection.
   virtual void applyForce(const Vec3& force_N) { m_commandedForce = force_N; }
   const Vec3& commandedForce() const { return m_commandedForce; }
+
+  // The damping that acts on the handle (N*s/mm) when the device models its
+  // dynamics, and the fields it comes from ("deviceDamping + gripDamping"), for
+  // the sampled-data passivity check of force renderers. Scripted and replayed
+  // devices have no dynamics: nothing to check against.
+  virtual std::optional<double> physicalDamping() const { return std::nullopt; }
+  virtual std::string physicalDampingFields() const { return {}; }
 
   // Subclasses that override these must call the HapticDevice versions
   // (they allocate the recording and report the rejection counters).

@@ -3,12 +3,17 @@
 #include <algorithm>
 
 #include "framework/core/Lifecycle.h"
+#include "plugins/haptics/SampledDataPassivity.h"
 
 namespace trephine::haptics {
 
 void ForceFeedback::init(InitContext& context) {
   m_log = context.claimHapticLog(*this);
+  // The summary judges force steps beyond what k and b explain from the device's motion.
+  if (m_log) m_log->setRenderingGains(d_stiffness.value(), d_damping.value());
   m_samples = &context.channels().publish<Sample>(*this, kSampleChannel);
+  // On a device with dynamics (a simulated hand), flag a rendering that cannot be passive.
+  warnIfNotPassive(context, d_stiffness, d_stiffness.value(), d_damping.value(), rateHz(), l_proxy->tool().device());
 }
 
 std::vector<std::string> ForceFeedback::sampleColumns() const {

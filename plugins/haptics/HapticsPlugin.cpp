@@ -3,6 +3,7 @@
 #include "plugins/haptics/CapsuleTool.h"
 #include "plugins/haptics/ForceFeedback.h"
 #include "plugins/haptics/GodObjectProxy.h"
+#include "plugins/haptics/HandDevice.h"
 #include "plugins/haptics/PointshellTool.h"
 #include "plugins/haptics/ReplayDevice.h"
 #include "plugins/haptics/ScriptedDevice.h"
@@ -14,6 +15,9 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<ReplayDevice>("ReplayDevice", "Replays a recorded device stream (CSV t,x,y,z,qw,qx,qy,qz,buttons)");
   registrar.add<ScriptedDevice>(
       "ScriptedDevice", "Scripted tool motion: approach-press-slide, drill-in, circle, random-walk, pokes, waypoints");
+  registrar.add<HandDevice>("HandDevice",
+                            "Simulated hand holding the device: follows a ScriptedDevice's path through a grip "
+                            "spring-damper, moved by the rendered force (closed loop)");
   registrar.add<SphereTool>("SphereTool", "Sphere tool following a device");
   registrar.add<PointshellTool>("PointshellTool", "Spherical burr covered by a pointshell (angle-step or even points)");
   registrar.add<CapsuleTool>("CapsuleTool", "Spherical burr on a cylindrical shaft, covered by a pointshell");

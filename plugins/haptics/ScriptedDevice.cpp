@@ -288,11 +288,14 @@ bool ScriptedDevice::buildWaypoints(InitContext& context) {
   return true;
 }
 
-DeviceSample ScriptedDevice::readSample(double t) {
-  // Button 1 is held after an odd number of toggles.
+uint32_t ScriptedDevice::buttonsAt(double t) const {
   const auto& toggles = d_buttonTimes.value();
   const size_t toggled = std::upper_bound(toggles.begin(), toggles.end(), t) - toggles.begin();
-  DeviceSample sample{t, m_path.at(t), Quat::Identity(), static_cast<uint32_t>(toggled % 2)};
+  return static_cast<uint32_t>(toggled % 2);
+}
+
+DeviceSample ScriptedDevice::readSample(double t) {
+  DeviceSample sample{t, m_path.at(t), Quat::Identity(), buttonsAt(t)};
   if (m_nextNaN < m_nanTimes.size() && t >= m_nanTimes[m_nextNaN]) {
     while (m_nextNaN < m_nanTimes.size() && t >= m_nanTimes[m_nextNaN]) ++m_nextNaN;
     sample.position.x() = std::numeric_limits<double>::quiet_NaN();

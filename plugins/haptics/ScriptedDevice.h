@@ -21,6 +21,8 @@ class ScriptedDevice final : public HapticDevice {
   void prepare(const RunPlan& plan) override;
 
   const ScriptedPath& scriptedPath() const { return m_path; }
+  // Button bits at t (s): button 1 is held after an odd number of `buttonTimes` toggles.
+  uint32_t buttonsAt(double t) const;
 
  protected:
   DeviceSample readSample(double t) override;
