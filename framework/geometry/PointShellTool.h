@@ -16,6 +16,14 @@ struct ShellPoint {
   Vec3 inwardNormal;  // unit, tool frame, pointing into the tool
 };
 
+// A tool that cuts bone when its target is drillable: how fast it spins and how
+// sharp it is. The removal law of the target turns these and the contact load
+// into removed material (see ShellContactTarget::cutUnderLoad).
+struct CuttingBurr {
+  double spindleSpeed_rpm = 0;  // 0: the tool does not spin and cuts nothing
+  double sharpness = 0;         // tangential over normal force at the cutting edge (dimensionless)
+};
+
 class PointShellTool {
  public:
   static constexpr std::string_view kTypeName = "PointShellTool";
@@ -32,6 +40,9 @@ class PointShellTool {
   virtual double leadingRadius() const = 0;
   // Every shell point lies within this distance of the reference point (mm).
   virtual double boundingRadius() const = 0;
+  // The burr at the reference point, a sphere of leadingRadius(); a tool that
+  // does not spin keeps the default (cuts nothing under the force law).
+  virtual CuttingBurr cuttingBurr() const { return {}; }
 };
 
 }  // namespace trephine

@@ -23,6 +23,20 @@ struct ShellContact {
   double penetration = 0;      // mm, depth of the tool in the target as the target measures it
 };
 
+// What a spinning burr does to a drillable target in one haptic frame: the
+// target's removal law turns the load into removed material (force-driven
+// drilling). Everything the law needs is here, so the cut depends on no state
+// left by an earlier query.
+struct CuttingLoad {
+  Vec3 center_W = Vec3::Zero();  // mm, centre of the burr sphere as displayed (the proxy)
+  double radius = 0;             // mm, burr radius
+  double overlap = 0;            // mm, how deep the displayed burr sits in the target (its contact skin)
+  Vec3 force_N = Vec3::Zero();   // N, force of the tool on the target this frame
+  double dt = 0;                 // s, duration of the frame
+  double t = 0;                  // s, time of the frame (for events)
+  CuttingBurr burr;
+};
+
 // How the sweep probes the path of a tool.
 enum class SweepProbe {
   Line,      // the leading point of the tool (reference + leadingRadius along the motion)
@@ -63,6 +77,11 @@ class ShellContactTarget : public SurfaceTarget {
   // is inside there (the probe is between them): returns the primitives
   // removed. A target that cannot be cut, or is not set to, does nothing.
   virtual int cutAt(const Vec3& point_W) { return 0; }
+  // A spinning burr loaded against the target this frame (force-driven
+  // removal): returns the primitives removed. The force of this frame acts on
+  // the next frame's shape. A target that cannot be cut, or is not set to,
+  // does nothing.
+  virtual int cutUnderLoad(const CuttingLoad& load) { return 0; }
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;

@@ -3,8 +3,10 @@
 // plate) recorded from any thread without allocating or locking: a fixed array
 // and an atomic cursor. Events past the capacity are counted, not stored.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,9 @@ struct Event {
   const char* detail = "";       // static string, e.g. "non_finite"
   const void* source = nullptr;  // the component that logged it (resolved to a path when written)
   double value = 0;              // optional figure, unit given by the kind
+  // Optional place (mm, world frame), e.g. where a drill broke through; NaN when none.
+  std::array<double, 3> position{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+  bool hasPosition() const { return position[0] == position[0]; }
 };
 
 class EventLog {
@@ -25,6 +30,11 @@ class EventLog {
   void log(double t, const char* kind, const char* detail, const void* source, double value = 0) {
     const size_t index = m_next.fetch_add(1, std::memory_order_relaxed);
     if (index < m_events.size()) m_events[index] = Event{t, kind, detail, source, value};
+  }
+  void log(double t, const char* kind, const char* detail, const void* source, double value,
+           const std::array<double, 3>& position) {
+    const size_t index = m_next.fetch_add(1, std::memory_order_relaxed);
+    if (index < m_events.size()) m_events[index] = Event{t, kind, detail, source, value, position};
   }
 
   // Read after the logging threads have stopped.

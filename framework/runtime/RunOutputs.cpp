@@ -133,6 +133,11 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
     if (*e.detail) json.field("detail", e.detail);
     json.field("component", sourcePath(simulation, e.source));
     if (e.value != 0) json.field("value", e.value);
+    if (e.hasPosition()) {
+      json.key("position").beginArray();
+      for (double x : e.position) json.value(x);
+      json.endArray();
+    }
     json.endObject();
   }
   json.endArray();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "framework/geometry/PointShellTool.h"
+#include "plugins/haptics/BurrFields.h"
 
 namespace trephine::haptics {
 
@@ -21,6 +22,7 @@ class CapsuleTool final : public Component, public PointShellTool {
   HapticDevice& device() const override { return *l_device; }
   Pose toolPose(const Pose& X_WD) const override;
   double leadingRadius() const override { return d_radius.value(); }
+  CuttingBurr cuttingBurr() const override { return d_burr.value(); }
   double boundingRadius() const override { return m_boundingRadius; }
 
  private:
@@ -40,6 +42,7 @@ class CapsuleTool final : public Component, public PointShellTool {
       0.4,
       {.help = "Distance between neighbouring shell points", .unit = "mm", .min = 0.0, .minExclusive = true}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Burr centre in the device frame", .unit = "mm"}};
+  BurrFields d_burr{this};
 
   std::vector<ShellPoint> m_points;
   double m_boundingRadius = 0;

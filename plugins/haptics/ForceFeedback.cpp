@@ -22,20 +22,23 @@ std::vector<std::string> ForceFeedback::sampleColumns() const {
 }
 
 void ForceFeedback::tick(const TickContext& context) {
-  const GodObjectProxy& proxy = *l_proxy;
+  GodObjectProxy& proxy = *l_proxy;
   const ProxyState& s = proxy.state();
   HapticDevice& device = proxy.tool().device();
 
   Vec3 force = Vec3::Zero();
   if (s.contact) {
+    // The spring's share is capped at maxForce, as if the device-proxy gap were
+    // at most maxForce / k: a device pushed far past the clamp stores no force
+    // that pulling back would first have to undo, and the damping keeps acting
+    // at the clamp (with the clamp alone it is masked there, so a saturated
+    // contact loses its dissipation).
+    const double spring = std::min(d_stiffness.value() * s.penetration, d_maxForce.value());  // N
     const double normalSpeed = device.state().velocity.dot(s.normal);  // mm/s, negative when pressing in
-    const double magnitude = d_stiffness.value() * s.penetration - d_damping.value() * normalSpeed;
-    force = std::max(0.0, magnitude) * s.normal;
-    const double norm = force.norm();
-    if (norm > d_maxForce.value()) {
-      force *= d_maxForce.value() / norm;
+    const double magnitude = spring - d_damping.value() * normalSpeed;
+    if (magnitude > d_maxForce.value() || d_stiffness.value() * s.penetration > d_maxForce.value())
       ++m_saturatedFrames;
-    }
+    force = std::clamp(magnitude, 0.0, d_maxForce.value()) * s.normal;  // never pulls the hand in
   }
   if (d_maxForceStep.value() > 0) {
     const Vec3 step = force - m_force;
@@ -48,6 +51,7 @@ void ForceFeedback::tick(const TickContext& context) {
   if (!force.allFinite()) force = m_force;  // never send a NaN; hold the last force
   m_force = force;
   device.applyForce(force);
+  // The load of this force on the target (drilling under load happens here).
   proxy.applyForce(force, context.t);
 
   HapticFrame frame;

@@ -4,8 +4,13 @@
 // with k the stiffness, p the rendered penetration, n the contact normal and
 // v the device velocity. The damping acts along the normal only and opposes
 // the motion (pressing in meets more resistance, pulling out less), and the
-// force never pulls the hand into the target. |F| is clamped to maxForce, and,
-// when maxForceStep > 0, the change of F between frames to maxForceStep.
+// force never pulls the hand into the target. The spring's share k p is capped
+// at maxForce (the device-proxy gap counts up to maxForce / k, so a device
+// pushed past the clamp stores nothing that pulling back must first undo, and
+// the damping still acts at the clamp); |F| is then clamped to maxForce in the
+// direction n, and, when maxForceStep > 0, the change of F between frames to
+// maxForceStep (a last guard, counted as step_limited_frames when it acts).
+// The force also loads the proxy's burr against the target (drilling).
 // Writes the haptic trace and publishes its values for a Recorder.
 #include "framework/channels/Channel.h"
 #include "framework/core/SampleSource.h"

@@ -15,10 +15,29 @@ constexpr double kProxyRelaxation = 0.5;
 constexpr double kSamePlane = 0.999;
 }  // namespace
 
-void GodObjectProxy::init(InitContext& context) { l_target->reserveShell(l_tool->shellPoints()); }
+void GodObjectProxy::init(InitContext& context) {
+  l_target->reserveShell(l_tool->shellPoints());
+  m_sweeps = !d_sweep.is("none");
+  m_probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
+            : d_sweep.is("spheres") ? SweepProbe::Spheres
+                                    : SweepProbe::Line;
+}
 
-void GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) const {
-  if (m_state.contact) l_target->applyContactForce(-forceOnTool_N, t);
+int GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) {
+  if (!m_state.contact) return 0;
+  l_target->applyContactForce(-forceOnTool_N, t);
+  if (!m_state.cutting) return 0;
+  CuttingLoad load;
+  load.center_W = m_state.proxy;
+  load.radius = l_tool->leadingRadius();
+  load.overlap = m_state.overlap;
+  load.force_N = -forceOnTool_N;
+  load.dt = 1.0 / d_rate.value();
+  load.t = t;
+  load.burr = l_tool->cuttingBurr();
+  const int removed = l_target->cutUnderLoad(load);
+  m_state.removed += removed;
+  return removed;
 }
 
 SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const {
@@ -26,9 +45,7 @@ SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Qu
   query.from = from;
   query.to = to;
   query.orientation = orientation;
-  query.probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
-                : d_sweep.is("spheres") ? SweepProbe::Spheres
-                                        : SweepProbe::Line;
+  query.probe = m_probe;
   query.leadingRadius = l_tool->leadingRadius();
   query.shell = l_tool->shellPoints();
   return l_target->sweep(query);
@@ -62,7 +79,7 @@ void GodObjectProxy::tick(const TickContext&) {
   Vec3 blockedAt = Vec3::Zero();
   const Vec3 path = D - P;
   const double length = path.norm();
-  if (!d_sweep.is("none") && length > kSamePlace) {
+  if (m_sweeps && length > kSamePlace) {
     const SweepResult r = sweepPath(P, D, q);
     if (r.blocked) {
       const double travel = r.freeFraction * length + (r.startsInside ? 0.0 : target.contactDepth());
@@ -75,6 +92,7 @@ void GodObjectProxy::tick(const TickContext&) {
 
   // 2. Detection (and drilling) where the proxy now is.
   const bool cutting = d_drillButton.value() == 0 || (device.buttons >> (d_drillButton.value() - 1)) & 1u;
+  s.cutting = cutting;
   const ShellContact c = target.collide({P1, q}, tool.shellPoints(), cutting);
   s.points = c.points;
   s.primitives = c.primitives;
@@ -91,6 +109,7 @@ void GodObjectProxy::tick(const TickContext&) {
   if (c.points > 0 && normal.squaredNorm() > 0.5) {
     // 3. God-object projection on the constraint plane, lifted to the contact depth.
     const double skin = std::min(c.penetration, target.contactDepth());
+    s.overlap = skin;
     const Vec3 onPlane = P1 + (c.penetration - skin) * normal;
     Vec3 goal = P1;
     bool crease = false;
@@ -124,7 +143,7 @@ void GodObjectProxy::tick(const TickContext&) {
     P2 = goal;
     const Vec3 move = goal - P1;
     const double moveLength = move.norm();
-    if (d_rectify.value() && !d_sweep.is("none") && moveLength > kSamePlace) {
+    if (d_rectify.value() && m_sweeps && moveLength > kSamePlace) {
       const SweepResult r = sweepPath(P1, goal, q);
       if (r.blocked) P2 = P1 + r.freeFraction * move;
     }

@@ -31,10 +31,12 @@ struct ProxyState {
   Vec3 normal = Vec3::Zero();  // unit contact normal (out of the target); zero without contact
   double penetration = 0;      // mm, rendered depth
   double rawPenetration = 0;   // mm, as detected before rectification
+  double overlap = 0;          // mm, depth of the displayed tool in the target (its contact skin)
   int points = 0;              // colliding shell points
   int primitives = 0;          // colliding voxels / tetrahedra
   int removed = 0;             // drilled primitives this frame
   bool contact = false;
+  bool cutting = false;      // the drill runs this frame (pedal held, or no pedal)
   bool proxyInside = false;  // the displayed proxy visibly overlaps the target
   bool deviceValid = false;
 };
@@ -50,8 +52,10 @@ class GodObjectProxy final : public Component {
   const ProxyState& state() const { return m_state; }
   PointShellTool& tool() const { return *l_tool; }
   // The force rendered to the user this frame (N, on the tool); its opposite
-  // goes to the target (a deformable one passes it on to its nodes).
-  void applyForce(const Vec3& forceOnTool_N, double t) const;
+  // goes to the target (a deformable one passes it on to its nodes) and, while
+  // the drill runs, loads the burr against it (force-driven removal). Returns
+  // the primitives that load removed.
+  int applyForce(const Vec3& forceOnTool_N, double t);
 
  private:
   SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
@@ -80,6 +84,9 @@ class GodObjectProxy final : public Component {
                             .max = 32.0}};
   RateField d_rate{this, 1000.0, "Haptic rate"};
 
+  // d_sweep, read once at init: the probe, or none.
+  SweepProbe m_probe = SweepProbe::Line;
+  bool m_sweeps = true;
   ProxyState m_state;
   Vec3 m_lastNormal = Vec3::Zero();
   // This frame's and the last frame's constraint plane (a point on it and its normal).

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "framework/geometry/PointShellTool.h"
+#include "plugins/haptics/BurrFields.h"
 
 namespace trephine::haptics {
 
@@ -19,6 +20,7 @@ class PointshellTool final : public Component, public PointShellTool {
   HapticDevice& device() const override { return *l_device; }
   Pose toolPose(const Pose& X_WD) const override;
   double leadingRadius() const override { return d_radius.value(); }
+  CuttingBurr cuttingBurr() const override { return d_burr.value(); }
   double boundingRadius() const override { return d_radius.value(); }
 
  private:
@@ -37,6 +39,7 @@ class PointshellTool final : public Component, public PointShellTool {
       0,
       {.help = "Number of evenly spread points; 0 uses angleStep instead", .min = 0.0, .max = 100000.0}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Burr centre in the device frame", .unit = "mm"}};
+  BurrFields d_burr{this};
 
   std::vector<ShellPoint> m_points;
 };

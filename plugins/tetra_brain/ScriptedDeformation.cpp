@@ -18,12 +18,13 @@ void ScriptedDeformation::init(InitContext& context) {
     return;
   }
   m_unitDirection = d_direction.value() / length;
+  m_wave = d_shape.is("wave");
   TetraBrain& brain = *l_mesh;
   m_rest = brain.mesh().nodes;
   m_profile.resize(m_rest.size());
   m_frame.positions = m_rest;
   const Vec3& c = d_center.value();
-  if (d_shape.is("wave")) {
+  if (m_wave) {
     for (size_t i = 0; i < m_rest.size(); ++i)
       m_profile[i] = 2 * std::numbers::pi * (m_rest[i] - c).norm() / d_wavelength.value();
     m_frame.allMoved = true;
@@ -49,7 +50,7 @@ void ScriptedDeformation::tick(const TickContext& context) {
   const double A = d_amplitude.value();
   const double omega = 2 * std::numbers::pi / d_period.value();  // rad/s
   const Vec3 d = m_unitDirection;
-  if (d_shape.is("wave")) {
+  if (m_wave) {
     const double phase = omega * context.t;
     for (size_t i = 0; i < m_rest.size(); ++i)
       m_frame.positions[i] = m_rest[i] + (A * std::sin(m_profile[i] - phase)) * d;

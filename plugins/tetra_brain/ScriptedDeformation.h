@@ -50,6 +50,7 @@ class ScriptedDeformation final : public Component {
   std::vector<double> m_profile;     // per node: wave phase (rad) or bump weight, fixed at rest
   NodePositions m_frame;
   Vec3 m_unitDirection = Vec3::UnitZ();
+  bool m_wave = true;  // d_shape, read once at init (not compared as a string every frame)
 };
 
 }  // namespace trephine::tetra

@@ -6,11 +6,14 @@
 //  - smooth: the density is interpolated trilinearly between voxel centres and
 //    bone is where it exceeds the isovalue; the surface is the isosurface,
 //    continuous across voxels, with the density gradient as its normal.
-// Plain data and inline functions, no allocation.
+// Plain data and inline functions, no allocation (but for the optional
+// occupancy cells of the smooth surface, built once).
 #include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include "plugins/voxel_skull/DensityVolume.h"
+#include "plugins/voxel_skull/OccupancyCells.h"
 
 namespace trephine::voxel {
 
@@ -24,6 +27,10 @@ struct SolidGrid {
   bool smooth = false;
   double isoCode = 0;      // the isovalue in code units (smooth surface)
   double outsideCode = 0;  // code of the space around the grid (the volume's lowest)
+  // Smooth surface only, optional: which interpolation cells the surface may
+  // cross (OccupancyCells.h), so the smooth point test interpolates only there.
+  // Shared by copies of the grid, as the codes are. Null: every point interpolates.
+  std::shared_ptr<OccupancyCells> occupancy;
 
   static SolidGrid of(DensityVolume& volume, double isovalue, bool smoothSurface = false) {
     SolidGrid g;
@@ -40,6 +47,19 @@ struct SolidGrid {
     g.outsideCode =
         volume.voxelCount() ? (volume.minDensity() - volume.encoding().offset) / volume.encoding().scale : 0;
     return g;
+  }
+
+  // Builds `occupancy` from the codes when the surface is smooth (nothing on
+  // voxels): once after the codes are set, O(voxels).
+  void buildOccupancy() { occupancy = smooth && codes ? OccupancyCells::build(*this) : nullptr; }
+  // The hook of every change that lowers a code (drilling): call it after
+  // codes[voxel] was lowered to newCode, with newCode the code now stored. O(1)
+  // (at most 8 cell states change), nothing without occupancy cells. A code
+  // lowered without it can leave a cell marked inside that is not: the smooth
+  // point test would then report bone where the interpolation finds none.
+  // Raising a code needs buildOccupancy() again.
+  void noteLowered(int64_t voxel, VoxelCode newCode) {
+    if (occupancy) occupancy->lowered(voxel, newCode);
   }
 
   bool inside(int64_t i, int64_t j, int64_t k) const {

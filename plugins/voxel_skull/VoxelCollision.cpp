@@ -42,11 +42,12 @@ int VoxelSkull::lowerVoxel(int64_t voxel) {
   const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
   const bool emptied = code >= m_grid.threshold && lowered < m_grid.threshold;  // bone that became empty
   code = static_cast<VoxelCode>(lowered);
+  m_grid.noteLowered(voxel, code);
   return emptied ? 1 : 0;
 }
 
 int VoxelSkull::cutAt(const Vec3& point_W) {
-  if (!d_drill.value() || !point_W.allFinite()) return 0;
+  if (!d_drill.value() || m_forceRemoval || !point_W.allFinite()) return 0;
   int removed = 0;
   if (!m_grid.smooth) {
     // The probe met the bone at a voxel face: the voxel just beyond, within a tenth of a voxel.
@@ -89,8 +90,8 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
             [](const Hit& a, const Hit& b) { return a.voxel < b.voxel || (a.voxel == b.voxel && a.point < b.point); });
 
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
-  const bool algorithm1 = d_penetration.is("algorithm1") || (d_penetration.is("auto") && !m_grid.smooth);
-  const bool drilling = removeMaterial && d_drill.value();
+  const bool algorithm1 = m_algorithm1;
+  const bool drilling = removeMaterial && d_drill.value() && !m_forceRemoval;  // the thesis's law cuts here
   // Deepest-point depths are searched along the normal up to the tool's diameter.
   const double reach = 2.0 * reserved->radius + m_grid.spacing.maxCoeff();
   Vec3 normalSum = Vec3::Zero();

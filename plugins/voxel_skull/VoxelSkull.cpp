@@ -28,8 +28,11 @@ void VoxelSkull::init(InitContext& context) {
     if (!d_drill.value())
       context.error(d_saveDrilled, "nothing is drilled: set drill=\"true\" or leave saveDrilled empty");
   }
+  m_forceRemoval = d_removal.is("force");
+  checkRemovalFields(context);
+  m_events = &context.events();
   setVolume(std::move(volume));
-  if (d_drill.value()) {
+  if (d_drill.value() && !m_forceRemoval) {
     // drillRate is in the volume's density units: a default meant for CT
     // units would wipe a volume normalised to [0, 1] in one frame. Say so.
     m_framesToDrillDensest =
@@ -40,14 +43,37 @@ void VoxelSkull::init(InitContext& context) {
   }
 }
 
+void VoxelSkull::checkRemovalFields(InitContext& context) {
+  // A field the chosen law does not read would be silently ignored: refuse it.
+  const BaseField* forceFields[] = {&d_cuttingEnergy, &d_referenceDensity, &d_hardnessExponent, &d_thrustThreshold,
+                                    &d_maxCutSpeed};
+  if (m_forceRemoval && d_drillRate.isSet())
+    context.error(d_drillRate, "has no effect with removal=\"force\" (it is the rate of removal=\"thesis\")");
+  if (!m_forceRemoval)
+    for (const BaseField* field : forceFields)
+      if (field->isSet()) context.error(*field, "has no effect with removal=\"thesis\" (force-driven removal only)");
+  if (!d_drill.value())
+    for (const BaseField* field : forceFields)
+      if (field->isSet()) context.error(*field, "has no effect without drill=\"true\"");
+  m_law.cuttingEnergy = 1000.0 * d_cuttingEnergy.value();  // J/mm^3 to N/mm^2 (mJ/mm^3)
+  m_law.referenceDensity = d_referenceDensity.value();
+  m_law.hardnessExponent = d_hardnessExponent.value();
+  m_law.softestBone = d_isovalue.value();
+  m_law.thrustThreshold = d_thrustThreshold.value();
+  m_law.maxSpeed = d_maxCutSpeed.value();
+}
+
 void VoxelSkull::setVolume(DensityVolume volume) {
   m_volume = std::move(volume);
   const bool smooth = d_surface.is("smooth");
   m_grid = SolidGrid::of(m_volume, d_isovalue.value(), smooth);
+  m_grid.buildOccupancy();  // smooth surface: the cells the point test must interpolate in
   m_pointTest = bestShellPointTest(smooth);
+  m_algorithm1 = d_penetration.is("algorithm1") || (d_penetration.is("auto") && !smooth);
   // Drilling works on the stored codes: at least one code step per frame.
   m_drillStep =
       std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
+  m_boneAhead = false;
 }
 
 void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
@@ -107,7 +133,15 @@ void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"bytes_per_voxel", double(sizeof(VoxelCode))});
   counters.push_back({"voxels_removed", double(m_voxelsRemoved)});
   counters.push_back({"contact_frames", double(m_contactFrames)});
-  if (d_drill.value()) counters.push_back({"frames_to_cut_densest_voxel", m_framesToDrillDensest});
+  if (d_drill.value() && !m_forceRemoval) counters.push_back({"frames_to_cut_densest_voxel", m_framesToDrillDensest});
+  if (d_drill.value() && m_forceRemoval) {
+    counters.push_back({"cut_frames", double(m_cutFrames)});
+    counters.push_back({"max_cut_speed_mm_s", m_maxCutSpeed});
+    // Volume of reference-density bone holding the density carved away.
+    counters.push_back({"removed_bone_mm3", m_removedCodes * m_volume.encoding().scale * m_grid.spacing.prod() /
+                                                d_referenceDensity.value()});
+    counters.push_back({"breakthroughs", double(m_breakthroughs)});
+  }
   counters.push_back({"max_colliding_voxels", double(m_maxCollidingVoxels)});
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
 }

@@ -1,7 +1,9 @@
 // The inner kernels of rigid voxel collision on the Skull5-size phantom
 // (425 x 403 x 283 voxels of 0.5 mm): the per-point test of a 466-point shell
 // against the voxel and the smooth surface (baseline SSE2 and AVX2 versions,
-// ns per point), and the line sweep of the leading point over per-frame moves.
+// ns per point; on the smooth surface also the one-point-at-a-time reference
+// and the fast test without occupancy cells), and the line sweep of the
+// leading point over per-frame moves.
 //   build/bin/voxel_kernels_benchmark [--benchmark_repetitions=10]
 // TREPHINE_BENCH_VOXEL (mm, default 0.5) sets the phantom's voxel size.
 #include <benchmark/benchmark.h>
@@ -51,9 +53,33 @@ std::vector<Pose> placements(const SolidGrid& grid) {
   return out;
 }
 
-template <ShellPointTestFunction test, bool smooth>
+// The smooth test as it was before the occupancy cells and gathers (one point
+// at a time through SolidGrid::codeAt), compiled for AVX2 as it was: the
+// reference the fast versions are compared with (testShellPointsSmoothScalar
+// is the same code for the x86-64 baseline).
+#ifdef TREPHINE_HAS_AVX2_PATH
+__attribute__((target("avx2"))) void testShellPointsSmoothScalarAvx2(const SolidGrid& grid, const ShellArrays& shell,
+                                                                     const Pose& X_WT, PointTestOutput out) {
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  for (size_t i = 0; i < shell.size(); ++i) {
+    const Vec3 p = R * Vec3(shell.x[i], shell.y[i], shell.z[i]) + X_WT.position;
+    out.solid[i] = grid.codeAt(p) > grid.isoCode;
+    out.voxel[i] = grid.voxelOf(p);
+  }
+}
+#endif
+
+// cells: the smooth grid gets its occupancy cells (as VoxelSkull builds them).
+template <ShellPointTestFunction test, bool smooth, bool cells = false>
 void BM_ShellPointTest(benchmark::State& state) {
-  const SolidGrid grid = SolidGrid::of(phantom(), 400.0, smooth);
+  SolidGrid grid = SolidGrid::of(phantom(), 400.0, smooth);
+  if (cells) {
+    static const std::shared_ptr<OccupancyCells> built = [&grid] {
+      grid.buildOccupancy();
+      return grid.occupancy;
+    }();
+    grid.occupancy = built;
+  }
   std::vector<ShellPoint> shell;
   for (const Vec3& d : haptics::evenDirections(kShellPoints)) shell.push_back({kRadius * d, -d});
   ShellArrays arrays;
@@ -70,13 +96,70 @@ void BM_ShellPointTest(benchmark::State& state) {
   }
   state.counters["ns_per_point"] = benchmark::Counter(double(state.iterations()) * kShellPoints,
                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  if (smooth) {
+    // Where the points of the placements fall (codeAt's cases), and with cells
+    // the share that interpolates: a point inside the grid in a surface cell.
+    size_t beyond = 0, onFaces = 0, interpolated = 0, bone = 0;
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+    for (const Pose& pose : poses) {
+      for (const ShellPoint& point : shell) {
+        const Vec3 p = identity * point.position + pose.position;
+        const Vec3 u = (p - grid.corner).cwiseProduct(grid.inverseSpacing) - Vec3::Constant(0.5);
+        bone += grid.codeAt(p) > grid.isoCode;
+        if (!(u.x() > -2 && u.y() > -2 && u.z() > -2 && u.x() < grid.nx + 1 && u.y() < grid.ny + 1 &&
+              u.z() < grid.nz + 1)) {
+          ++beyond;
+          continue;
+        }
+        const int64_t i = int64_t(std::floor(u.x())), j = int64_t(std::floor(u.y())), l = int64_t(std::floor(u.z()));
+        const bool interior = i >= 0 && j >= 0 && l >= 0 && i + 1 < grid.nx && j + 1 < grid.ny && l + 1 < grid.nz;
+        const bool surface = !grid.occupancy ||
+                             grid.occupancy->state(grid.occupancy->cellIndex(i, j, l)) == OccupancyCells::kSurface;
+        if (surface) ++(interior ? interpolated : onFaces);
+      }
+    }
+    const double total = double(poses.size() * shell.size());
+    state.counters["share_bone"] = double(bone) / total;
+    state.counters["share_beyond_grid"] = double(beyond) / total;
+    state.counters["share_interpolated"] = double(interpolated) / total;
+    state.counters["share_codeAt"] = double(onFaces) / total;
+  }
 }
 BENCHMARK(BM_ShellPointTest<testShellPointsBaseline, false>)->Name("ShellPointTest/voxels/sse2");
-BENCHMARK(BM_ShellPointTest<testShellPointsSmoothBaseline, true>)->Name("ShellPointTest/smooth/sse2");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothScalar, true>)->Name("ShellPointTest/smooth/sse2/reference");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothBaseline, true>)->Name("ShellPointTest/smooth/sse2/no-cells");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothBaseline, true, true>)->Name("ShellPointTest/smooth/sse2");
 #ifdef TREPHINE_HAS_AVX2_PATH
 BENCHMARK(BM_ShellPointTest<testShellPointsAvx2, false>)->Name("ShellPointTest/voxels/avx2");
-BENCHMARK(BM_ShellPointTest<testShellPointsSmoothAvx2, true>)->Name("ShellPointTest/smooth/avx2");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothScalarAvx2, true>)->Name("ShellPointTest/smooth/avx2/reference");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothAvx2, true>)->Name("ShellPointTest/smooth/avx2/no-cells");
+BENCHMARK(BM_ShellPointTest<testShellPointsSmoothAvx2, true, true>)->Name("ShellPointTest/smooth/avx2");
 #endif
+
+// The drilling hook: OccupancyCells::lowered (SolidGrid::noteLowered) for
+// voxels of the bone's outer layer lowered below the isovalue (on a copy of
+// the cells, so the phantom's stay intact), ns per call.
+void BM_NoteLowered(benchmark::State& state) {
+  SolidGrid grid = SolidGrid::of(phantom(), 400.0, true);
+  grid.buildOccupancy();
+  std::vector<int64_t> voxels;  // bone voxels next to a voxel below the isovalue along z
+  for (int64_t v = int64_t(grid.nx) * grid.ny; v < int64_t(grid.nx) * grid.ny * (grid.nz - 1); v += 7)
+    if (grid.codes[v] > grid.isoCode && grid.codes[v + int64_t(grid.nx) * grid.ny] <= grid.isoCode)
+      voxels.push_back(v);
+  const OccupancyCells original = *grid.occupancy;
+  size_t k = 0;
+  for (auto _ : state) {
+    if (k == voxels.size()) {  // every voxel done: the next round finds the cells changed already
+      state.PauseTiming();
+      *grid.occupancy = original;
+      k = 0;
+      state.ResumeTiming();
+    }
+    grid.noteLowered(voxels[k++], 0);
+  }
+  state.counters["voxels"] = double(voxels.size());
+}
+BENCHMARK(BM_NoteLowered);
 
 // The leading point of the burr swept over a move of state.range(0) um per frame
 // (20 um: 20 mm/s at 1 kHz), against the voxel (range(1) = 0) or smooth surface.

@@ -1,7 +1,9 @@
 // End-to-end behaviour of a run: determinism, replay, device rejection,
 // outputs, interrupts, and that only what the scene names runs.
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <regex>
 #include <sstream>
 
@@ -89,14 +91,8 @@ TEST(SimulationTest, NaNDeviceSamplesAreRejectedCountedAndThePoseHeld) {
   simulation->run();
   const HapticStats stats = simulation->hapticLog().stats();
   EXPECT_EQ(stats.nanFrames, 0u) << "a rejected sample never reaches the trace";
-  std::vector<Counter> counters;
-  simulation->scene().findComponent("device")->reportCounters(counters);
-  const auto counter = [&](const std::string& name) {
-    for (const Counter& c : counters)
-      if (c.name == name) return c.value;
-    return -1.0;
-  };
-  EXPECT_EQ(counter("rejected_non_finite"), 3.0);
+  EXPECT_EQ(test::componentCounterAt(*simulation, "device", "rejected_non_finite"), 3.0);
+  EXPECT_EQ(test::componentCounterAt(*simulation, "device", "rejected_jump"), 0.0);
   // Two streaks (0.6 s; 0.9 and 0.901 s): one event when each starts and one when it ends.
   ASSERT_EQ(simulation->events().size(), 4u);
   EXPECT_STREQ(simulation->events()[0].kind, "device_rejected");
@@ -106,6 +102,20 @@ TEST(SimulationTest, NaNDeviceSamplesAreRejectedCountedAndThePoseHeld) {
   const HapticFrameLog& log = simulation->hapticLog();
   EXPECT_EQ(log[600].device, log[599].device);
   EXPECT_EQ(log[600].force, log[599].force) << "force is held with the pose";
+}
+
+TEST(SimulationTest, ACounterTheComponentDoesNotReportFailsTheTest) {
+  // The tests read counters through these helpers, so a renamed or dropped
+  // counter fails them instead of skipping their check.
+  auto simulation = mustLoad(planeScene(kScripted));
+  ASSERT_TRUE(simulation);
+  double value = 0;
+  EXPECT_NONFATAL_FAILURE(value = test::componentCounterAt(*simulation, "device", "no_such_counter"),
+                          "reports no counter no_such_counter");
+  EXPECT_TRUE(std::isnan(value)) << "so that no comparison passes on it";
+  EXPECT_NONFATAL_FAILURE(test::componentCounter(*simulation, "NoSuchType", "rejected_jump"), "no NoSuchType");
+  EXPECT_NONFATAL_FAILURE(test::componentCounterAt(*simulation, "nowhere", "rejected_jump"), "no component nowhere");
+  EXPECT_EQ(test::componentCounterAt(*simulation, "device", "rejected_jump"), 0.0) << "and a reported one is read";
 }
 
 TEST(SimulationTest, OnlyTheRatesInTheSceneGetGroups) {
@@ -264,13 +274,7 @@ TEST(SimulationRulesTest, ALoopingReplayKeepsTimeMovingAndIsNotAJump) {
       options);
   ASSERT_TRUE(simulation);
   simulation->run();
-  std::vector<Counter> counters;
-  simulation->scene().findComponent("device")->reportCounters(counters);
-  for (const Counter& c : counters) {
-    if (c.name == "rejected_jump") {
-      EXPECT_EQ(c.value, 0.0) << "starting over is intended";
-    }
-  }
+  EXPECT_EQ(test::componentCounterAt(*simulation, "device", "rejected_jump"), 0.0) << "starting over is intended";
   simulation->writeOutputs(dir / "run");
   const auto recorded = readDeviceStream(dir / "run/device.device.csv");
   EXPECT_TRUE(recorded.error.empty()) << recorded.error << ": the recording of a looping replay replays";

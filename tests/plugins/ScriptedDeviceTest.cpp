@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "framework/devices/DeviceStream.h"
+#include "framework/devices/HapticDevice.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -108,12 +110,59 @@ TEST(ScriptedDeviceTest, PokesTouchTheSurfaceCountTimes) {
 }
 
 TEST(ScriptedDeviceTest, WaypointsAreFollowedExactlyAtTheirTimes) {
-  auto simulation = run(R"(<Node name="root">
+  // Waypoints (t; x y z): (0; 0 0 10), (0.5; 5 0 10), (1.0; 5 5 0), straight
+  // lines at constant speed in between and the last point held after it. The
+  // run is 2 ms longer than the path, so the frame at t = 1.0 is sampled too.
+  const std::string xml = R"(<Node name="root">
   <RequiredPlugin name="haptics"/>
   <ScriptedDevice name="device" path="waypoints" waypoints="0 0 0 10  0.5 5 0 10  1.0 5 5 0" rate="1000"/>
-</Node>)");
-  ASSERT_TRUE(simulation);
-  EXPECT_DOUBLE_EQ(simulation->plan().duration, 1.0);
+</Node>)";
+  {
+    Diagnostics d;
+    auto planned = test::loadScene(xml, d);
+    ASSERT_TRUE(planned) << test::messages(d);
+    EXPECT_DOUBLE_EQ(planned->plan().duration, 1.0) << "the path asks for its last waypoint's time";
+  }
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = 1.002;
+  auto simulation = test::loadScene(xml, d, options);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  test::TempDir dir;
+  simulation->writeOutputs(dir / "run");
+  const DeviceStreamReadResult stream = readDeviceStream(dir / "run/device.device.csv");
+  ASSERT_TRUE(stream.error.empty()) << stream.error;
+  ASSERT_EQ(stream.samples.size(), 1002u) << "one sample per 1 ms frame";
+
+  // Closed form of the piecewise linear path.
+  const auto expected = [](double t) {
+    if (t <= 0.5) return Vec3(10.0 * t, 0, 10);                             // 0 -> 5 in x over 0.5 s
+    if (t <= 1.0) return Vec3(5, 10.0 * (t - 0.5), 10 - 20.0 * (t - 0.5));  // 0 -> 5 in y, 10 -> 0 in z
+    return Vec3(5, 5, 0);
+  };
+  const auto sampleAt = [&](double t) -> const DeviceSample& {
+    const size_t i = static_cast<size_t>(std::lround(t * 1000));
+    EXPECT_NEAR(stream.samples.at(i).t, t, 1e-12);
+    return stream.samples.at(i);
+  };
+  // Every waypoint at its time, and the midpoints of both legs.
+  const std::vector<std::pair<double, Vec3>> checkpoints = {{0.0, Vec3(0, 0, 10)}, {0.25, Vec3(2.5, 0, 10)},
+                                                            {0.5, Vec3(5, 0, 10)}, {0.75, Vec3(5, 2.5, 5)},
+                                                            {1.0, Vec3(5, 5, 0)},  {1.001, Vec3(5, 5, 0)}};
+  for (const auto& [t, at] : checkpoints) {
+    const DeviceSample& sample = sampleAt(t);
+    EXPECT_NEAR((sample.position - at).norm(), 0.0, 1e-12) << "t = " << t << ": " << sample.position.transpose();
+    EXPECT_NEAR((expected(t) - at).norm(), 0.0, 1e-12) << "the closed form itself at t = " << t;
+  }
+  // And every frame in between lies on the lines at the scheduled speed.
+  for (const DeviceSample& sample : stream.samples)
+    ASSERT_NEAR((sample.position - expected(sample.t)).norm(), 0.0, 1e-12) << "t = " << sample.t;
+  // The device's state after the run: the last waypoint, at rest.
+  const auto* device = dynamic_cast<const HapticDevice*>(simulation->scene().findComponent("device"));
+  ASSERT_TRUE(device);
+  EXPECT_NEAR((device->state().pose.position - Vec3(5, 5, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(device->state().velocity.norm(), 0.0, 1e-9);
 }
 
 // Velocity (mm/s) changes by less than `bound` between consecutive frames: the

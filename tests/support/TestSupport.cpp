@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -72,16 +73,41 @@ std::string readFile(const std::filesystem::path& file) {
   return s.str();
 }
 
+double counter(const Component& component, const std::string& name) {
+  std::vector<Counter> counters;
+  component.reportCounters(counters);
+  for (const Counter& k : counters)
+    if (k.name == name) return k.value;
+  std::string reported;
+  for (const Counter& k : counters) reported += " " + k.name;
+  ADD_FAILURE() << component.typeName() << " reports no counter " << name << " (it reports:" << reported << ")";
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 double componentCounter(const Simulation& simulation, const std::string& type, const std::string& name) {
+  const Component* found = nullptr;
   for (const Component* c : simulation.scene().components()) {
     if (c->typeName() != type) continue;
-    std::vector<Counter> counters;
-    c->reportCounters(counters);
-    for (const Counter& k : counters)
-      if (k.name == name) return k.value;
+    if (found) {
+      ADD_FAILURE() << "more than one " << type << " in the scene: name the one whose " << name << " is meant";
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    found = c;
   }
-  ADD_FAILURE() << "no counter " << name << " on a " << type;
-  return 0;
+  if (!found) {
+    ADD_FAILURE() << "no " << type << " in the scene, so no counter " << name;
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return counter(*found, name);
+}
+
+double componentCounterAt(const Simulation& simulation, const std::string& path, const std::string& name) {
+  const Component* c = simulation.scene().findComponent(path);
+  if (!c) {
+    ADD_FAILURE() << "no component " << path << " in the scene, so no counter " << name;
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return counter(*c, name);
 }
 
 }  // namespace trephine::test

@@ -41,8 +41,13 @@ int runProgram(const std::vector<std::string>& arguments, std::string* output = 
 
 std::string readFile(const std::filesystem::path& file);
 
-// The counter `name` that the scene's component of type `type` reports (the
-// plugins' classes stay in their plugins); a test failure when there is none.
+// The counter `name` that `component` reports. A counter the component does
+// not report is a test failure (and NaN, so that no comparison passes on it).
+double counter(const Component& component, const std::string& name);
+// The same of the scene's one component of type `type` (the plugins' classes
+// stay in their plugins); no such component, or more than one, is a failure too.
 double componentCounter(const Simulation& simulation, const std::string& type, const std::string& name);
+// The same of the component at `path` (as Scene::findComponent).
+double componentCounterAt(const Simulation& simulation, const std::string& path, const std::string& name);
 
 }  // namespace trephine::test

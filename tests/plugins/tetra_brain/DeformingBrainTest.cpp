@@ -98,13 +98,8 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
       }
     }
   }
-  std::vector<Counter> counters;
-  following.brain.reportCounters(counters);
-  for (const Counter& k : counters) {
-    if (k.name == "frames_beyond_margin") {
-      EXPECT_EQ(k.value, 3.0) << "the three frames of the larger amplitude widened the queries";
-    }
-  }
+  EXPECT_EQ(test::counter(following.brain, "frames_beyond_margin"), 3.0)
+      << "the three frames of the larger amplitude widened the queries";
 }
 
 TEST(DeformingBrainTest, PositionsOfAnotherSizeAreIgnoredAndCounted) {
@@ -114,16 +109,7 @@ TEST(DeformingBrainTest, PositionsOfAnotherSizeAreIgnoredAndCounted) {
   EXPECT_NE(following.brain.node(5), rest[5]);
   following.moveTo(std::vector<Vec3>(rest.size() - 1, Vec3::Zero()), 1.0);
   EXPECT_EQ(following.brain.node(5), rest[5]) << "back to the rest shape, never a slot the writer owns";
-  std::vector<Counter> counters;
-  following.brain.reportCounters(counters);
-  bool reported = false;
-  for (const Counter& k : counters) {
-    if (k.name == "rejected_position_frames") {
-      EXPECT_EQ(k.value, 1.0);
-      reported = true;
-    }
-  }
-  EXPECT_TRUE(reported);
+  EXPECT_EQ(test::counter(following.brain, "rejected_position_frames"), 1.0);
 }
 
 TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {

@@ -117,13 +117,7 @@ TEST(TetraBrainTest, ToolDeepInsideMeasuresToTheNearestBoundaryFace) {
   EXPECT_EQ(c.points, 466);
   EXPECT_NEAR(c.penetration, 12 + 2.5, 0.1) << "the deepest point, below the top face";
   EXPECT_GT(c.normal.z(), 0.99);
-  std::vector<Counter> counters;
-  brain.reportCounters(counters);
-  for (const Counter& k : counters) {
-    if (k.name == "deep_fallbacks") {
-      EXPECT_EQ(k.value, 466.0) << "every point measured to the mesh's nearest face";
-    }
-  }
+  EXPECT_EQ(test::counter(brain, "deep_fallbacks"), 466.0) << "every point measured to the mesh's nearest face";
 }
 
 TEST(TetraBrainTest, TheThesisSearchesFindTheSameContactsAsTheGrid) {

@@ -1,0 +1,131 @@
+// VoxelSkull: force-driven drilling (removal="force"). The removal law gives
+// the speed v at which the bone surface under the burr recedes (RemovalLaw.h);
+// each frame the density of the voxels in the burr's footprint falls by
+// w v dt |grad rho|, so the interpolated isosurface moves by about v dt:
+//  - |grad rho| is the density gradient at the bone surface ahead of the burr,
+//    so the same law cuts a sharp cortical edge and a soft drilled wall alike;
+//  - w = cos(angle from the load) x a radial falloff (1 inside the burr and up
+//    to half a voxel beyond, smoothly 0 one voxel beyond): a sphere advancing
+//    along the load recedes the surface at v cos(angle), and nothing beyond
+//    the burr's radius plus one voxel changes;
+//  - the fall of each code is rounded up or down at random in proportion to
+//    its fraction (seeded by voxel and frame, so runs are reproducible), so
+//    slow cuts of less than one code per frame still remove bone on average.
+// Removal is incremental, never a target shape: it can neither stall nor run
+// ahead of the law wherever the proxy happens to sit.
+#include <algorithm>
+#include <cmath>
+
+#include "framework/logs/EventLog.h"
+#include "plugins/voxel_skull/VoxelSkull.h"
+
+namespace trephine::voxel {
+
+namespace {
+// A uniform number in [0, 1) from a voxel and a frame (splitmix64): the same
+// on every run and machine, independent between neighbouring voxels and frames.
+double unitHash(uint64_t voxel, uint64_t frame) {
+  uint64_t x = voxel * 0x9E3779B97F4A7C15ull ^ (frame + 0x632BE59BD9B4E019ull);
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  x ^= x >> 31;
+  return double(x >> 11) * 0x1.0p-53;
+}
+
+// A pause in cutting longer than this (s) disarms the breakthrough test: the
+// burr was lifted, and the next contact starts afresh.
+constexpr double kCutPause = 0.05;
+}  // namespace
+
+int VoxelSkull::lowerVoxelTo(int64_t voxel, int32_t code) {
+  VoxelCode& current = m_volume.codes()[voxel];
+  if (current <= code) return 0;
+  const bool emptied = current >= m_grid.threshold && code < m_grid.threshold;
+  m_removedCodes += double(current - code);
+  current = static_cast<VoxelCode>(code);
+  m_grid.noteLowered(voxel, current);  // keeps the point test's occupancy cells true
+  return emptied ? 1 : 0;
+}
+
+bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
+  const double h = m_grid.smallestSide();
+  return m_grid.solidAt(front + 0.5 * h * direction) || m_grid.solidAt(front + h * direction);
+}
+
+int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
+  if (!d_drill.value() || !m_forceRemoval) return 0;
+  const double thrust = load.force_N.norm();  // N
+  if (!(thrust > 0) || !std::isfinite(thrust) || !load.center_W.allFinite() || !(load.dt > 0) ||
+      !(load.radius > 0))
+    return 0;
+  const Vec3 d = load.force_N / thrust;  // unit, into the bone
+  const double h = m_grid.smallestSide();
+  // The bone surface ahead of the burr: its radius less the skin it sits in.
+  const double reach = load.radius - std::clamp(load.overlap, 0.0, load.radius);  // mm
+  const Vec3 front = load.center_W + reach * d;
+
+  // Breakthrough: bone ahead of the burr at the last cut, none now.
+  const bool ahead = boneAhead(front, d);
+  if (load.t - m_lastCutTime > kCutPause) m_boneAhead = false;
+  if (m_boneAhead && !ahead) {
+    ++m_breakthroughs;
+    if (m_events) m_events->log(load.t, "breakthrough", "no bone ahead of the burr", this, thrust,
+                                {front.x(), front.y(), front.z()});
+  }
+  m_boneAhead = ahead;
+  m_lastCutTime = load.t;
+
+  // How fast the surface recedes: the hardness of the bone one voxel ahead.
+  const DensityEncoding& e = m_volume.encoding();
+  const double densityAhead = e.offset + e.scale * m_grid.codeAt(front + h * d);
+  const double speed = m_law.recessionSpeed(thrust, densityAhead, load.burr, load.radius);  // mm/s
+  if (!(speed > 0)) return 0;
+  ++m_cutFrames;
+  m_maxCutSpeed = std::max(m_maxCutSpeed, speed);
+
+  // Codes per mm across the surface ahead; never flatter than the bone ahead
+  // rising from the isovalue over one voxel, so a flat plateau still cuts.
+  Vec3 gradient;
+  m_grid.codeAt(front, &gradient);
+  const double slope = std::max(gradient.norm(), (m_grid.codeAt(front + h * d) - m_grid.isoCode) / h);
+  const double fall = speed * load.dt * std::max(slope, 1.0 / h);  // codes at full weight this frame
+
+  // Voxels whose centre is within the burr plus one voxel, ahead of its centre.
+  const Vec3& P = load.center_W;
+  const double inner = load.radius + 0.5 * h, outer = load.radius + h;  // mm, the radial falloff
+  const int32_t floorCode = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
+  const Vec3 lo = (P - Vec3::Constant(outer) - m_grid.corner).cwiseProduct(m_grid.inverseSpacing);
+  const Vec3 hi = (P + Vec3::Constant(outer) - m_grid.corner).cwiseProduct(m_grid.inverseSpacing);
+  const int64_t i0 = std::max<int64_t>(0, int64_t(std::floor(lo.x()))), i1 = std::min<int64_t>(m_grid.nx - 1, int64_t(hi.x()));
+  const int64_t j0 = std::max<int64_t>(0, int64_t(std::floor(lo.y()))), j1 = std::min<int64_t>(m_grid.ny - 1, int64_t(hi.y()));
+  const int64_t k0 = std::max<int64_t>(0, int64_t(std::floor(lo.z()))), k1 = std::min<int64_t>(m_grid.nz - 1, int64_t(hi.z()));
+  int removed = 0;
+  for (int64_t k = k0; k <= k1; ++k) {
+    const double z = m_grid.corner.z() + (double(k) + 0.5) * m_grid.spacing.z();
+    for (int64_t j = j0; j <= j1; ++j) {
+      const double y = m_grid.corner.y() + (double(j) + 0.5) * m_grid.spacing.y();
+      for (int64_t i = i0; i <= i1; ++i) {
+        const Vec3 offset = Vec3(m_grid.corner.x() + (double(i) + 0.5) * m_grid.spacing.x(), y, z) - P;
+        const double along = offset.dot(d);
+        if (along <= 0) continue;  // behind the burr's centre: the load does not press there
+        const double distance = offset.norm();
+        if (distance >= outer) continue;
+        const double u = std::clamp((outer - distance) / (outer - inner), 0.0, 1.0);
+        const double weight = (along / distance) * u * u * (3.0 - 2.0 * u);  // cosine x smoothstep
+        const int64_t voxel = m_grid.linear(i, j, k);
+        const int32_t current = m_volume.codes()[voxel];
+        if (current <= floorCode) continue;
+        // Stochastic rounding of the fall, seeded by voxel and frame.
+        const double exact = weight * fall;
+        const double whole = std::floor(exact);
+        const double fraction = exact - whole;
+        const int32_t step = int32_t(whole) + (unitHash(uint64_t(voxel), m_cutFrames) < fraction ? 1 : 0);
+        if (step > 0) removed += lowerVoxelTo(voxel, std::max(floorCode, current - step));
+      }
+    }
+  }
+  m_voxelsRemoved += removed;
+  return removed;
+}
+
+}  // namespace trephine::voxel
