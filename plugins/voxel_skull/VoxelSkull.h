@@ -81,10 +81,12 @@ class VoxelSkull final : public Component, public ShellContactTarget {
                                "sharpness * w * (F - thrustThreshold) / (pi r cuttingEnergy H), H the hardness of "
                                "the bone ahead from its density, capped at maxCutSpeed (a constant specific cutting "
                                "energy); thesis: drillRate per touched voxel and frame, whatever the force"}};
-  // 0.2 mJ/mm^3 puts the thrust of a 1 mm/s feed into cortical bone (density
-  // 1500) with the default 2.5 mm burr at 60,000 rpm near 1 N (see
-  // docs/results.md, drilling); measured specific energies of cortical bone
-  // cutting are of this order (0.1 to 1 mJ/mm^3 per mm^3 of orthogonal cutting).
+  // Calibrated, not measured: 0.2 J/mm^3 puts the thrust of a 1 mm/s feed into
+  // cortical bone (density 1500) with the default 2.5 mm burr at 60,000 rpm
+  // near 1.1 N, so feeds up to 2 mm/s stay below a Phantom Omni's 3.3 N
+  // (docs/results.md, drilling). Hand-held burrs in animal bone take 4 to 19 N
+  // on average (peaks 6 to 24 N, "Investigation of variable factors in
+  // drilling bone"), beyond desktop devices: forces are scaled to the device.
   Field<double> d_cuttingEnergy{this,
                                 "cuttingEnergy",
                                 0.2,
