@@ -37,7 +37,9 @@ SKULLS = [("Skull1", "phantom:skull?voxel=1.5"), ("Skull2", "phantom:skull?voxel
 def run(name, task, surface, settings, out):
     return run_scene(SCENE, out / f"{name}_{task}_{surface}",
                      settings + [f"/patient/skull.drill={'true' if task == 'drill' else 'false'}",
-                                 f"/patient/skull.surface={surface}"])
+                                 f"/patient/skull.surface={surface}"]
+                     # The thesis's experiments drill with the thesis's law (a fixed rate per frame).
+                     + (["/patient/skull.removal=thesis"] if task == "drill" else []))
 
 
 def main():
