@@ -94,11 +94,15 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   const Vec3& P = load.center_W;
   const double inner = load.radius + 0.5 * h, outer = load.radius + h;  // mm, the radial falloff
   const int32_t floorCode = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
+  // Index bounds, clamped as doubles first: a burr far outside the grid must
+  // not overflow the conversion to integers.
   const Vec3 lo = (P - Vec3::Constant(outer) - m_grid.corner).cwiseProduct(m_grid.inverseSpacing);
   const Vec3 hi = (P + Vec3::Constant(outer) - m_grid.corner).cwiseProduct(m_grid.inverseSpacing);
-  const int64_t i0 = std::max<int64_t>(0, int64_t(std::floor(lo.x()))), i1 = std::min<int64_t>(m_grid.nx - 1, int64_t(hi.x()));
-  const int64_t j0 = std::max<int64_t>(0, int64_t(std::floor(lo.y()))), j1 = std::min<int64_t>(m_grid.ny - 1, int64_t(hi.y()));
-  const int64_t k0 = std::max<int64_t>(0, int64_t(std::floor(lo.z()))), k1 = std::min<int64_t>(m_grid.nz - 1, int64_t(hi.z()));
+  const auto first = [](double u, int32_t n) { return int64_t(std::clamp(std::floor(u), 0.0, double(n))); };
+  const auto last = [](double u, int32_t n) { return int64_t(std::clamp(std::floor(u), -1.0, double(n - 1))); };
+  const int64_t i0 = first(lo.x(), m_grid.nx), i1 = last(hi.x(), m_grid.nx);
+  const int64_t j0 = first(lo.y(), m_grid.ny), j1 = last(hi.y(), m_grid.ny);
+  const int64_t k0 = first(lo.z(), m_grid.nz), k1 = last(hi.z(), m_grid.nz);
   int removed = 0;
   for (int64_t k = k0; k <= k1; ++k) {
     const double z = m_grid.corner.z() + (double(k) + 0.5) * m_grid.spacing.z();
