@@ -139,24 +139,36 @@ void GodObjectProxy::tick(const TickContext&) {
     const Vec3 step = goal - P1;
     const Vec3 lift = step.dot(normal) * normal;
     goal = P1 + lift + kProxyRelaxation * (step - lift);
-    // 4. Rectifying sweep to the new position.
+    // 4. Rectifying sweep of the slide. The lift out along the contact normal
+    // is taken first, unswept: the proxy is in the target when it is lifted, so
+    // a sweep from there would stop it at once and keep it inside (a burr that
+    // slipped into a drilled groove could never climb out). The lift is the
+    // measured depth less the skin, along the normal that depth was measured on.
+    const Vec3 lifted = P1 + std::max(0.0, (goal - P1).dot(normal)) * normal;
     P2 = goal;
-    const Vec3 move = goal - P1;
+    const Vec3 move = goal - lifted;
     const double moveLength = move.norm();
     if (d_rectify.value() && m_sweeps && moveLength > kSamePlace) {
-      const SweepResult r = sweepPath(P1, goal, q);
-      if (r.blocked) P2 = P1 + r.freeFraction * move;
+      const SweepResult r = sweepPath(lifted, goal, q);
+      if (r.blocked) P2 = lifted + r.freeFraction * move;
     }
-    // 5. Rendered penetration: along the normal, or, held by two planes, the
-    // device-proxy distance in its own direction.
-    const Vec3 offset = P2 - D;
-    if (crease && offset.norm() > kSamePlace) {
-      s.normal = offset.normalized();
-      s.penetration = offset.norm() + skin;
-      ++m_creaseFrames;
+    // 5. Rendered penetration: the spring from the device to the proxy lifted
+    // out by its skin, P2 + skin n - D, in its own direction. The proxy and the
+    // device move continuously, so this vector does; the contact normal alone
+    // does not (in a drilled groove it swings as points enter and leave the
+    // bone, and times the device depth that is a jump of force). Held on a
+    // surface it is the normal times the depth; sliding, it trails the device
+    // by the proxy's lag (a drag); held by two planes, it points from the
+    // device to the crease. Without the god-object the proxy is not over the
+    // device: the thesis's depth along the normal.
+    const Vec3 spring = d_godObject.value() ? Vec3(P2 + skin * normal - D) : Vec3(((P2 - D).dot(normal) + skin) * normal);
+    if (crease) ++m_creaseFrames;
+    if (spring.dot(normal) > kSamePlace) {
+      s.penetration = spring.norm();
+      s.normal = spring / s.penetration;
     } else {
-      s.normal = normal;
-      s.penetration = std::max(0.0, offset.dot(normal)) + skin;
+      s.normal = normal;  // the device is out of the target: no push
+      s.penetration = 0;
     }
     s.contact = true;
     m_planePoint = onPlane;
