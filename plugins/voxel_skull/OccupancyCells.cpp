@@ -14,6 +14,8 @@ std::shared_ptr<OccupancyCells> OccupancyCells::build(const SolidGrid& grid) {
   o.m_ny = grid.ny;
   o.m_nz = grid.nz;
   o.m_voxels = int64_t(grid.nx) * grid.ny * grid.nz;
+  o.m_inverseRow = grid.nx > 0 ? 1.0 / grid.nx : 0.0;
+  o.m_inversePlane = grid.nx > 0 && grid.ny > 0 ? 1.0 / (double(grid.nx) * grid.ny) : 0.0;
   o.m_strideY = grid.nx + 3;
   o.m_strideZ = (grid.nx + 3) * (grid.ny + 3);
   const int64_t cellCount = int64_t(o.m_strideZ) * (grid.nz + 3);

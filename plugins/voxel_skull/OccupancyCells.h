@@ -48,7 +48,16 @@ class OccupancyCells {
   // "inside" become surface cells. Indices outside the grid are ignored.
   void lowered(int64_t voxel, VoxelCode newCode) {
     if (newCode >= m_insideCode || voxel < 0 || voxel >= m_voxels) return;
-    const int64_t i = voxel % m_nx, j = (voxel / m_nx) % m_ny, k = voxel / (int64_t(m_nx) * m_ny);
+    // voxel = i + nx (j + ny k), without divisions (exact below 2^52 voxels)
+    const int64_t plane = int64_t(m_nx) * m_ny;
+    int64_t k = int64_t(double(voxel) * m_inversePlane);
+    k -= k * plane > voxel;
+    k += (k + 1) * plane <= voxel;
+    const int64_t inPlane = voxel - k * plane;
+    int64_t j = int64_t(double(inPlane) * m_inverseRow);
+    j -= j * m_nx > inPlane;
+    j += (j + 1) * m_nx <= inPlane;
+    const int64_t i = inPlane - j * m_nx;
     // Cells with bases i-1 and i: padded indices i+1 and i+2.
     const int64_t first = cellIndex(i - 1, j - 1, k - 1);
     for (int c = 0; c < 8; ++c) {
@@ -75,6 +84,7 @@ class OccupancyCells {
   std::vector<uint8_t> m_states;
   int32_t m_nx = 0, m_ny = 0, m_nz = 0;
   int64_t m_voxels = 0;
+  double m_inverseRow = 0, m_inversePlane = 0;  // 1 / nx, 1 / (nx ny)
   int32_t m_strideY = 0, m_strideZ = 0;
   int32_t m_outsideCode = 0, m_insideCode = 0;
 };

@@ -7,7 +7,7 @@
 // cuts with the power P = s (F - F0) w r; removing bone of specific cutting
 // energy u(rho) costs u per unit volume, over the burr's projected area
 // pi r^2, so the surface recedes at
-//     v = P / (u(rho) pi r^2) = s w (F - F0) / (pi r u(rho)),   capped at vMax.
+//     v = P / (u(rho) pi r^2) = s w (F - F0 H) / (pi r u(rho)),   capped at vMax.
 // The energy grows with the bone's density: u(rho) = u_ref H(rho) with
 // H = (rho / rho_ref)^e (the strength of bone grows with the square of its
 // apparent density, Carter and Hayes 1977: e = 2), never below the hardness of
@@ -37,7 +37,9 @@ struct RemovalLaw {
   // mm/s at which the surface under a burr of `radius` (mm) recedes when it is
   // pressed with `thrust` (N) on bone of `density`.
   double recessionSpeed(double thrust, double density, const CuttingBurr& burr, double radius) const {
-    const double excess = thrust - thrustThreshold;
+    // The threshold scales with the hardness too: a thin rim of soft or
+    // partial-volume bone gives way under a light touch.
+    const double excess = thrust - thrustThreshold * hardness(density);
     if (!(excess > 0) || !(radius > 0) || !(cuttingEnergy > 0)) return 0;
     const double omega = burr.spindleSpeed_rpm * 2.0 * std::numbers::pi / 60.0;  // rad/s
     const double v = burr.sharpness * omega * excess / (std::numbers::pi * radius * cuttingEnergy * hardness(density));

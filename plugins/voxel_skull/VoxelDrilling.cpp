@@ -2,12 +2,14 @@
 // the speed v at which the bone surface under the burr recedes (RemovalLaw.h);
 // each frame the density of the voxels in the burr's footprint falls by
 // w v dt |grad rho|, so the interpolated isosurface moves by about v dt:
-//  - |grad rho| is the density gradient at the bone surface ahead of the burr,
-//    so the same law cuts a sharp cortical edge and a soft drilled wall alike;
-//  - w = cos(angle from the load) x a radial falloff (1 inside the burr and up
-//    to half a voxel beyond, smoothly 0 one voxel beyond): a sphere advancing
-//    along the load recedes the surface at v cos(angle), and nothing beyond
-//    the burr's radius plus one voxel changes;
+//  - |grad rho| is each voxel's own density gradient (one-sided differences),
+//    so the same law cuts a sharp cortical edge, a soft drilled wall and the
+//    rim of an opening alike;
+//  - w = min(1, cos(angle from the load) + 0.25) x a radial falloff (1 inside
+//    the burr and up to half a voxel beyond, smoothly 0 one voxel beyond): a
+//    sphere advancing along the load recedes the surface at v cos(angle), the
+//    flutes cut its sides a little too, and nothing beyond the burr's radius
+//    plus one voxel changes;
 //  - the fall of each code is rounded up or down at random in proportion to
 //    its fraction (seeded by voxel and frame, so runs are reproducible), so
 //    slow cuts of less than one code per frame still remove bone on average.
@@ -32,6 +34,11 @@ double unitHash(uint64_t voxel, uint64_t frame) {
   return double(x >> 11) * 0x1.0p-53;
 }
 
+// The flutes also cut sideways what the burr's side touches, at this share of
+// the speed ahead: the hole comes out a little wider than the burr (at most the
+// falloff's voxel), so the burr never wedges in a bore exactly its own size.
+constexpr double kSideCut = 0.25;
+
 // A pause in cutting longer than this (s) disarms the breakthrough test: the
 // burr was lifted, and the next contact starts afresh.
 constexpr double kCutPause = 0.05;
@@ -45,6 +52,17 @@ int VoxelSkull::lowerVoxelTo(int64_t voxel, int32_t code) {
   current = static_cast<VoxelCode>(code);
   m_grid.noteLowered(voxel, current);  // keeps the point test's occupancy cells true
   return emptied ? 1 : 0;
+}
+
+double VoxelSkull::localSlope(int64_t i, int64_t j, int64_t k) const {
+  // Per axis the larger one-sided difference, not the central one: a last
+  // layer of bone with air on both sides has no central difference at all.
+  const double c = m_grid.codeAtCell(i, j, k);
+  const auto larger = [c](double a, double b) { return std::max(std::abs(c - a), std::abs(c - b)); };
+  const Vec3 g(larger(m_grid.codeAtCell(i - 1, j, k), m_grid.codeAtCell(i + 1, j, k)) * m_grid.inverseSpacing.x(),
+               larger(m_grid.codeAtCell(i, j - 1, k), m_grid.codeAtCell(i, j + 1, k)) * m_grid.inverseSpacing.y(),
+               larger(m_grid.codeAtCell(i, j, k - 1), m_grid.codeAtCell(i, j, k + 1)) * m_grid.inverseSpacing.z());
+  return g.norm();
 }
 
 bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
@@ -64,11 +82,13 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   const double reach = load.radius - std::clamp(load.overlap, 0.0, load.radius);  // mm
   const Vec3 front = load.center_W + reach * d;
 
-  // Breakthrough: bone ahead of the burr at the last cut, none now.
+  // Breakthrough: bone ahead of the burr at the last cut, none now; once per
+  // stretch of drilling (a pause longer than kCutPause starts a new one).
   const bool ahead = boneAhead(front, d);
-  if (load.t - m_lastCutTime > kCutPause) m_boneAhead = false;
-  if (m_boneAhead && !ahead) {
+  if (load.t - m_lastCutTime > kCutPause) m_boneAhead = m_brokeThrough = false;
+  if (m_boneAhead && !ahead && !m_brokeThrough) {
     ++m_breakthroughs;
+    m_brokeThrough = true;
     if (m_events) m_events->log(load.t, "breakthrough", "no bone ahead of the burr", this, thrust,
                                 {front.x(), front.y(), front.z()});
   }
@@ -83,12 +103,7 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   ++m_cutFrames;
   m_maxCutSpeed = std::max(m_maxCutSpeed, speed);
 
-  // Codes per mm across the surface ahead; never flatter than the bone ahead
-  // rising from the isovalue over one voxel, so a flat plateau still cuts.
-  Vec3 gradient;
-  m_grid.codeAt(front, &gradient);
-  const double slope = std::max(gradient.norm(), (m_grid.codeAt(front + h * d) - m_grid.isoCode) / h);
-  const double fall = speed * load.dt * std::max(slope, 1.0 / h);  // codes at full weight this frame
+  const double advance = speed * load.dt;  // mm the surface recedes this frame, at full weight
 
   // Voxels whose centre is within the burr plus one voxel, ahead of its centre.
   const Vec3& P = load.center_W;
@@ -111,16 +126,23 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
       for (int64_t i = i0; i <= i1; ++i) {
         const Vec3 offset = Vec3(m_grid.corner.x() + (double(i) + 0.5) * m_grid.spacing.x(), y, z) - P;
         const double along = offset.dot(d);
-        if (along <= 0) continue;  // behind the burr's centre: the load does not press there
+        if (along <= -kSideCut * outer) continue;  // behind the burr: the load does not press there
         const double distance = offset.norm();
         if (distance >= outer) continue;
         const double u = std::clamp((outer - distance) / (outer - inner), 0.0, 1.0);
-        const double weight = (along / distance) * u * u * (3.0 - 2.0 * u);  // cosine x smoothstep
+        const double facing = std::min(1.0, along / distance + kSideCut);  // cosine, plus the flutes' side cut
+        if (!(facing > 0)) continue;
+        const double weight = facing * u * u * (3.0 - 2.0 * u);  // x smoothstep
         const int64_t voxel = m_grid.linear(i, j, k);
         const int32_t current = m_volume.codes()[voxel];
         if (current <= floorCode) continue;
         // Stochastic rounding of the fall, seeded by voxel and frame.
-        const double exact = weight * fall;
+        // The isosurface moves by (fall of the density) / |gradient|, so each
+        // voxel falls by the advance times its own gradient (codes per mm,
+        // one-sided differences): the surface recedes by the advance wherever the
+        // burr touches it, a sharp cortical edge, a soft drilled wall or the
+        // rim of an opening alike, and bone not yet reached (flat inside) waits.
+        const double exact = weight * advance * localSlope(i, j, k);
         const double whole = std::floor(exact);
         const double fraction = exact - whole;
         const int32_t step = int32_t(whole) + (unitHash(uint64_t(voxel), m_cutFrames) < fraction ? 1 : 0);

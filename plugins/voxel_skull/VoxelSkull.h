@@ -57,6 +57,8 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   // Whether bone lies ahead of a burr's front along `direction` (unit), within
   // one voxel: the breakthrough test.
   bool boneAhead(const Vec3& front, const Vec3& direction) const;
+  // |density gradient| at voxel (i, j, k) in codes per mm, the larger one-sided difference per axis.
+  double localSlope(int64_t i, int64_t j, int64_t k) const;
   void checkRemovalFields(InitContext& context);
 
   FilePathField d_file{this,
@@ -171,6 +173,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   RemovalLaw m_law;
   bool m_boneAhead = false;  // at the last cut: bone ahead of the burr (armed for a breakthrough event)
   double m_lastCutTime = -1e300;  // s
+  bool m_brokeThrough = false;    // the breakthrough of this stretch of drilling was reported
   EventLog* m_events = nullptr;
   double m_removedCodes = 0;  // code steps removed by the force law, summed over voxels
   double m_maxCutSpeed = 0;           // mm/s, largest recession speed reached
