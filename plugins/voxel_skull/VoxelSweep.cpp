@@ -74,9 +74,15 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
     // dense enough that no voxel passes between two lines. Lines from the front
     // rings block like the leading point; lines from the equator may start in
     // the bone the tool slides on and block only on entering new bone.
+    // Each line is traversed only as far as the nearest block found so far: a
+    // hit beyond it could not move the stop (same result, and a tool pressed
+    // deep into bone no longer traverses the whole path from every ring point).
     const bool stopped = forEachFrontRingPoint(u, R, m_grid.smallestSide(), [&](const Vec3& offset, bool front) {
-      const SegmentHit ring = firstSolidOnSegment(m_grid, query.from + offset, query.to + offset, buried || !front);
+      const double reach = first > 0 ? std::min(first, 1.0) : 1.0;
+      SegmentHit ring = firstSolidOnSegment(m_grid, query.from + offset, query.from + offset + reach * path,
+                                            buried || !front);
       if (!ring.hit) return false;
+      ring.t *= reach;
       if (front && ring.startsSolid && !buried) {
         result.blocked = result.startsInside = true;
         result.freeFraction = 0;
