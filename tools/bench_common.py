@@ -62,7 +62,8 @@ def run_scene(scene, run_dir, settings):
     """`trephine run` of `scene` into `run_dir` with `--set` for each of
     `settings`, in virtual time. Returns summary.json, the trace rows, the
     per-call times (us) by component and call, and per frame the proxy's time
-    (the collision handling) and the haptic step's (device + proxy + force)."""
+    (the collision handling) and the haptic step's (the tool node's components:
+    device + proxy + force)."""
     command = [str(PROGRAM), "run", str(scene), "--quiet", "--out", str(run_dir)]
     for s in settings:
         command += ["--set", s]
@@ -72,6 +73,8 @@ def run_scene(scene, run_dir, settings):
         per_call[row["component"]][int(row["call"])] = float(row["duration_us"])
     proxy = per_call["/tool/proxy"]
     frames = sorted(proxy)
-    step = [sum(per_call[c].get(i, 0.0) for c in ("/tool/device", "/tool/proxy", "/tool/force")) for i in frames]
+    # The haptic step: every component of the tool node (device or simulated hand, proxy, force).
+    tool = [c for c in per_call if c.startswith("/tool/")]
+    step = [sum(per_call[c].get(i, 0.0) for c in tool) for i in frames]
     return {"summary": json.loads((run_dir / "summary.json").read_text()), "trace": read_rows(run_dir / "trace.csv"),
             "per_call": per_call, "proxy_us": [proxy[i] for i in frames], "step_us": step}

@@ -17,6 +17,11 @@ press  scenes/bench/drill_press_slide.xml (the burr pressed 3.5 mm past the
        a backward difference), reversals of the force direction while |F| > 0.5 N,
        and the haptic step time (device + proxy + force calls) p50/p99.
        DIR/press.csv and DIR/drill_press_force.png.
+hand   scenes/bench/hand_drill.xml: a simulated hand (HandDevice) pressing and
+       drilling over the skull phantom for a minute, closed loop, with k = 0.5,
+       1, 2 and 3 N/mm (b = 0.002 N s/mm) and, for contrast, k = 20 N/mm with
+       no damping (which the load-time check calls non-passive): the passivity
+       observer, force steps, reversals and what was drilled. DIR/hand.csv.
 --quick runs one short case of each (a smoke test).
 """
 import argparse
@@ -28,6 +33,8 @@ from bench_common import ROOT, ensure_matplotlib, percentile, run_scene, write_r
 
 FEED_SCENE = ROOT / "scenes/bench/drill_feed.xml"
 PRESS_SCENE = ROOT / "scenes/bench/drill_press_slide.xml"
+HAND_SCENE = ROOT / "scenes/bench/hand_drill.xml"
+HAND_SETTINGS = [("0.5", "0.002"), ("1", "0.002"), ("2", "0.002"), ("3", "0.002"), ("20", "0")]
 FEEDS = [0.25, 0.5, 1.0, 2.0]
 SKULLS = [("Skull3", "phantom:skull?voxel=1.0"), ("Skull5", "phantom:skull?voxel=0.5")]
 SWEEPS = ["line", "cylinder", "spheres"]
@@ -120,11 +127,37 @@ def press_experiment(out, quick):
     return rows, traces
 
 
+def hand_experiment(out, quick):
+    rows = []
+    for k, b in (HAND_SETTINGS[2:3] if quick else HAND_SETTINGS):
+        settings = [f"/tool/force.stiffness={k}", f"/tool/force.damping={b}"]
+        if quick:
+            settings.append("/tool/intent.walkDuration=2")
+        r = run_scene(HAND_SCENE, out / f"hand_k{k}_b{b}", settings)
+        h = r["summary"]["haptics"]
+        skull = r["summary"]["components"]["/patient/skull"]["counters"]
+        p = h["passivity"]
+        rows.append({
+            "k_N_mm": k, "b_Ns_mm": b, "force_max_N": h["force_N"]["max"],
+            "energy_in_mJ": p["energy_in_mJ"], "min_energy_in_mJ": p["min_energy_in_mJ"],
+            "max_generated_mJ_per_100ms": p["max_generated_mJ_per_100ms"],
+            "unexplained_step_p99_N": h["force_step_unexplained_N"]["p99"],
+            "unexplained_step_max_N": h["force_step_unexplained_N"]["max"],
+            "reversals": h["force_reversals"], "proxy_inside_frames": h["proxy_inside_frames"],
+            "removed_bone_mm3": skull["removed_bone_mm3"], "breakthroughs": skull["breakthroughs"],
+            "step_p99_us": percentile(r["step_us"], 0.99),
+        })
+        print(f"hand k {k} b {b}: energy in {p['energy_in_mJ']:.2f} mJ, min {p['min_energy_in_mJ']:.3f}, "
+              f"generated {p['max_generated_mJ_per_100ms']:.3f} mJ/100 ms")
+    write_rows(out / "hand.csv", rows)
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--out", default=str(ROOT / "runs/bench_drilling"))
-    parser.add_argument("--only", default="feed,press")
+    parser.add_argument("--only", default="feed,press,hand")
     args = parser.parse_args()
     plt = ensure_matplotlib("bench_drilling.py")
     out = Path(args.out)
@@ -157,6 +190,8 @@ def main():
         axes[0].legend(fontsize=6, ncol=2)
         fig.tight_layout()
         fig.savefig(out / "drill_press_force.png", dpi=120)
+    if "hand" in only:
+        hand_experiment(out, args.quick)
     return 0
 
 
