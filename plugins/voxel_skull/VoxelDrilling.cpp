@@ -123,7 +123,13 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
     const double z = m_grid.corner.z() + (double(k) + 0.5) * m_grid.spacing.z();
     for (int64_t j = j0; j <= j1; ++j) {
       const double y = m_grid.corner.y() + (double(j) + 0.5) * m_grid.spacing.y();
-      for (int64_t i = i0; i <= i1; ++i) {
+      // Only the voxels of this row inside the footprint's sphere.
+      const double across2 = outer * outer - (y - P.y()) * (y - P.y()) - (z - P.z()) * (z - P.z());
+      if (!(across2 > 0)) continue;
+      const double across = std::sqrt(across2);
+      const int64_t rowFirst = std::max(i0, first((P.x() - across - m_grid.corner.x()) * m_grid.inverseSpacing.x() - 0.5, m_grid.nx));
+      const int64_t rowLast = std::min(i1, last((P.x() + across - m_grid.corner.x()) * m_grid.inverseSpacing.x() + 0.5, m_grid.nx));
+      for (int64_t i = rowFirst; i <= rowLast; ++i) {
         const Vec3 offset = Vec3(m_grid.corner.x() + (double(i) + 0.5) * m_grid.spacing.x(), y, z) - P;
         const double along = offset.dot(d);
         if (along <= -kSideCut * outer) continue;  // behind the burr: the load does not press there
