@@ -13,6 +13,9 @@ constexpr double kSamePlace = 1e-9;
 constexpr double kProxyRelaxation = 0.5;
 // Planes whose normals are closer than this (cosine, about 2.6 degrees) are one plane.
 constexpr double kSamePlane = 0.999;
+// How far (mm) the proxy may slide in a frame beyond the device's own move:
+// 0.02 mm, so k = 3 N/mm renders at most 0.06 N of catch-up per frame.
+constexpr double kCatchUp = 0.02;
 }  // namespace
 
 void GodObjectProxy::init(InitContext& context) {
@@ -138,7 +141,15 @@ void GodObjectProxy::tick(const TickContext&) {
     // frame's motion at most.
     const Vec3 step = goal - P1;
     const Vec3 lift = step.dot(normal) * normal;
-    goal = P1 + lift + kProxyRelaxation * (step - lift);
+    // The slide is also held to the device's own move this frame plus
+    // kCatchUp: a proxy freed from a pit it was held in (a burr pressed into
+    // its own cut, then slid) catches up over several frames instead of
+    // jumping, so the force it renders changes by at most k kCatchUp beyond
+    // what the hand's motion explains.
+    Vec3 slide = kProxyRelaxation * (step - lift);
+    const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
+    if (m_hadDevice && slide.norm() > slideLimit) slide *= slideLimit / slide.norm();
+    goal = P1 + lift + slide;
     // 4. Rectifying sweep of the slide. The lift out along the contact normal
     // is taken first, unswept: the proxy is in the target when it is lifted, so
     // a sweep from there would stop it at once and keep it inside (a burr that
@@ -163,7 +174,12 @@ void GodObjectProxy::tick(const TickContext&) {
     // device: the thesis's depth along the normal.
     const Vec3 spring = d_godObject.value() ? Vec3(P2 + skin * normal - D) : Vec3(((P2 - D).dot(normal) + skin) * normal);
     if (crease) ++m_creaseFrames;
-    if (spring.dot(normal) > kSamePlace) {
+    // The device presses when the spring points out along this contact's
+    // normal or the last frame's (a normal that swings for a frame in a
+    // drilled pit must not drop the force for that frame).
+    const bool pressing =
+        spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace);
+    if (pressing) {
       s.penetration = spring.norm();
       s.normal = spring / s.penetration;
     } else {
@@ -196,6 +212,8 @@ void GodObjectProxy::tick(const TickContext&) {
     s.device = D;
     P2 = m_state.proxy;
   }
+  m_lastDevice = D;
+  m_hadDevice = true;
   s.proxy = P2;
   s.proxyInside = target.overlaps({P2, q}, tool.shellPoints());
   m_state = s;

@@ -89,6 +89,8 @@ class GodObjectProxy final : public Component {
   bool m_sweeps = true;
   ProxyState m_state;
   Vec3 m_lastNormal = Vec3::Zero();
+  Vec3 m_lastDevice = Vec3::Zero();  // mm, the device's point last frame
+  bool m_hadDevice = false;
   // This frame's and the last frame's constraint plane (a point on it and its normal).
   Vec3 m_planePoint = Vec3::Zero(), m_planeNormal = Vec3::Zero(), m_lastPlanePoint = Vec3::Zero();
   bool m_hasPlane = false, m_hadPlane = false;

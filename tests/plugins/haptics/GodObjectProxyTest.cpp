@@ -156,11 +156,11 @@ TEST(GodObjectProxyTest, TheRectifyingSweepKeepsTheGodObjectOutOfTheOtherWall) {
   const auto [rx, ry] = deepest(*rectified);
   EXPECT_LE(rx, kSkin + 1e-6) << "rectified: never deeper than the skin in the wall x = 6";
   EXPECT_LE(ry, kSkin + 1e-6) << "rectified: nor in the wall y = 6";
-  // Unrectified, the god-object step crosses into the wall y = 6, and from
-  // there (the normal now mixed) into the wall x = 6 as well, by ten skins.
+  // Unrectified, the god-object step crosses into the wall y = 6 (by less
+  // than before the slide was held to the device's move plus 0.02 mm a frame).
   const auto [ux, uy] = deepest(*unrectified);
-  EXPECT_GT(uy, 5 * kSkin) << "unrectified: into the wall y = 6";
-  EXPECT_GT(std::max(ux, uy), 0.4) << "unrectified: 0.4 mm into a wall";
+  EXPECT_GT(uy, kSkin + 0.01) << "unrectified: into the wall y = 6";
+  (void)ux;
 }
 
 TEST(GodObjectProxyTest, CreaseFramesAreCountedWhereTheSlideMeetsTheSecondWallOnly) {

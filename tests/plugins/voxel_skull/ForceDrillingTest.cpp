@@ -131,7 +131,10 @@ TEST(ForceDrillingTest, AStalledBurrCutsOnlyUntilItsThrustFallsToTheThreshold) {
   // (0.05 mm at 0.5 mm voxels), k times that twice at most.
   EXPECT_LT(largestRise, 2 * kStiffness * 0.05 + 0.01);
   const HapticFrame& last = log[log.size() - 1];
-  EXPECT_NEAR(last.force.norm(), kThreshold, 0.05) << "settled at the threshold";
+  // Settled at the threshold, F0 H: F0 on intact cortical bone, less as the
+  // bone ahead is cut into (H = 0.53 when it is down to 1100 of 1500).
+  EXPECT_LT(last.force.norm(), kThreshold + 0.02) << "settled at the threshold";
+  EXPECT_GT(last.force.norm(), kThreshold * 0.5) << "settled at the threshold";
   const double sunk = log[pressed].proxy.z() - last.proxy.z();
   EXPECT_NEAR(sunk, (log[pressed].force.norm() - last.force.norm()) / kStiffness, 0.1);
   EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
