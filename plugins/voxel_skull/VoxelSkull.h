@@ -80,7 +80,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
                       {"force", "thesis"},
                       "force",
                       {.help = "Removal law of drilling. force: the surface under the burr recedes at "
-                               "sharpness * w * (F - thrustThreshold) / (pi r cuttingEnergy H), H the hardness of "
+                               "sharpness * w * (F - thrustThreshold H) / (pi r cuttingEnergy H), H the hardness of "
                                "the bone ahead from its density, capped at maxCutSpeed (a constant specific cutting "
                                "energy); thesis: drillRate per touched voxel and frame, whatever the force"}};
   // Calibrated, not measured: 0.2 J/mm^3 puts the thrust of a 1 mm/s feed into
@@ -117,8 +117,8 @@ class VoxelSkull final : public Component, public ShellContactTarget {
       this,
       "thrustThreshold",
       0.3,
-      {.help = "Thrust below which the burr polishes without cutting (a spinning burr pressed lightly rides on "
-               "the surface)",
+      {.help = "Thrust below which the burr polishes without cutting bone of referenceDensity (a spinning burr "
+               "pressed lightly rides on the surface); scaled by the hardness for other bone",
        .unit = "N",
        .min = 0.0}};
   Field<double> d_maxCutSpeed{this,
