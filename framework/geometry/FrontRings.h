@@ -21,18 +21,42 @@ inline std::pair<Vec3, Vec3> perpendicularBasis(const Vec3& n) {
   return {e1, n.cross(e1)};
 }
 
+// The rings' distances ahead of the centre, as fractions of the radius.
+inline constexpr double kFrontRingsAhead[3] = {0.866, 0.5, 0.0};
+
+inline int frontRingCount(double ringRadius, double spacing) {
+  return std::max(6, static_cast<int>(std::ceil(2 * std::numbers::pi * ringRadius / spacing)));
+}
+
+// How many points forEachFrontRingPoint visits for this radius and spacing
+// (for sizing working memory ahead of the haptic loop).
+inline int frontRingPointCount(double radius, double spacing) {
+  int count = 0;
+  for (const double ahead : kFrontRingsAhead) count += frontRingCount(radius * std::sqrt(1.0 - ahead * ahead), spacing);
+  return count;
+}
+
 // Calls visit(offset, front) for each ring point: `offset` from the sphere's
 // centre (mm), `front` false on the equator (lines that may start in what the
 // sphere slides on). Stops when visit returns true; returns whether it did.
 template <typename Visit>
 bool forEachFrontRingPoint(const Vec3& u, double radius, double spacing, Visit&& visit) {
   const auto [e1, e2] = perpendicularBasis(u);
-  for (const double ahead : {0.866, 0.5, 0.0}) {
+  for (const double ahead : kFrontRingsAhead) {
     const double r = radius * std::sqrt(1.0 - ahead * ahead);
-    const int count = std::max(6, static_cast<int>(std::ceil(2 * std::numbers::pi * r / spacing)));
+    const int count = frontRingCount(r, spacing);
+    // Around the ring by rotating (cos, sin) one step at a time: one sine and
+    // cosine per ring instead of per point (the sweeps run twice a haptic
+    // frame; 76 points for a 2.5 mm burr on 0.5 mm voxels). The rounding
+    // drifts by about 1e-16 a step.
+    const double stepCos = std::cos(2 * std::numbers::pi / count), stepSin = std::sin(2 * std::numbers::pi / count);
+    double c = 1, s = 0;
+    const Vec3 centre = ahead * radius * u;
     for (int i = 0; i < count; ++i) {
-      const double phi = 2 * std::numbers::pi * i / count;
-      if (visit(Vec3(r * (std::cos(phi) * e1 + std::sin(phi) * e2) + ahead * radius * u), ahead > 0)) return true;
+      if (visit(Vec3(centre + r * (c * e1 + s * e2)), ahead > 0)) return true;
+      const double next = c * stepCos - s * stepSin;
+      s = s * stepCos + c * stepSin;
+      c = next;
     }
   }
   return false;

@@ -62,6 +62,14 @@ struct SolidGrid {
     if (occupancy) occupancy->lowered(voxel, newCode);
   }
 
+  // floor(u), exactly, for the finite u of a grid's range (|u| < 2^62): a
+  // truncation corrected for negatives, instead of a call to floor(), which
+  // the x86-64 baseline has no instruction for.
+  static int64_t floorOf(double u) {
+    const int64_t t = int64_t(u);
+    return t - (double(t) > u ? 1 : 0);
+  }
+
   bool inside(int64_t i, int64_t j, int64_t k) const {
     return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz;
   }
@@ -78,7 +86,23 @@ struct SolidGrid {
     return linear(int64_t(gx), int64_t(gy), int64_t(gz));
   }
   bool solidAt(const Vec3& p) const {
-    if (smooth) return codeAt(p) > isoCode;
+    if (smooth) {
+      // The occupancy cells decide most points with one load, exactly as the
+      // interpolation would (OccupancyCells.h); the sweeps' marches and the
+      // drilling's look-ahead sample far more points than the surface holds.
+      if (occupancy) {
+        const double ux = (p.x() - corner.x()) * inverseSpacing.x() - 0.5;
+        const double uy = (p.y() - corner.y()) * inverseSpacing.y() - 0.5;
+        const double uz = (p.z() - corner.z()) * inverseSpacing.z() - 0.5;
+        if (ux > -2 && uy > -2 && uz > -2 && ux < nx + 1 && uy < ny + 1 && uz < nz + 1) {
+          const uint8_t state =
+              occupancy->state(occupancy->cellIndex(floorOf(ux), floorOf(uy), floorOf(uz)));
+          if (state == OccupancyCells::kOutside) return false;
+          if (state == OccupancyCells::kInside) return true;
+        }
+      }
+      return codeAt(p) > isoCode;
+    }
     const int64_t v = voxelOf(p);
     return v >= 0 && codes[v] >= threshold;
   }
@@ -96,8 +120,8 @@ struct SolidGrid {
       if (gradient) gradient->setZero();
       return (ux == ux && uy == uy && uz == uz) ? outsideCode : ux + uy + uz;
     }
-    const double fx = std::floor(ux), fy = std::floor(uy), fz = std::floor(uz);
-    const int64_t i = int64_t(fx), j = int64_t(fy), k = int64_t(fz);
+    const int64_t i = floorOf(ux), j = floorOf(uy), k = floorOf(uz);
+    const double fx = double(i), fy = double(j), fz = double(k);
     const double tx = ux - fx, ty = uy - fy, tz = uz - fz;
     double c[2][2][2];
     if (i >= 0 && j >= 0 && k >= 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {

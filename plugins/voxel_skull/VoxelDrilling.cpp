@@ -57,11 +57,21 @@ int VoxelSkull::lowerVoxelTo(int64_t voxel, int32_t code) {
 double VoxelSkull::localSlope(int64_t i, int64_t j, int64_t k) const {
   // Per axis the larger one-sided difference, not the central one: a last
   // layer of bone with air on both sides has no central difference at all.
+  const auto larger = [](double c, double a, double b) { return std::max(std::abs(c - a), std::abs(c - b)); };
+  if (i > 0 && j > 0 && k > 0 && i + 1 < m_grid.nx && j + 1 < m_grid.ny && k + 1 < m_grid.nz) {
+    // Away from the grid's faces: the six neighbours by stride, no bounds checks.
+    const VoxelCode* v = m_grid.codes + m_grid.linear(i, j, k);
+    const int64_t sy = m_grid.nx, sz = int64_t(m_grid.nx) * m_grid.ny;
+    const double c = v[0];
+    const double gx = larger(c, v[-1], v[1]) * m_grid.inverseSpacing.x();
+    const double gy = larger(c, v[-sy], v[sy]) * m_grid.inverseSpacing.y();
+    const double gz = larger(c, v[-sz], v[sz]) * m_grid.inverseSpacing.z();
+    return std::sqrt(gx * gx + gy * gy + gz * gz);
+  }
   const double c = m_grid.codeAtCell(i, j, k);
-  const auto larger = [c](double a, double b) { return std::max(std::abs(c - a), std::abs(c - b)); };
-  const Vec3 g(larger(m_grid.codeAtCell(i - 1, j, k), m_grid.codeAtCell(i + 1, j, k)) * m_grid.inverseSpacing.x(),
-               larger(m_grid.codeAtCell(i, j - 1, k), m_grid.codeAtCell(i, j + 1, k)) * m_grid.inverseSpacing.y(),
-               larger(m_grid.codeAtCell(i, j, k - 1), m_grid.codeAtCell(i, j, k + 1)) * m_grid.inverseSpacing.z());
+  const Vec3 g(larger(c, m_grid.codeAtCell(i - 1, j, k), m_grid.codeAtCell(i + 1, j, k)) * m_grid.inverseSpacing.x(),
+               larger(c, m_grid.codeAtCell(i, j - 1, k), m_grid.codeAtCell(i, j + 1, k)) * m_grid.inverseSpacing.y(),
+               larger(c, m_grid.codeAtCell(i, j, k - 1), m_grid.codeAtCell(i, j, k + 1)) * m_grid.inverseSpacing.z());
   return g.norm();
 }
 
@@ -129,7 +139,11 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
       const double across = std::sqrt(across2);
       const int64_t rowFirst = std::max(i0, first((P.x() - across - m_grid.corner.x()) * m_grid.inverseSpacing.x() - 0.5, m_grid.nx));
       const int64_t rowLast = std::min(i1, last((P.x() + across - m_grid.corner.x()) * m_grid.inverseSpacing.x() + 0.5, m_grid.nx));
+      const VoxelCode* row = m_volume.codes() + m_grid.linear(0, j, k);
       for (int64_t i = rowFirst; i <= rowLast; ++i) {
+        // Air first: most of a footprint in a drilled hole has nothing to cut.
+        const int32_t current = row[i];
+        if (current <= floorCode) continue;
         const Vec3 offset = Vec3(m_grid.corner.x() + (double(i) + 0.5) * m_grid.spacing.x(), y, z) - P;
         const double along = offset.dot(d);
         if (along <= -kSideCut * outer) continue;  // behind the burr: the load does not press there
@@ -140,8 +154,6 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
         if (!(facing > 0)) continue;
         const double weight = facing * u * u * (3.0 - 2.0 * u);  // x smoothstep
         const int64_t voxel = m_grid.linear(i, j, k);
-        const int32_t current = m_volume.codes()[voxel];
-        if (current <= floorCode) continue;
         // Stochastic rounding of the fall, seeded by voxel and frame.
         // The isosurface moves by (fall of the density) / |gradient|, so each
         // voxel falls by the advance times its own gradient (codes per mm,

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "framework/core/Lifecycle.h"
+#include "framework/geometry/FrontRings.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/io/Resample.h"
 #include "plugins/voxel_skull/io/VolumeReader.h"
@@ -69,6 +70,7 @@ void VoxelSkull::setVolume(DensityVolume volume) {
   m_grid = SolidGrid::of(m_volume, d_isovalue.value(), smooth);
   m_grid.buildOccupancy();  // smooth surface: the cells the point test must interpolate in
   m_pointTest = bestShellPointTest(smooth);
+  reserveProbeLines();  // the voxel size may have changed
   m_algorithm1 = d_penetration.is("algorithm1") || (d_penetration.is("auto") && !smooth);
   // Drilling works on the stored codes: at least one code step per frame.
   m_drillStep =
@@ -98,6 +100,21 @@ void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   m_normals.resize(n);
   m_cutVoxels.resize(8 * n);
   m_wasSolid.resize(n);
+  reserveProbeLines();
+}
+
+void VoxelSkull::reserveProbeLines() {
+  double radius = 0;
+  for (const ReservedShell& s : m_shells) radius = std::max(radius, s.radius);
+  if (!(radius > 0) || !(m_grid.smallestSide() > 0)) return;
+  const size_t lines = 1 + size_t(frontRingPointCount(radius, m_grid.smallestSide()));
+  if (lines <= m_probeLines.size()) return;
+  m_probeLines.resize(lines);
+  m_probePoints.x.reserve(lines);
+  m_probePoints.y.reserve(lines);
+  m_probePoints.z.reserve(lines);
+  m_probeVoxels.resize(lines);
+  m_probeSolid.resize(lines);
 }
 
 const VoxelSkull::ReservedShell* VoxelSkull::findShell(std::span<const ShellPoint> shell) const {

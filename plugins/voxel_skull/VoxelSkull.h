@@ -50,6 +50,11 @@ class VoxelSkull final : public Component, public ShellContactTarget {
 
  private:
   Vec3 densityGradient(const Vec3& p) const;
+  // The line and cylinder sweeps on the smooth surface, all lines a step at a
+  // time (VoxelSweep.cpp); needs m_probeLines sized for the query.
+  SweepResult sweepSmoothLines(const SweepQuery& query, bool buried) const;
+  // Sizes the smooth sweep's working memory for the reserved shells' radii.
+  void reserveProbeLines();
   // Drills one voxel by m_drillStep; 1 if it was bone and is not any more.
   int lowerVoxel(int64_t voxel);
   // Lowers a voxel to `code` if it is above; 1 if it was bone and is not any more.
@@ -203,6 +208,16 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   std::vector<Vec3> m_normals;       // per hit, unit, out of the bone
   std::vector<int64_t> m_cutVoxels;  // voxels cut this frame (8 per hit at most)
   mutable std::vector<uint8_t> m_wasSolid;
+  // The smooth line sweep's lines and one step's points, sized by reserveProbeLines().
+  struct ProbeLine {
+    Vec3 offset;    // mm, from the tool's reference point
+    bool front;     // blocks when it starts in bone (unless the tool is buried)
+    bool skipping;  // still in the bone it started in
+  };
+  mutable std::vector<ProbeLine> m_probeLines;
+  mutable ShellArrays m_probePoints;
+  mutable std::vector<int64_t> m_probeVoxels;
+  mutable std::vector<uint8_t> m_probeSolid;
   uint64_t m_voxelsRemoved = 0, m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;
 };
 

@@ -30,9 +30,12 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
     const Eigen::Matrix3d Rm = query.orientation.toRotationMatrix();
     for (int k = 0; k <= steps; ++k) {
       const Vec3 offset = query.from + std::min(k * step, length) * u;
+      // The whole shell at once (the vectorised point test of the detection,
+      // the same flags as solidAt point by point).
+      m_pointTest(m_grid, reserved->arrays, Pose{offset, query.orientation}, {m_voxels.data(), m_solid.data()});
       for (size_t i = 0; i < query.shell.size(); ++i) {
         const ShellPoint& point = query.shell[i];
-        const bool solid = m_grid.solidAt(Rm * point.position + offset);
+        const bool solid = m_solid[i] != 0;
         if (k == 0) {
           // Points already in bone do not block unless they face the motion (pressing further in).
           if (solid && !buried && -(Rm * point.inwardNormal).dot(u) > 0.5) {
@@ -51,6 +54,13 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
       }
     }
     return result;
+  }
+
+  if (m_grid.smooth && R >= 0 && (query.probe == SweepProbe::Line || query.probe == SweepProbe::Cylinder)) {
+    const int lines = 1 + (query.probe == SweepProbe::Cylinder && R > 0
+                               ? frontRingPointCount(R, m_grid.smallestSide())
+                               : 0);
+    if (lines <= int(m_probeLines.size())) return sweepSmoothLines(query, buried);
   }
 
   // Line: the leading point of the tool, exactly voxel by voxel. If it starts in
@@ -101,6 +111,88 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
     result.blocked = true;
     result.freeFraction = first;
     result.contactPoint = query.from + firstProbe + first * path;
+  }
+  return result;
+}
+
+SweepResult VoxelSkull::sweepSmoothLines(const SweepQuery& query, bool buried) const {
+  // The smooth surface, probed by lines: the leading point's and, for the
+  // cylinder, the rings'. All lines advance together, half a voxel a step,
+  // and the sweep ends at the first step where any line enters new bone: a
+  // crossing at a later step could not be nearer. Each step's points go
+  // through the vectorised point test at once; only the lines that entered
+  // bone at that step are refined, each only if it is in bone at the nearest
+  // crossing found so far. Per line the rules of the voxel sweep hold: a front
+  // line (the leading point, the rings ahead) that starts in bone blocks at
+  // once unless the centre is buried; lines from the equator, and every line
+  // of a buried tool, pass the bone they start in and block on entering new
+  // bone.
+  SweepResult result;
+  const Vec3 path = query.to - query.from;
+  const double length = path.norm();
+  const Vec3 u = path / length;
+  const double R = query.leadingRadius;
+  int lines = 0;
+  m_probeLines[lines++] = {R * u, true, false};
+  if (query.probe == SweepProbe::Cylinder && R > 0)
+    forEachFrontRingPoint(u, R, m_grid.smallestSide(), [&](const Vec3& offset, bool front) {
+      m_probeLines[lines++] = {offset, front, false};
+      return false;
+    });
+  ShellArrays& points = m_probePoints;
+  points.x.resize(size_t(lines));  // within the capacity reserved ahead: no allocation
+  points.y.resize(size_t(lines));
+  points.z.resize(size_t(lines));
+  const Pose identity{Vec3::Zero(), Quat::Identity()};
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * m_grid.smallestSide()))));
+  for (int k = 0; k <= steps; ++k) {
+    const double t = double(k) / steps;
+    for (int j = 0; j < lines; ++j) {
+      const Vec3 p = query.from + m_probeLines[j].offset + t * path;
+      points.x[size_t(j)] = p.x(), points.y[size_t(j)] = p.y(), points.z[size_t(j)] = p.z();
+    }
+    m_pointTest(m_grid, points, identity, {m_probeVoxels.data(), m_probeSolid.data()});
+    if (k == 0) {
+      for (int j = 0; j < lines; ++j) {
+        ProbeLine& line = m_probeLines[j];
+        const bool solid = m_probeSolid[size_t(j)] != 0;
+        if (solid && line.front && !buried) {
+          result.blocked = result.startsInside = true;
+          result.freeFraction = 0;
+          result.contactPoint = query.from + line.offset;
+          return result;
+        }
+        line.skipping = solid;
+      }
+      continue;
+    }
+    // Lines that enter bone at this step: the nearest crossing blocks.
+    const double previous = double(k - 1) / steps;
+    double nearest = 2.0;
+    int nearestLine = -1;
+    for (int j = 0; j < lines; ++j) {
+      ProbeLine& line = m_probeLines[j];
+      if (!m_probeSolid[size_t(j)]) {
+        line.skipping = false;
+        continue;
+      }
+      if (line.skipping) continue;
+      const Vec3 a = query.from + line.offset, b = a + path;
+      double upTo = t;
+      if (nearestLine >= 0) {
+        // Nearer than the crossing found only if already in bone there.
+        if (!m_grid.solidAt(a + nearest * path)) continue;
+        upTo = nearest;
+      }
+      nearest = crossingOnSegment(m_grid, a, b, previous, upTo);
+      nearestLine = j;
+    }
+    if (nearestLine >= 0) {
+      result.blocked = true;
+      result.freeFraction = nearest;
+      result.contactPoint = query.from + m_probeLines[nearestLine].offset + nearest * path;
+      return result;
+    }
   }
   return result;
 }

@@ -68,13 +68,59 @@ bool traverse(const SolidGrid& grid, const Vec3& a, const Vec3& b, Visit&& visit
   return false;
 }
 
+// Where a -> b crosses the smooth surface inside the bracket [lo, hi] of
+// fractions, with inside(lo) false and inside(hi) true; returns a fraction
+// where inside() is true, at most `tolerance` (a fraction) past the crossing.
+// `value` is the signed distance-like code (code - isovalue, growing into the
+// inside) whose linear interpolation guesses the crossing: within one sample
+// interval (half a voxel) the trilinear density is nearly linear along the
+// segment, so a guess and a probe either side of it usually close the
+// bracket in 3 to 4 evaluations where bisection takes 20. After 8 guesses
+// it falls back to halving, so it always ends.
+template <class Inside, class Value>
+double refineCrossing(double lo, double hi, double tolerance, Inside&& inside, Value&& value) {
+  double valueLo = value(lo), valueHi = value(hi);
+  for (int iteration = 0; iteration < 64 && hi - lo > tolerance; ++iteration) {
+    const double width = hi - lo;
+    double t = 0.5 * (lo + hi);
+    if (iteration < 8 && valueHi > valueLo && std::isfinite(valueHi - valueLo)) {
+      t = lo + width * std::clamp(-valueLo / (valueHi - valueLo), 0.0, 1.0);
+      t = std::clamp(t, lo + 0.25 * tolerance, hi - 0.25 * tolerance);
+    }
+    // The guess, then a probe half the tolerance beyond it on the other side.
+    if (inside(t)) {
+      hi = t;
+      valueHi = value(t);
+      const double probe = t - 0.5 * tolerance;
+      if (probe > lo) {
+        if (!inside(probe)) return hi;  // bracket [probe, t] within the tolerance
+        hi = probe;
+        valueHi = value(probe);
+      }
+    } else {
+      lo = t;
+      valueLo = value(t);
+      const double probe = t + 0.5 * tolerance;
+      if (probe < hi) {
+        if (inside(probe)) return probe;
+        lo = probe;
+        valueLo = value(probe);
+      }
+    }
+  }
+  return hi;
+}
+
 // Smooth surface: samples at half the smallest voxel side (a one-voxel wall is
 // at least one voxel wide at the isovalue, so no wall fits between two
-// samples), then bisection between the last sample outside and the first
-// inside. Returns the fraction where `inside(t)` first becomes true after
-// `skipInitial` samples that already were, or a value > 1.
-template <class Inside>
-double marchSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitial, Inside&& inside) {
+// samples), then the crossing between the last sample outside and the first
+// inside, to 1e-5 mm. Returns the fraction where `inside(t)` first becomes
+// true after `skipInitial` samples that already were, or a value > 1.
+constexpr double kCrossingTolerance = 1e-5;  // mm
+
+template <class Inside, class Value>
+double marchSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitial, Inside&& inside,
+                    Value&& value) {
   const double length = (b - a).norm();
   if (!std::isfinite(length)) return 2.0;
   const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * grid.smallestSide()))));
@@ -85,26 +131,25 @@ double marchSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool sk
     if (inside(a + t * (b - a))) {
       if (skipping) continue;
       if (k == 0) return 0.0;
-      double lo = previous, hi = t;
-      for (int iteration = 0; iteration < 20; ++iteration) {
-        const double mid = 0.5 * (lo + hi);
-        (inside(a + mid * (b - a)) ? hi : lo) = mid;
-      }
-      return hi;
+      const auto at = [&](double f) { return a + f * (b - a); };
+      return refineCrossing(
+          previous, t, length > 0 ? kCrossingTolerance / length : 1.0, [&](double f) { return inside(at(f)); },
+          [&](double f) { return value(at(f)); });
     }
     skipping = false;
     previous = t;
   }
   return 2.0;
 }
-
 }  // namespace
 
 SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitialSolid) {
   SegmentHit result;
   result.startsSolid = grid.solidAt(a);
   if (grid.smooth) {
-    const double t = marchSegment(grid, a, b, skipInitialSolid, [&](const Vec3& p) { return grid.solidAt(p); });
+    const double t = marchSegment(
+        grid, a, b, skipInitialSolid, [&](const Vec3& p) { return grid.solidAt(p); },
+        [&](const Vec3& p) { return grid.codeAt(p) - grid.isoCode; });
     if (t <= 1.0) {
       result.hit = true;
       result.t = t;
@@ -124,9 +169,19 @@ SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3&
   return result;
 }
 
+double crossingOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, double lo, double hi) {
+  const double length = (b - a).norm();
+  const auto at = [&](double f) { return a + f * (b - a); };
+  return refineCrossing(
+      lo, hi, length > 0 ? kCrossingTolerance / length : 1.0, [&](double f) { return grid.solidAt(at(f)); },
+      [&](double f) { return grid.codeAt(at(f)) - grid.isoCode; });
+}
+
 double firstFreeOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b) {
   if (grid.smooth) {
-    return std::min(1.0, marchSegment(grid, a, b, false, [&](const Vec3& p) { return !grid.solidAt(p); }));
+    return std::min(1.0, marchSegment(
+                             grid, a, b, false, [&](const Vec3& p) { return !grid.solidAt(p); },
+                             [&](const Vec3& p) { return grid.isoCode - grid.codeAt(p); }));
   }
   double found = 1.0;
   const bool stopped = traverse(grid, a, b, [&](int64_t, bool solid, double tEnter, int) {

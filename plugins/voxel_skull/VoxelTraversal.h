@@ -19,6 +19,11 @@ struct SegmentHit {
 // already in contact does not block; entering new material does).
 SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool skipInitialSolid);
 
+// Smooth surface: where a -> b enters the bone between fractions lo (outside)
+// and hi (inside), to 1e-5 mm; the fraction returned is inside. For a march
+// that sampled the segment itself (the batched sweep of VoxelSweep.cpp).
+double crossingOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, double lo, double hi);
+
 // Where a -> b first enters a free voxel (or leaves the grid), as a fraction of
 // the segment; 1 when it stays in solid voxels all the way.
 double firstFreeOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b);

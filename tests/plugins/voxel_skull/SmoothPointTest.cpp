@@ -75,6 +75,19 @@ class Comparison {
           }
         }
       }
+      // SolidGrid::solidAt, which the sweeps and the drilling sample, decides
+      // from the same cells: it must agree with the interpolation too.
+      const Eigen::Matrix3d R = poses[p].orientation.toRotationMatrix();
+      for (size_t i = 0; i < n; ++i) {
+        const Vec3 point = R * shell[i].position + poses[p].position;
+        const bool reference = m_plain.codeAt(point) > m_plain.isoCode;
+        if (m_cells.solidAt(point) != reference || m_plain.solidAt(point) != reference) {
+          ADD_FAILURE() << what << ", solidAt, pose " << p << ", point " << i << " (" << point.transpose()
+                        << "): cells " << m_cells.solidAt(point) << ", plain " << m_plain.solidAt(point)
+                        << ", interpolation " << reference;
+          return;
+        }
+      }
       compared += n;
       for (size_t i = 0; i < n; ++i) solidPoints += solidRef[i];
     }
