@@ -14,6 +14,7 @@
 #include "framework/core/Component.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/voxel_skull/DensityVolume.h"
+#include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/RemovalLaw.h"
 #include "plugins/voxel_skull/ShellPointTest.h"
 #include "plugins/voxel_skull/SolidGrid.h"
@@ -57,13 +58,9 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   void reserveProbeLines();
   // Drills one voxel by m_drillStep; 1 if it was bone and is not any more.
   int lowerVoxel(int64_t voxel);
-  // Lowers a voxel to `code` if it is above; 1 if it was bone and is not any more.
-  int lowerVoxelTo(int64_t voxel, int32_t code);
   // Whether bone lies ahead of a burr's front along `direction` (unit), within
   // one voxel: the breakthrough test.
   bool boneAhead(const Vec3& front, const Vec3& direction) const;
-  // |density gradient| at voxel (i, j, k) in codes per mm, the larger one-sided difference per axis.
-  double localSlope(int64_t i, int64_t j, int64_t k) const;
   void checkRemovalFields(InitContext& context);
 
   FilePathField d_file{this,
@@ -201,6 +198,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   std::vector<ReservedShell> m_shells;
   ShellPointTestFunction m_pointTest = bestShellPointTest(false);
   ShellPointTestFunction m_voxelPointTest = bestShellPointTest(false);
+  FootprintCutFunction m_cut = bestFootprintCut();
   std::vector<Hit> m_hits;
   mutable std::vector<int64_t> m_voxels;
   mutable std::vector<uint8_t> m_solid;

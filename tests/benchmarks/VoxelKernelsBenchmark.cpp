@@ -14,6 +14,7 @@
 
 #include "framework/runtime/TimingHistogram.h"
 #include "plugins/haptics/ShellSampling.h"
+#include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/ShellPointTest.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
@@ -188,6 +189,61 @@ void BM_LineSweep(benchmark::State& state) {
   state.counters["call_max_us"] = summary.max;
 }
 BENCHMARK(BM_LineSweep)->ArgsProduct({{20, 200, 5000}, {0, 1}})->ArgNames({"move_um", "smooth"});
+
+// One frame of force-driven drilling (FootprintCut.h): the burr at the
+// placements of the circle, its centre state.range(0) um deeper than where the
+// benchmark's other kernels press (0.3 mm into the top of the skull; 2,000 um:
+// the burr sunk in bone to its equator, the heaviest footprint), cutting 20 um
+// a frame (20 mm/s, the law's cap) straight down, on a copy of the phantom's
+// codes restored every 2048 frames (outside the timing); us per frame.
+template <FootprintCutFunction cut>
+void BM_FootprintCut(benchmark::State& state) {
+  static DensityVolume volume = phantom();  // a copy: the phantom stays intact
+  SolidGrid grid = SolidGrid::of(volume, 400.0, true);
+  grid.buildOccupancy();
+  const std::vector<Pose> poses = placements(grid);
+  // The codes of the region the circle cuts, to restore.
+  const Vec3 lo = poses[0].position - Vec3(12, 12, 8), hi = poses[0].position + Vec3(12, 12, 4);
+  std::vector<std::pair<int64_t, VoxelCode>> saved;
+  for (double z = lo.z(); z <= hi.z(); z += 0.5 * grid.spacing.z())
+    for (double y = lo.y(); y <= hi.y(); y += 0.5 * grid.spacing.y())
+      for (double x = lo.x(); x <= hi.x(); x += 0.5 * grid.spacing.x())
+        if (const int64_t v = grid.voxelOf(Vec3(x, y, z)); v >= 0) saved.push_back({v, grid.codes[v]});
+  const auto restore = [&] {
+    for (const auto& [v, code] : saved) grid.codes[v] = code;
+    grid.buildOccupancy();
+  };
+  size_t k = 0;
+  int64_t lowered = 0;
+  TimingHistogram perCall;
+  for (auto _ : state) {
+    if ((k & (kPlacements - 1)) == 0 && k > 0) {
+      state.PauseTiming();
+      restore();
+      state.ResumeTiming();
+    }
+    FootprintCut c;
+    c.center = poses[k & (kPlacements - 1)].position - Vec3(0, 0, 1e-3 * double(state.range(0)));
+    c.direction = Vec3(0, 0, -1);
+    c.radius = kRadius;
+    c.advance = 0.02;
+    c.frame = k++;
+    const auto start = std::chrono::steady_clock::now();
+    lowered += cut(grid, c).lowered;
+    perCall.record(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+  }
+  restore();
+  const TimingSummary summary = perCall.summary();  // us
+  state.counters["call_p50_us"] = summary.p50;
+  state.counters["call_p99_us"] = summary.p99;
+  state.counters["lowered_per_call"] = double(lowered) / double(std::max<size_t>(k, 1));
+}
+BENCHMARK(BM_FootprintCut<cutFootprintReference>)->Name("FootprintCut/reference")->Arg(0)->Arg(2000)->ArgName("deeper_um");
+BENCHMARK(BM_FootprintCut<cutFootprintBaseline>)->Name("FootprintCut/sse2")->Arg(0)->Arg(2000)->ArgName("deeper_um");
+#ifdef TREPHINE_HAS_AVX2_PATH
+BENCHMARK(BM_FootprintCut<cutFootprintAvx2>)->Name("FootprintCut/avx2")->Arg(0)->Arg(2000)->ArgName("deeper_um");
+#endif
 
 }  // namespace
 }  // namespace trephine::bench

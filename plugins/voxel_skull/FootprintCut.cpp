@@ -1,0 +1,290 @@
+#include "plugins/voxel_skull/FootprintCut.h"
+
+#include <algorithm>
+#include <cmath>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+namespace trephine::voxel {
+
+namespace {
+
+// What every voxel of a cut shares.
+struct CutSetup {
+  Vec3 center;
+  Vec3 direction;
+  double inner = 0, outer = 0;  // mm, the radial falloff: weight 1 inside inner, 0 from outer
+  double advance = 0;           // mm
+  int32_t floorCode = 0;        // codes never fall below this
+  int64_t i0 = 0, i1 = -1, j0 = 0, j1 = -1, k0 = 0, k1 = -1;  // the footprint's box of voxels
+};
+
+CutSetup setupOf(const SolidGrid& grid, const FootprintCut& cut) {
+  CutSetup s;
+  const double h = grid.smallestSide();
+  s.center = cut.center;
+  s.direction = cut.direction;
+  s.inner = cut.radius + 0.5 * h;
+  s.outer = cut.radius + h;
+  s.advance = cut.advance;
+  s.floorCode = static_cast<int32_t>(std::ceil(grid.outsideCode));
+  // Index bounds, clamped as doubles first: a burr far outside the grid must
+  // not overflow the conversion to integers.
+  const Vec3 lo = (cut.center - Vec3::Constant(s.outer) - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const Vec3 hi = (cut.center + Vec3::Constant(s.outer) - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const auto first = [](double u, int32_t n) { return int64_t(std::clamp(std::floor(u), 0.0, double(n))); };
+  const auto last = [](double u, int32_t n) { return int64_t(std::clamp(std::floor(u), -1.0, double(n - 1))); };
+  s.i0 = first(lo.x(), grid.nx), s.i1 = last(hi.x(), grid.nx);
+  s.j0 = first(lo.y(), grid.ny), s.j1 = last(hi.y(), grid.ny);
+  s.k0 = first(lo.z(), grid.nz), s.k1 = last(hi.z(), grid.nz);
+  return s;
+}
+
+// The weight of the voxel whose centre is `ox` along x from the burr's centre,
+// its row `oy`, `oz` away (alongYZ = oy dy + oz dz, acrossYZ = oy^2 + oz^2):
+// 0 behind the burr and beyond the falloff. The fast row loop computes exactly
+// these operations in this order.
+inline double weightOf(const CutSetup& s, double ox, double alongYZ, double acrossYZ) {
+  const double along = ox * s.direction.x() + alongYZ;
+  const double distance = std::sqrt(ox * ox + acrossYZ);
+  const double u = std::min(1.0, std::max(0.0, (s.outer - distance) / (s.outer - s.inner)));
+  const double cosine = along / (distance > 0 ? distance : 1.0);  // 0 at the centre itself
+  const double facing = std::min(1.0, cosine + kSideCut);         // plus the flutes' side cut
+  // Selects of doubles, not branches or combined bools: the row loop vectorises.
+  double weight = facing * (u * u * (3.0 - 2.0 * u));  // x smoothstep
+  weight = along > -kSideCut * s.outer ? weight : 0.0;  // not behind the burr
+  weight = distance < s.outer ? weight : 0.0;
+  return facing > 0 ? weight : 0.0;
+}
+
+// |gradient| in codes per mm from a voxel's code and its six neighbours, per
+// axis the larger one-sided difference: a last layer of bone with air on both
+// sides has no central difference at all.
+inline double slopeOf(const SolidGrid& g, double c, double xm, double xp, double ym, double yp, double zm,
+                      double zp) {
+  const double gx = std::max(std::abs(c - xm), std::abs(c - xp)) * g.inverseSpacing.x();
+  const double gy = std::max(std::abs(c - ym), std::abs(c - yp)) * g.inverseSpacing.y();
+  const double gz = std::max(std::abs(c - zm), std::abs(c - zp)) * g.inverseSpacing.z();
+  return std::sqrt(gx * gx + gy * gy + gz * gz);
+}
+
+// Lowers one voxel by `exact` codes, rounded at random in proportion.
+inline void lower(SolidGrid& grid, const CutSetup& s, int64_t voxel, double exact, uint64_t frame,
+                  FootprintCutResult& result) {
+  if (!(exact > 0)) return;
+  const double whole = double(int64_t(exact));  // floor: exact > 0
+  const int32_t step = int32_t(whole) + (unitHash(uint64_t(voxel), frame) < exact - whole ? 1 : 0);
+  if (step <= 0) return;
+  VoxelCode& code = grid.codes[voxel];
+  const int32_t current = code;
+  const int32_t lowered = std::max(s.floorCode, current - step);
+  if (lowered >= current) return;
+  if (current >= grid.threshold && lowered < grid.threshold) ++result.emptied;
+  ++result.lowered;
+  result.codesRemoved += double(current - lowered);
+  code = static_cast<VoxelCode>(lowered);
+  grid.noteLowered(voxel, code);  // keeps the point test's occupancy cells true
+}
+
+// One voxel by the plain rule (grid borders included).
+inline double exactOf(const SolidGrid& g, const CutSetup& s, int64_t i, int64_t j, int64_t k, double alongYZ,
+                      double acrossYZ) {
+  const double c = g.codeAtCell(i, j, k);
+  if (!(c > s.floorCode)) return 0;
+  const double x = g.corner.x() + (double(i) + 0.5) * g.spacing.x();
+  const double weight = weightOf(s, x - s.center.x(), alongYZ, acrossYZ);
+  if (!(weight > 0)) return 0;
+  const double slope = slopeOf(g, c, g.codeAtCell(i - 1, j, k), g.codeAtCell(i + 1, j, k), g.codeAtCell(i, j - 1, k),
+                               g.codeAtCell(i, j + 1, k), g.codeAtCell(i, j, k - 1), g.codeAtCell(i, j, k + 1));
+  return weight * s.advance * slope;
+}
+
+// The longest stretch of a row computed at once (rows longer than this, a
+// burr of more than 64 voxels across, go in pieces).
+constexpr int kRowChunk = 64;
+
+// exact[m] for voxels i0 + m of row (j, k), m < n; those voxels and their six
+// neighbours are inside the grid. One voxel at a time, air and voxels outside
+// the footprint passed over first (the baseline copy).
+inline void rowExactsScalar(const SolidGrid& g, const CutSetup& s, int64_t i0, int n, int64_t j, int64_t k,
+                            double alongYZ, double acrossYZ, double* exact) {
+  const VoxelCode* row = g.codes + g.linear(i0, j, k);
+  const int64_t sy = g.nx, sz = int64_t(g.nx) * g.ny;
+  for (int m = 0; m < n; ++m) {
+    exact[m] = 0;
+    const double c = row[m];
+    if (!(c > s.floorCode)) continue;
+    const double ox = (g.corner.x() + ((double(i0) + double(m)) + 0.5) * g.spacing.x()) - s.center.x();
+    const double weight = weightOf(s, ox, alongYZ, acrossYZ);
+    if (!(weight > 0)) continue;
+    const double slope = slopeOf(g, c, row[m - 1], row[m + 1], row[m - sy], row[m + sy], row[m - sz], row[m + sz]);
+    exact[m] = weight * s.advance * slope;
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// The lanes of 4 consecutive codes, as doubles.
+__attribute__((target("avx2"), always_inline)) inline __m256d codesAt(const VoxelCode* p) {
+  return _mm256_cvtepi32_pd(_mm_cvtepi16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
+}
+
+// max(|c - a|, |c - b|) as slopeOf takes it: std::max(x, y) is (x < y) ? y : x,
+// and _mm256_max_pd(y, x) is (y > x) ? y : x, the same.
+__attribute__((target("avx2"), always_inline)) inline __m256d larger(__m256d c, __m256d a, __m256d b) {
+  const __m256d signBit = _mm256_set1_pd(-0.0);
+  return _mm256_max_pd(_mm256_andnot_pd(signBit, _mm256_sub_pd(c, b)), _mm256_andnot_pd(signBit, _mm256_sub_pd(c, a)));
+}
+
+// The same, 4 voxels at a time with AVX2, every operation as in weightOf and
+// slopeOf in the same order (no FMA), so the results are the scalar ones. The
+// last group may run up to 3 voxels past the row: the caller keeps them in
+// the grid, and ignores their values.
+__attribute__((target("avx2"))) void rowExactsAvx2(const SolidGrid& g, const CutSetup& s, int64_t i0, int n, int64_t j,
+                                                   int64_t k, double alongYZ, double acrossYZ, double* exact) {
+  const VoxelCode* row = g.codes + g.linear(i0, j, k);
+  const int64_t sy = g.nx, sz = int64_t(g.nx) * g.ny;
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+  const __m256d two = _mm256_set1_pd(2.0), three = _mm256_set1_pd(3.0);
+  const __m256d first = _mm256_set1_pd(double(i0)), lanes = _mm256_set_pd(3, 2, 1, 0);
+  const __m256d cornerX = _mm256_set1_pd(g.corner.x()), spacingX = _mm256_set1_pd(g.spacing.x());
+  const __m256d centerX = _mm256_set1_pd(s.center.x()), directionX = _mm256_set1_pd(s.direction.x());
+  const __m256d vAlongYZ = _mm256_set1_pd(alongYZ), vAcrossYZ = _mm256_set1_pd(acrossYZ);
+  const __m256d outer = _mm256_set1_pd(s.outer), falloff = _mm256_set1_pd(s.outer - s.inner);
+  const __m256d sideCut = _mm256_set1_pd(kSideCut), behind = _mm256_set1_pd(-kSideCut * s.outer);
+  const __m256d isx = _mm256_set1_pd(g.inverseSpacing.x()), isy = _mm256_set1_pd(g.inverseSpacing.y());
+  const __m256d isz = _mm256_set1_pd(g.inverseSpacing.z());
+  const __m256d floorCode = _mm256_set1_pd(double(s.floorCode)), advance = _mm256_set1_pd(s.advance);
+  for (int m = 0; m < n; m += 4) {
+    const __m256d c = codesAt(row + m);
+    const __m256d index = _mm256_add_pd(first, _mm256_add_pd(_mm256_set1_pd(double(m)), lanes));
+    const __m256d ox = _mm256_sub_pd(_mm256_add_pd(cornerX, _mm256_mul_pd(_mm256_add_pd(index, half), spacingX)), centerX);
+    // weightOf
+    const __m256d along = _mm256_add_pd(_mm256_mul_pd(ox, directionX), vAlongYZ);
+    const __m256d distance = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(ox, ox), vAcrossYZ));
+    const __m256d u = _mm256_min_pd(_mm256_max_pd(_mm256_div_pd(_mm256_sub_pd(outer, distance), falloff), zero), one);
+    const __m256d positive = _mm256_cmp_pd(distance, zero, _CMP_GT_OQ);
+    const __m256d cosine = _mm256_div_pd(along, _mm256_blendv_pd(one, distance, positive));
+    const __m256d facing = _mm256_min_pd(_mm256_add_pd(cosine, sideCut), one);
+    __m256d weight = _mm256_mul_pd(facing, _mm256_mul_pd(_mm256_mul_pd(u, u), _mm256_sub_pd(three, _mm256_mul_pd(two, u))));
+    weight = _mm256_and_pd(weight, _mm256_cmp_pd(along, behind, _CMP_GT_OQ));
+    weight = _mm256_and_pd(weight, _mm256_cmp_pd(distance, outer, _CMP_LT_OQ));
+    weight = _mm256_and_pd(weight, _mm256_cmp_pd(facing, zero, _CMP_GT_OQ));
+    // slopeOf
+    const __m256d gx = _mm256_mul_pd(larger(c, codesAt(row + m - 1), codesAt(row + m + 1)), isx);
+    const __m256d gy = _mm256_mul_pd(larger(c, codesAt(row + m - sy), codesAt(row + m + sy)), isy);
+    const __m256d gz = _mm256_mul_pd(larger(c, codesAt(row + m - sz), codesAt(row + m + sz)), isz);
+    const __m256d slope =
+        _mm256_sqrt_pd(_mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(gx, gx), _mm256_mul_pd(gy, gy)), _mm256_mul_pd(gz, gz)));
+    __m256d value = _mm256_mul_pd(_mm256_mul_pd(weight, advance), slope);
+    value = _mm256_and_pd(value, _mm256_cmp_pd(c, floorCode, _CMP_GT_OQ));  // nothing below the floor falls
+    _mm256_storeu_pd(exact + m, value);
+  }
+}
+#endif
+
+using RowExacts = void (*)(const SolidGrid&, const CutSetup&, int64_t, int, int64_t, int64_t, double, double, double*);
+
+// A cut that can remove nothing: not finite, no burr, no advance.
+inline bool idle(const FootprintCut& cut) {
+  return !cut.center.allFinite() || !cut.direction.allFinite() || !(cut.radius > 0) || !(cut.advance > 0) ||
+         !std::isfinite(cut.radius) || !std::isfinite(cut.advance);
+}
+
+// Vector copies compute whole groups of 4: how far past a row they may read.
+constexpr int kGroup = 4;
+
+template <RowExacts rowExacts>
+FootprintCutResult cutFootprintRows(SolidGrid& grid, const FootprintCut& cut) {
+  FootprintCutResult result;
+  if (idle(cut)) return result;
+  const CutSetup s = setupOf(grid, cut);
+  alignas(64) double exact[kRowChunk + kGroup];
+  for (int64_t k = s.k0; k <= s.k1; ++k) {
+    const double oz = grid.corner.z() + (double(k) + 0.5) * grid.spacing.z() - s.center.z();
+    for (int64_t j = s.j0; j <= s.j1; ++j) {
+      const double oy = grid.corner.y() + (double(j) + 0.5) * grid.spacing.y() - s.center.y();
+      // Only the voxels of this row within the footprint's sphere.
+      const double acrossYZ = oy * oy + oz * oz;
+      const double across2 = s.outer * s.outer - acrossYZ;
+      if (!(across2 > 0)) continue;
+      const double across = std::sqrt(across2);
+      const double alongYZ = oy * s.direction.y() + oz * s.direction.z();
+      // (clamped as doubles to the box first: no overflow, and the exact floor of SolidGrid.)
+      const int64_t rowFirst = SolidGrid::floorOf(
+          std::clamp((s.center.x() - across - grid.corner.x()) * grid.inverseSpacing.x() - 0.5, double(s.i0),
+                     double(s.i1) + 1.0));
+      const int64_t rowLast = SolidGrid::floorOf(
+          std::clamp((s.center.x() + across - grid.corner.x()) * grid.inverseSpacing.x() + 0.5, double(s.i0) - 1.0,
+                     double(s.i1)));
+      if (rowFirst > rowLast) continue;
+      // A row all air has nothing to cut.
+      const VoxelCode* row = grid.codes + grid.linear(0, j, k);
+      bool bone = false;
+      for (int64_t i = rowFirst; i <= rowLast; ++i) bone |= row[i] > s.floorCode;
+      if (!bone) continue;
+      // Groups run up to kGroup - 1 voxels past the row: those too must be in the grid.
+      const bool interior = rowFirst > 0 && rowLast + kGroup < grid.nx && j > 0 && j + 1 < grid.ny && k > 0 &&
+                            k + 1 < grid.nz;
+      for (int64_t start = rowFirst; start <= rowLast; start += kRowChunk) {
+        const int n = int(std::min<int64_t>(kRowChunk, rowLast - start + 1));
+        if (interior) {
+          rowExacts(grid, s, start, n, j, k, alongYZ, acrossYZ, exact);
+        } else {
+          for (int m = 0; m < n; ++m) exact[m] = exactOf(grid, s, start + m, j, k, alongYZ, acrossYZ);
+        }
+        for (int m = 0; m < n; ++m)
+          if (exact[m] > 0) lower(grid, s, grid.linear(start + m, j, k), exact[m], cut.frame, result);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+FootprintCutResult cutFootprintBaseline(SolidGrid& grid, const FootprintCut& cut) {
+  return cutFootprintRows<rowExactsScalar>(grid, cut);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+FootprintCutResult cutFootprintAvx2(SolidGrid& grid, const FootprintCut& cut) {
+  return cutFootprintRows<rowExactsAvx2>(grid, cut);
+}
+#endif
+
+namespace {
+
+}  // namespace
+
+FootprintCutFunction bestFootprintCut() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (__builtin_cpu_supports("avx2")) return &cutFootprintAvx2;
+#endif
+  return &cutFootprintBaseline;
+}
+
+FootprintCutResult cutFootprintReference(SolidGrid& grid, const FootprintCut& cut) {
+  FootprintCutResult result;
+  if (idle(cut)) return result;
+  const CutSetup s = setupOf(grid, cut);
+  for (int64_t k = s.k0; k <= s.k1; ++k) {
+    const double oz = grid.corner.z() + (double(k) + 0.5) * grid.spacing.z() - s.center.z();
+    for (int64_t j = s.j0; j <= s.j1; ++j) {
+      const double oy = grid.corner.y() + (double(j) + 0.5) * grid.spacing.y() - s.center.y();
+      const double acrossYZ = oy * oy + oz * oz;
+      const double alongYZ = oy * s.direction.y() + oz * s.direction.z();
+      // The row's falls from its codes before any of them falls, then the falls.
+      for (int64_t start = s.i0; start <= s.i1; start += kRowChunk) {
+        const int n = int(std::min<int64_t>(kRowChunk, s.i1 - start + 1));
+        double exact[kRowChunk];
+        for (int m = 0; m < n; ++m) exact[m] = exactOf(grid, s, start + m, j, k, alongYZ, acrossYZ);
+        for (int m = 0; m < n; ++m) lower(grid, s, grid.linear(start + m, j, k), exact[m], cut.frame, result);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace trephine::voxel
