@@ -76,14 +76,28 @@ void GodObjectProxy::tick(const TickContext&) {
   const Vec3 P = m_state.proxy;
   s.device = D;
 
-  // 1. Sweep before moving.
-  Vec3 P1 = D;
+  // 1. Sweep before moving, towards the device. While the device presses
+  // beneath last frame's constraint plane, the proxy slides along that plane
+  // no farther than the device's own move plus kCatchUp (as in step 3): a
+  // straight sweep to a device millimetres inside the bone would otherwise
+  // carry the proxy across a groove in one frame wherever the probe sees no
+  // bone, and the spring's direction would jump with it.
+  Vec3 sweepEnd = D;
+  if (m_hadPlane && m_hadDevice) {
+    const Vec3 toDevice = D - P;
+    const double into = toDevice.dot(m_lastNormal);  // < 0: the device is beneath the plane
+    const Vec3 along = toDevice - into * m_lastNormal;
+    const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
+    if (into < 0 && along.norm() > slideLimit) sweepEnd = P + into * m_lastNormal + slideLimit / along.norm() * along;
+  }
+  const bool heldBack = (D - sweepEnd).norm() > kSamePlace;
+  Vec3 P1 = sweepEnd;
   bool blocked = false;
   Vec3 blockedAt = Vec3::Zero();
-  const Vec3 path = D - P;
+  const Vec3 path = sweepEnd - P;
   const double length = path.norm();
   if (m_sweeps && length > kSamePlace) {
-    const SweepResult r = sweepPath(P, D, q);
+    const SweepResult r = sweepPath(P, sweepEnd, q);
     if (r.blocked) {
       const double travel = r.freeFraction * length + (r.startsInside ? 0.0 : target.contactDepth());
       P1 = P + std::min(travel, length) / length * path;
@@ -190,14 +204,23 @@ void GodObjectProxy::tick(const TickContext&) {
     m_planePoint = onPlane;
     m_planeNormal = normal;
     m_hasPlane = true;
-  } else if (blocked) {
-    // Conflicting case: the proxy is free where the sweep stopped it but the device is beyond.
+  } else if (blocked || heldBack) {
+    // Conflicting case: the proxy is free where the sweep stopped it, or where
+    // its slide along last frame's plane was held, but the device is beyond:
+    // the spring to the device acts.
     ++m_conflictFrames;
     // A cutting tool cuts what stopped it, even between its shell points.
-    if (cutting) s.removed += target.cutAt(blockedAt);
+    if (cutting && blocked) s.removed += target.cutAt(blockedAt);
     s.normal = (P1 - D).normalized();
     s.penetration = (D - P1).norm();
     s.contact = true;
+    if (heldBack && !blocked) {
+      // Still held to that plane next frame, so the proxy keeps catching up at
+      // the same pace instead of jumping to the device.
+      m_planePoint = m_lastPlanePoint;
+      m_planeNormal = m_lastNormal;
+      m_hasPlane = true;
+    }
   }
   if (s.contact) ++m_contactFrames;
   // The constraint plane of this frame, for the next one.
