@@ -15,10 +15,9 @@
 // cut in order of z, then y; each row's falls are computed from its codes
 // before any of them falls (rows already cut this frame count as cut).
 //
-// The per-voxel weights and gradients of each row of the footprint are
-// computed in flat, branch-free loops the compiler vectorises; the build
-// carries a baseline (SSE2) and an AVX2 copy, chosen at start-up as the point
-// tests are, and both give the same codes.
+// Row by row: rows of air are passed over, each row is clipped to the
+// footprint's sphere, and away from the grid's faces neighbours are read by
+// stride.
 #include <cstdint>
 
 #include "plugins/voxel_skull/SolidGrid.h"
@@ -45,13 +44,7 @@ struct FootprintCutResult {
 };
 
 // Applies one frame's cut to grid.codes; O(voxels in the footprint), no allocation.
-using FootprintCutFunction = FootprintCutResult (*)(SolidGrid& grid, const FootprintCut& cut);
-FootprintCutResult cutFootprintBaseline(SolidGrid& grid, const FootprintCut& cut);
-#if defined(__x86_64__) && defined(__GNUC__)
-FootprintCutResult cutFootprintAvx2(SolidGrid& grid, const FootprintCut& cut);
-#endif
-// The fastest copy this processor runs (chosen once, at initialisation).
-FootprintCutFunction bestFootprintCut();
+FootprintCutResult cutFootprint(SolidGrid& grid, const FootprintCut& cut);
 
 // The same cut by the plain rule, voxel by voxel over the footprint's whole
 // box with bounds-checked neighbours: the reference the fast copies are

@@ -77,7 +77,7 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   cut.radius = load.radius;
   cut.advance = advance;
   cut.frame = m_cutFrames;
-  const FootprintCutResult result = m_cut(m_grid, cut);
+  const FootprintCutResult result = cutFootprint(m_grid, cut);
   m_removedCodes += result.codesRemoved;
   const int removed = result.emptied;
   m_voxelsRemoved += removed;

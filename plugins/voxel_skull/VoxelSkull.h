@@ -198,7 +198,6 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   std::vector<ReservedShell> m_shells;
   ShellPointTestFunction m_pointTest = bestShellPointTest(false);
   ShellPointTestFunction m_voxelPointTest = bestShellPointTest(false);
-  FootprintCutFunction m_cut = bestFootprintCut();
   std::vector<Hit> m_hits;
   mutable std::vector<int64_t> m_voxels;
   mutable std::vector<uint8_t> m_solid;

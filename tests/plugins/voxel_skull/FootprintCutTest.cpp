@@ -1,6 +1,6 @@
-// The footprint cut of force-driven drilling (FootprintCut.cpp): the row-wise,
-// vectorised copies (baseline and AVX2) against the plain one-voxel-at-a-time
-// rule, code for code, over sequences of cuts on the skull phantom (into the
+// The footprint cut of force-driven drilling (FootprintCut.cpp): the row-wise
+// cut (rows of air passed over, rows clipped to the sphere, neighbours by
+// stride) against the plain rule over the footprint's whole box, code for code, over sequences of cuts on the skull phantom (into the
 // bone, grazing it, at the grid's faces and corners, with tiny and large
 // advances), and the rule's own promises: nothing beyond the burr's radius
 // plus one voxel or behind the burr changes, codes only fall and never below
@@ -19,16 +19,10 @@ namespace {
 
 struct Variant {
   const char* name;
-  FootprintCutFunction cut;
+  FootprintCutResult (*cut)(SolidGrid&, const FootprintCut&);
 };
 
-std::vector<Variant> variants() {
-  std::vector<Variant> v = {{"baseline", &cutFootprintBaseline}};
-#if defined(__x86_64__) && defined(__GNUC__)
-  if (__builtin_cpu_supports("avx2")) v.push_back({"avx2", &cutFootprintAvx2});
-#endif
-  return v;
-}
+std::vector<Variant> variants() { return {{"rows", &cutFootprint}}; }
 
 // Every occupancy cell's state matches its 8 corner codes as a fresh build would
 // classify them, or is a surface cell (lowering may leave a cell "surface"
