@@ -43,14 +43,16 @@ CutSetup setupOf(const SolidGrid& grid, const FootprintCut& cut) {
 // 0 behind the burr and beyond the falloff.
 inline double weightOf(const CutSetup& s, double ox, double alongYZ, double acrossYZ) {
   const double along = ox * s.direction.x() + alongYZ;
-  const double distance = std::sqrt(ox * ox + acrossYZ);
-  const double u = std::min(1.0, std::max(0.0, (s.outer - distance) / (s.outer - s.inner)));
+  if (!(along > -kSideCut * s.outer)) return 0;  // behind the burr
+  const double distance2 = ox * ox + acrossYZ;
+  if (!(distance2 < s.outer * s.outer)) return 0;  // beyond the falloff (before the square root)
+  const double distance = std::sqrt(distance2);
+  if (!(distance < s.outer)) return 0;
   const double cosine = along / (distance > 0 ? distance : 1.0);  // 0 at the centre itself
   const double facing = std::min(1.0, cosine + kSideCut);         // plus the flutes' side cut
-  double weight = facing * (u * u * (3.0 - 2.0 * u));  // x smoothstep
-  weight = along > -kSideCut * s.outer ? weight : 0.0;  // not behind the burr
-  weight = distance < s.outer ? weight : 0.0;
-  return facing > 0 ? weight : 0.0;
+  if (!(facing > 0)) return 0;
+  const double u = std::min(1.0, std::max(0.0, (s.outer - distance) / (s.outer - s.inner)));
+  return facing * (u * u * (3.0 - 2.0 * u));  // x smoothstep
 }
 
 // |gradient| in codes per mm from a voxel's code and its six neighbours, per
@@ -151,6 +153,11 @@ FootprintCutResult cutFootprint(SolidGrid& grid, const FootprintCut& cut) {
           std::clamp((s.center.x() + across - grid.corner.x()) * grid.inverseSpacing.x() + 0.5, double(s.i0) - 1.0,
                      double(s.i1)));
       if (rowFirst > rowLast) continue;
+      // A row wholly behind the burr has nothing to cut: along is linear in x,
+      // so its largest value is at one end of the row.
+      const double ox0 = grid.corner.x() + (double(rowFirst) + 0.5) * grid.spacing.x() - s.center.x();
+      const double ox1 = grid.corner.x() + (double(rowLast) + 0.5) * grid.spacing.x() - s.center.x();
+      if (!(std::max(ox0 * s.direction.x(), ox1 * s.direction.x()) + alongYZ > -kSideCut * s.outer)) continue;
       // A row all air has nothing to cut.
       const VoxelCode* row = grid.codes + grid.linear(0, j, k);
       bool bone = false;

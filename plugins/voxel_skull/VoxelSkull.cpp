@@ -85,10 +85,20 @@ void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   reserved.size = shell.size();
   reserved.arrays.assign(shell);
   // Pulled in by one voxel, never past the reference point (a tool thinner than a
-  // voxel is judged by its centre).
+  // voxel is judged by its centre), and thinned to points about a voxel apart:
+  // the test's tolerance is a voxel, and bone narrower than a voxel does not
+  // exist at the volume's resolution (a 466-point burr of 2.5 mm keeps about
+  // 200 points on 0.5 mm voxels, 50 on 1 mm).
   const double inset = m_grid.spacing.maxCoeff();
-  std::vector<ShellPoint> pulled(shell.begin(), shell.end());
-  for (ShellPoint& p : pulled) p.position += std::min(inset, p.position.norm()) * p.inwardNormal;
+  const double apart = 0.9 * m_grid.smallestSide();
+  std::vector<ShellPoint> pulled;
+  for (const ShellPoint& p : shell) {
+    ShellPoint q = p;
+    q.position += std::min(inset, p.position.norm()) * p.inwardNormal;
+    bool near = false;
+    for (const ShellPoint& kept : pulled) near = near || (kept.position - q.position).squaredNorm() < apart * apart;
+    if (!near) pulled.push_back(q);
+  }
   reserved.inset.assign(pulled);
   for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
   m_shells.push_back(std::move(reserved));

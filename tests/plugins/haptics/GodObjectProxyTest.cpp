@@ -70,7 +70,9 @@ TEST(GodObjectProxyTest, OnAFlatSurfaceTheProxySlidesOverTheDeviceAndTheForceIsT
     ASSERT_NEAR(log[i].force.z(), kStiffness * depth, 1e-3) << "t = " << log[i].t;
     // Sliding, the spring trails the device by the proxy's lag: a drag of k
     // times that lag, the lag at most one frame's move (the half-steps converge).
-    if (depth > 0) ASSERT_NEAR(log[i].force.x(), kStiffness * (log[i].proxy.x() - log[i].device.x()), 1e-9);
+    if (depth > 0) {
+      ASSERT_NEAR(log[i].force.x(), kStiffness * (log[i].proxy.x() - log[i].device.x()), 1e-9);
+    }
     ASSERT_LE(std::abs(log[i].force.x()), kStiffness * frameMove + 1e-9) << "t = " << log[i].t;
   }
   // At rest: the proxy on the surface straight above the device (the tangential

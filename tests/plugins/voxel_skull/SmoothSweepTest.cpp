@@ -181,6 +181,45 @@ TEST_P(SmoothSweepTest, AgreesWithFineSamplingOfEveryProbeLine) {
               agreeing, slivers);
 }
 
+// The overlap test of a displayed proxy (VoxelSkull::overlaps: its shell
+// pulled one voxel in and thinned to points about a voxel apart): a burr sunk
+// into a half-space by 1.3 voxels or more is seen at every orientation, one
+// sunk less than a voxel never.
+TEST(VoxelOverlapTest, ABurrSunkMoreThanAVoxelIsSeenAndOneGrazingIsNot) {
+  const std::string xml = R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <VoxelSkull name="skull" file="phantom:halfspace?voxel=0.5" isovalue="500"/>
+</Node>)";
+  Diagnostics d;
+  auto simulation = test::loadScene(xml, d);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  auto* skull = dynamic_cast<ShellContactTarget*>(simulation->scene().findComponent("/skull"));
+  ASSERT_NE(skull, nullptr);
+  // A 466-point even shell of the burr, as PointshellTool makes it (Fibonacci sphere).
+  std::vector<ShellPoint> shell;
+  const int n = 466;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(1.0 - z * z);
+    const double phi = i * 2.399963229728653;
+    const Vec3 u(r * std::cos(phi), r * std::sin(phi), z);
+    shell.push_back({kRadius * u, -u});
+  }
+  skull->reserveShell(shell);
+  const double h = 0.5;  // mm, the voxel; the half-space's top face is z = 0
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 50; ++trial) {
+    const Quat q = Quat(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
+    // Sunk by `sunk`, the inset shell's lowest point is sunk - h into the bone:
+    // 1.3 h leaves a cap of 1.3 mm across below the top face, which points
+    // about a voxel apart cannot miss.
+    for (const double sunk : {1.3 * h, 2.0 * h, 3.0 * h})
+      EXPECT_TRUE(skull->overlaps({Vec3(0.3, -0.2, kRadius - sunk), q}, shell)) << sunk << " mm in, trial " << trial;
+    for (const double sunk : {0.7 * h, 0.0, -h})
+      EXPECT_FALSE(skull->overlaps({Vec3(0.3, -0.2, kRadius - sunk), q}, shell)) << sunk << " mm in, trial " << trial;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Probes, SmoothSweepTest, ::testing::Values(SweepProbe::Line, SweepProbe::Cylinder),
                          [](const auto& info) { return info.param == SweepProbe::Line ? "line" : "cylinder"; });
 
