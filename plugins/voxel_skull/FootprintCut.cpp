@@ -81,7 +81,7 @@ inline void lower(SolidGrid& grid, const CutSetup& s, int64_t voxel, double exac
   ++result.lowered;
   result.codesRemoved += double(current - lowered);
   code = static_cast<VoxelCode>(lowered);
-  grid.noteLowered(voxel, code);  // keeps the point test's occupancy cells true
+  grid.noteLowered(voxel, code, VoxelCode(current));  // keeps the point test's occupancy cells exact
 }
 
 // One voxel by the plain rule (grid borders included).

@@ -36,6 +36,7 @@ std::shared_ptr<OccupancyCells> OccupancyCells::build(const SolidGrid& grid) {
   const uint8_t outsideClass =
       finite ? uint8_t((outside <= iso - margin ? 1 : 0) | (outside >= iso + margin ? 2 : 0)) : uint8_t(0);
   const int32_t lowCode = o.m_outsideCode, highCode = o.m_insideCode;
+  o.m_aroundIsOutside = (outsideClass & 1) != 0;
 
   const int64_t nx = grid.nx, ny = grid.ny, nz = grid.nz;
   const int64_t cx = nx + 4, cy = ny + 4;  // corners -2..n+1 per axis
@@ -71,6 +72,29 @@ std::shared_ptr<OccupancyCells> OccupancyCells::build(const SolidGrid& grid) {
     std::swap(previous, layer);
   }
   return cells;
+}
+
+void OccupancyCells::emptied(int64_t voxel, const VoxelCode* codes) {
+  if (voxel < 0 || voxel >= m_voxels || codes[voxel] > m_outsideCode) return;
+  int64_t i, j, k;
+  split(voxel, i, j, k);
+  const auto cornerOutside = [&](int64_t a, int64_t b, int64_t c) {
+    if (a < 0 || b < 0 || c < 0 || a >= m_nx || b >= m_ny || c >= m_nz) return m_aroundIsOutside;
+    return codes[a + int64_t(m_nx) * (b + int64_t(m_ny) * c)] <= m_outsideCode;
+  };
+  for (int cell = 0; cell < 8; ++cell) {
+    // Cells with base corners i - 1 and i per axis: this voxel is one of their corners.
+    const int64_t a = i - 1 + (cell & 1), b = j - 1 + ((cell >> 1) & 1), c = k - 1 + (cell >> 2);
+    const int64_t index = cellIndex(a, b, c);
+    if (state(index) == kOutside) continue;
+    bool outside = true;
+    for (int corner = 0; corner < 8 && outside; ++corner)
+      outside = cornerOutside(a + (corner & 1), b + ((corner >> 1) & 1), c + (corner >> 2));
+    if (!outside) continue;
+    uint8_t& byte = m_states[size_t(index >> 2)];
+    const int shift = int(index & 3) * 2;
+    byte = uint8_t((byte & ~(3 << shift)) | (kOutside << shift));
+  }
 }
 
 }  // namespace trephine::voxel

@@ -21,9 +21,11 @@
 //
 // Drilling only lowers codes. A lowered code can turn an "inside" cell into a
 // surface cell, never an "outside" one into anything else, so lowered()
-// updates the 8 cells around the voxel in O(1). A surface cell whose corners
-// all fall below the isovalue stays a surface cell (still exact, only slower)
-// until the next build. Raising a code needs a new build.
+// updates the 8 cells around the voxel in O(1); and once a voxel falls
+// through the outside threshold, emptied() turns those of its cells whose
+// corners are now all clearly outside into "outside" ones, so a drilled hole
+// is decided without interpolating again and the cells stay what a build
+// would give. Raising a code needs a new build.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -49,15 +51,8 @@ class OccupancyCells {
   void lowered(int64_t voxel, VoxelCode newCode) {
     if (newCode >= m_insideCode || voxel < 0 || voxel >= m_voxels) return;
     // voxel = i + nx (j + ny k), without divisions (exact below 2^52 voxels)
-    const int64_t plane = int64_t(m_nx) * m_ny;
-    int64_t k = int64_t(double(voxel) * m_inversePlane);
-    k -= k * plane > voxel;
-    k += (k + 1) * plane <= voxel;
-    const int64_t inPlane = voxel - k * plane;
-    int64_t j = int64_t(double(inPlane) * m_inverseRow);
-    j -= j * m_nx > inPlane;
-    j += (j + 1) * m_nx <= inPlane;
-    const int64_t i = inPlane - j * m_nx;
+    int64_t i, j, k;
+    split(voxel, i, j, k);
     // Cells with bases i-1 and i: padded indices i+1 and i+2.
     const int64_t first = cellIndex(i - 1, j - 1, k - 1);
     for (int c = 0; c < 8; ++c) {
@@ -67,6 +62,15 @@ class OccupancyCells {
       if (((byte >> shift) & 3) == kInside) byte = uint8_t(byte & ~(3 << shift));
     }
   }
+
+  // The hook of drilling through the outside threshold: voxel `voxel` now
+  // holds a code clearly outside (at most outsideCodeMax) and held one that
+  // was not. Each of the up to 8 cells with this voxel as a corner whose 8
+  // corner codes (`codes`, the grid's; the space around the grid counts as its
+  // outsideCode) are all clearly outside now becomes an "outside" cell, as a
+  // build would find it, so points in a drilled hole are decided again without
+  // interpolating. At most 64 code reads, once per voxel.
+  void emptied(int64_t voxel, const VoxelCode* codes);
 
   // Index of the cell with base corner (i, j, k), each in -2..n.
   int64_t cellIndex(int64_t i, int64_t j, int64_t k) const { return (i + 2) + m_strideY * (j + 2) + m_strideZ * (k + 2); }
@@ -87,6 +91,19 @@ class OccupancyCells {
   double m_inverseRow = 0, m_inversePlane = 0;  // 1 / nx, 1 / (nx ny)
   int32_t m_strideY = 0, m_strideZ = 0;
   int32_t m_outsideCode = 0, m_insideCode = 0;
+  bool m_aroundIsOutside = false;  // the grid's outsideCode is clearly outside
+  // (i, j, k) of a linear voxel index, without divisions.
+  void split(int64_t voxel, int64_t& i, int64_t& j, int64_t& k) const {
+    const int64_t plane = int64_t(m_nx) * m_ny;
+    k = int64_t(double(voxel) * m_inversePlane);
+    k -= k * plane > voxel;
+    k += (k + 1) * plane <= voxel;
+    const int64_t inPlane = voxel - k * plane;
+    j = int64_t(double(inPlane) * m_inverseRow);
+    j -= j * m_nx > inPlane;
+    j += (j + 1) * m_nx <= inPlane;
+    i = inPlane - j * m_nx;
+  }
 };
 
 }  // namespace trephine::voxel

@@ -61,6 +61,15 @@ struct SolidGrid {
   void noteLowered(int64_t voxel, VoxelCode newCode) {
     if (occupancy) occupancy->lowered(voxel, newCode);
   }
+  // The same, knowing the code before (drilling): a voxel lowered through the
+  // outside threshold also turns the cells it empties "outside", so the cells
+  // stay exactly what a build would give (OccupancyCells::emptied).
+  void noteLowered(int64_t voxel, VoxelCode newCode, VoxelCode oldCode) {
+    if (!occupancy) return;
+    occupancy->lowered(voxel, newCode);
+    if (newCode <= occupancy->outsideCodeMax() && oldCode > occupancy->outsideCodeMax())
+      occupancy->emptied(voxel, codes);
+  }
 
   // floor(u), exactly, for the finite u of a grid's range (|u| < 2^62): a
   // truncation corrected for negatives, instead of a call to floor(), which

@@ -41,8 +41,9 @@ int VoxelSkull::lowerVoxel(int64_t voxel) {
   const int32_t floor = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
   const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
   const bool emptied = code >= m_grid.threshold && lowered < m_grid.threshold;  // bone that became empty
+  const VoxelCode before = code;
   code = static_cast<VoxelCode>(lowered);
-  m_grid.noteLowered(voxel, code);
+  m_grid.noteLowered(voxel, code, before);
   return emptied ? 1 : 0;
 }
 
