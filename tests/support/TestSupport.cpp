@@ -44,6 +44,14 @@ std::unique_ptr<Simulation> loadScene(const std::string& xml, Diagnostics& diagn
   return Simulation::fromString(xml, fileName, options, diagnostics);
 }
 
+std::unique_ptr<Simulation> runScene(const std::string& xml) {
+  Diagnostics d;
+  auto simulation = loadScene(xml, d);
+  EXPECT_TRUE(simulation) << messages(d);
+  if (simulation) simulation->run();
+  return simulation;
+}
+
 std::string messages(const Diagnostics& diagnostics) {
   std::string s;
   for (const Diagnostic& d : diagnostics.all()) s += d.str() + "\n";

@@ -32,6 +32,10 @@ std::unique_ptr<Simulation> loadScene(const std::string& xml, Diagnostics& diagn
                                       const SimulationOptions& options = {},
                                       const std::string& fileName = "inline.xml");
 
+// Loads a scene from an XML string and runs it to its end; a scene that fails
+// to load is a test failure (with its errors) and gives null.
+std::unique_ptr<Simulation> runScene(const std::string& xml);
+
 // All diagnostics as one string, one per line.
 std::string messages(const Diagnostics& diagnostics);
 

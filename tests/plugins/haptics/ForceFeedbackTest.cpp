@@ -30,13 +30,7 @@ std::string sceneXml(const std::string& waypoints, const std::string& forceAttri
 </Node>)";
 }
 
-std::unique_ptr<Simulation> run(const std::string& xml) {
-  Diagnostics d;
-  auto simulation = test::loadScene(xml, d);
-  EXPECT_TRUE(simulation) << test::messages(d);
-  if (simulation) simulation->run();
-  return simulation;
-}
+std::unique_ptr<Simulation> run(const std::string& xml) { return test::runScene(xml); }
 
 // The device's height above the surface plane on a piecewise linear script of (t, z) knots.
 struct VerticalScript {

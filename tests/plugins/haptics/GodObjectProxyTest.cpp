@@ -34,13 +34,7 @@ std::string sceneXml(const std::string& skull, const std::string& waypoints, con
 </Node>)";
 }
 
-std::unique_ptr<Simulation> run(const std::string& xml) {
-  Diagnostics d;
-  auto simulation = test::loadScene(xml, d);
-  EXPECT_TRUE(simulation) << test::messages(d);
-  if (simulation) simulation->run();
-  return simulation;
-}
+std::unique_ptr<Simulation> run(const std::string& xml) { return test::runScene(xml); }
 
 double proxyCounter(const Simulation& simulation, const std::string& name) {
   return test::componentCounter(simulation, "GodObjectProxy", name);

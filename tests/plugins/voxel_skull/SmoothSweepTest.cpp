@@ -20,6 +20,7 @@
 #include "framework/core/Node.h"
 #include "framework/geometry/FrontRings.h"
 #include "framework/geometry/ShellContactTarget.h"
+#include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/SolidGrid.h"
 #include "tests/support/TestSupport.h"
@@ -97,26 +98,39 @@ Reference reference(const voxel::SolidGrid& grid, const SweepQuery& q) {
   return r;
 }
 
+// A VoxelSkull on its own (its queries called directly), with a 466-point
+// even shell of the burr reserved, as PointshellTool makes it.
+struct LoadedSkull {
+  std::unique_ptr<Simulation> simulation;
+  ShellContactTarget* skull = nullptr;
+  std::vector<ShellPoint> shell;
+};
+
+LoadedSkull loadSkull(const std::string& file, double isovalue) {
+  LoadedSkull loaded;
+  Diagnostics d;
+  loaded.simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <VoxelSkull name="skull" file=")" + file + R"(" isovalue=")" + std::to_string(isovalue) + R"("/>
+</Node>)",
+                                      d);
+  if (!loaded.simulation) {
+    ADD_FAILURE() << test::messages(d);
+    return loaded;
+  }
+  loaded.skull = dynamic_cast<ShellContactTarget*>(loaded.simulation->scene().findComponent("/skull"));
+  for (const Vec3& u : haptics::evenDirections(466)) loaded.shell.push_back({kRadius * u, -u});
+  if (loaded.skull) loaded.skull->reserveShell(loaded.shell);
+  return loaded;
+}
+
 class SmoothSweepTest : public ::testing::TestWithParam<SweepProbe> {};
 
 TEST_P(SmoothSweepTest, AgreesWithFineSamplingOfEveryProbeLine) {
-  const std::string xml = R"(<Node name="root">
-  <RequiredPlugin name="voxel_skull"/>
-  <VoxelSkull name="skull" file="phantom:skull?voxel=1.0" isovalue="400"/>
-</Node>)";
-  Diagnostics d;
-  auto simulation = test::loadScene(xml, d);
-  ASSERT_TRUE(simulation) << test::messages(d);
-  auto* skull = dynamic_cast<ShellContactTarget*>(simulation->scene().findComponent("/skull"));
+  const LoadedSkull loaded = loadSkull("phantom:skull?voxel=1.0", 400.0);
+  ShellContactTarget* skull = loaded.skull;
   ASSERT_NE(skull, nullptr);
-  // A shell the size of the burr (the sweep sizes its lines from it).
-  std::vector<ShellPoint> shell;
-  for (int axis = 0; axis < 3; ++axis)
-    for (const double sign : {1.0, -1.0}) {
-      const Vec3 d = sign * Vec3::Unit(axis);
-      shell.push_back({kRadius * d, -d});
-    }
-  skull->reserveShell(shell);
+  const std::vector<ShellPoint>& shell = loaded.shell;
 
   voxel::DensityVolume volume = voxel::makeSkullPhantom(kVoxel);
   const voxel::SolidGrid grid = voxel::SolidGrid::of(volume, 400.0, true);  // no cells: the plain interpolation
@@ -186,25 +200,10 @@ TEST_P(SmoothSweepTest, AgreesWithFineSamplingOfEveryProbeLine) {
 // into a half-space by 1.3 voxels or more is seen at every orientation, one
 // sunk less than a voxel never.
 TEST(VoxelOverlapTest, ABurrSunkMoreThanAVoxelIsSeenAndOneGrazingIsNot) {
-  const std::string xml = R"(<Node name="root">
-  <RequiredPlugin name="voxel_skull"/>
-  <VoxelSkull name="skull" file="phantom:halfspace?voxel=0.5" isovalue="500"/>
-</Node>)";
-  Diagnostics d;
-  auto simulation = test::loadScene(xml, d);
-  ASSERT_TRUE(simulation) << test::messages(d);
-  auto* skull = dynamic_cast<ShellContactTarget*>(simulation->scene().findComponent("/skull"));
+  const LoadedSkull loaded = loadSkull("phantom:halfspace?voxel=0.5", 500.0);
+  ShellContactTarget* skull = loaded.skull;
   ASSERT_NE(skull, nullptr);
-  // A 466-point even shell of the burr, as PointshellTool makes it (Fibonacci sphere).
-  std::vector<ShellPoint> shell;
-  const int n = 466;
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(1.0 - z * z);
-    const double phi = i * 2.399963229728653;
-    const Vec3 u(r * std::cos(phi), r * std::sin(phi), z);
-    shell.push_back({kRadius * u, -u});
-  }
-  skull->reserveShell(shell);
+  const std::vector<ShellPoint>& shell = loaded.shell;
   const double h = 0.5;  // mm, the voxel; the half-space's top face is z = 0
   std::mt19937_64 rng(9);
   std::normal_distribution<double> normal;
