@@ -70,6 +70,7 @@ inline double slopeOf(const SolidGrid& g, double c, double xm, double xp, double
 inline void lower(SolidGrid& grid, const CutSetup& s, int64_t voxel, double exact, uint64_t frame,
                   FootprintCutResult& result) {
   if (!(exact > 0)) return;
+  exact = std::min(exact, 65536.0);  // codes are 16-bit: a larger fall empties the voxel all the same
   const double whole = double(int64_t(exact));  // floor: exact > 0
   const int32_t step = int32_t(whole) + (unitHash(uint64_t(voxel), frame) < exact - whole ? 1 : 0);
   if (step <= 0) return;

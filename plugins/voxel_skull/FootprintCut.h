@@ -47,8 +47,8 @@ struct FootprintCutResult {
 FootprintCutResult cutFootprint(SolidGrid& grid, const FootprintCut& cut);
 
 // The same cut by the plain rule, voxel by voxel over the footprint's whole
-// box with bounds-checked neighbours: the reference the fast copies are
-// tested against (identical codes).
+// box with bounds-checked neighbours: the reference cutFootprint is tested
+// against (identical codes).
 FootprintCutResult cutFootprintReference(SolidGrid& grid, const FootprintCut& cut);
 
 // A uniform number in [0, 1) from a voxel and a frame (splitmix64): the same
