@@ -165,6 +165,7 @@ TEST(ForceDrillingTest, BreakingThroughAPlateIsAnEventAndTheForceFalls) {
   EXPECT_GT(before, 0.5) << "the burr pressed on the plate";
   EXPECT_LT(log[at + 50].force.norm(), 0.2 * before)
       << log[at + 50].force.norm() << " N 50 ms after, " << before << " N before";
+  RecordProperty("force_drop_percent", std::to_string(100.0 * (1.0 - log[at + 50].force.norm() / before)));
   EXPECT_EQ(log.stats().proxyInsideFrames, 0u);
 }
 
