@@ -15,6 +15,7 @@ struct CutSetup {
   double advance = 0;           // mm
   int32_t floorCode = 0;        // codes never fall below this
   int64_t i0 = 0, i1 = -1, j0 = 0, j1 = -1, k0 = 0, k1 = -1;  // the footprint's box of voxels
+  int64_t slices = 1, slice = 0;                              // rows cut: (j + k) mod slices == slice
 };
 
 CutSetup setupOf(const SolidGrid& grid, const FootprintCut& cut) {
@@ -26,6 +27,8 @@ CutSetup setupOf(const SolidGrid& grid, const FootprintCut& cut) {
   s.outer = cut.radius + h;
   s.advance = cut.advance;
   s.floorCode = static_cast<int32_t>(std::ceil(grid.outsideCode));
+  s.slices = std::max(1, cut.slices);
+  s.slice = ((cut.slice % s.slices) + s.slices) % s.slices;
   // Index bounds, clamped as doubles first: a burr far outside the grid must
   // not overflow the conversion to integers.
   const Vec3 lo = (cut.center - Vec3::Constant(s.outer) - grid.corner).cwiseProduct(grid.inverseSpacing);
@@ -123,6 +126,12 @@ inline void rowExactsInterior(const SolidGrid& g, const CutSetup& s, int64_t i0,
   }
 }
 
+// The first j >= j0 of row (j, k) in the cut's slice.
+inline int64_t firstRowOfSlice(const CutSetup& s, int64_t k) {
+  const int64_t offset = ((s.slice - s.j0 - k) % s.slices + s.slices) % s.slices;
+  return s.j0 + offset;
+}
+
 // A cut that can remove nothing: not finite, no burr, no advance.
 inline bool idle(const FootprintCut& cut) {
   return !cut.center.allFinite() || !cut.direction.allFinite() || !(cut.radius > 0) || !(cut.advance > 0) ||
@@ -138,7 +147,7 @@ FootprintCutResult cutFootprint(SolidGrid& grid, const FootprintCut& cut) {
   double exact[kRowChunk];
   for (int64_t k = s.k0; k <= s.k1; ++k) {
     const double oz = grid.corner.z() + (double(k) + 0.5) * grid.spacing.z() - s.center.z();
-    for (int64_t j = s.j0; j <= s.j1; ++j) {
+    for (int64_t j = firstRowOfSlice(s, k); j <= s.j1; j += s.slices) {
       const double oy = grid.corner.y() + (double(j) + 0.5) * grid.spacing.y() - s.center.y();
       // Only the voxels of this row within the footprint's sphere.
       const double acrossYZ = oy * oy + oz * oz;
@@ -188,6 +197,7 @@ FootprintCutResult cutFootprintReference(SolidGrid& grid, const FootprintCut& cu
   for (int64_t k = s.k0; k <= s.k1; ++k) {
     const double oz = grid.corner.z() + (double(k) + 0.5) * grid.spacing.z() - s.center.z();
     for (int64_t j = s.j0; j <= s.j1; ++j) {
+      if ((j + k) % s.slices != s.slice) continue;
       const double oy = grid.corner.y() + (double(j) + 0.5) * grid.spacing.y() - s.center.y();
       const double acrossYZ = oy * oy + oz * oz;
       const double alongYZ = oy * s.direction.y() + oz * s.direction.z();

@@ -35,6 +35,11 @@ struct FootprintCut {
   double radius = 0;              // mm, the burr's radius
   double advance = 0;             // mm the surface recedes this frame at full weight (v dt)
   uint64_t frame = 0;             // seeds the stochastic rounding
+  // Interleaving: only the rows (j, k) with (j + k) mod slices == slice are cut
+  // (the caller scales `advance` by `slices`), so a frame walks 1/slices of the
+  // footprint and every voxel is cut once every `slices` frames.
+  int slices = 1;
+  int slice = 0;
 };
 
 struct FootprintCutResult {

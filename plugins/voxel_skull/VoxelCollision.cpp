@@ -86,62 +86,65 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   if (hits == 0) return contact;
   ++m_contactFrames;
   contact.points = static_cast<int>(hits);
-  // Group the points by voxel: the colliding voxels with their points.
-  std::sort(m_hits.begin(), m_hits.begin() + hits,
-            [](const Hit& a, const Hit& b) { return a.voxel < b.voxel || (a.voxel == b.voxel && a.point < b.point); });
 
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   const bool algorithm1 = m_algorithm1;
   const bool drilling = removeMaterial && d_drill.value() && !m_forceRemoval;  // the thesis's law cuts here
   // Deepest-point depths are searched along the normal up to the tool's diameter.
   const double reach = 2.0 * reserved->radius + m_grid.spacing.maxCoeff();
-  Vec3 normalSum = Vec3::Zero();
   // Deepest-point variants weight each point's normal by its depth, so a point
   // entering or leaving the bone (depth near 0) does not turn the normal at once.
   Vec3 weightedSum = Vec3::Zero();
-  double penetration = 0;
-  int voxels = 0, removed = 0;
-  for (size_t first = 0; first < hits;) {
-    size_t last = first;
-    while (last < hits && m_hits[last].voxel == m_hits[first].voxel) ++last;
-    const int64_t voxel = m_hits[first].voxel;
-    const Vec3 center = m_grid.centerOf(voxel);
-    Vec3 voxelNormal = Vec3::Zero();
-    double depthSum = 0;
-    for (size_t h = first; h < last; ++h) {
-      const ShellPoint& point = shell[m_hits[h].point];
-      const Vec3 p = R * point.position + X_WT.position;
-      Vec3 normal = R * point.inwardNormal;  // out of the bone, towards the tool centre
-      if (algorithm1) {
-        // McNeely tangent plane: through the voxel centre with the point's normal.
-        depthSum += (center - p).dot(normal);
-      } else if (m_grid.smooth) {
-        // Smooth surface: the surface normal and the first-order distance to the isosurface.
-        Vec3 gradient;
-        const double code = m_grid.codeAt(p, &gradient);
-        const double slope = gradient.norm();  // codes per mm
-        if (slope * m_grid.smallestSide() > 1e-3 * std::max(1.0, std::abs(m_grid.isoCode))) {
-          normal = -gradient / slope;
-          m_depths[h] = std::min((code - m_grid.isoCode) / slope, reach);
-        } else {
-          // Flat density deep in bone: no gradient; measured along the tool's normal instead.
-          m_depths[h] = reach * firstFreeOnSegment(m_grid, p, p + reach * normal);
-        }
-        m_normals[h] = normal;
+  // The points grouped by the voxel they are in: per voxel the sum of their
+  // normals and (Algorithm 1) of -offset . normal, so that the sum of the
+  // depths (centre - p) . normal is (centre - X) . sum(normal) - sum(offset . normal).
+  m_groups.clear();
+  for (size_t h = 0; h < hits; ++h) {
+    bool isNew = false;
+    const int32_t group = m_groups.groupOf(m_hits[h].voxel, isNew);
+    if (isNew) m_groupNormals[group].setZero(), m_groupDepths[group] = 0, m_groupPoints[group] = 0;
+    const ShellPoint& point = shell[m_hits[h].point];
+    const Vec3 offset = R * point.position;  // mm, from the tool's reference point
+    const Vec3 p = offset + X_WT.position;
+    Vec3 normal = R * point.inwardNormal;  // out of the bone, towards the tool centre
+    if (algorithm1) {
+      // McNeely tangent plane: through the voxel centre with the point's normal.
+      m_groupDepths[group] -= offset.dot(normal);
+    } else if (m_grid.smooth) {
+      // Smooth surface: the surface normal and the first-order distance to the isosurface.
+      Vec3 gradient;
+      const double code = m_grid.codeAt(p, &gradient);
+      const double slope = gradient.norm();  // codes per mm
+      if (slope * m_grid.smallestSide() > 1e-3 * std::max(1.0, std::abs(m_grid.isoCode))) {
+        normal = -gradient / slope;
+        m_depths[h] = std::min((code - m_grid.isoCode) / slope, reach);
       } else {
-        m_depths[h] = depthToFreeVoxel(m_grid, p, voxel, normal, reach);
-        m_normals[h] = normal;
+        // Flat density deep in bone: no gradient; measured along the tool's normal instead.
+        m_depths[h] = reach * firstFreeOnSegment(m_grid, p, p + reach * normal);
       }
-      voxelNormal += normal;
-      if (!algorithm1) weightedSum += m_depths[h] * normal;
+      m_normals[h] = normal;
+    } else {
+      m_depths[h] = depthToFreeVoxel(m_grid, p, m_hits[h].voxel, normal, reach);
+      m_normals[h] = normal;
     }
+    m_groupNormals[group] += normal;
+    ++m_groupPoints[group];
+    if (!algorithm1) weightedSum += m_depths[h] * normal;
+  }
+  Vec3 normalSum = Vec3::Zero();
+  double penetration = 0;
+  int removed = 0;
+  const int voxels = static_cast<int>(m_groups.size());
+  for (int32_t group = 0; group < voxels; ++group) {
+    const int64_t voxel = m_groups.voxel(group);
     // Algorithm 1: the deepest of the per-voxel mean depths.
-    if (algorithm1) penetration = std::max(penetration, depthSum / double(last - first));
-    const double length = voxelNormal.norm();
-    if (length > 1e-12) normalSum += voxelNormal / length;  // Eq. 3.4: one unit normal per voxel
-    ++voxels;
+    if (algorithm1) {
+      const double depthSum = (m_grid.centerOf(voxel) - X_WT.position).dot(m_groupNormals[group]) + m_groupDepths[group];
+      penetration = std::max(penetration, depthSum / double(m_groupPoints[group]));
+    }
+    const double length = m_groupNormals[group].norm();
+    if (length > 1e-12) normalSum += m_groupNormals[group] / length;  // Eq. 3.4: one unit normal per voxel
     if (drilling && !m_grid.smooth) removed += lowerVoxel(voxel);
-    first = last;
   }
   if (drilling && m_grid.smooth) {
     // Smooth surface: the density at a point comes from the 8 voxel centres

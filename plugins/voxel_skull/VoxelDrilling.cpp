@@ -75,8 +75,12 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   cut.center = load.center_W;
   cut.direction = d;
   cut.radius = load.radius;
-  cut.advance = advance;
+  // Interleaved: this frame's slice of rows, with `slices` frames' worth of advance.
+  const int slices = d_cutSlices.value();
+  cut.advance = advance * slices;
   cut.frame = m_cutFrames;
+  cut.slices = slices;
+  cut.slice = int(m_cutFrames % uint64_t(slices));
   const FootprintCutResult result = cutFootprint(m_grid, cut);
   m_removedCodes += result.codesRemoved;
   const int removed = result.emptied;

@@ -109,6 +109,10 @@ void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   m_depths.resize(n);
   m_normals.resize(n);
   m_cutVoxels.resize(8 * n);
+  m_groups.reserve(n);
+  m_groupNormals.resize(n);
+  m_groupDepths.resize(n);
+  m_groupPoints.resize(n);
   m_wasSolid.resize(n);
   reserveProbeLines();
 }

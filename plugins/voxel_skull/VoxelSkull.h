@@ -18,6 +18,7 @@
 #include "plugins/voxel_skull/RemovalLaw.h"
 #include "plugins/voxel_skull/ShellPointTest.h"
 #include "plugins/voxel_skull/SolidGrid.h"
+#include "plugins/voxel_skull/VoxelGroups.h"
 
 namespace trephine::voxel {
 
@@ -132,6 +133,15 @@ class VoxelSkull final : public Component, public ShellContactTarget {
                                .unit = "mm/s",
                                .min = 0.0,
                                .minExclusive = true}};
+  Field<int> d_cutSlices{this,
+                         "cutSlices",
+                         4,
+                         {.help = "removal=\"force\": each haptic frame cuts one of this many interleaved sets of "
+                                  "the footprint's voxel rows, with this many frames' worth of removal, so a "
+                                  "frame's removal work is bounded; every voxel is still cut every cutSlices frames "
+                                  "(4 ms at 1 kHz, while the burr moves 0.08 mm at 20 mm/s)",
+                          .min = 1.0,
+                          .max = 16.0}};
   // 10 per frame: the thesis removed 1.0 per frame from bone a few hundred above
   // its isovalue, about 0.1 s of contact per voxel; CT cortical bone (about
   // 1500) is 1100 above an isovalue of 400, so 10 per frame keeps that speed.
@@ -204,6 +214,10 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   std::vector<double> m_depths;      // per hit, mm
   std::vector<Vec3> m_normals;       // per hit, unit, out of the bone
   std::vector<int64_t> m_cutVoxels;  // voxels cut this frame (8 per hit at most)
+  VoxelGroups m_groups;              // the hits grouped by voxel
+  std::vector<Vec3> m_groupNormals;  // per group: sum of its points' normals
+  std::vector<double> m_groupDepths; // per group, Algorithm 1: -sum(offset . normal), mm
+  std::vector<int32_t> m_groupPoints;  // per group: its points
   mutable std::vector<uint8_t> m_wasSolid;
   // The smooth line sweep's lines and one step's points, sized by reserveProbeLines().
   struct ProbeLine {
