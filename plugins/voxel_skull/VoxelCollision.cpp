@@ -2,6 +2,7 @@
 // 3.2 and Algorithm 1), and the overlap test of a displayed proxy.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "plugins/voxel_skull/VoxelSkull.h"
@@ -80,8 +81,17 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   if (!m_volume.bounds().intersects(toolBox)) return contact;
 
   m_pointTest(m_grid, reserved->arrays, X_WT, {m_voxels.data(), m_solid.data()});
+  // The points in bone, 8 flags at a time: most of a touching shell is out of the bone.
   size_t hits = 0;
-  for (size_t i = 0; i < n; ++i)
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    uint64_t flags;
+    std::memcpy(&flags, m_solid.data() + i, 8);
+    if (flags == 0) continue;
+    for (size_t b = i; b < i + 8; ++b)
+      if (m_solid[b]) m_hits[hits++] = {m_voxels[b], static_cast<int32_t>(b)};
+  }
+  for (; i < n; ++i)
     if (m_solid[i]) m_hits[hits++] = {m_voxels[i], static_cast<int32_t>(i)};
   if (hits == 0) return contact;
   ++m_contactFrames;
