@@ -88,9 +88,17 @@ void GodObjectProxy::tick(const TickContext&) {
     const double into = toDevice.dot(m_lastNormal);  // < 0: the device is beneath the plane
     const Vec3 along = toDevice - into * m_lastNormal;
     const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
-    if (into < 0 && along.norm() > slideLimit) sweepEnd = P + into * m_lastNormal + slideLimit / along.norm() * along;
+    // Also while the device rises off the plane, when the proxy was held back
+    // and pulled on the device last frame: it lifts with the device at once
+    // but closes the lag along the plane at the same pace, so a drag of
+    // millimetres built up while sliding (at the force limit) fades instead
+    // of dropping in one frame.
+    const bool dragging = m_heldBack && m_state.penetration > 0;
+    if ((into < 0 || dragging) && along.norm() > slideLimit)
+      sweepEnd = P + into * m_lastNormal + slideLimit / along.norm() * along;
   }
   const bool heldBack = (D - sweepEnd).norm() > kSamePlace;
+  m_heldBack = heldBack;
   Vec3 P1 = sweepEnd;
   bool blocked = false;
   Vec3 blockedAt = Vec3::Zero();
@@ -154,7 +162,15 @@ void GodObjectProxy::tick(const TickContext&) {
     // normal). Halving converges geometrically and lags a steady slide by one
     // frame's motion at most.
     const Vec3 step = goal - P1;
-    const Vec3 lift = step.dot(normal) * normal;
+    // The lift off the surface, along the normal the depth was measured on:
+    // at least the measured depth less the skin. While last frame's plane
+    // holds the proxy back (step 1), only that much: the rest of the way
+    // towards a device that is out of this contact's plane (the contact
+    // switched to another wall of a groove) is part of the slide, so the
+    // proxy does not jump to the device in one frame.
+    const double outOfDepth = std::max(0.0, c.penetration - skin);
+    const double along = step.dot(normal);
+    const Vec3 lift = (heldBack ? std::min(along, outOfDepth) : along) * normal;
     // The slide is also held to the device's own move this frame plus
     // kCatchUp: a proxy freed from a pit it was held in (a burr pressed into
     // its own cut, then slid) catches up over several frames instead of
@@ -167,9 +183,8 @@ void GodObjectProxy::tick(const TickContext&) {
     // 4. Rectifying sweep of the slide. The lift out along the contact normal
     // is taken first, unswept: the proxy is in the target when it is lifted, so
     // a sweep from there would stop it at once and keep it inside (a burr that
-    // slipped into a drilled groove could never climb out). The lift is the
-    // measured depth less the skin, along the normal that depth was measured on.
-    const Vec3 lifted = P1 + std::max(0.0, (goal - P1).dot(normal)) * normal;
+    // slipped into a drilled groove could never climb out).
+    const Vec3 lifted = P1 + lift;
     P2 = goal;
     const Vec3 move = goal - lifted;
     const double moveLength = move.norm();

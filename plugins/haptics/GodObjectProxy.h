@@ -91,6 +91,7 @@ class GodObjectProxy final : public Component {
   Vec3 m_lastNormal = Vec3::Zero();
   Vec3 m_lastDevice = Vec3::Zero();  // mm, the device's point last frame
   bool m_hadDevice = false;
+  bool m_heldBack = false;  // last frame's sweep towards the device was held to the plane
   // This frame's and the last frame's constraint plane (a point on it and its normal).
   Vec3 m_planePoint = Vec3::Zero(), m_planeNormal = Vec3::Zero(), m_lastPlanePoint = Vec3::Zero();
   bool m_hasPlane = false, m_hadPlane = false;
