@@ -40,6 +40,12 @@ struct Counter {
   double value = 0;
 };
 
+// A named text in a component's entry of summary.json (the collision back-end it used).
+struct Fact {
+  std::string name;
+  std::string value;
+};
+
 class Component : public FieldOwner {
  public:
   static constexpr std::string_view kTypeName = "Component";
@@ -72,6 +78,8 @@ class Component : public FieldOwner {
   virtual void finish(FinishContext& context);
   // Figures for this component's entry in summary.json.
   virtual void reportCounters(std::vector<Counter>& counters) const;
+  // Texts for the same entry, e.g. {"backend", "native"}.
+  virtual void reportFacts(std::vector<Fact>& facts) const { (void)facts; }
   // The files finish() will write, checked after init (plain names, none of the
   // run's own, no two alike) so that a bad name fails the load, not the end of a run.
   virtual void declareOutputs(std::vector<OutputFile>& outputs) const;

@@ -3,11 +3,14 @@
 // and after the run. The runtime implements these; components only see them.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "framework/core/ChannelHub.h"
+#include "framework/core/CollisionBackend.h"
 #include "framework/logs/EventLog.h"
 #include "framework/logs/HapticFrameLog.h"
 
@@ -29,6 +32,19 @@ class InitContext {
   virtual void warning(const BaseField& field, std::string message) {
     (void)field;
     (void)message;
+  }
+  // A new collision back-end registered (by the core or a loaded plugin) for
+  // targets of type `kind` under `name`, or null when there is none; and the
+  // names registered for `kind`, for the message. Contexts without a registry
+  // (a benchmark's) have none.
+  virtual std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) {
+    (void)kind;
+    (void)name;
+    return nullptr;
+  }
+  virtual std::vector<std::string> backendNames(std::string_view kind) const {
+    (void)kind;
+    return {};
   }
   virtual uint64_t seed() const = 0;  // the run's seed (--seed)
   virtual bool isRealtime() const = 0;

@@ -1,5 +1,6 @@
 #include "framework/core/Registry.h"
 
+#include "framework/core/CollisionBackend.h"
 #include "framework/core/Component.h"
 
 namespace trephine {
@@ -37,6 +38,43 @@ std::unique_ptr<Component> Registry::create(std::string_view type) const {
   auto component = entry->create();
   component->attach(nullptr, entry->type);
   return component;
+}
+
+std::optional<std::string> Registry::addBackend(BackendEntry entry) {
+  if (const BackendEntry* existing = findBackend(entry.kind, entry.name)) {
+    return "back-end '" + entry.name + "' of " + entry.kind + " is registered by both plugin '" + existing->plugin +
+           "' and plugin '" + entry.plugin + "'";
+  }
+  auto key = std::make_pair(entry.kind, entry.name);
+  m_backends.emplace(std::move(key), std::move(entry));
+  return std::nullopt;
+}
+
+const BackendEntry* Registry::findBackend(std::string_view kind, std::string_view name) const {
+  const auto it = m_backends.find(std::make_pair(std::string(kind), std::string(name)));
+  return it == m_backends.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> Registry::backendNames(std::string_view kind) const {
+  std::vector<std::string> names;
+  for (const auto& [key, entry] : m_backends)
+    if (key.first == kind) names.push_back(key.second);
+  return names;
+}
+
+std::vector<const BackendEntry*> Registry::backends() const {
+  std::vector<const BackendEntry*> list;
+  for (const auto& [key, entry] : m_backends) list.push_back(&entry);
+  return list;
+}
+
+std::unique_ptr<CollisionBackend> Registry::createBackend(std::string_view kind, std::string_view name) const {
+  const BackendEntry* entry = findBackend(kind, name);
+  return entry ? entry->create() : nullptr;
+}
+
+void PluginRegistrar::addBackendEntry(BackendEntry entry) {
+  if (auto error = m_registry.addBackend(std::move(entry))) m_errors.push_back(*error);
 }
 
 void PluginRegistrar::addEntry(ComponentEntry entry) {

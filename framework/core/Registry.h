@@ -13,12 +13,22 @@
 namespace trephine {
 
 class Component;
+class CollisionBackend;
 
 struct ComponentEntry {
   std::string type;     // XML tag, e.g. "ScriptedDevice"
   std::string plugin;   // "core" for the framework's own components
   std::string summary;  // one line for the reference
   std::function<std::unique_ptr<Component>()> create;
+};
+
+// A collision back-end for one kind of target (the target's component type).
+struct BackendEntry {
+  std::string kind;     // target component type, e.g. "VoxelSkull"
+  std::string name;     // the value of the target's `backend` field, e.g. "native"
+  std::string plugin;   // "core" for the framework's own
+  std::string summary;  // one line for the reference
+  std::function<std::unique_ptr<CollisionBackend>()> create;
 };
 
 class Registry {
@@ -31,8 +41,19 @@ class Registry {
   std::vector<const ComponentEntry*> entries() const;  // sorted by type name
   std::unique_ptr<Component> create(std::string_view type) const;
 
+  // Adds a back-end. Returns an error naming both providers when the kind
+  // already has a back-end of that name.
+  std::optional<std::string> addBackend(BackendEntry entry);
+  const BackendEntry* findBackend(std::string_view kind, std::string_view name) const;
+  // Names of the back-ends registered for `kind`, sorted.
+  std::vector<std::string> backendNames(std::string_view kind) const;
+  std::vector<const BackendEntry*> backends() const;  // sorted by kind, then name
+  // A new back-end, or null when none of that name is registered for `kind`.
+  std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) const;
+
  private:
   std::map<std::string, ComponentEntry, std::less<>> m_entries;
+  std::map<std::pair<std::string, std::string>, BackendEntry> m_backends;
 };
 
 // Handed to a plugin's registration function.
@@ -45,11 +66,20 @@ class PluginRegistrar {
     addEntry({std::string(type), m_plugin, std::string(summary), [] { return std::unique_ptr<Component>(new T()); }});
   }
 
+  // A collision back-end named `name` for targets of type `kind` (T derives
+  // from that kind's query interface).
+  template <class T>
+  void addBackend(std::string_view kind, std::string_view name, std::string_view summary) {
+    addBackendEntry({std::string(kind), std::string(name), m_plugin, std::string(summary),
+                     [] { return std::unique_ptr<CollisionBackend>(new T()); }});
+  }
+
   const std::string& plugin() const { return m_plugin; }
   const std::vector<std::string>& errors() const { return m_errors; }
 
  private:
   void addEntry(ComponentEntry entry);
+  void addBackendEntry(BackendEntry entry);
   Registry& m_registry;
   std::string m_plugin;
   std::vector<std::string> m_errors;

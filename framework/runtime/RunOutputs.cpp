@@ -81,6 +81,9 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
   for (const Component* c : simulation.scene().components()) {
     json.key(c->path()).beginObject();
     json.field("type", c->typeName());
+    std::vector<Fact> facts;
+    c->reportFacts(facts);
+    for (const Fact& fact : facts) json.field(fact.name, fact.value);
     json.field("rate_hz", c->rateHz());
     const auto it = timing.find(c);
     json.field("calls", it == timing.end() ? 0ull : static_cast<unsigned long long>(it->second->calls));

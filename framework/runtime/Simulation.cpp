@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "framework/core/CollisionBackend.h"
 #include "framework/core/Strings.h"
 #include "framework/runtime/Recorder.h"
 #include "framework/runtime/RunOutputs.h"
@@ -113,6 +114,12 @@ class Simulation::Context final : public InitContext {
     } else {
       m_diagnostics.warning(field.location(), std::move(text));
     }
+  }
+  std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) override {
+    return m_simulation.m_registry->createBackend(kind, name);
+  }
+  std::vector<std::string> backendNames(std::string_view kind) const override {
+    return m_simulation.m_registry->backendNames(kind);
   }
   uint64_t seed() const override { return m_options.seed; }
   bool isRealtime() const override { return m_options.realtime; }

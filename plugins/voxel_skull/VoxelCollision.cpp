@@ -1,11 +1,11 @@
-// VoxelSkull: detection, drilling and the contact parameters (thesis section
-// 3.2 and Algorithm 1), and the overlap test of a displayed proxy.
+// The native back-end of VoxelSkull: detection and the contact parameters
+// (thesis section 3.2 and Algorithm 1), and the overlap test of a displayed proxy.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
-#include "plugins/voxel_skull/VoxelSkull.h"
+#include "plugins/voxel_skull/NativeVoxelBackend.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
 
 namespace trephine::voxel {
@@ -36,51 +36,21 @@ double depthToFreeVoxel(const SolidGrid& grid, const Vec3& p, int64_t voxel, con
 
 }  // namespace
 
-int VoxelSkull::lowerVoxel(int64_t voxel) {
-  VoxelCode& code = m_volume.codes()[voxel];
-  // Never below the emptiest voxel of the volume (air).
-  const int32_t floor = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
-  const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
-  const bool emptied = code >= m_grid.threshold && lowered < m_grid.threshold;  // bone that became empty
-  const VoxelCode before = code;
-  code = static_cast<VoxelCode>(lowered);
-  m_grid.noteLowered(voxel, code, before);
-  return emptied ? 1 : 0;
-}
-
-int VoxelSkull::cutAt(const Vec3& point_W) {
-  if (!d_drill.value() || m_forceRemoval || !point_W.allFinite()) return 0;
-  int removed = 0;
-  if (!m_grid.smooth) {
-    // The probe met the bone at a voxel face: the voxel just beyond, within a tenth of a voxel.
-    const int64_t voxel = m_grid.voxelOf(point_W);
-    if (voxel >= 0 && m_grid.codes[voxel] >= m_grid.threshold) removed = lowerVoxel(voxel);
-  } else {
-    const Vec3 u = (point_W - m_grid.corner).cwiseProduct(m_grid.inverseSpacing) - Vec3::Constant(0.5);
-    const int64_t i = int64_t(std::floor(u.x())), j = int64_t(std::floor(u.y())), k = int64_t(std::floor(u.z()));
-    for (int corner = 0; corner < 8; ++corner) {
-      const int64_t a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + (corner >> 2);
-      if (m_grid.inside(a, b, c)) removed += lowerVoxel(m_grid.linear(a, b, c));
-    }
-  }
-  m_voxelsRemoved += removed;
-  return removed;
-}
-
-ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
-  ShellContact contact;
+VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) {
+  VoxelContact result;
+  ShellContact& contact = result.contact;
   const ReservedShell* reserved = findShell(shell);
   if (!reserved) {  // a shell nobody announced: counted, not tested (no allocation here)
     ++m_unreservedShellCalls;
-    return contact;
+    return result;
   }
   const size_t n = shell.size();
   // Colliding box: the tool's bounds against the volume's.
   const Box3 toolBox(X_WT.position - Vec3::Constant(reserved->radius),
                      X_WT.position + Vec3::Constant(reserved->radius));
-  if (!m_volume.bounds().intersects(toolBox)) return contact;
+  if (!volume().bounds().intersects(toolBox)) return result;
 
-  m_pointTest(m_grid, reserved->arrays, X_WT, {m_voxels.data(), m_solid.data()});
+  m_pointTest(grid(), reserved->arrays, X_WT, {m_voxels.data(), m_solid.data()});
   // The points in bone, 8 flags at a time: most of a touching shell is out of the bone.
   size_t hits = 0;
   size_t i = 0;
@@ -93,15 +63,14 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   }
   for (; i < n; ++i)
     if (m_solid[i]) m_hits[hits++] = {m_voxels[i], static_cast<int32_t>(i)};
-  if (hits == 0) return contact;
+  if (hits == 0) return result;
   ++m_contactFrames;
   contact.points = static_cast<int>(hits);
 
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
-  const bool algorithm1 = m_algorithm1;
-  const bool drilling = removeMaterial && d_drill.value() && !m_forceRemoval;  // the thesis's law cuts here
+  const bool algorithm1 = m_data.algorithm1;
   // Deepest-point depths are searched along the normal up to the tool's diameter.
-  const double reach = 2.0 * reserved->radius + m_grid.spacing.maxCoeff();
+  const double reach = 2.0 * reserved->radius + grid().spacing.maxCoeff();
   // Deepest-point variants weight each point's normal by its depth, so a point
   // entering or leaving the bone (depth near 0) does not turn the normal at once.
   Vec3 weightedSum = Vec3::Zero();
@@ -120,21 +89,21 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
     if (algorithm1) {
       // McNeely tangent plane: through the voxel centre with the point's normal.
       m_groupDepths[group] -= offset.dot(normal);
-    } else if (m_grid.smooth) {
+    } else if (grid().smooth) {
       // Smooth surface: the surface normal and the first-order distance to the isosurface.
       Vec3 gradient;
-      const double code = m_grid.codeAt(p, &gradient);
+      const double code = grid().codeAt(p, &gradient);
       const double slope = gradient.norm();  // codes per mm
-      if (slope * m_grid.smallestSide() > 1e-3 * std::max(1.0, std::abs(m_grid.isoCode))) {
+      if (slope * grid().smallestSide() > 1e-3 * std::max(1.0, std::abs(grid().isoCode))) {
         normal = -gradient / slope;
-        m_depths[h] = std::min((code - m_grid.isoCode) / slope, reach);
+        m_depths[h] = std::min((code - grid().isoCode) / slope, reach);
       } else {
         // Flat density deep in bone: no gradient; measured along the tool's normal instead.
-        m_depths[h] = reach * firstFreeOnSegment(m_grid, p, p + reach * normal);
+        m_depths[h] = reach * firstFreeOnSegment(grid(), p, p + reach * normal);
       }
       m_normals[h] = normal;
     } else {
-      m_depths[h] = depthToFreeVoxel(m_grid, p, m_hits[h].voxel, normal, reach);
+      m_depths[h] = depthToFreeVoxel(grid(), p, m_hits[h].voxel, normal, reach);
       m_normals[h] = normal;
     }
     m_groupNormals[group] += normal;
@@ -143,35 +112,34 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
   }
   Vec3 normalSum = Vec3::Zero();
   double penetration = 0;
-  int removed = 0;
+  size_t touched = 0;  // the voxels the thesis's removal law cuts, when asked for
   const int voxels = static_cast<int>(m_groups.size());
   for (int32_t group = 0; group < voxels; ++group) {
     const int64_t voxel = m_groups.voxel(group);
     // Algorithm 1: the deepest of the per-voxel mean depths.
     if (algorithm1) {
-      const double depthSum = (m_grid.centerOf(voxel) - X_WT.position).dot(m_groupNormals[group]) + m_groupDepths[group];
+      const double depthSum = (grid().centerOf(voxel) - X_WT.position).dot(m_groupNormals[group]) + m_groupDepths[group];
       penetration = std::max(penetration, depthSum / double(m_groupPoints[group]));
     }
     const double length = m_groupNormals[group].norm();
     if (length > 1e-12) normalSum += m_groupNormals[group] / length;  // Eq. 3.4: one unit normal per voxel
-    if (drilling && !m_grid.smooth) removed += lowerVoxel(voxel);
+    if (touchedVoxels && !grid().smooth) m_touched[touched++] = voxel;
   }
-  if (drilling && m_grid.smooth) {
+  if (touchedVoxels && grid().smooth) {
     // Smooth surface: the density at a point comes from the 8 voxel centres
     // around it, so the burr cuts all of them (each once per frame).
     size_t count = 0;
     for (size_t h = 0; h < hits; ++h) {
       const Vec3 p = R * shell[m_hits[h].point].position + X_WT.position;
-      const Vec3 u = (p - m_grid.corner).cwiseProduct(m_grid.inverseSpacing) - Vec3::Constant(0.5);
+      const Vec3 u = (p - grid().corner).cwiseProduct(grid().inverseSpacing) - Vec3::Constant(0.5);
       const int64_t i = int64_t(std::floor(u.x())), j = int64_t(std::floor(u.y())), k = int64_t(std::floor(u.z()));
       for (int corner = 0; corner < 8; ++corner) {
         const int64_t a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + (corner >> 2);
-        if (m_grid.inside(a, b, c)) m_cutVoxels[count++] = m_grid.linear(a, b, c);
+        if (grid().inside(a, b, c)) m_touched[count++] = grid().linear(a, b, c);
       }
     }
-    std::sort(m_cutVoxels.begin(), m_cutVoxels.begin() + count);
-    const auto end = std::unique(m_cutVoxels.begin(), m_cutVoxels.begin() + count);
-    for (auto it = m_cutVoxels.begin(); it != end; ++it) removed += lowerVoxel(*it);
+    std::sort(m_touched.begin(), m_touched.begin() + count);
+    touched = size_t(std::unique(m_touched.begin(), m_touched.begin() + count) - m_touched.begin());
   }
   // The average vanishes when contacts surround the tool: no direction is given then.
   const double sumLength = normalSum.norm();
@@ -184,25 +152,24 @@ ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> s
       penetration = std::max(penetration, m_depths[h] * std::max(0.0, m_normals[h].dot(contact.normal)));
   }
   contact.primitives = voxels;
-  contact.removed = removed;
   contact.penetration = penetration;
-  m_voxelsRemoved += removed;
+  result.touched = {m_touched.data(), touched};
   m_maxCollidingVoxels = std::max<uint64_t>(m_maxCollidingVoxels, voxels);
-  return contact;
+  return result;
 }
 
-bool VoxelSkull::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+bool NativeVoxelBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
   // Visible overlap: the tool's centre, or its shell pulled one voxel inwards, is
   // in a bone voxel. Voxels suffice at a tolerance of one voxel (and cost a
   // quarter of the smooth test).
-  const int64_t centre = m_grid.voxelOf(X_WT.position);
-  if (centre >= 0 && m_grid.codes[centre] >= m_grid.threshold) return true;
+  const int64_t centre = grid().voxelOf(X_WT.position);
+  if (centre >= 0 && grid().codes[centre] >= grid().threshold) return true;
   const ReservedShell* reserved = findShell(shell);
   if (!reserved) return false;
   const Box3 toolBox(X_WT.position - Vec3::Constant(reserved->radius),
                      X_WT.position + Vec3::Constant(reserved->radius));
-  if (!m_volume.bounds().intersects(toolBox)) return false;
-  m_voxelPointTest(m_grid, reserved->inset, X_WT, {m_voxels.data(), m_solid.data()});
+  if (!volume().bounds().intersects(toolBox)) return false;
+  m_voxelPointTest(grid(), reserved->inset, X_WT, {m_voxels.data(), m_solid.data()});
   for (size_t i = 0; i < reserved->inset.size(); ++i)
     if (m_solid[i]) return true;
   return false;

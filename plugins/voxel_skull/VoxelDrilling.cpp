@@ -1,5 +1,8 @@
-// VoxelSkull: force-driven drilling (removal="force"). The removal law gives
-// the speed v at which the bone surface under the burr recedes (RemovalLaw.h);
+// VoxelSkull: drilling, on the data it keeps (the collision back-end only
+// reads it). The thesis's law (removal="thesis") cuts the voxels a contact
+// touches, as the back-end reports them. Force-driven drilling
+// (removal="force", the default): the removal law gives the speed v at which
+// the bone surface under the burr recedes (RemovalLaw.h);
 // each frame the density of the voxels in the burr's footprint falls by
 // w v dt |grad rho|, so the interpolated isosurface moves by about v dt:
 //  - |grad rho| is each voxel's own density gradient (one-sided differences),
@@ -30,6 +33,53 @@ namespace {
 // burr was lifted, and the next contact starts afresh.
 constexpr double kCutPause = 0.05;
 }  // namespace
+
+// The thesis's law (removal="thesis"): each voxel the tool touches loses
+// m_drillStep codes per frame.
+int VoxelSkull::lowerVoxel(int64_t voxel) {
+  VoxelCode& code = m_volume.codes()[voxel];
+  // Never below the emptiest voxel of the volume (air).
+  const int32_t floor = static_cast<int32_t>(std::ceil(m_grid.outsideCode));
+  const int32_t lowered = std::max<int32_t>(int32_t(code) - m_drillStep, std::min<int32_t>(code, floor));
+  const bool emptied = code >= m_grid.threshold && lowered < m_grid.threshold;  // bone that became empty
+  const VoxelCode before = code;
+  code = static_cast<VoxelCode>(lowered);
+  m_grid.noteLowered(voxel, code, before);
+  return emptied ? 1 : 0;
+}
+
+int VoxelSkull::cutAt(const Vec3& point_W) {
+  if (!d_drill.value() || m_forceRemoval || !point_W.allFinite()) return 0;
+  int removed = 0;
+  if (!m_grid.smooth) {
+    // The probe met the bone at a voxel face: the voxel just beyond, within a tenth of a voxel.
+    const int64_t voxel = m_grid.voxelOf(point_W);
+    if (voxel >= 0 && m_grid.codes[voxel] >= m_grid.threshold) removed = lowerVoxel(voxel);
+  } else {
+    const Vec3 u = (point_W - m_grid.corner).cwiseProduct(m_grid.inverseSpacing) - Vec3::Constant(0.5);
+    const int64_t i = int64_t(std::floor(u.x())), j = int64_t(std::floor(u.y())), k = int64_t(std::floor(u.z()));
+    for (int corner = 0; corner < 8; ++corner) {
+      const int64_t a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + (corner >> 2);
+      if (m_grid.inside(a, b, c)) removed += lowerVoxel(m_grid.linear(a, b, c));
+    }
+  }
+  m_voxelsRemoved += removed;
+  return removed;
+}
+
+
+ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
+  if (!m_bound) return {};
+  const bool thesisCut = removeMaterial && d_drill.value() && !m_forceRemoval;
+  VoxelContact c = m_backend->collide(X_WT, shell, thesisCut);
+  if (thesisCut) {
+    int removed = 0;
+    for (const int64_t voxel : c.touched) removed += lowerVoxel(voxel);
+    c.contact.removed = removed;
+    m_voxelsRemoved += removed;
+  }
+  return c.contact;
+}
 
 bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
   const double h = m_grid.smallestSide();

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "framework/core/Lifecycle.h"
-#include "framework/geometry/FrontRings.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/io/Resample.h"
 #include "plugins/voxel_skull/io/VolumeReader.h"
@@ -14,6 +13,16 @@
 namespace trephine::voxel {
 
 void VoxelSkull::init(InitContext& context) {
+  std::unique_ptr<CollisionBackend> backend = context.createBackend(kTypeName, d_backend.value());
+  m_backend.reset(dynamic_cast<VoxelBackend*>(backend.get()));
+  if (m_backend) backend.release();
+  if (!m_backend) {
+    std::string known;
+    for (const std::string& name : context.backendNames(kTypeName)) known += (known.empty() ? "" : ", ") + name;
+    context.error(d_backend, "no collision back-end \"" + d_backend.value() + "\" for VoxelSkull (registered: " +
+                                 (known.empty() ? "none" : known) + "); if a plugin provides it, add <RequiredPlugin name=\"" +
+                                 d_backend.value() + "\"/> to the scene");
+  }
   DensityVolume volume;
   try {
     volume = d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : readVolume(d_file.path());
@@ -69,72 +78,27 @@ void VoxelSkull::setVolume(DensityVolume volume) {
   const bool smooth = d_surface.is("smooth");
   m_grid = SolidGrid::of(m_volume, d_isovalue.value(), smooth);
   m_grid.buildOccupancy();  // smooth surface: the cells the point test must interpolate in
-  m_pointTest = bestShellPointTest(smooth);
-  reserveProbeLines();  // the voxel size may have changed
   m_algorithm1 = d_penetration.is("algorithm1") || (d_penetration.is("auto") && !smooth);
+  if (m_backend) m_backend->bind({&m_volume, &m_grid, m_algorithm1});
+  m_bound = m_backend != nullptr;
   // Drilling works on the stored codes: at least one code step per frame.
   m_drillStep =
       std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
   m_boneAhead = false;
 }
 
+// The queries go to the collision back-end once it is bound to the data.
+// Before that (the volume or the back-end failed to load, and the tools' init
+// still announces their shells) there is nothing to hit.
 void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
-  if (findShell(shell)) return;
-  ReservedShell reserved;
-  reserved.source = shell.data();
-  reserved.size = shell.size();
-  reserved.arrays.assign(shell);
-  // Pulled in by one voxel, never past the reference point (a tool thinner than a
-  // voxel is judged by its centre), and thinned to points about a voxel apart:
-  // the test's tolerance is a voxel, and bone narrower than a voxel does not
-  // exist at the volume's resolution (a 466-point burr of 2.5 mm keeps about
-  // 200 points on 0.5 mm voxels, 50 on 1 mm).
-  const double inset = m_grid.spacing.maxCoeff();
-  const double apart = 0.9 * m_grid.smallestSide();
-  std::vector<ShellPoint> pulled;
-  for (const ShellPoint& p : shell) {
-    ShellPoint q = p;
-    q.position += std::min(inset, p.position.norm()) * p.inwardNormal;
-    bool near = false;
-    for (const ShellPoint& kept : pulled) near = near || (kept.position - q.position).squaredNorm() < apart * apart;
-    if (!near) pulled.push_back(q);
-  }
-  reserved.inset.assign(pulled);
-  for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
-  m_shells.push_back(std::move(reserved));
-  const size_t n = std::max(shell.size(), m_hits.size());
-  m_hits.resize(n);
-  m_voxels.resize(n);
-  m_solid.resize(n);
-  m_depths.resize(n);
-  m_normals.resize(n);
-  m_cutVoxels.resize(8 * n);
-  m_groups.reserve(n);
-  m_groupNormals.resize(n);
-  m_groupDepths.resize(n);
-  m_groupPoints.resize(n);
-  m_wasSolid.resize(n);
-  reserveProbeLines();
+  if (m_bound) m_backend->reserveShell(shell);
 }
-
-void VoxelSkull::reserveProbeLines() {
-  double radius = 0;
-  for (const ReservedShell& s : m_shells) radius = std::max(radius, s.radius);
-  if (!(radius > 0) || !(m_grid.smallestSide() > 0)) return;
-  const size_t lines = 1 + size_t(frontRingPointCount(radius, m_grid.smallestSide()));
-  if (lines <= m_probeLines.size()) return;
-  m_probeLines.resize(lines);
-  m_probePoints.x.reserve(lines);
-  m_probePoints.y.reserve(lines);
-  m_probePoints.z.reserve(lines);
-  m_probeVoxels.resize(lines);
-  m_probeSolid.resize(lines);
+SweepResult VoxelSkull::sweep(const SweepQuery& query) const { return m_bound ? m_backend->sweep(query) : SweepResult{}; }
+bool VoxelSkull::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+  return m_bound && m_backend->overlaps(X_WT, shell);
 }
-
-const VoxelSkull::ReservedShell* VoxelSkull::findShell(std::span<const ShellPoint> shell) const {
-  for (const ReservedShell& s : m_shells)
-    if (s.source == shell.data() && s.size == shell.size()) return &s;
-  return nullptr;
+std::optional<SurfaceHit> VoxelSkull::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
+  return m_bound ? m_backend->raycast(origin, direction, maxDistance) : std::nullopt;
 }
 
 Box3 VoxelSkull::bounds() const { return m_volume.bounds(); }
@@ -163,7 +127,6 @@ void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"voxel_size_mm", m_volume.spacing().minCoeff()});
   counters.push_back({"bytes_per_voxel", double(sizeof(VoxelCode))});
   counters.push_back({"voxels_removed", double(m_voxelsRemoved)});
-  counters.push_back({"contact_frames", double(m_contactFrames)});
   if (d_drill.value() && !m_forceRemoval) counters.push_back({"frames_to_cut_densest_voxel", m_framesToDrillDensest});
   if (d_drill.value() && m_forceRemoval) {
     counters.push_back({"cut_frames", double(m_cutFrames)});
@@ -173,8 +136,9 @@ void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
                                                 d_referenceDensity.value()});
     counters.push_back({"breakthroughs", double(m_breakthroughs)});
   }
-  counters.push_back({"max_colliding_voxels", double(m_maxCollidingVoxels)});
-  if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
+  if (m_backend) m_backend->reportCounters(counters);
 }
+
+void VoxelSkull::reportFacts(std::vector<Fact>& facts) const { facts.push_back({"backend", d_backend.value()}); }
 
 }  // namespace trephine::voxel

@@ -9,6 +9,8 @@
 //    sub-voxel and nothing beyond the burr's radius plus one voxel changes;
 //  - removal="thesis": the voxels the tool touches lose `drillRate` density
 //    per haptic frame until they fall below the isovalue, whatever the force.
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "framework/core/Component.h"
@@ -16,9 +18,8 @@
 #include "plugins/voxel_skull/DensityVolume.h"
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/RemovalLaw.h"
-#include "plugins/voxel_skull/ShellPointTest.h"
 #include "plugins/voxel_skull/SolidGrid.h"
-#include "plugins/voxel_skull/VoxelGroups.h"
+#include "plugins/voxel_skull/VoxelBackend.h"
 
 namespace trephine::voxel {
 
@@ -29,6 +30,7 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   void init(InitContext& context) override;
   void finish(FinishContext& context) override;
   void reportCounters(std::vector<Counter>& counters) const override;
+  void reportFacts(std::vector<Fact>& facts) const override;
   void declareOutputs(std::vector<OutputFile>& outputs) const override;
 
   // SurfaceTarget
@@ -51,12 +53,6 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   void setVolume(DensityVolume volume);
 
  private:
-  Vec3 densityGradient(const Vec3& p) const;
-  // The line and cylinder sweeps on the smooth surface, all lines a step at a
-  // time (VoxelSweep.cpp); needs m_probeLines sized for the query.
-  SweepResult sweepSmoothLines(const SweepQuery& query, bool buried) const;
-  // Sizes the smooth sweep's working memory for the reserved shells' radii.
-  void reserveProbeLines();
   // Drills one voxel by m_drillStep; 1 if it was bone and is not any more.
   int lowerVoxel(int64_t voxel);
   // Whether bone lies ahead of a burr's front along `direction` (unit), within
@@ -71,6 +67,12 @@ class VoxelSkull final : public Component, public ShellContactTarget {
                         .required = true},
                        FilePathField::Role::Input,
                        {"phantom"}};
+  Field<std::string> d_backend{this,
+                                "backend",
+                                "native",
+                                {.help = "Collision back-end answering the contact, sweep and overlap queries: native "
+                                         "(the voxel method of the thesis) or one a plugin adds (its name; the "
+                                         "scene needs that plugin's <RequiredPlugin/>)"}};
   Field<double> d_isovalue{this, "isovalue", 400.0, {.help = "Voxels denser than this are bone", .unit = "density"}};
   Field<double> d_voxelSize{
       this,
@@ -193,44 +195,10 @@ class VoxelSkull final : public Component, public ShellContactTarget {
   uint64_t m_cutFrames = 0, m_breakthroughs = 0;
   bool m_algorithm1 = false;          // d_penetration resolved for the surface, once in setVolume
   double m_framesToDrillDensest = 0;  // frames of contact that empty the densest voxel
-  // Per-frame working memory, sized by reserveShell().
-  struct Hit {
-    int64_t voxel;
-    int32_t point;
-  };
-  struct ReservedShell {
-    const ShellPoint* source = nullptr;
-    size_t size = 0;
-    ShellArrays arrays;
-    ShellArrays inset;  // the shell pulled one voxel inwards, points a voxel apart: the overlap test of a displayed proxy
-    double radius = 0;  // mm, farthest point from the reference point
-  };
-  const ReservedShell* findShell(std::span<const ShellPoint> shell) const;
-  std::vector<ReservedShell> m_shells;
-  ShellPointTestFunction m_pointTest = bestShellPointTest(false);
-  ShellPointTestFunction m_voxelPointTest = bestShellPointTest(false);
-  std::vector<Hit> m_hits;
-  mutable std::vector<int64_t> m_voxels;
-  mutable std::vector<uint8_t> m_solid;
-  std::vector<double> m_depths;      // per hit, mm
-  std::vector<Vec3> m_normals;       // per hit, unit, out of the bone
-  std::vector<int64_t> m_cutVoxels;  // voxels cut this frame (8 per hit at most)
-  VoxelGroups m_groups;              // the hits grouped by voxel
-  std::vector<Vec3> m_groupNormals;  // per group: sum of its points' normals
-  std::vector<double> m_groupDepths; // per group, Algorithm 1: -sum(offset . normal), mm
-  std::vector<int32_t> m_groupPoints;  // per group: its points
-  mutable std::vector<uint8_t> m_wasSolid;
-  // The smooth line sweep's lines and one step's points, sized by reserveProbeLines().
-  struct ProbeLine {
-    Vec3 offset;    // mm, from the tool's reference point
-    bool front;     // blocks when it starts in bone (unless the tool is buried)
-    bool skipping;  // still in the bone it started in
-  };
-  mutable std::vector<ProbeLine> m_probeLines;
-  mutable ShellArrays m_probePoints;
-  mutable std::vector<int64_t> m_probeVoxels;
-  mutable std::vector<uint8_t> m_probeSolid;
-  uint64_t m_voxelsRemoved = 0, m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;
+  // The collision back-end (d_backend), bound to m_volume and m_grid.
+  std::unique_ptr<VoxelBackend> m_backend;
+  bool m_bound = false;  // m_backend is bound to the loaded volume
+  uint64_t m_voxelsRemoved = 0;
 };
 
 }  // namespace trephine::voxel

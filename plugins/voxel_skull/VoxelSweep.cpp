@@ -1,16 +1,16 @@
-// VoxelSkull: the sweeps that keep the proxy out of the bone (thesis section
+// The native back-end of VoxelSkull: the sweeps that keep the proxy out of the bone (thesis section
 // 3.2: before moving, and rectifying), and the ray cast that aims scripted paths.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "framework/geometry/FrontRings.h"
-#include "plugins/voxel_skull/VoxelSkull.h"
+#include "plugins/voxel_skull/NativeVoxelBackend.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
 
 namespace trephine::voxel {
 
-SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
+SweepResult NativeVoxelBackend::sweep(const SweepQuery& query) const {
   SweepResult result;
   const Vec3 path = query.to - query.from;
   const double length = path.norm();
@@ -20,19 +20,19 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
 
   // A proxy whose centre is in bone (it started there) may move anywhere out of it:
   // only material it newly enters blocks it.
-  const bool buried = m_grid.solidAt(query.from);
+  const bool buried = grid().solidAt(query.from);
   if (query.probe == SweepProbe::Spheres) {
     // A string of spheres: the whole shell at steps of the smallest voxel side.
     const ReservedShell* reserved = findShell(query.shell);
     if (!reserved) return result;
-    const double step = m_grid.smallestSide();
+    const double step = grid().smallestSide();
     const int steps = static_cast<int>(std::ceil(length / step));
     const Eigen::Matrix3d Rm = query.orientation.toRotationMatrix();
     for (int k = 0; k <= steps; ++k) {
       const Vec3 offset = query.from + std::min(k * step, length) * u;
       // The whole shell at once (the vectorised point test of the detection,
       // the same flags as solidAt point by point).
-      m_pointTest(m_grid, reserved->arrays, Pose{offset, query.orientation}, {m_voxels.data(), m_solid.data()});
+      m_pointTest(grid(), reserved->arrays, Pose{offset, query.orientation}, {m_voxels.data(), m_solid.data()});
       for (size_t i = 0; i < query.shell.size(); ++i) {
         const ShellPoint& point = query.shell[i];
         const bool solid = m_solid[i] != 0;
@@ -56,9 +56,9 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
     return result;
   }
 
-  if (m_grid.smooth && R >= 0 && (query.probe == SweepProbe::Line || query.probe == SweepProbe::Cylinder)) {
+  if (grid().smooth && R >= 0 && (query.probe == SweepProbe::Line || query.probe == SweepProbe::Cylinder)) {
     const int lines = 1 + (query.probe == SweepProbe::Cylinder && R > 0
-                               ? frontRingPointCount(R, m_grid.smallestSide())
+                               ? frontRingPointCount(R, grid().smallestSide())
                                : 0);
     if (lines <= int(m_probeLines.size())) return sweepSmoothLines(query, buried);
   }
@@ -67,7 +67,7 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
   // bone the tool already presses that way: it stays.
   const Vec3 lead = R * u;
   double first = 2.0;
-  const SegmentHit hit = firstSolidOnSegment(m_grid, query.from + lead, query.to + lead, buried);
+  const SegmentHit hit = firstSolidOnSegment(grid(), query.from + lead, query.to + lead, buried);
   Vec3 firstProbe = lead;  // where, relative to the tool's reference point, the blocking probe starts
   if (hit.hit) {
     if (hit.startsSolid && !buried) {
@@ -87,9 +87,9 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
     // Each line is traversed only as far as the nearest block found so far: a
     // hit beyond it could not move the stop (same result, and a tool pressed
     // deep into bone no longer traverses the whole path from every ring point).
-    const bool stopped = forEachFrontRingPoint(u, R, m_grid.smallestSide(), [&](const Vec3& offset, bool front) {
+    const bool stopped = forEachFrontRingPoint(u, R, grid().smallestSide(), [&](const Vec3& offset, bool front) {
       const double reach = first > 0 ? std::min(first, 1.0) : 1.0;
-      SegmentHit ring = firstSolidOnSegment(m_grid, query.from + offset, query.from + offset + reach * path,
+      SegmentHit ring = firstSolidOnSegment(grid(), query.from + offset, query.from + offset + reach * path,
                                             buried || !front);
       if (!ring.hit) return false;
       ring.t *= reach;
@@ -115,7 +115,7 @@ SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
   return result;
 }
 
-SweepResult VoxelSkull::sweepSmoothLines(const SweepQuery& query, bool buried) const {
+SweepResult NativeVoxelBackend::sweepSmoothLines(const SweepQuery& query, bool buried) const {
   // The smooth surface, probed by lines: the leading point's and, for the
   // cylinder, the rings'. All lines advance together, half a voxel a step,
   // and the sweep ends at the first step where any line enters new bone: a
@@ -135,7 +135,7 @@ SweepResult VoxelSkull::sweepSmoothLines(const SweepQuery& query, bool buried) c
   int lines = 0;
   m_probeLines[lines++] = {R * u, true, false};
   if (query.probe == SweepProbe::Cylinder && R > 0)
-    forEachFrontRingPoint(u, R, m_grid.smallestSide(), [&](const Vec3& offset, bool front) {
+    forEachFrontRingPoint(u, R, grid().smallestSide(), [&](const Vec3& offset, bool front) {
       m_probeLines[lines++] = {offset, front, false};
       return false;
     });
@@ -144,14 +144,14 @@ SweepResult VoxelSkull::sweepSmoothLines(const SweepQuery& query, bool buried) c
   points.y.resize(size_t(lines));
   points.z.resize(size_t(lines));
   const Pose identity{Vec3::Zero(), Quat::Identity()};
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * m_grid.smallestSide()))));
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * grid().smallestSide()))));
   for (int k = 0; k <= steps; ++k) {
     const double t = double(k) / steps;
     for (int j = 0; j < lines; ++j) {
       const Vec3 p = query.from + m_probeLines[j].offset + t * path;
       points.x[size_t(j)] = p.x(), points.y[size_t(j)] = p.y(), points.z[size_t(j)] = p.z();
     }
-    m_pointTest(m_grid, points, identity, {m_probeVoxels.data(), m_probeSolid.data()});
+    m_pointTest(grid(), points, identity, {m_probeVoxels.data(), m_probeSolid.data()});
     if (k == 0) {
       for (int j = 0; j < lines; ++j) {
         ProbeLine& line = m_probeLines[j];
@@ -181,10 +181,10 @@ SweepResult VoxelSkull::sweepSmoothLines(const SweepQuery& query, bool buried) c
       double upTo = t;
       if (nearestLine >= 0) {
         // Nearer than the crossing found only if already in bone there.
-        if (!m_grid.solidAt(a + nearest * path)) continue;
+        if (!grid().solidAt(a + nearest * path)) continue;
         upTo = nearest;
       }
-      nearest = crossingOnSegment(m_grid, a, b, previous, upTo);
+      nearest = crossingOnSegment(grid(), a, b, previous, upTo);
       nearestLine = j;
     }
     if (nearestLine >= 0) {
@@ -197,22 +197,22 @@ SweepResult VoxelSkull::sweepSmoothLines(const SweepQuery& query, bool buried) c
   return result;
 }
 
-Vec3 VoxelSkull::densityGradient(const Vec3& p) const {
+Vec3 NativeVoxelBackend::densityGradient(const Vec3& p) const {
   // Central differences of the solid indicator's density over one voxel (per mm).
   Vec3 g;
   for (int a = 0; a < 3; ++a) {
-    const Vec3 d = Vec3::Unit(a) * m_grid.spacing[a];
+    const Vec3 d = Vec3::Unit(a) * grid().spacing[a];
     auto densityAt = [&](const Vec3& q) {
-      const int64_t v = m_grid.voxelOf(q);
-      return v < 0 ? 0.0 : m_volume.encoding().density(m_grid.codes[v]);
+      const int64_t v = grid().voxelOf(q);
+      return v < 0 ? 0.0 : volume().encoding().density(grid().codes[v]);
     };
-    g[a] = (densityAt(p + d) - densityAt(p - d)) / (2 * m_grid.spacing[a]);
+    g[a] = (densityAt(p + d) - densityAt(p - d)) / (2 * grid().spacing[a]);
   }
   return g;
 }
 
-std::optional<SurfaceHit> VoxelSkull::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
-  const SegmentHit hit = firstSolidOnSegment(m_grid, origin, origin + maxDistance * direction, false);
+std::optional<SurfaceHit> NativeVoxelBackend::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
+  const SegmentHit hit = firstSolidOnSegment(grid(), origin, origin + maxDistance * direction, false);
   if (!hit.hit) return std::nullopt;
   SurfaceHit out;
   out.distance = hit.t * maxDistance;

@@ -82,9 +82,22 @@ bool writeReference(std::ostream& out, ReferenceFormat format, const std::string
             << " | " << markdownCell(f->defaultText()) << " | " << f->info().unit << " | "
             << markdownCell(f->rangeText()) << " | " << markdownCell(std::string(f->info().help)) << " |\n";
       }
+      const std::vector<std::string> backends = registry.backendNames(entry->type);
+      if (!backends.empty()) {
+        out << "\nCollision back-ends (`backend`):";
+        for (const std::string& name : backends) {
+          const BackendEntry* b = registry.findBackend(entry->type, name);
+          out << " `" << name << "` (plugin `" << b->plugin << "`: " << markdownCell(b->summary) << ")"
+              << (name == backends.back() ? "." : ";");
+        }
+        out << "\n";
+      }
       out << "\n";
     } else {
       out << entry->type << "  [plugin " << entry->plugin << "]\n  " << entry->summary << "\n";
+      for (const std::string& name : registry.backendNames(entry->type))
+        out << "  back-end " << name << "  [plugin " << registry.findBackend(entry->type, name)->plugin << "]\n      "
+            << registry.findBackend(entry->type, name)->summary << "\n";
       for (const BaseField* f : prototype->fields()) {
         out << "  " << f->name() << " : " << f->typeName();
         if (!f->defaultText().empty()) out << " = " << f->defaultText();

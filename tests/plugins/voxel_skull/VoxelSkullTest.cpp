@@ -92,6 +92,35 @@ TEST(VoxelSkullTest, BadVolumeSourcesAreLoadErrorsAtTheAttribute) {
   EXPECT_NE(test::messages(d2).find("broken.mha"), std::string::npos) << test::messages(d2);
 }
 
+TEST(VoxelSkullTest, TheBackendFieldPicksARegisteredBackEndAndTheSummaryNamesIt) {
+  // An unknown back-end is a load error at the attribute that lists what is
+  // registered and the <RequiredPlugin/> a plugin's back-end needs.
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(skullScene(R"(file="phantom:skull?voxel=3" backend="embree")"), d));
+  const std::string m = test::messages(d);
+  EXPECT_NE(m.find("inline.xml:5:"), std::string::npos) << m;
+  EXPECT_NE(m.find("invalid backend of VoxelSkull 'skull': no collision back-end \"embree\""), std::string::npos) << m;
+  EXPECT_NE(m.find("(registered: native)"), std::string::npos) << m;
+  EXPECT_NE(m.find("<RequiredPlugin name=\"embree\"/>"), std::string::npos) << m;
+
+  // The native one, by default or by name, and summary.json says which.
+  test::TempDir dir;
+  for (const char* attribute : {"", R"(backend="native")"}) {
+    dir.write("scene.xml", skullScene(std::string(R"(file="phantom:skull?voxel=3" )") + attribute));
+    std::string output;
+    ASSERT_EQ(test::runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--out", (dir / "run").string()},
+                               &output),
+              0)
+        << output;
+    const std::string summary = test::readFile(dir / "run/summary.json");
+    const size_t skull = summary.find("\"/skull\": {");
+    ASSERT_NE(skull, std::string::npos) << summary;
+    // In the skull's own entry: before the first field after the facts.
+    EXPECT_LT(summary.find("\"backend\": \"native\"", skull), summary.find("\"rate_hz\"", skull))
+        << summary.substr(skull, 200);
+  }
+}
+
 TEST(VoxelSkullTest, TwoBytesPerVoxelAndReportedDimensions) {
   Diagnostics d;
   auto simulation = test::loadScene(skullScene(R"(file="phantom:skull?voxel=2")"), d);

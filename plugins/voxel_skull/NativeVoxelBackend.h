@@ -1,0 +1,78 @@
+#pragma once
+// VoxelSkull's own collision back-end (backend="native", the thesis's method,
+// section 3.2): the pointshell tested point by point against the voxels or the
+// smooth isosurface of the interpolated density, in flat vectorised loops
+// over occupancy cells; penetration by Algorithm 1 or the deepest point;
+// sweeps of the leading point, of ring lines or of the whole shell; no surface
+// mesh. VoxelCollision.cpp has the contact and overlap tests, VoxelSweep.cpp
+// the sweeps and the ray cast.
+#include <vector>
+
+#include "plugins/voxel_skull/ShellPointTest.h"
+#include "plugins/voxel_skull/VoxelBackend.h"
+#include "plugins/voxel_skull/VoxelGroups.h"
+
+namespace trephine::voxel {
+
+class NativeVoxelBackend final : public VoxelBackend {
+ public:
+  void bind(const VoxelData& data) override;
+  void reserveShell(std::span<const ShellPoint> shell) override;
+  VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) override;
+  SweepResult sweep(const SweepQuery& query) const override;
+  bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
+  std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+
+ private:
+  const SolidGrid& grid() const { return *m_data.grid; }
+  const DensityVolume& volume() const { return *m_data.volume; }
+  Vec3 densityGradient(const Vec3& p) const;
+  // The line and cylinder sweeps on the smooth surface, all lines a step at a
+  // time (VoxelSweep.cpp); needs m_probeLines sized for the query.
+  SweepResult sweepSmoothLines(const SweepQuery& query, bool buried) const;
+  // Sizes the smooth sweep's working memory for the reserved shells' radii.
+  void reserveProbeLines();
+
+  VoxelData m_data;
+  struct ReservedShell {
+    const ShellPoint* source = nullptr;
+    size_t size = 0;
+    ShellArrays arrays;
+    ShellArrays inset;  // the shell pulled one voxel inwards, points a voxel apart: the overlap test of a displayed proxy
+    double radius = 0;  // mm, farthest point from the reference point
+  };
+  const ReservedShell* findShell(std::span<const ShellPoint> shell) const;
+  std::vector<ReservedShell> m_shells;
+  ShellPointTestFunction m_pointTest = bestShellPointTest(false);
+  ShellPointTestFunction m_voxelPointTest = bestShellPointTest(false);
+  // Per-frame working memory, sized by reserveShell().
+  struct Hit {
+    int64_t voxel;
+    int32_t point;
+  };
+  std::vector<Hit> m_hits;
+  mutable std::vector<int64_t> m_voxels;
+  mutable std::vector<uint8_t> m_solid;
+  std::vector<double> m_depths;        // per hit, mm
+  std::vector<Vec3> m_normals;         // per hit, unit, out of the bone
+  std::vector<int64_t> m_touched;      // the voxels the thesis's law cuts this frame (8 per hit at most)
+  VoxelGroups m_groups;                // the hits grouped by voxel
+  std::vector<Vec3> m_groupNormals;    // per group: sum of its points' normals
+  std::vector<double> m_groupDepths;   // per group, Algorithm 1: -sum(offset . normal), mm
+  std::vector<int32_t> m_groupPoints;  // per group: its points
+  mutable std::vector<uint8_t> m_wasSolid;
+  // The smooth line sweep's lines and one step's points, sized by reserveProbeLines().
+  struct ProbeLine {
+    Vec3 offset;    // mm, from the tool's reference point
+    bool front;     // blocks when it starts in bone (unless the tool is buried)
+    bool skipping;  // still in the bone it started in
+  };
+  mutable std::vector<ProbeLine> m_probeLines;
+  mutable ShellArrays m_probePoints;
+  mutable std::vector<int64_t> m_probeVoxels;
+  mutable std::vector<uint8_t> m_probeSolid;
+  uint64_t m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;
+};
+
+}  // namespace trephine::voxel

@@ -1,0 +1,44 @@
+#pragma once
+// The queries VoxelSkull hands to its collision back-end (the `backend`
+// field): contact of a pointshell, sweeps, the overlap of a displayed proxy
+// and ray casts, on the data VoxelSkull keeps and drills. A back-end reads
+// the data and never changes it; the drilling between two queries is VoxelSkull's.
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "framework/core/CollisionBackend.h"
+#include "framework/geometry/ShellContactTarget.h"
+#include "plugins/voxel_skull/DensityVolume.h"
+#include "plugins/voxel_skull/SolidGrid.h"
+
+namespace trephine::voxel {
+
+// The skull's data, owned by VoxelSkull, at fixed addresses for the run.
+struct VoxelData {
+  const DensityVolume* volume = nullptr;
+  const SolidGrid* grid = nullptr;  // its codes fall as the skull is drilled
+  bool algorithm1 = false;          // penetration by McNeely tangent planes (Algorithm 1), else the deepest point
+};
+
+// A contact, and when asked for, the voxels the thesis's removal law cuts for
+// it (each once): the colliding voxels on the voxel surface, the 8 voxel
+// centres around each colliding point on the smooth one. `touched` is valid
+// until the back-end's next query.
+struct VoxelContact {
+  ShellContact contact;
+  std::span<const int64_t> touched;
+};
+
+class VoxelBackend : public CollisionBackend {
+ public:
+  // At init, and again whenever the data is replaced.
+  virtual void bind(const VoxelData& data) = 0;
+  virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  virtual VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) = 0;
+  virtual SweepResult sweep(const SweepQuery& query) const = 0;
+  virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
+  virtual std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const = 0;
+};
+
+}  // namespace trephine::voxel
