@@ -16,6 +16,7 @@
 #include "framework/runtime/TimingHistogram.h"
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/FootprintCut.h"
+#include "plugins/voxel_skull/IsoSurface.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/ShellPointTest.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
@@ -255,6 +256,50 @@ BENCHMARK(BM_FootprintCut<cutFootprintReference>)
     ->ArgsProduct({{0, 2000}, {0, 1}})
     ->ArgNames({"deeper_um", "noisy"});
 BENCHMARK(BM_FootprintCut<cutFootprint>)->Name("FootprintCut/rows")->ArgsProduct({{0, 2000}, {0, 1}})->ArgNames({"deeper_um", "noisy"});
+
+// The skull's surface as triangles, for the back-ends that work on meshes
+// (IsoSurface.cpp): the whole phantom extracted once (ms; counters: triangles,
+// blocks), and the blocks a frame's cut touches (the burr's radius plus a
+// voxel around the benchmark's circle) re-extracted, us per call.
+void BM_IsoSurfaceBuild(benchmark::State& state) {
+  static DensityVolume volume = phantom();
+  SolidGrid grid = SolidGrid::of(volume, 400.0, true);
+  grid.buildOccupancy();
+  BlockedIsoSurface surface;
+  for (auto _ : state) surface.build(grid);
+  state.counters["triangles"] = double(surface.triangleCount());
+  state.counters["blocks"] = double(surface.blockCount());
+}
+BENCHMARK(BM_IsoSurfaceBuild)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_IsoSurfaceUpdate(benchmark::State& state) {
+  static DensityVolume volume = phantom();
+  SolidGrid grid = SolidGrid::of(volume, 400.0, true);
+  grid.buildOccupancy();
+  BlockedIsoSurface surface;
+  surface.build(grid);
+  const std::vector<Pose> poses = placements(grid);
+  const double reach = kRadius + grid.smallestSide();  // mm, the cut's footprint
+  size_t k = 0, blocks = 0;
+  TimingHistogram perCall;
+  for (auto _ : state) {
+    const Vec3 centre = poses[k++ & (kPlacements - 1)].position;
+    std::array<int64_t, 3> first{}, last{};
+    for (int a = 0; a < 3; ++a) {
+      first[a] = int64_t(std::floor((centre[a] - reach - grid.corner[a]) * grid.inverseSpacing[a]));
+      last[a] = int64_t(std::floor((centre[a] + reach - grid.corner[a]) * grid.inverseSpacing[a]));
+    }
+    const auto start = std::chrono::steady_clock::now();
+    blocks += surface.update(grid, first, last).size();
+    perCall.record(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+  }
+  const TimingSummary summary = perCall.summary();  // us
+  state.counters["call_p50_us"] = summary.p50;
+  state.counters["call_p99_us"] = summary.p99;
+  state.counters["blocks_per_call"] = double(blocks) / double(std::max<size_t>(k, 1));
+}
+BENCHMARK(BM_IsoSurfaceUpdate);
 
 }  // namespace
 }  // namespace trephine::bench
