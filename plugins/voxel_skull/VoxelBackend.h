@@ -3,6 +3,7 @@
 // field): contact of a pointshell, sweeps, the overlap of a displayed proxy
 // and ray casts, on the data VoxelSkull keeps and drills. A back-end reads
 // the data and never changes it; the drilling between two queries is VoxelSkull's.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -39,6 +40,12 @@ class VoxelBackend : public CollisionBackend {
   virtual SweepResult sweep(const SweepQuery& query) const = 0;
   virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
   virtual std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const = 0;
+  // The codes of the voxel box [first, last] (inclusive indices) were lowered
+  // (drilling): a back-end with its own copy of the surface updates it there.
+  virtual void dataChanged(const std::array<int64_t, 3>& first, const std::array<int64_t, 3>& last) {
+    (void)first;
+    (void)last;
+  }
 };
 
 }  // namespace trephine::voxel

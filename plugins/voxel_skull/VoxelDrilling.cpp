@@ -132,6 +132,16 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   cut.slices = slices;
   cut.slice = int(m_cutFrames % uint64_t(slices));
   const FootprintCutResult result = cutFootprint(m_grid, cut);
+  if (result.lowered > 0 && m_backend) {
+    // The footprint's voxel box, for a back-end with its own copy of the surface.
+    const double reach = load.radius + h;
+    std::array<int64_t, 3> first{}, last{};
+    for (int a = 0; a < 3; ++a) {
+      first[a] = SolidGrid::floorOf((load.center_W[a] - reach - m_grid.corner[a]) * m_grid.inverseSpacing[a]);
+      last[a] = SolidGrid::floorOf((load.center_W[a] + reach - m_grid.corner[a]) * m_grid.inverseSpacing[a]);
+    }
+    m_backend->dataChanged(first, last);
+  }
   m_removedCodes += result.codesRemoved;
   const int removed = result.emptied;
   m_voxelsRemoved += removed;

@@ -41,7 +41,16 @@ void VoxelSkull::init(InitContext& context) {
   m_forceRemoval = d_removal.is("force");
   checkRemovalFields(context);
   m_events = &context.events();
-  setVolume(std::move(volume));
+  if (m_backend && d_drill.value() && !m_forceRemoval && d_backend.value() != "native")
+    context.error(d_backend, "removal=\"thesis\" cuts the voxels the native back-end's contacts touch: use "
+                             "backend=\"native\" or removal=\"force\"");
+  try {
+    setVolume(std::move(volume));
+  } catch (const std::exception& e) {  // the back-end could not take the data
+    context.error(d_backend, e.what());
+    m_bound = false;
+    return;
+  }
   if (d_drill.value() && !m_forceRemoval) {
     // drillRate is in the volume's density units: a default meant for CT
     // units would wipe a volume normalised to [0, 1] in one frame. Say so.

@@ -1,0 +1,382 @@
+#include "plugins/embree/EmbreeVoxelBackend.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "framework/core/Component.h"
+#include "plugins/voxel_skull/IsoSurface.h"
+
+namespace trephine::embree {
+
+namespace {
+
+// Crossings are counted along this direction (unit, away from the axes and
+// the cells' diagonals, so a ray rarely grazes a triangle's edge).
+const Vec3 kParityDirection = Vec3(0.5403, 0.5871, 0.6029).normalized();
+// A ray continues this far past each crossing (mm): triangles closer than
+// this along the ray would be counted once.
+constexpr double kParityStep = 1e-5;
+// Conservative advancement stops within this of the surface (mm).
+constexpr double kSweepTolerance = 1e-4;
+
+// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+struct ClosestQuery {
+  const voxel::BlockedIsoSurface* surface = nullptr;
+  Vec3 point = Vec3::Zero();
+  double best2 = std::numeric_limits<double>::infinity();
+  Vec3 closest = Vec3::Zero();
+  bool found = false;
+};
+
+bool closestCallback(RTCPointQueryFunctionArguments* args) {
+  auto* q = static_cast<ClosestQuery*>(args->userPtr);
+  const voxel::TriangleMesh& mesh = q->surface->block(args->geomID);
+  const auto& t = mesh.triangles[args->primID];
+  const Vec3 c = closestOnTriangle(q->point, mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])],
+                                   mesh.vertices[size_t(t[2])]);
+  const double d2 = (c - q->point).squaredNorm();
+  if (!(d2 < q->best2)) return false;
+  q->best2 = d2;
+  q->closest = c;
+  q->found = true;
+  // Shrink the search to the best distance so far (float, rounded up).
+  args->query->radius = std::nextafter(float(std::sqrt(d2)), std::numeric_limits<float>::infinity());
+  return true;
+}
+
+}  // namespace
+
+struct EmbreeVoxelBackend::State {
+  voxel::VoxelData data;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  voxel::BlockedIsoSurface surface;
+  std::vector<uint8_t> attached;  // per block: a geometry of that ID is in the scene
+  struct Shell {
+    const ShellPoint* source = nullptr;
+    size_t size = 0;
+    double radius = 0;    // mm, the farthest point from the reference point
+    bool sphere = false;  // every point at `radius`
+  };
+  std::vector<Shell> shells;
+  mutable std::vector<double> depths;  // per shell point, the point-by-point contact
+  mutable std::vector<Vec3> normals;
+  double buildMs = 0;
+  uint64_t rebuiltBlocks = 0, contactFrames = 0;
+  mutable uint64_t rays = 0, pointQueries = 0;
+
+  ~State() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  const Shell* findShell(std::span<const ShellPoint> shell) const {
+    for (const Shell& s : shells)
+      if (s.source == shell.data() && s.size == shell.size()) return &s;
+    return nullptr;
+  }
+
+  void attachBlock(size_t index) {
+    if (attached[index]) rtcDetachGeometry(scene, unsigned(index));
+    attached[index] = 0;
+    const voxel::TriangleMesh& mesh = surface.block(index);
+    if (mesh.triangles.empty()) return;
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), mesh.vertices.size()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(unsigned), mesh.triangles.size()));
+    if (!vertices || !indices) {
+      rtcReleaseGeometry(geometry);
+      throw std::runtime_error("Embree could not allocate a block's buffers");
+    }
+    for (size_t v = 0; v < mesh.vertices.size(); ++v)
+      for (int a = 0; a < 3; ++a) vertices[3 * v + size_t(a)] = float(mesh.vertices[v][a]);
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int a = 0; a < 3; ++a) indices[3 * t + size_t(a)] = unsigned(mesh.triangles[t][size_t(a)]);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(scene, geometry, unsigned(index));
+    rtcReleaseGeometry(geometry);
+    attached[index] = 1;
+  }
+
+  // The surface point closest to p within `radius` (mm), if any.
+  bool closest(const Vec3& p, double radius, Vec3& point, double& distance) const {
+    ClosestQuery q;
+    q.surface = &surface;
+    q.point = p;
+    q.best2 = radius * radius;
+    RTCPointQuery query;
+    query.x = float(p.x()), query.y = float(p.y()), query.z = float(p.z());
+    query.time = 0;
+    query.radius = std::nextafter(float(radius), std::numeric_limits<float>::infinity());
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(scene, &query, &context, closestCallback, &q);
+    ++pointQueries;
+    if (!q.found) return false;
+    point = q.closest;
+    distance = std::sqrt(q.best2);
+    return true;
+  }
+
+  // The first crossing of the ray from `origin` along unit `direction` after
+  // `near` and before `far` (mm): its distance, or a negative value.
+  double firstHit(const Vec3& origin, const Vec3& direction, double near, double far, unsigned& geomID,
+                  unsigned& primID) const {
+    RTCRayHit rh;
+    rh.ray.org_x = float(origin.x()), rh.ray.org_y = float(origin.y()), rh.ray.org_z = float(origin.z());
+    rh.ray.dir_x = float(direction.x()), rh.ray.dir_y = float(direction.y()), rh.ray.dir_z = float(direction.z());
+    rh.ray.tnear = float(near);
+    rh.ray.tfar = float(far);
+    rh.ray.time = 0;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(scene, &context, &rh);
+    ++rays;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+    geomID = rh.hit.geomID;
+    primID = rh.hit.primID;
+    return rh.ray.tfar;
+  }
+
+  // Inside the bone: an odd number of crossings along kParityDirection.
+  bool inside(const Vec3& p) const {
+    int crossings = 0;
+    double near = 0;
+    unsigned geomID = 0, primID = 0;
+    for (int n = 0; n < 256; ++n) {
+      const double t = firstHit(p, kParityDirection, near, std::numeric_limits<float>::infinity(), geomID, primID);
+      if (t < 0) break;
+      ++crossings;
+      near = t + kParityStep;
+    }
+    return crossings % 2 == 1;
+  }
+
+  Vec3 triangleNormal(unsigned geomID, unsigned primID) const {
+    const voxel::TriangleMesh& mesh = surface.block(geomID);
+    const auto& t = mesh.triangles[primID];
+    const Vec3& a = mesh.vertices[size_t(t[0])];
+    return (mesh.vertices[size_t(t[1])] - a).cross(mesh.vertices[size_t(t[2])] - a).normalized();
+  }
+};
+
+EmbreeVoxelBackend::EmbreeVoxelBackend() : m_state(std::make_unique<State>()) {}
+EmbreeVoxelBackend::~EmbreeVoxelBackend() = default;
+
+void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
+  State& s = *m_state;
+  if (!data.grid->smooth)
+    throw std::runtime_error("backend=\"embree\" meshes the smooth surface: set surface=\"smooth\"");
+  const auto start = std::chrono::steady_clock::now();
+  s.data = data;
+  if (!s.device) {
+    s.device = rtcNewDevice(nullptr);
+    if (!s.device) throw std::runtime_error("Embree could not create a device (error " +
+                                            std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  }
+  if (s.scene) rtcReleaseScene(s.scene);
+  s.scene = rtcNewScene(s.device);
+  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_MEDIUM);
+  s.surface.build(*data.grid);
+  s.attached.assign(s.surface.blockCount(), 0);
+  for (size_t b = 0; b < s.surface.blockCount(); ++b) s.attachBlock(b);
+  rtcCommitScene(s.scene);
+  if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
+  s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void EmbreeVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
+  State& s = *m_state;
+  if (s.findShell(shell)) return;
+  State::Shell reserved{shell.data(), shell.size(), 0, true};
+  for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
+  for (const ShellPoint& p : shell) reserved.sphere = reserved.sphere && p.position.norm() > (1 - 1e-9) * reserved.radius;
+  s.shells.push_back(reserved);
+  s.depths.resize(std::max(s.depths.size(), shell.size()));
+  s.normals.resize(std::max(s.normals.size(), shell.size()));
+}
+
+voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
+  State& s = *m_state;
+  voxel::VoxelContact result;
+  ShellContact& contact = result.contact;
+  const State::Shell* reserved = s.findShell(shell);
+  if (!reserved || !s.scene) return result;
+  const Vec3 centre = X_WT.position;
+  const double r = reserved->radius;
+  if (reserved->sphere) {
+    Vec3 closest = Vec3::Zero();
+    double d = 0;
+    const bool near = s.closest(centre, r, closest, d);
+    const bool in = s.inside(centre);
+    if (!near && !in) return result;
+    if (in && !near && !s.closest(centre, std::numeric_limits<float>::max(), closest, d)) return result;
+    if (!(d > 0)) return result;  // the centre on the surface: no direction
+    contact.normal = in ? Vec3((closest - centre) / d) : Vec3((centre - closest) / d);
+    contact.penetration = in ? r + d : r - d;
+    // The shell points beyond the tangent plane at the closest point.
+    const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+    for (const ShellPoint& p : shell) contact.points += (R * p.position).dot(-contact.normal) > r - contact.penetration;
+    contact.points = std::max(contact.points, 1);
+    contact.primitives = 1;
+    ++s.contactFrames;
+    return result;
+  }
+  // Any other shell, point by point.
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  Vec3 weighted = Vec3::Zero();
+  for (size_t i = 0; i < shell.size(); ++i) {
+    s.depths[i] = 0;
+    const Vec3 p = R * shell[i].position + centre;
+    if (!s.inside(p)) continue;
+    Vec3 closest = Vec3::Zero();
+    double d = 0;
+    if (!s.closest(p, 2 * r, closest, d) || !(d > 0)) continue;
+    s.depths[i] = d;
+    s.normals[i] = (closest - p) / d;
+    weighted += d * s.normals[i];
+    ++contact.points;
+  }
+  if (contact.points == 0) return result;
+  contact.normal = weighted.norm() > 1e-12 ? Vec3(weighted.normalized()) : Vec3::Zero();
+  for (size_t i = 0; i < shell.size(); ++i)
+    if (s.depths[i] > 0)
+      contact.penetration = std::max(contact.penetration, s.depths[i] * std::max(0.0, s.normals[i].dot(contact.normal)));
+  contact.primitives = contact.points;
+  ++s.contactFrames;
+  return result;
+}
+
+SweepResult EmbreeVoxelBackend::sweep(const SweepQuery& query) const {
+  const State& s = *m_state;
+  SweepResult result;
+  const Vec3 path = query.to - query.from;
+  const double length = path.norm();
+  if (!(length > 0) || !std::isfinite(length) || !s.scene) return result;
+  const State::Shell* reserved = s.findShell(query.shell);
+  const double radius = reserved ? reserved->radius : query.leadingRadius;
+  // The centre in bone: only new material blocks (as the native sweeps), so
+  // the tool may leave; treated as free.
+  if (s.inside(query.from)) return result;
+  // A free sphere stops where it touches the surface (the proxy then adds its
+  // skin, the target's contact depth, a tenth of a voxel). One that touches
+  // at the start may sink one skin deeper than it starts or than one skin: a
+  // proxy resting in its skin slides along the surface (a slide along the
+  // tangent plane sinks a little wherever the triangles fold inwards; the
+  // next frame's lift takes it back out), and a move into the surface stops
+  // at once (startsInside).
+  const double skin = 0.1 * s.data.grid->smallestSide();
+  Vec3 closest = Vec3::Zero();
+  double d = 0;
+  const bool touching = s.closest(query.from, radius, closest, d);
+  const double allowed = touching ? std::max(skin, radius - d) + skin : 0.0;
+  // Depth of the sphere at fraction t of the path, and where it touches.
+  const auto depthAt = [&](double t, Vec3& touch) {
+    double distance = 0;
+    return s.closest(query.from + t * path, radius, touch, distance) ? radius - distance : -1.0;
+  };
+  // Samples half a voxel apart, each exact; the first too deep is refined by bisection.
+  const int steps = std::max(1, int(std::ceil(length / (0.5 * s.data.grid->smallestSide()))));
+  double before = 0;
+  for (int k = 1; k <= steps; ++k) {
+    const double t = double(k) / steps;
+    Vec3 touch = Vec3::Zero();
+    if (!(depthAt(t, touch) > allowed + kSweepTolerance)) {
+      before = t;
+      continue;
+    }
+    double lo = before, hi = t;
+    for (int n = 0; n < 40 && (hi - lo) * length > kSweepTolerance; ++n) {
+      const double mid = 0.5 * (lo + hi);
+      Vec3 at = Vec3::Zero();
+      (depthAt(mid, at) > allowed ? hi : lo) = mid;
+      if (depthAt(hi, at) > allowed) touch = at;
+    }
+    result.blocked = true;
+    result.freeFraction = lo;
+    result.startsInside = touching && lo * length <= kSweepTolerance;
+    result.contactPoint = touch;
+    return result;
+  }
+  return result;
+}
+
+bool EmbreeVoxelBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+  const State& s = *m_state;
+  const State::Shell* reserved = s.findShell(shell);
+  if (!reserved || !s.scene) return false;
+  if (s.inside(X_WT.position)) return true;
+  // Visibly in: the shell pulled one voxel in reaches the bone.
+  const double inset = s.data.grid->spacing.maxCoeff();
+  Vec3 closest = Vec3::Zero();
+  double d = 0;
+  return reserved->radius > inset && s.closest(X_WT.position, reserved->radius - inset, closest, d);
+}
+
+std::optional<SurfaceHit> EmbreeVoxelBackend::raycast(const Vec3& origin, const Vec3& direction,
+                                                      double maxDistance) const {
+  const State& s = *m_state;
+  if (!s.scene) return std::nullopt;
+  unsigned geomID = 0, primID = 0;
+  const double t = s.firstHit(origin, direction, 0, maxDistance, geomID, primID);
+  if (t < 0) return std::nullopt;
+  SurfaceHit hit;
+  hit.distance = t;
+  hit.point = origin + t * direction;
+  hit.normal = s.triangleNormal(geomID, primID);
+  return hit;
+}
+
+void EmbreeVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const std::array<int64_t, 3>& last) {
+  State& s = *m_state;
+  if (!s.scene) return;
+  const std::vector<size_t> changed = s.surface.update(*s.data.grid, first, last);
+  for (const size_t b : changed) s.attachBlock(b);
+  if (!changed.empty()) rtcCommitScene(s.scene);
+  s.rebuiltBlocks += changed.size();
+}
+
+void EmbreeVoxelBackend::reportCounters(std::vector<Counter>& counters) const {
+  const State& s = *m_state;
+  counters.push_back({"contact_frames", double(s.contactFrames)});
+  counters.push_back({"triangles", double(s.surface.triangleCount())});
+  counters.push_back({"surface_build_ms", s.buildMs});
+  counters.push_back({"rebuilt_blocks", double(s.rebuiltBlocks)});
+  counters.push_back({"rays", double(s.rays)});
+  counters.push_back({"point_queries", double(s.pointQueries)});
+}
+
+}  // namespace trephine::embree
