@@ -56,7 +56,8 @@ struct ClosestQuery {
 
 bool closestCallback(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<ClosestQuery*>(args->userPtr);
-  const voxel::TriangleMesh& mesh = q->surface->block(args->geomID);
+  // Each block is its own scene, instanced in the top scene under the block's index.
+  const voxel::TriangleMesh& mesh = q->surface->block(args->context->instID[0]);
   const auto& t = mesh.triangles[args->primID];
   const Vec3 c = closestOnTriangle(q->point, mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])],
                                    mesh.vertices[size_t(t[2])]);
@@ -75,9 +76,9 @@ bool closestCallback(RTCPointQueryFunctionArguments* args) {
 struct EmbreeVoxelBackend::State {
   voxel::VoxelData data;
   RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  RTCScene scene = nullptr;  // the top scene: one instance per block with triangles, its ID the block's index
   voxel::BlockedIsoSurface surface;
-  std::vector<uint8_t> attached;  // per block: a geometry of that ID is in the scene
+  std::vector<RTCScene> blockScenes;  // per block: its triangles, or null when it has none
   struct Shell {
     const ShellPoint* source = nullptr;
     size_t size = 0;
@@ -91,9 +92,12 @@ struct EmbreeVoxelBackend::State {
   uint64_t rebuiltBlocks = 0, contactFrames = 0;
   mutable uint64_t rays = 0, pointQueries = 0;
 
-  ~State() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
+  ~State() { release(); }
+
+  void release() {
+    for (RTCScene& b : blockScenes)
+      if (b) rtcReleaseScene(b), b = nullptr;
+    if (scene) rtcReleaseScene(scene), scene = nullptr;
   }
 
   const Shell* findShell(std::span<const ShellPoint> shell) const {
@@ -102,9 +106,16 @@ struct EmbreeVoxelBackend::State {
     return nullptr;
   }
 
+  // (Re)builds block `index`'s scene from its triangles and puts its
+  // instance in the top scene (the top scene is committed by the caller).
+  // Only this block's BVH is built: a drilled frame rebuilds the blocks it
+  // changed and the top level over the instances, not the whole surface.
   void attachBlock(size_t index) {
-    if (attached[index]) rtcDetachGeometry(scene, unsigned(index));
-    attached[index] = 0;
+    if (blockScenes[index]) {
+      rtcDetachGeometry(scene, unsigned(index));
+      rtcReleaseScene(blockScenes[index]);
+      blockScenes[index] = nullptr;
+    }
     const voxel::TriangleMesh& mesh = surface.block(index);
     if (mesh.triangles.empty()) return;
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -121,9 +132,18 @@ struct EmbreeVoxelBackend::State {
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
       for (int a = 0; a < 3; ++a) indices[3 * t + size_t(a)] = unsigned(mesh.triangles[t][size_t(a)]);
     rtcCommitGeometry(geometry);
-    rtcAttachGeometryByID(scene, geometry, unsigned(index));
+    RTCScene block = rtcNewScene(device);
+    rtcAttachGeometry(block, geometry);
     rtcReleaseGeometry(geometry);
-    attached[index] = 1;
+    rtcCommitScene(block);
+    RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance, block);
+    const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};  // 3x4, column major
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+    rtcCommitGeometry(instance);
+    rtcAttachGeometryByID(scene, instance, unsigned(index));
+    rtcReleaseGeometry(instance);
+    blockScenes[index] = block;
   }
 
   // The surface point closest to p within `radius` (mm), if any.
@@ -166,7 +186,7 @@ struct EmbreeVoxelBackend::State {
     rtcIntersect1(scene, &context, &rh);
     ++rays;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
-    geomID = rh.hit.geomID;
+    geomID = rh.hit.instID[0];  // the block
     primID = rh.hit.primID;
     return rh.ray.tfar;
   }
@@ -207,11 +227,12 @@ void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
     if (!s.device) throw std::runtime_error("Embree could not create a device (error " +
                                             std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   }
-  if (s.scene) rtcReleaseScene(s.scene);
+  s.release();
   s.scene = rtcNewScene(s.device);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_DYNAMIC);  // its instances change as the skull is drilled
+  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_LOW);
   s.surface.build(*data.grid);
-  s.attached.assign(s.surface.blockCount(), 0);
+  s.blockScenes.assign(s.surface.blockCount(), nullptr);
   for (size_t b = 0; b < s.surface.blockCount(); ++b) s.attachBlock(b);
   rtcCommitScene(s.scene);
   if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
