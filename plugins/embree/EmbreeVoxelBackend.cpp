@@ -92,7 +92,10 @@ struct EmbreeVoxelBackend::State {
   uint64_t rebuiltBlocks = 0, contactFrames = 0;
   mutable uint64_t rays = 0, pointQueries = 0;
 
-  ~State() { release(); }
+  ~State() {
+    release();
+    if (device) rtcReleaseDevice(device);
+  }
 
   void release() {
     for (RTCScene& b : blockScenes)
