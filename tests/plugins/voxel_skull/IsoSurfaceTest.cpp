@@ -46,12 +46,20 @@ std::map<std::pair<int, int>, int> directedEdges(const TriangleMesh& mesh) {
   return edges;
 }
 
-TEST(IsoSurfaceTest, ABallGivesAClosedOutwardSurfaceOnItsSphere) {
-  DensityVolume volume = ball();
-  SolidGrid grid = SolidGrid::of(volume, 1000.0, true);
-  grid.buildOccupancy();
+// The ball's volume, its grid at the isovalue 1000 and the surface extracted from it.
+struct Extracted {
+  Extracted() : volume(ball()), grid(SolidGrid::of(volume, 1000.0, true)) {
+    grid.buildOccupancy();
+    surface.build(grid);
+  }
+  DensityVolume volume;
+  SolidGrid grid;
   BlockedIsoSurface surface;
-  surface.build(grid);
+};
+
+TEST(IsoSurfaceTest, ABallGivesAClosedOutwardSurfaceOnItsSphere) {
+  Extracted ball;
+  const BlockedIsoSurface& surface = ball.surface;
   const TriangleMesh mesh = surface.merged();
   ASSERT_GT(mesh.triangles.size(), 1000u);
   EXPECT_GT(surface.blockCount(), 8u) << "the ball spans several blocks";
@@ -81,11 +89,9 @@ TEST(IsoSurfaceTest, ABallGivesAClosedOutwardSurfaceOnItsSphere) {
 }
 
 TEST(IsoSurfaceTest, ADrilledRegionReExtractedAcrossBlockFacesEqualsAFreshExtraction) {
-  DensityVolume volume = ball();
-  SolidGrid grid = SolidGrid::of(volume, 1000.0, true);
-  grid.buildOccupancy();
-  BlockedIsoSurface surface;
-  surface.build(grid);
+  Extracted ball;
+  SolidGrid& grid = ball.grid;
+  BlockedIsoSurface& surface = ball.surface;
   // A pit 6 voxels wide around voxel 16 (cells of base 15 and 16 are in two
   // blocks: 16 cells from -1), into the ball's side along x.
   const std::array<int64_t, 3> first{2, 13, 13}, last{12, 18, 18};
