@@ -70,7 +70,7 @@ struct EmbreeVoxelBackend::State {
   mutable std::vector<double> depths;  // per shell point, the point-by-point contact
   mutable std::vector<Vec3> normals;
   double buildMs = 0;
-  uint64_t rebuiltBlocks = 0, contactFrames = 0;
+  uint64_t rebuiltBlocks = 0, failedBlocks = 0, contactFrames = 0;
   mutable uint64_t rays = 0, pointQueries = 0;
 
   ~State() {
@@ -94,14 +94,16 @@ struct EmbreeVoxelBackend::State {
   // instance in the top scene (the top scene is committed by the caller).
   // Only this block's BVH is built: a drilled frame rebuilds the blocks it
   // changed and the top level over the instances, not the whole surface.
-  void attachBlock(size_t index) {
+  // False when Embree could not allocate the block's buffers (the block is
+  // then left out).
+  bool attachBlock(size_t index) {
     if (blockScenes[index]) {
       rtcDetachGeometry(scene, unsigned(index));
       rtcReleaseScene(blockScenes[index]);
       blockScenes[index] = nullptr;
     }
     const voxel::TriangleMesh& mesh = surface.block(index);
-    if (mesh.triangles.empty()) return;
+    if (mesh.triangles.empty()) return true;
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                  3 * sizeof(float), mesh.vertices.size()));
@@ -109,7 +111,7 @@ struct EmbreeVoxelBackend::State {
                                                                    3 * sizeof(unsigned), mesh.triangles.size()));
     if (!vertices || !indices) {
       rtcReleaseGeometry(geometry);
-      throw std::runtime_error("Embree could not allocate a block's buffers");
+      return false;
     }
     for (size_t v = 0; v < mesh.vertices.size(); ++v)
       for (int a = 0; a < 3; ++a) vertices[3 * v + size_t(a)] = float(mesh.vertices[v][a]);
@@ -128,6 +130,7 @@ struct EmbreeVoxelBackend::State {
     rtcAttachGeometryByID(scene, instance, unsigned(index));
     rtcReleaseGeometry(instance);
     blockScenes[index] = block;
+    return true;
   }
 
   // The surface point closest to p within `radius` (mm), if any.
@@ -217,7 +220,8 @@ void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
   rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_LOW);
   s.surface.build(*data.grid);
   s.blockScenes.assign(s.surface.blockCount(), nullptr);
-  for (size_t b = 0; b < s.surface.blockCount(); ++b) s.attachBlock(b);
+  for (size_t b = 0; b < s.surface.blockCount(); ++b)
+    if (!s.attachBlock(b)) throw std::runtime_error("Embree could not allocate the buffers of a block of the surface");
   rtcCommitScene(s.scene);
   if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
   s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -369,7 +373,8 @@ void EmbreeVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const 
   State& s = *m_state;
   if (!s.scene) return;
   const std::vector<size_t> changed = s.surface.update(*s.data.grid, first, last);
-  for (const size_t b : changed) s.attachBlock(b);
+  // In the haptic loop: a block Embree cannot take is counted, not thrown.
+  for (const size_t b : changed) s.failedBlocks += s.attachBlock(b) ? 0 : 1;
   if (!changed.empty()) rtcCommitScene(s.scene);
   s.rebuiltBlocks += changed.size();
 }
@@ -380,6 +385,7 @@ void EmbreeVoxelBackend::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"triangles", double(s.surface.triangleCount())});
   counters.push_back({"surface_build_ms", s.buildMs});
   counters.push_back({"rebuilt_blocks", double(s.rebuiltBlocks)});
+  if (s.failedBlocks) counters.push_back({"failed_blocks", double(s.failedBlocks)});
   counters.push_back({"rays", double(s.rays)});
   counters.push_back({"point_queries", double(s.pointQueries)});
 }
