@@ -26,7 +26,6 @@ constexpr double kParityStep = 1e-5;
 // Conservative advancement stops within this of the surface (mm).
 constexpr double kSweepTolerance = 1e-4;
 
-
 struct ClosestQuery {
   const voxel::BlockedIsoSurface* surface = nullptr;
   Vec3 point = Vec3::Zero();
@@ -211,8 +210,9 @@ void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
   s.data = data;
   if (!s.device) {
     s.device = rtcNewDevice(nullptr);
-    if (!s.device) throw std::runtime_error("Embree could not create a device (error " +
-                                            std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    if (!s.device)
+      throw std::runtime_error("Embree could not create a device (error " +
+                               std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   }
   s.release();
   s.scene = rtcNewScene(s.device);
@@ -232,7 +232,8 @@ void EmbreeVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
   if (s.findShell(shell)) return;
   State::Shell reserved{shell.data(), shell.size(), 0, true};
   for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
-  for (const ShellPoint& p : shell) reserved.sphere = reserved.sphere && p.position.norm() > (1 - 1e-9) * reserved.radius;
+  for (const ShellPoint& p : shell)
+    reserved.sphere = reserved.sphere && p.position.norm() > (1 - 1e-9) * reserved.radius;
   s.shells.push_back(reserved);
   s.depths.resize(std::max(s.depths.size(), shell.size()));
   s.normals.resize(std::max(s.normals.size(), shell.size()));
@@ -283,7 +284,8 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
   contact.normal = weighted.norm() > 1e-12 ? Vec3(weighted.normalized()) : Vec3::Zero();
   for (size_t i = 0; i < shell.size(); ++i)
     if (s.depths[i] > 0)
-      contact.penetration = std::max(contact.penetration, s.depths[i] * std::max(0.0, s.normals[i].dot(contact.normal)));
+      contact.penetration =
+          std::max(contact.penetration, s.depths[i] * std::max(0.0, s.normals[i].dot(contact.normal)));
   contact.primitives = contact.points;
   ++s.contactFrames;
   return result;

@@ -33,9 +33,11 @@ class BlockExtractor {
       const bool inside = c.value[n] > m_grid.isoCode;
       anyInside |= inside;
       anyOutside |= !inside;
-      c.position[n] = m_grid.corner + Vec3((double(a) + 0.5) * m_grid.spacing.x(), (double(b) + 0.5) * m_grid.spacing.y(),
-                                           (double(d) + 0.5) * m_grid.spacing.z());
-      c.id[n] = uint64_t(a + 1) + uint64_t(m_grid.nx + 2) * (uint64_t(b + 1) + uint64_t(m_grid.ny + 2) * uint64_t(d + 1));
+      c.position[n] =
+          m_grid.corner + Vec3((double(a) + 0.5) * m_grid.spacing.x(), (double(b) + 0.5) * m_grid.spacing.y(),
+                               (double(d) + 0.5) * m_grid.spacing.z());
+      c.id[n] =
+          uint64_t(a + 1) + uint64_t(m_grid.nx + 2) * (uint64_t(b + 1) + uint64_t(m_grid.ny + 2) * uint64_t(d + 1));
     }
     if (!anyInside || !anyOutside) return;
     for (const auto& tet : kTetrahedra) tetrahedron(c, tet);
@@ -79,8 +81,7 @@ class BlockExtractor {
       // One corner apart from the other three: one triangle around it.
       const int lone = inside == 1 ? in[0] : out[0];
       const int* others = inside == 1 ? out : in;
-      triangle(edgeVertex(c, lone, others[0]), edgeVertex(c, lone, others[1]), edgeVertex(c, lone, others[2]),
-               outward);
+      triangle(edgeVertex(c, lone, others[0]), edgeVertex(c, lone, others[1]), edgeVertex(c, lone, others[2]), outward);
       return;
     }
     // Two and two: a quad, as two triangles.

@@ -29,7 +29,7 @@
 namespace trephine::voxel {
 
 struct TriangleMesh {
-  std::vector<Vec3> vertices;                   // mm, world
+  std::vector<Vec3> vertices;                     // mm, world
   std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside the bone
 };
 

@@ -39,7 +39,8 @@ class NativeVoxelBackend final : public VoxelBackend {
     const ShellPoint* source = nullptr;
     size_t size = 0;
     ShellArrays arrays;
-    ShellArrays inset;  // the shell pulled one voxel inwards, points a voxel apart: the overlap test of a displayed proxy
+    ShellArrays
+        inset;  // the shell pulled one voxel inwards, points a voxel apart: the overlap test of a displayed proxy
     double radius = 0;  // mm, farthest point from the reference point
   };
   const ReservedShell* findShell(std::span<const ShellPoint> shell) const;

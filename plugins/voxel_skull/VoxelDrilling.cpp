@@ -67,7 +67,6 @@ int VoxelSkull::cutAt(const Vec3& point_W) {
   return removed;
 }
 
-
 ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
   if (!m_bound) return {};
   const bool thesisCut = removeMaterial && d_drill.value() && !m_forceRemoval;

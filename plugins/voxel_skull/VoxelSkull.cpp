@@ -13,15 +13,18 @@
 namespace trephine::voxel {
 
 void VoxelSkull::init(InitContext& context) {
+  // The collision back-end first: an unknown one is reported with any error of the volume.
   std::unique_ptr<CollisionBackend> backend = context.createBackend(kTypeName, d_backend.value());
-  m_backend.reset(dynamic_cast<VoxelBackend*>(backend.get()));
-  if (m_backend) backend.release();
-  if (!m_backend) {
+  if (auto* voxelBackend = dynamic_cast<VoxelBackend*>(backend.get())) {
+    backend.release();
+    m_backend.reset(voxelBackend);
+  } else {
     std::string known;
     for (const std::string& name : context.backendNames(kTypeName)) known += (known.empty() ? "" : ", ") + name;
-    context.error(d_backend, "no collision back-end \"" + d_backend.value() + "\" for VoxelSkull (registered: " +
-                                 (known.empty() ? "none" : known) + "); if a plugin provides it, add <RequiredPlugin name=\"" +
-                                 d_backend.value() + "\"/> to the scene");
+    const std::string& name = d_backend.value();
+    context.error(d_backend, "no collision back-end \"" + name + "\" for VoxelSkull (registered: " +
+                                 (known.empty() ? "none" : known) + "); if a plugin provides it, add " +
+                                 "<RequiredPlugin name=\"" + name + "\"/> to the scene");
   }
   DensityVolume volume;
   try {

@@ -1,7 +1,9 @@
 #pragma once
-// A rigid skull kept as CT density voxels (no surface mesh): voxels denser
-// than `isovalue` are bone. A pointshell tool collides with it point by point
-// (thesis section 3.2). With `drill`, a running burr removes bone:
+// A rigid skull kept as CT density voxels: voxels denser than `isovalue` are
+// bone. VoxelSkull keeps and drills the data; its collision back-end
+// (`backend`: NativeVoxelBackend, the thesis's point-by-point method of
+// section 3.2, or one a plugin adds) answers the tools' queries. With `drill`,
+// a running burr removes bone:
 //  - removal="force" (default): the bone under the burr recedes at a speed
 //    set by the thrust, the burr and the bone's hardness (RemovalLaw.h); the
 //    burr's sphere, advanced by that speed times the frame, is carved out of

@@ -77,7 +77,8 @@ TEST(IsoSurfaceTest, ABallGivesAClosedOutwardSurfaceOnItsSphere) {
   const auto edges = directedEdges(mesh);
   for (const auto& [edge, uses] : edges) {
     ASSERT_EQ(uses, 1) << "edge " << edge.first << "-" << edge.second;
-    ASSERT_EQ(edges.count({edge.second, edge.first}), 1u) << "edge " << edge.first << "-" << edge.second << " is a border";
+    ASSERT_EQ(edges.count({edge.second, edge.first}), 1u)
+        << "edge " << edge.first << "-" << edge.second << " is a border";
   }
   // Facing out: the enclosed volume (divergence theorem) is positive and the ball's.
   double volume6 = 0;

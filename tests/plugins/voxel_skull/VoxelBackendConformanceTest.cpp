@@ -5,7 +5,7 @@
 // centre is D from the ball's. Penetration R + r - D (shallow, deep, and
 // with the burr's centre inside the ball) along the centre's direction; no
 // contact beyond touching; a head-on sweep stops where the spheres touch; a
-// ray meets the sphere. The tolerances are the methods' own errors:
+// ray meets the sphere; a burr sunk more than a voxel overlaps visibly. The tolerances are the methods' own errors:
 //  - native: the trilinear surface departs from the sphere by about
 //    h^2 / 8R (0.013 mm here); the deepest point of 466 shell points lies
 //    within about 0.08 rad of the contact axis (2.5 mm (1 - cos 0.08) =
@@ -129,6 +129,16 @@ TEST_P(VoxelBackendConformanceTest, AHeadOnSweepStopsWhereTheSpheresTouchAndARay
   RecordProperty("worst_ray_error_mm", std::to_string(worstRay));
   EXPECT_LT(worstStop, b.distance) << b.name;
   EXPECT_LT(worstRay, b.distance) << b.name;
+}
+
+TEST_P(VoxelBackendConformanceTest, ABurrSunkMoreThanAVoxelOverlapsVisibly) {
+  // The displayed proxy's overlap: visible once the burr is sunk more than
+  // the one-voxel tolerance (1 mm here), or its centre is in the ball.
+  for (const Vec3& u : directions(20)) {
+    EXPECT_FALSE(backend->overlaps({(kBall + kBurr - 0.5) * u, Quat::Identity()}, shell)) << GetParam().name;
+    EXPECT_TRUE(backend->overlaps({(kBall + kBurr - 1.5) * u, Quat::Identity()}, shell)) << GetParam().name;
+    EXPECT_TRUE(backend->overlaps({(kBall - 3.0) * u, Quat::Identity()}, shell)) << GetParam().name;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, VoxelBackendConformanceTest, ::testing::ValuesIn(backends()),
