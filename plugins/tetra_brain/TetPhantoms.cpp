@@ -21,6 +21,22 @@ TetMesh makeTetPhantom(const std::string& specification) {
   throw std::invalid_argument("unknown phantom '" + name + "' (cube, brain)");
 }
 
+LevelSet tetPhantomShape(const std::string& specification) {
+  const auto [name, query] = SourceSpec::split(specification);
+  if (name == "cube") {
+    const SourceSpec k(name, query, {{"cells", 22}, {"size", 200}});
+    k.wholeNumber("cells", 1, 200);
+    const double half = 0.5 * k.positive("size");
+    return [half](const Vec3& p) { return (p.cwiseAbs() - Vec3::Constant(half)).maxCoeff(); };
+  }
+  if (name == "brain") {
+    const SourceSpec k(name, query, {{"tets", 22000}});
+    k.wholeNumber("tets", 100, 2000000);
+    return brainPhantomDistance;
+  }
+  throw std::invalid_argument("unknown phantom '" + name + "' (cube, brain)");
+}
+
 std::string tetPhantomHelp() {
   return "  cube?cells=22&size=200   cube of cells^3 cells, 5 tetrahedra each (Table 4.1: 7, 13, 22, 30, 40, 50, 60)\n"
          "  brain?tets=22000         brain-shaped mesh (CGAL Mesh_3; Table 4.2: 3500, 12500, 22000, 40500, 50000)\n";

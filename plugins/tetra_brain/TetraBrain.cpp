@@ -34,6 +34,14 @@ void TetraBrain::init(InitContext& context) {
                   "\"previous-contact\"); the grid search refreshes no boxes");
 }
 
+LevelSet TetraBrain::exactShape() const {
+  if (!d_file.isScheme()) return {};
+  // The mesh was placed by p_W = scale p + translation: the level set follows,
+  // in world millimetres.
+  return [mesh = tetPhantomShape(std::string(d_file.schemeBody())), scale = d_scale.value(),
+          translation = d_translation.value()](const Vec3& p_W) { return scale * mesh((p_W - translation) / scale); };
+}
+
 void TetraBrain::connectChannels(ChannelHub& channels) {
   m_nodeForces = &channels.publish<NodeForces>(*this, kNodeForcesChannel);
   reserveNodeForces(m_nodeForceValue.forces.capacity());

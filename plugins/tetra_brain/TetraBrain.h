@@ -21,6 +21,7 @@
 
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Component.h"
+#include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/tetra_brain/MeshDeformation.h"
 #include "plugins/tetra_brain/ShellLocator.h"
@@ -31,7 +32,7 @@
 
 namespace trephine::tetra {
 
-class TetraBrain final : public Component, public ShellContactTarget {
+class TetraBrain final : public Component, public ShellContactTarget, public ExactShapeSource {
  public:
   static constexpr std::string_view kTypeName = "TetraBrain";
 
@@ -41,6 +42,8 @@ class TetraBrain final : public Component, public ShellContactTarget {
 
   // SurfaceTarget
   Box3 bounds() const override { return m_bounds; }  // grown by the current displacement bound
+  // A phantom's solid (file="phantom:..."), undeformed; none for a mesh file.
+  LevelSet exactShape() const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
   // ShellContactTarget
   void reserveShell(std::span<const ShellPoint> shell) override;

@@ -46,94 +46,160 @@ DensityVolume fill(const Vec3& extent, double voxel, const std::function<double(
 
 }  // namespace
 
+namespace {
+
+// The phantoms' solids as level sets (mm, negative inside): the density of
+// each phantom is built from them, and they are its exact shape.
+
+double cubeLevel(const Vec3& p) { return (p.cwiseAbs() - Vec3::Constant(80.0)).maxCoeff(); }  // distance on the faces
+
+const Vec3 kSkullExtent(212.5, 201.5, 141.5);                           // mm
+const Vec3 kSkullOuterAxes = 0.5 * kSkullExtent - Vec3::Constant(1.5);  // mm, semi-axes of the outer surface
+constexpr double kSkullOpeningRadius = 16.0;                            // mm, around the -z axis
+
+// Where a point sits in the skull's shell, along the ray from the centre.
+struct SkullDepth {
+  double depth = 0;      // mm below the outer surface (negative outside)
+  double thickness = 0;  // mm, of the shell in this direction (4.5 to 8.5)
+  bool atCentre = false;
+};
+
+SkullDepth skullDepth(const Vec3& p) {
+  const Vec3 e = p.cwiseQuotient(kSkullOuterAxes);
+  const double rho = e.norm();  // 1 on the outer surface
+  if (rho < 1e-9) return {.atCentre = true};
+  const Vec3 dir = e / rho;
+  const double theta = std::acos(std::clamp(dir.z(), -1.0, 1.0)), phi = std::atan2(dir.y(), dir.x());
+  return {.depth = p.norm() * (1.0 / rho - 1.0), .thickness = 6.5 + 2.0 * std::sin(3 * theta) * std::cos(2 * phi)};
+}
+
+// > 0 where the opening at the base removes bone.
+double skullOpening(const Vec3& p) { return p.z() < 0 ? kSkullOpeningRadius - std::hypot(p.x(), p.y()) : -1e9; }
+
+double skullLevel(const Vec3& p) {
+  const SkullDepth s = skullDepth(p);
+  if (s.atCentre) return 1.0;
+  return std::max(std::max(-s.depth, s.depth - s.thickness), skullOpening(p));
+}
+
+double halfSpaceLevel(const Vec3& p, const Vec3& unitNormal) { return p.dot(unitNormal); }
+double wallLevel(const Vec3& p, double thickness) { return std::abs(p.z()) - 0.5 * thickness; }
+struct ChannelParts {
+  double fromChannel;  // mm, > 0 in the block around the channel
+  double block;        // mm, < 0 inside the block
+};
+ChannelParts channelParts(const Vec3& p, double width, double size, double voxel) {
+  return {std::max(std::abs(p.x()), std::abs(p.y())) - 0.5 * width,
+          (p.cwiseAbs() - Vec3::Constant(0.5 * size - 2.0 * voxel)).maxCoeff()};
+}
+double channelLevel(const Vec3& p, double width, double size, double voxel) {
+  const ChannelParts c = channelParts(p, width, size, voxel);
+  return std::max(-c.fromChannel, c.block);
+}
+
+Vec3 unitNormal(const Vec3& normal) {
+  if (!(normal.norm() > 1e-9) || !normal.allFinite()) throw std::invalid_argument("normal must not be zero");
+  return normal.normalized();
+}
+
+}  // namespace
+
 DensityVolume makeCubePhantom(int voxelsPerAxis, double density) {
   if (voxelsPerAxis < 2 || voxelsPerAxis > 2000) throw std::invalid_argument("voxels must be in [2, 2000]");
   const double voxel = 200.0 / voxelsPerAxis;
-  return fill(Vec3::Constant(200.0), voxel, [&](const Vec3& p) {
-    const double distance = (p.cwiseAbs() - Vec3::Constant(80.0)).maxCoeff();  // box, exact on the faces
-    return density * insideFraction(distance, voxel);
-  });
+  return fill(Vec3::Constant(200.0), voxel,
+              [&](const Vec3& p) { return density * insideFraction(cubeLevel(p), voxel); });
 }
-
-namespace {
-const Vec3 kSkullExtent(212.5, 201.5, 141.5);  // mm
-}  // namespace
 
 std::array<int32_t, 3> skullPhantomDims(double voxel) { return dimsFor(kSkullExtent, voxel); }
 
 DensityVolume makeSkullPhantom(double voxel) {
-  const Vec3& extent = kSkullExtent;
-  const Vec3 outer = 0.5 * extent - Vec3::Constant(1.5);  // mm, semi-axes of the outer surface
-  return fill(extent, voxel, [&](const Vec3& p) {
-    const Vec3 e = p.cwiseQuotient(outer);
-    const double rho = e.norm();  // 1 on the outer surface
-    if (rho < 1e-9) return 40.0;
-    // Depth below the outer surface along the ray from the centre (mm).
-    const double depth = p.norm() * (1.0 / rho - 1.0);
-    const Vec3 dir = e / rho;
-    // Thickness varies smoothly with direction: 4.5 to 8.5 mm.
-    const double theta = std::acos(std::clamp(dir.z(), -1.0, 1.0)), phi = std::atan2(dir.y(), dir.x());
-    const double thickness = 6.5 + 2.0 * std::sin(3 * theta) * std::cos(2 * phi);
+  return fill(kSkullExtent, voxel, [&](const Vec3& p) {
+    const auto [depth, thickness, atCentre] = skullDepth(p);
+    if (atCentre) return 40.0;
     const double table = 0.25 * thickness;  // each cortical table (mm)
     const double inBone = insideFraction(std::max(-depth, depth - thickness), voxel);
     const double inOuterTable = insideFraction(depth - table, voxel);
     const double inInnerTable = insideFraction(thickness - table - depth, voxel);
     const double boneDensity = 700.0 + 800.0 * inOuterTable + 600.0 * inInnerTable;
     // Opening at the base: no bone within 16 mm of the -z axis.
-    const double opening = p.z() < 0 ? insideFraction(std::hypot(p.x(), p.y()) - 16.0, voxel) : 0.0;
+    const double opening = p.z() < 0 ? insideFraction(-skullOpening(p), voxel) : 0.0;
     const double inCavity = insideFraction(thickness - depth, voxel);
     return inBone * (1.0 - opening) * boneDensity + inCavity * 40.0;
   });
 }
 
 DensityVolume makeHalfSpacePhantom(double voxel, const Vec3& normal, double size, double density) {
-  if (!(normal.norm() > 1e-9) || !normal.allFinite()) throw std::invalid_argument("normal must not be zero");
-  const Vec3 n = normal.normalized();
+  const Vec3 n = unitNormal(normal);
   return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
     // Partial volume of a tilted plane: the ramp width is the voxel's extent along n.
     const double width = voxel * n.cwiseAbs().sum();
-    return density * std::clamp(0.5 - p.dot(n) / width, 0.0, 1.0);
+    return density * std::clamp(0.5 - halfSpaceLevel(p, n) / width, 0.0, 1.0);
   });
 }
 
 DensityVolume makeWallPhantom(double voxel, double thickness, double size, double density) {
   return fill(Vec3::Constant(size), voxel,
-              [&](const Vec3& p) { return density * insideFraction(std::abs(p.z()) - 0.5 * thickness, voxel); });
+              [&](const Vec3& p) { return density * insideFraction(wallLevel(p, thickness), voxel); });
 }
 
 DensityVolume makeChannelPhantom(double voxel, double width, double size, double density) {
   return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
-    const double fromChannel = std::max(std::abs(p.x()), std::abs(p.y())) - 0.5 * width;  // > 0 in the block
-    const double block = (p.cwiseAbs() - Vec3::Constant(0.5 * size - 2.0 * voxel)).maxCoeff();
-    return density * insideFraction(-fromChannel, voxel) * insideFraction(block, voxel);
+    const ChannelParts c = channelParts(p, width, size, voxel);
+    return density * insideFraction(-c.fromChannel, voxel) * insideFraction(c.block, voxel);
   });
 }
 
-DensityVolume makePhantom(const std::string& specification) {
+namespace {
+
+// A phantom named by its specification: how to build its volume, and its exact shape.
+struct PhantomDefinition {
+  std::function<DensityVolume()> volume;
+  LevelSet shape;
+};
+
+PhantomDefinition definePhantom(const std::string& specification) {
   const auto [name, query] = SourceSpec::split(specification);
   if (name == "cube") {
     const SourceSpec k(name, query, {{"voxels", 200}, {"density", 1200}});
-    return makeCubePhantom(k.wholeNumber("voxels", 2, 2000), k.number("density"));
+    const int voxels = k.wholeNumber("voxels", 2, 2000);
+    const double density = k.number("density");
+    return {[=] { return makeCubePhantom(voxels, density); }, cubeLevel};
   }
   if (name == "skull") {
     const SourceSpec k(name, query, {{"voxel", 1.0}});
-    return makeSkullPhantom(k.positive("voxel"));
+    const double voxel = k.positive("voxel");
+    return {[=] { return makeSkullPhantom(voxel); }, skullLevel};
   }
   if (name == "halfspace") {
     const SourceSpec k(name, query, {{"voxel", 0.5}, {"nx", 0}, {"ny", 0}, {"nz", 1}, {"size", 40}, {"density", 1000}});
-    return makeHalfSpacePhantom(k.positive("voxel"), Vec3(k.number("nx"), k.number("ny"), k.number("nz")),
-                                k.positive("size"), k.number("density"));
+    const double voxel = k.positive("voxel"), size = k.positive("size"), density = k.number("density");
+    const Vec3 normal(k.number("nx"), k.number("ny"), k.number("nz"));
+    return {[=] { return makeHalfSpacePhantom(voxel, normal, size, density); },
+            [n = unitNormal(normal)](const Vec3& p) { return halfSpaceLevel(p, n); }};
   }
   if (name == "wall") {
     const SourceSpec k(name, query, {{"voxel", 0.5}, {"thickness", 0.5}, {"size", 40}, {"density", 1000}});
-    return makeWallPhantom(k.positive("voxel"), k.number("thickness"), k.positive("size"), k.number("density"));
+    const double voxel = k.positive("voxel"), thickness = k.number("thickness"), size = k.positive("size"),
+                 density = k.number("density");
+    return {[=] { return makeWallPhantom(voxel, thickness, size, density); },
+            [=](const Vec3& p) { return wallLevel(p, thickness); }};
   }
   if (name == "channel") {
     const SourceSpec k(name, query, {{"voxel", 0.5}, {"width", 3}, {"size", 40}, {"density", 1000}});
-    return makeChannelPhantom(k.positive("voxel"), k.number("width"), k.positive("size"), k.number("density"));
+    const double voxel = k.positive("voxel"), width = k.number("width"), size = k.positive("size"),
+                 density = k.number("density");
+    return {[=] { return makeChannelPhantom(voxel, width, size, density); },
+            [=](const Vec3& p) { return channelLevel(p, width, size, voxel); }};
   }
   throw std::invalid_argument("unknown phantom '" + name + "' (cube, skull, halfspace, wall, channel)");
 }
+
+}  // namespace
+
+DensityVolume makePhantom(const std::string& specification) { return definePhantom(specification).volume(); }
+
+LevelSet phantomShape(const std::string& specification) { return definePhantom(specification).shape; }
 
 std::string phantomHelp() {
   return "  cube?voxels=200&density=1200          160 mm solid cube in a 200 mm grid of voxels^3 (Table 3.1)\n"

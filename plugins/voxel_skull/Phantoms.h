@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "framework/geometry/ExactShape.h"
 #include "plugins/voxel_skull/DensityVolume.h"
 
 namespace trephine::voxel {
@@ -39,6 +40,11 @@ DensityVolume makeChannelPhantom(double voxelSize, double width, double size = 4
 // "name?key=value&key=value" as written after "phantom:" in a scene. Throws
 // std::invalid_argument naming the unknown phantom or key, or the bad value.
 DensityVolume makePhantom(const std::string& specification);
+// The solid a phantom's volume samples, exactly (mm, negative inside): the
+// geometric surface, which the partial-volume densities place at density / 2
+// (halfspace, wall, channel, cube); the skull's isosurface at another isovalue
+// lies off it by a fraction of a voxel. Throws as makePhantom.
+LevelSet phantomShape(const std::string& specification);
 // The phantoms and their keys with defaults, for help texts.
 std::string phantomHelp();
 

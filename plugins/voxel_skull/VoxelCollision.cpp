@@ -90,15 +90,22 @@ VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const Shell
       // McNeely tangent plane: through the voxel centre with the point's normal.
       m_groupDepths[group] -= offset.dot(normal);
     } else if (grid().smooth) {
-      // Smooth surface: the surface normal and the first-order distance to the isosurface.
+      // Smooth surface: the surface normal and the first-order distance to
+      // the isosurface, within a voxel of it. Deeper, the first-order distance
+      // is wrong where the density levels off inside bone (it overestimates),
+      // and the gradient may be that of the bone's inner structure (a cortical
+      // table over diploe rises outwards, turning the normal inwards): there,
+      // as where the density is flat, the depth is measured along the tool's
+      // normal instead.
       Vec3 gradient;
       const double code = grid().codeAt(p, &gradient);
       const double slope = gradient.norm();  // codes per mm
-      if (slope * grid().smallestSide() > 1e-3 * std::max(1.0, std::abs(grid().isoCode))) {
+      const bool hasGradient = slope * grid().smallestSide() > 1e-3 * std::max(1.0, std::abs(grid().isoCode));
+      const double firstOrderDepth = hasGradient ? (code - grid().isoCode) / slope : reach;
+      if (hasGradient && firstOrderDepth <= 0.5 * grid().spacing.maxCoeff()) {
         normal = -gradient / slope;
-        m_depths[h] = std::min((code - grid().isoCode) / slope, reach);
+        m_depths[h] = firstOrderDepth;
       } else {
-        // Flat density deep in bone: no gradient; measured along the tool's normal instead.
         m_depths[h] = reach * firstFreeOnSegment(grid(), p, p + reach * normal);
       }
       m_normals[h] = normal;
@@ -118,7 +125,8 @@ VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const Shell
     const int64_t voxel = m_groups.voxel(group);
     // Algorithm 1: the deepest of the per-voxel mean depths.
     if (algorithm1) {
-      const double depthSum = (grid().centerOf(voxel) - X_WT.position).dot(m_groupNormals[group]) + m_groupDepths[group];
+      const double depthSum =
+          (grid().centerOf(voxel) - X_WT.position).dot(m_groupNormals[group]) + m_groupDepths[group];
       penetration = std::max(penetration, depthSum / double(m_groupPoints[group]));
     }
     const double length = m_groupNormals[group].norm();

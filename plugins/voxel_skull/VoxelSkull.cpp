@@ -113,6 +113,10 @@ std::optional<SurfaceHit> VoxelSkull::raycast(const Vec3& origin, const Vec3& di
   return m_bound ? m_backend->raycast(origin, direction, maxDistance) : std::nullopt;
 }
 
+LevelSet VoxelSkull::exactShape() const {
+  return d_file.isScheme() ? phantomShape(std::string(d_file.schemeBody())) : LevelSet{};
+}
+
 Box3 VoxelSkull::bounds() const { return m_volume.bounds(); }
 
 void VoxelSkull::declareOutputs(std::vector<OutputFile>& outputs) const {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "framework/core/Component.h"
+#include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/voxel_skull/DensityVolume.h"
 #include "plugins/voxel_skull/FootprintCut.h"
@@ -25,7 +26,7 @@
 
 namespace trephine::voxel {
 
-class VoxelSkull final : public Component, public ShellContactTarget {
+class VoxelSkull final : public Component, public ShellContactTarget, public ExactShapeSource {
  public:
   static constexpr std::string_view kTypeName = "VoxelSkull";
 
@@ -37,6 +38,8 @@ class VoxelSkull final : public Component, public ShellContactTarget {
 
   // SurfaceTarget
   Box3 bounds() const override;
+  // A phantom's solid (file="phantom:..."); none for a scan.
+  LevelSet exactShape() const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
   // ShellContactTarget
   void reserveShell(std::span<const ShellPoint> shell) override;

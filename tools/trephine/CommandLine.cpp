@@ -39,6 +39,8 @@ std::optional<std::string> parseArguments(int argc, char** argv, const std::vect
     if (isFlag && hasInlineValue) return "option '" + arg + "' takes no value";
     if (arg == "--set") {
       out.overrides.push_back(value);
+    } else if (arg == "--vary") {
+      out.variations.push_back(value);
     } else {
       out.options[arg] = value;
     }

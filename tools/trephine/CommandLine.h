@@ -15,6 +15,7 @@ struct Arguments {
   std::vector<std::string> positional;
   std::map<std::string, std::string> options;  // "--out" -> "dir"; flags map to ""
   std::vector<std::string> overrides;          // every --set value, in order
+  std::vector<std::string> variations;         // every --vary value, in order (trephine study)
   bool has(const std::string& option) const { return options.count(option) > 0; }
   std::optional<std::string> get(const std::string& option) const;
 };

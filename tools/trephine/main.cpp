@@ -6,6 +6,7 @@
 #include "tools/trephine/PhantomCommand.h"
 #include "tools/trephine/Reference.h"
 #include "tools/trephine/RunCommand.h"
+#include "tools/trephine/StudyCommand.h"
 
 namespace {
 
@@ -21,6 +22,19 @@ usage:
       print every error, or "ok".
   Warnings (a rendering that may not be passive) are printed and the run goes
   on; --strict makes them errors (exit 1).
+  trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N]
+                      [--duration S] [--seed N] [--set path.field=value ...] [--target PATH]
+                      [--reference K] [--poses N]
+      Run the scene once per setting of the varied fields (their cartesian
+      product, the first field varying slowest) on the same device motion, and
+      compare: the target's penetration and normal at the same tool poses (the
+      contact frames of setting K, default 1; 2N poses, default N = 200)
+      against the exact shape of a phantom, or against setting K when the
+      target has none; force steps, proxy inside, NaN; time per frame. Writes
+      study.csv, study.md, pareto.png (python3-matplotlib) and settings/NNN/
+      to DIR (default runs/study-<scene name>). --jobs runs N settings at a
+      time (their timings then share the cores). Under mpirun each rank takes
+      every K-th setting and rank 0 gathers (DIR on a shared file system).
   trephine components [NAME] [--json | --markdown | --xsd]
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
@@ -63,6 +77,12 @@ int main(int argc, char** argv) {
     error = parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"},
                            {"--realtime", "--quiet", "--strict"}, arguments);
     if (!error) return runCommand(arguments);
+  } else if (command == "study") {
+    error = parseArguments(argc, argv,
+                           {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference",
+                            "--poses", "--setting"},
+                           {}, arguments);
+    if (!error) return studyCommand(arguments);
   } else if (command == "validate") {
     error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {"--strict"}, arguments);
     if (!error) return validateCommand(arguments);

@@ -1,0 +1,177 @@
+// `trephine study`: the settings of a product run on the same motion, their
+// accuracy at the same poses against the exact shape, the files it writes,
+// failed settings, parallel workers and two MPI ranks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+using test::runProgram;
+
+// A burr walking over a tilted half-space (exact: the plane) for 1 s.
+constexpr const char* kScene = R"(<Node name="root" units="mm">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <Node name="patient">
+    <VoxelSkull name="skull" file="phantom:halfspace?voxel=1.0&amp;nx=0.3&amp;ny=0.2&amp;nz=0.93&amp;size=30"
+                isovalue="500"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="random-walk" target="@/patient/skull" direction="-0.3 -0.2 -0.93"
+                    tipOffset="2.5" standoff="1" depth="1.2" radius="4" walkDuration="1" seed="7"
+                    record="false" rate="1000"/>
+    <PointshellTool name="burr" radius="2.5" pointCount="466" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull" sweep="line" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" damping="0.002" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)";
+
+const char* kVoxels =
+    "/patient/skull.file=phantom:halfspace?voxel=1.0&nx=0.3&ny=0.2&nz=0.93&size=30,"
+    "phantom:halfspace?voxel=0.5&nx=0.3&ny=0.2&nz=0.93&size=30";
+
+// study.csv as rows of column -> value.
+std::vector<std::map<std::string, std::string>> readStudy(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  auto split = [](const std::string& text) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (char c : text) {
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        cells.push_back(cell), cell.clear();
+      else
+        cell += c;
+    }
+    cells.push_back(cell);
+    return cells;
+  };
+  if (std::getline(in, line)) header = split(line);
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& column) {
+  const auto it = row.find(column);
+  EXPECT_NE(it, row.end()) << "no column " << column;
+  return it == row.end() ? std::nan("") : std::stod(it->second);
+}
+
+TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses) {
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  std::string out;
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", kVoxels, "--vary", "/tool/burr.pointCount=162,466", "--out",
+                        (dir / "study").string(), "--poses", "60", "--jobs", "2"},
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("reference: the exact shape of the phantom"), std::string::npos) << out;
+  const auto rows = readStudy(dir / "study/study.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  int onFront = 0;
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "ok");
+    EXPECT_EQ(number(row, "poses"), 120) << "60 proxy and 60 device poses";
+    EXPECT_GT(number(row, "compared_poses"), 60) << "the device poses are all in contact";
+    // The native method's own error: the conformance suite's tolerance for
+    // the penetration (0.03 mm plus 6% of depths up to 1.2 mm); its normal, a
+    // depth-weighted sum of point normals, resolves directions to about half
+    // the angle between neighbouring shell points, sqrt(4 pi / N) / 2.
+    EXPECT_LT(number(row, "pen_err_p99_mm"), 0.03 + 0.06 * 1.2) << row.at("label");
+    const double points = number(row, "/tool/burr.pointCount");
+    EXPECT_LT(number(row, "normal_err_p99_deg"), 0.5 * std::sqrt(4 * 3.14159 / points) * 180 / 3.14159)
+        << row.at("label");
+    EXPECT_GT(number(row, "pen_err_max_mm"), 0) << "no setting is exact";
+    EXPECT_EQ(number(row, "nan_frames"), 0);
+    EXPECT_EQ(number(row, "proxy_inside_frames"), 0);
+    EXPECT_GT(number(row, "step_p50_us"), 0);
+    EXPECT_GT(number(row, "query_p50_us"), 0);
+    onFront += number(row, "pareto") == 1;
+    for (const char* file : {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv"})
+      EXPECT_TRUE(std::filesystem::exists(dir / "study/settings" / ("00" + row.at("setting")) / file)) << file;
+  }
+  EXPECT_GE(onFront, 1);
+  EXPECT_EQ(rows[0].at("reference"), "1");
+  EXPECT_EQ(rows[3].at("/tool/burr.pointCount"), "466");
+  const std::string table = test::readFile(dir / "study/study.md");
+  EXPECT_NE(table.find("| 4 | file=phantom:halfspace?voxel=0.5"), std::string::npos) << table;
+}
+
+TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  std::string out;
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/patient/skull.backend=native,nonesuch", "--out",
+                        (dir / "study").string(), "--poses", "20"},
+                       &out),
+            3)
+      << out;
+  EXPECT_NE(out.find("setting 2 failed"), std::string::npos) << out;
+  EXPECT_NE(out.find("no collision back-end \"nonesuch\""), std::string::npos) << out;
+  const auto rows = readStudy(dir / "study/study.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("status"), "ok");
+  EXPECT_NE(rows[1].at("status").find("nonesuch"), std::string::npos);
+}
+
+TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  std::string out;
+  EXPECT_EQ(runProgram({"study", scene.string(), "--out", dir.path().string()}, &out), 2) << "no --vary";
+  EXPECT_NE(out.find("at least one --vary"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=1,,2"}, &out), 2);
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--reference", "2"}, &out), 2);
+  EXPECT_NE(out.find("from 1 to 1"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--jobs", "0"}, &out), 2);
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.radiuss=2", "--out", dir.path().string()}, &out),
+            1);
+  EXPECT_NE(out.find("radiuss"), std::string::npos) << out;
+}
+
+// Two ranks as mpirun starts them (Open MPI's variables): each runs every
+// second setting, rank 1 waits for the reference's poses, rank 0 gathers.
+TEST(StudyCommandTest, TwoMpiRanksShareTheSettingsAndRankZeroGathers) {
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  const std::vector<std::string> args = {
+      "study", scene.string(),           "--vary",  "/tool/burr.pointCount=92,162,466",
+      "--out", (dir / "study").string(), "--poses", "20"};
+  std::string out0, out1;
+  int status0 = -1, status1 = -1;
+  std::thread rank1([&] { status1 = runProgram(args, &out1, "OMPI_COMM_WORLD_RANK=1 OMPI_COMM_WORLD_SIZE=2"); });
+  status0 = runProgram(args, &out0, "OMPI_COMM_WORLD_RANK=0 OMPI_COMM_WORLD_SIZE=2");
+  rank1.join();
+  EXPECT_EQ(status0, 0) << out0;
+  EXPECT_EQ(status1, 0) << out1;
+  EXPECT_NE(out0.find("setting 1/3"), std::string::npos) << out0;
+  EXPECT_NE(out0.find("setting 3/3"), std::string::npos) << out0;
+  EXPECT_NE(out1.find("setting 2/3"), std::string::npos) << out1;
+  EXPECT_EQ(out1.find("setting 1/3"), std::string::npos) << out1;
+  EXPECT_EQ(out1.find("study.csv"), std::string::npos) << "only rank 0 gathers";
+  const auto rows = readStudy(dir / "study/study.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& row : rows) EXPECT_EQ(row.at("status"), "ok") << row.at("label");
+}
+
+}  // namespace
+}  // namespace trephine

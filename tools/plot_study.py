@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""What accuracy costs in time, from the study.csv `trephine study` writes.
+
+usage: tools/plot_study.py DIR/study.csv
+
+Writes DIR/pareto.png: for every setting that ran, time per haptic frame
+(median, with a bar to its p99) against the penetration error at the study's
+poses (p99), each point labelled with its setting; the Pareto front (no other
+setting both faster and more accurate) is joined and its points filled.
+"""
+import csv
+import math
+import os
+import sys
+from pathlib import Path
+
+try:
+    import matplotlib
+except ImportError:
+    if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
+    sys.exit("plot_study.py: matplotlib is missing; install python3-matplotlib")
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def main(argv):
+    if len(argv) != 2:
+        sys.exit(__doc__)
+    source = Path(argv[1])
+    with open(source, newline="") as f:
+        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    points = []
+    for r in rows:
+        t50, t99, err = number(r["step_p50_us"]), number(r["step_p99_us"]), number(r["pen_err_p99_mm"])
+        if math.isfinite(t50) and math.isfinite(err):
+            points.append((t50, t99, err, r["setting"] + ": " + r["label"], r["pareto"] == "1"))
+    if not points:
+        sys.exit(f"plot_study.py: {source}: no setting with both a time and an error")
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    for t50, t99, err, label, on_front in points:
+        ax.errorbar([t50], [err], xerr=[[0], [max(0.0, t99 - t50)]], fmt="o", color="C0" if on_front else "C7",
+                    mfc="C0" if on_front else "white", capsize=3)
+        ax.annotate(label, (t50, err), textcoords="offset points", xytext=(5, 4), fontsize=7)
+    front = sorted((p for p in points if p[4]), key=lambda p: p[0])
+    if len(front) > 1:
+        ax.plot([p[0] for p in front], [p[2] for p in front], "-", color="C0", label="Pareto front")
+        ax.legend(loc="upper right")
+    ax.set_xscale("log")
+    ax.set_xlabel("haptic step (µs): median, bar to p99")
+    ax.set_ylabel("penetration error p99 (mm)")
+    ax.set_title(f"What accuracy costs in time ({len(points)} settings)")
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    out = source.with_name("pareto.png")
+    fig.savefig(out, dpi=120)
+    print(out)
+
+
+if __name__ == "__main__":
+    main(sys.argv)

@@ -1,0 +1,323 @@
+#include "tools/trephine/StudyCommand.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <thread>
+
+#include "framework/core/Strings.h"
+#include "tools/trephine/StudyReport.h"
+#include "tools/trephine/StudySetting.h"
+
+extern char** environ;
+
+namespace trephine::cli {
+
+namespace {
+
+constexpr const char* kUsageLine =
+    "usage: trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N] [--duration S]\n"
+    "                     [--seed N] [--set path.field=value ...] [--target PATH] [--reference K] [--poses N]\n";
+
+// This process's place among the ranks of an MPI launch (mpirun sets these
+// variables; Open MPI, then MPICH and Intel MPI): rank 0 of 1 otherwise.
+struct Rank {
+  int rank = 0;
+  int size = 1;
+};
+
+Rank mpiRank() {
+  for (const auto& [rankVariable, sizeVariable] :
+       {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"}, std::pair{"PMI_RANK", "PMI_SIZE"}}) {
+    const char* rank = std::getenv(rankVariable);
+    const char* size = std::getenv(sizeVariable);
+    if (rank && size) {
+      const Rank r{std::atoi(rank), std::atoi(size)};
+      if (r.size >= 1 && r.rank >= 0 && r.rank < r.size) return r;
+    }
+  }
+  return {};
+}
+
+std::optional<int> positiveInteger(const Arguments& a, const std::string& option, std::string& error) {
+  const auto text = a.get(option);
+  if (!text) return std::nullopt;
+  int value = 0;
+  const auto result = std::from_chars(text->data(), text->data() + text->size(), value);
+  if (text->empty() || result.ec != std::errc() || result.ptr != text->data() + text->size() || value < 1) {
+    error = option + " expects a positive integer, got '" + *text + "'";
+    return 0;
+  }
+  return value;
+}
+
+struct StudyRequest {
+  StudyOptions options;
+  std::vector<StudySetting> settings;
+  std::vector<std::string> variationTexts;
+  int jobs = 1;
+  std::optional<int> onlySetting;  // --setting K: run that one here (the study's worker processes)
+};
+
+std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) {
+  StudyRequest request;
+  if (a.positional.size() != 1) {
+    error = "a study needs one scene";
+    return std::nullopt;
+  }
+  request.options.scene = a.positional[0];
+  if (a.variations.empty()) {
+    error = "a study needs at least one --vary path.field=v1,v2,...";
+    return std::nullopt;
+  }
+  std::vector<StudyVariation> variations;
+  for (const std::string& text : a.variations) {
+    auto variation = parseVariation(text, error);
+    if (!variation) return std::nullopt;
+    for (const StudyVariation& v : variations)
+      if (v.field == variation->field) {
+        error = "--vary " + v.field + " given twice";
+        return std::nullopt;
+      }
+    variations.push_back(*variation);
+  }
+  request.variationTexts = a.variations;
+  request.settings = expandSettings(variations);
+  request.options.out = a.get("--out").value_or("runs/study-" + request.options.scene.stem().string());
+  request.options.target = a.get("--target").value_or("");
+  request.options.simulation.overrides = a.overrides;
+  if (auto d = a.get("--duration")) {
+    double seconds = 0;
+    if (FieldTraits<double>::parse(*d, seconds) || !(seconds > 0)) {
+      error = "--duration expects a positive number of seconds, got '" + *d + "'";
+      return std::nullopt;
+    }
+    request.options.simulation.duration = seconds;
+  }
+  if (auto s = a.get("--seed")) {
+    uint64_t seed = 0;
+    const auto result = std::from_chars(s->data(), s->data() + s->size(), seed);
+    if (s->empty() || result.ec != std::errc() || result.ptr != s->data() + s->size()) {
+      error = "--seed expects a non-negative integer, got '" + *s + "'";
+      return std::nullopt;
+    }
+    request.options.simulation.seed = seed;
+  }
+  const int count = static_cast<int>(request.settings.size());
+  if (auto jobs = positiveInteger(a, "--jobs", error)) request.jobs = *jobs;
+  if (auto reference = positiveInteger(a, "--reference", error)) request.options.referenceIndex = *reference - 1;
+  if (auto poses = positiveInteger(a, "--poses", error)) request.options.posesPerKind = *poses;
+  if (auto only = positiveInteger(a, "--setting", error)) request.onlySetting = *only - 1;
+  if (!error.empty()) return std::nullopt;
+  if (request.options.referenceIndex >= count || (request.onlySetting && *request.onlySetting >= count)) {
+    error = "--reference and --setting take a setting number from 1 to " + std::to_string(count);
+    return std::nullopt;
+  }
+  return request;
+}
+
+// The command line of the worker process that runs setting `index`.
+std::vector<std::string> workerArguments(const StudyRequest& request, int index) {
+  std::vector<std::string> args = {"/proc/self/exe", "study", request.options.scene.string()};
+  for (const std::string& v : request.variationTexts) args.insert(args.end(), {"--vary", v});
+  for (const std::string& o : request.options.simulation.overrides) args.insert(args.end(), {"--set", o});
+  if (request.options.simulation.duration) {
+    std::ostringstream d;
+    d.precision(17);
+    d << *request.options.simulation.duration;
+    args.insert(args.end(), {"--duration", d.str()});
+  }
+  args.insert(args.end(), {"--seed", std::to_string(request.options.simulation.seed)});
+  if (!request.options.target.empty()) args.insert(args.end(), {"--target", request.options.target});
+  args.insert(args.end(), {"--reference", std::to_string(request.options.referenceIndex + 1), "--poses",
+                           std::to_string(request.options.posesPerKind), "--out", request.options.out.string(),
+                           "--setting", std::to_string(index + 1)});
+  return args;
+}
+
+// Starts `args` (args[0] is the program; searched in PATH when `searchPath`);
+// returns its pid, or -1.
+pid_t spawn(const std::vector<std::string>& args, bool searchPath) {
+  std::vector<char*> argv;
+  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int failed = searchPath ? posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)
+                                : posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+  return failed ? -1 : pid;
+}
+
+// A worker that ended without saying why (killed, crashed) leaves error.txt.
+void recordAbnormalEnd(const StudyRequest& request, int index, int status) {
+  const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
+  if (std::filesystem::exists(directory / kResultFile) || std::filesystem::exists(directory / kErrorFile)) return;
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  std::ofstream error(directory / kErrorFile);
+  error << request.settings[index].label() << ": ";
+  if (WIFSIGNALED(status))
+    error << "the worker process was ended by signal " << WTERMSIG(status) << "\n";
+  else
+    error << "the worker process exited with status " << WEXITSTATUS(status) << " and wrote no result\n";
+}
+
+// Runs the settings in worker processes, at most `jobs` at a time.
+void runWorkers(const StudyRequest& request, const std::vector<int>& indices, int jobs) {
+  std::map<pid_t, int> running;
+  size_t next = 0;
+  while (next < indices.size() || !running.empty()) {
+    while (next < indices.size() && static_cast<int>(running.size()) < jobs) {
+      const int index = indices[next++];
+      std::cout << "setting " << index + 1 << "/" << request.settings.size() << ": " << request.settings[index].label()
+                << std::endl;
+      const pid_t pid = spawn(workerArguments(request, index), false);
+      if (pid < 0) {
+        recordAbnormalEnd(request, index, 127 << 8);
+        continue;
+      }
+      running[pid] = index;
+    }
+    if (running.empty()) continue;
+    int status = 0;
+    const pid_t done = waitpid(-1, &status, 0);
+    if (done < 0) break;
+    if (auto it = running.find(done); it != running.end()) {
+      recordAbnormalEnd(request, it->second, status);
+      running.erase(it);
+    }
+  }
+}
+
+using Clock = std::filesystem::file_time_type::clock;
+
+// Under MPI, other ranks write into the shared directory: a file counts only
+// when it was written after this rank started (less a margin for clocks), so
+// that files of an earlier study in the same directory are not taken.
+bool writtenSince(const std::filesystem::path& file, Clock::time_point since) {
+  std::error_code ec;
+  const auto time = std::filesystem::last_write_time(file, ec);
+  return !ec && time >= since;
+}
+
+bool settingDone(const StudyRequest& request, int index, Clock::time_point since) {
+  const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
+  return writtenSince(directory / kResultFile, since) || writtenSince(directory / kErrorFile, since);
+}
+
+void waitFor(const std::function<bool()>& ready) {
+  while (!ready()) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+}
+
+std::filesystem::path plotScript() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  for (const std::filesystem::path& candidate : {exe.parent_path().parent_path() / "share/trephine/plot_study.py",
+                                                 std::filesystem::path(TREPHINE_SOURCE_DIR) / "tools/plot_study.py"})
+    if (std::filesystem::exists(candidate)) return candidate;
+  return {};
+}
+
+// pareto.png from study.csv by tools/plot_study.py (matplotlib); a study
+// without it still has its csv and table.
+void drawPareto(const std::filesystem::path& out) {
+  const std::filesystem::path script = plotScript();
+  const std::string command = "python3 " + (script.empty() ? std::string("tools/plot_study.py") : script.string()) +
+                              " " + (out / "study.csv").string();
+  int status = -1;
+  if (!script.empty()) {
+    const pid_t pid = spawn({"python3", script.string(), (out / "study.csv").string()}, true);
+    if (pid > 0) waitpid(pid, &status, 0);
+  }
+  if (status == 0)
+    std::cout << "pareto    " << (out / "pareto.png").string() << "\n";
+  else
+    std::cerr << "trephine: pareto.png not drawn (needs python3-matplotlib); draw it with: " << command << "\n";
+}
+
+}  // namespace
+
+int studyCommand(const Arguments& a) {
+  std::string error;
+  auto request = readRequest(a, error);
+  if (!request) {
+    std::cerr << "trephine: " << error << "\n" << kUsageLine;
+    return kUsage;
+  }
+  const StudyOptions& options = request->options;
+  if (request->onlySetting)
+    return runStudySetting(options, request->settings[*request->onlySetting]) ? kOk : kRuntimeFailure;
+  // The scene must load before anything is run (a typo in a field shows here).
+  {
+    Diagnostics diagnostics;
+    SimulationOptions check = options.simulation;
+    for (const std::string& o : request->settings.front().overrides()) check.overrides.push_back(o);
+    if (!Simulation::fromFile(options.scene, check, diagnostics)) {
+      diagnostics.print(std::cerr);
+      return kSceneError;
+    }
+  }
+  const Rank rank = mpiRank();
+  const auto started = Clock::now() - std::chrono::seconds(10);
+  std::error_code ec;
+  std::filesystem::create_directories(options.out, ec);
+  if (!std::filesystem::is_directory(options.out)) {
+    std::cerr << "trephine: --out " << options.out.string() << ": cannot create a directory there\n";
+    return kSceneError;
+  }
+  if (rank.size == 1)
+    for (const char* stale : {kPosesFile, "study.csv", "study.md", "pareto.png"})
+      std::filesystem::remove(options.out / stale, ec);
+
+  const int count = static_cast<int>(request->settings.size());
+  std::vector<int> mine;
+  for (int i = 0; i < count; ++i)
+    if (i % rank.size == rank.rank && i != options.referenceIndex) mine.push_back(i);
+  // The reference's run gives the poses every other setting is queried at: it
+  // runs first, on the rank that owns it; the others wait for its poses.
+  const int referenceIndex = options.referenceIndex;
+  if (referenceIndex % rank.size == rank.rank) runWorkers(*request, {referenceIndex}, 1);
+  waitFor([&] {
+    return writtenSince(options.out / kPosesFile, started) || settingDone(*request, referenceIndex, started);
+  });
+  if (!writtenSince(options.out / kPosesFile, started)) {
+    std::ifstream why(options.out / request->settings[referenceIndex].directoryName() / kErrorFile);
+    std::cerr << "trephine: the reference setting failed, so no setting can be compared: " << why.rdbuf();
+    return kRuntimeFailure;
+  }
+  runWorkers(*request, mine, request->jobs);
+  if (rank.rank != 0) return kOk;
+
+  waitFor([&] {
+    for (int i = 0; i < count; ++i)
+      if (!settingDone(*request, i, started)) return false;
+    return true;
+  });
+  std::vector<std::string> written;
+  StudyReport report;
+  try {
+    report = gatherStudy(options.out, request->settings, referenceIndex);
+    written = writeStudy(report, options.out, options.scene.string());
+  } catch (const std::exception& e) {
+    std::cerr << "trephine: " << e.what() << "\n";
+    return kRuntimeFailure;
+  }
+  int failed = 0;
+  for (const StudyRow& row : report.rows)
+    if (!row.error.empty()) {
+      ++failed;
+      std::cerr << "trephine: setting " << row.setting.index + 1 << " failed: " << row.error << "\n";
+    }
+  std::cout << "study     " << count << " settings, " << failed << " failed; reference: " << report.reference << "\n"
+            << "outputs   " << options.out.string() << "/ (study.csv, study.md, settings/)\n";
+  drawPareto(options.out);
+  return failed == 0 ? kOk : kRuntimeFailure;
+}
+
+}  // namespace trephine::cli

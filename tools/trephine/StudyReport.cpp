@@ -1,0 +1,268 @@
+#include "tools/trephine/StudyReport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "framework/core/AtomicFile.h"
+#include "framework/math/Math.h"
+#include "tools/trephine/StudySetting.h"
+
+namespace trephine::cli {
+
+namespace {
+
+using Table = std::vector<std::vector<std::string>>;  // header first
+
+constexpr double kMismatchDepth = 0.1;  // mm
+
+std::vector<std::string> splitRow(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream row(line);
+  std::string cell;
+  while (std::getline(row, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+Table readTable(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot read");
+  Table table;
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) table.push_back(splitRow(line));
+  if (table.empty()) throw std::runtime_error(file.string() + ": empty");
+  for (size_t r = 1; r < table.size(); ++r)
+    if (table[r].size() != table[0].size())
+      throw std::runtime_error(file.string() + ":" + std::to_string(r + 1) + ": expected " +
+                               std::to_string(table[0].size()) + " columns");
+  return table;
+}
+
+size_t column(const Table& table, const std::string& name, const std::filesystem::path& file) {
+  const auto it = std::find(table[0].begin(), table[0].end(), name);
+  if (it == table[0].end()) throw std::runtime_error(file.string() + ": no column '" + name + "'");
+  return static_cast<size_t>(it - table[0].begin());
+}
+
+double toNumber(const std::string& text) {
+  try {
+    return std::stod(text);
+  } catch (const std::exception&) {
+    return std::nan("");
+  }
+}
+
+// One contact answer at a pose.
+struct Answer {
+  double penetration = 0;  // mm, 0 without contact
+  Vec3 normal = Vec3::Zero();
+};
+
+std::vector<Answer> readAnswers(const std::filesystem::path& file, const char* penetration, const char* nx,
+                                const char* ny, const char* nz) {
+  const Table table = readTable(file);
+  const size_t p = column(table, penetration, file), x = column(table, nx, file), y = column(table, ny, file),
+               z = column(table, nz, file);
+  std::vector<Answer> answers;
+  for (size_t r = 1; r < table.size(); ++r)
+    answers.push_back(
+        {toNumber(table[r][p]), Vec3(toNumber(table[r][x]), toNumber(table[r][y]), toNumber(table[r][z]))});
+  return answers;
+}
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  // Nearest rank: the smallest value with at least a fraction q at or below it.
+  const double rank = std::ceil(q * static_cast<double>(values.size()));
+  return values[std::clamp<size_t>(static_cast<size_t>(std::max(rank, 1.0)) - 1, 0, values.size() - 1)];
+}
+
+void compare(StudyRow& row, const std::vector<Answer>& measured, const std::vector<Answer>& reference) {
+  std::vector<double> penetrationErrors, normalErrors;
+  for (size_t i = 0; i < measured.size() && i < reference.size(); ++i) {
+    const Answer& m = measured[i];
+    const Answer& r = reference[i];
+    const bool inM = m.penetration > 0, inR = r.penetration > 0;
+    if (!inM && !inR) continue;  // neither touches: nothing to compare
+    ++row.comparedPoses;
+    // A contact one side misses by more than kMismatchDepth (a pose right at
+    // the surface is in contact or not by a hair: no mismatch).
+    if (std::abs(m.penetration - r.penetration) > kMismatchDepth && (!inM || !inR)) ++row.contactMismatches;
+    penetrationErrors.push_back(std::abs(m.penetration - r.penetration));
+    if (inM && inR && m.normal.norm() > 0.5 && r.normal.norm() > 0.5) {
+      const double c = std::clamp(m.normal.normalized().dot(r.normal.normalized()), -1.0, 1.0);
+      normalErrors.push_back(std::acos(c) * 180.0 / std::numbers::pi);
+    }
+  }
+  row.penetrationErrorP50 = percentile(penetrationErrors, 0.5);
+  row.penetrationErrorP99 = percentile(penetrationErrors, 0.99);
+  row.penetrationErrorMax =
+      penetrationErrors.empty() ? std::nan("") : *std::max_element(penetrationErrors.begin(), penetrationErrors.end());
+  row.normalErrorP50 = percentile(normalErrors, 0.5);
+  row.normalErrorP99 = percentile(normalErrors, 0.99);
+}
+
+// Time per frame (median) against penetration error (p99): a setting is on
+// the front when no other is at least as good in both and better in one.
+void markPareto(std::vector<StudyRow>& rows) {
+  for (StudyRow& a : rows) {
+    const double ta = a.runValue("step_p50_us"), ea = a.penetrationErrorP99;
+    a.pareto = a.error.empty() && std::isfinite(ta) && std::isfinite(ea);
+    if (!a.pareto) continue;
+    for (const StudyRow& b : rows) {
+      if (&a == &b || !b.error.empty()) continue;
+      const double tb = b.runValue("step_p50_us"), eb = b.penetrationErrorP99;
+      if (tb <= ta && eb <= ea && (tb < ta || eb < ea)) a.pareto = false;
+    }
+  }
+}
+
+std::string format(double value, int digits) {
+  if (!std::isfinite(value)) return "-";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << value;
+  return s.str();
+}
+
+std::string csvQuoted(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+double StudyRow::runValue(const std::string& name) const {
+  for (const auto& [key, value] : run)
+    if (key == name) return toNumber(value);
+  return std::nan("");
+}
+
+StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
+                        int referenceIndex) {
+  StudyReport report;
+  const std::filesystem::path posesFile = out / kPosesFile;
+  const std::vector<Answer> exact = readAnswers(posesFile, "exact_penetration", "exact_nx", "exact_ny", "exact_nz");
+  const bool hasExact = !exact.empty() && std::isfinite(exact.front().penetration);
+  std::vector<Answer> reference = exact;
+  const StudySetting& referenceSetting = settings.at(static_cast<size_t>(referenceIndex));
+  if (hasExact) {
+    report.reference = "the exact shape of the phantom";
+  } else {
+    reference = readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
+    report.reference = "setting " + std::to_string(referenceIndex + 1) + " (" + referenceSetting.label() +
+                       "): no exact shape for this target";
+  }
+  for (const StudySetting& setting : settings) {
+    StudyRow row;
+    row.setting = setting;
+    row.isReference = setting.index == referenceIndex;
+    const std::filesystem::path directory = out / setting.directoryName();
+    if (std::ifstream error{directory / kErrorFile}) {
+      std::ostringstream text;
+      text << error.rdbuf();
+      row.error = text.str();
+      while (!row.error.empty() && (row.error.back() == '\n' || row.error.back() == ' ')) row.error.pop_back();
+      report.rows.push_back(std::move(row));
+      continue;
+    }
+    try {
+      const std::vector<Answer> measured = readAnswers(directory / kProbeFile, "penetration", "nx", "ny", "nz");
+      row.poses = static_cast<int>(measured.size());
+      compare(row, measured, reference);
+      const Table probe = readTable(directory / kProbeFile);
+      const size_t q = column(probe, "query_us", directory / kProbeFile);
+      std::vector<double> times;
+      for (size_t r = 1; r < probe.size(); ++r) times.push_back(toNumber(probe[r][q]));
+      row.queryP50 = percentile(times, 0.5);
+      row.queryP99 = percentile(times, 0.99);
+      const Table result = readTable(directory / kResultFile);
+      if (result.size() != 2) throw std::runtime_error((directory / kResultFile).string() + ": expected one row");
+      for (size_t c = 0; c < result[0].size(); ++c) row.run.emplace_back(result[0][c], result[1][c]);
+    } catch (const std::exception& e) {
+      row.error = e.what();
+    }
+    report.rows.push_back(std::move(row));
+  }
+  markPareto(report.rows);
+  return report;
+}
+
+std::vector<std::string> writeStudy(const StudyReport& report, const std::filesystem::path& out,
+                                    const std::string& scene) {
+  std::vector<std::string> runColumns;
+  for (const StudyRow& row : report.rows)
+    if (row.error.empty() && !row.run.empty()) {
+      for (const auto& [key, value] : row.run) runColumns.push_back(key);
+      break;
+    }
+  std::ostringstream csv;
+  csv << "setting,label";
+  if (!report.rows.empty())
+    for (const auto& [field, value] : report.rows.front().setting.assignments) csv << ',' << csvQuoted(field);
+  csv << ",status,reference,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
+         "normal_err_p50_deg,normal_err_p99_deg,query_p50_us,query_p99_us";
+  for (const std::string& c : runColumns) csv << ',' << c;
+  csv << ",pareto\n";
+  for (const StudyRow& row : report.rows) {
+    csv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label());
+    for (const auto& [field, value] : row.setting.assignments) csv << ',' << csvQuoted(value);
+    csv << ',' << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << (row.isReference ? 1 : 0) << ','
+        << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
+    for (double v : {row.penetrationErrorP50, row.penetrationErrorP99, row.penetrationErrorMax, row.normalErrorP50,
+                     row.normalErrorP99, row.queryP50, row.queryP99})
+      csv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+    for (const std::string& c : runColumns) {
+      const double v = row.runValue(c);
+      csv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+    }
+    csv << ',' << (row.pareto ? 1 : 0) << '\n';
+  }
+
+  std::ostringstream md;
+  md << "# Study of " << scene << "\n\n"
+     << "Accuracy at " << (report.rows.empty() ? 0 : report.rows.front().poses)
+     << " tool poses (proxy and device positions of the reference setting's contact frames), against "
+     << report.reference << ". Time: the haptic step of each setting's own run (µs) and one target query at the "
+     << "poses (µs). Contact mismatches: poses where one side finds no contact and the other one deeper than 0.1 mm. "
+        "Pareto: no other setting is both faster (step p50) and more accurate (penetration error p99).\n\n"
+     << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | contact mismatches | "
+        "step p50 / p99 (µs) | query p50 / p99 (µs) | dF p99 / max (N) | proxy inside | NaN | removed | Pareto |\n"
+     << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+  for (const StudyRow& row : report.rows) {
+    md << "| " << row.setting.index + 1 << " | " << row.setting.label() << (row.isReference ? " (reference)" : "")
+       << " | ";
+    if (!row.error.empty()) {
+      std::string oneLine = row.error;
+      for (char& c : oneLine)
+        if (c == '\n' || c == '|') c = c == '|' ? '/' : ' ';
+      md << "failed: " << oneLine << " | | | | | | | | | |\n";
+      continue;
+    }
+    md << format(row.penetrationErrorP50, 3) << " / " << format(row.penetrationErrorP99, 3) << " | "
+       << format(row.normalErrorP50, 2) << " / " << format(row.normalErrorP99, 2) << " | " << row.contactMismatches
+       << " of " << row.comparedPoses << " | " << format(row.runValue("step_p50_us"), 1) << " / "
+       << format(row.runValue("step_p99_us"), 1) << " | " << format(row.queryP50, 1) << " / " << format(row.queryP99, 1)
+       << " | " << format(row.runValue("force_step_p99_N"), 3) << " / " << format(row.runValue("force_step_max_N"), 3)
+       << " | " << format(row.runValue("proxy_inside_frames"), 0) << " | " << format(row.runValue("nan_frames"), 0)
+       << " | " << format(row.runValue("removed"), 0) << " | " << (row.pareto ? "yes" : "") << " |\n";
+  }
+  AtomicFile csvFile(out / "study.csv");
+  csvFile.write(csv.str());
+  csvFile.commit();
+  AtomicFile mdFile(out / "study.md");
+  mdFile.write(md.str());
+  mdFile.commit();
+  return {"study.csv", "study.md"};
+}
+
+}  // namespace trephine::cli

@@ -1,0 +1,229 @@
+#include "tools/trephine/StudySetting.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "framework/core/AtomicFile.h"
+#include "framework/geometry/ExactShape.h"
+#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellContactTarget.h"
+#include "framework/runtime/Scheduler.h"
+#include "tools/trephine/ExactSphereContact.h"
+
+namespace trephine::cli {
+
+namespace {
+
+// A failure of this setting, written to error.txt.
+struct SettingError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct StudyPose {
+  std::string kind;  // "proxy" or "device"
+  Vec3 position;     // mm
+  double exactPenetration = std::nan("");
+  Vec3 exactNormal = Vec3::Constant(std::nan(""));
+};
+
+std::unique_ptr<Simulation> load(const StudyOptions& options, const StudySetting& setting) {
+  SimulationOptions simulationOptions = options.simulation;
+  for (const std::string& o : setting.overrides()) simulationOptions.overrides.push_back(o);
+  Diagnostics diagnostics;
+  auto simulation = Simulation::fromFile(options.scene, simulationOptions, diagnostics);
+  if (!simulation) throw SettingError(diagnostics.str());
+  return simulation;
+}
+
+// The target to probe: --target, else the scene's only one, else the
+// component of the first varied field if it is one.
+std::pair<ShellContactTarget*, Component*> findTarget(const Simulation& simulation, const StudyOptions& options,
+                                                      const StudySetting& setting) {
+  if (!options.target.empty()) {
+    Component* c = simulation.scene().findComponent(options.target);
+    auto* target = dynamic_cast<ShellContactTarget*>(c);
+    if (!target) throw SettingError("--target " + options.target + ": no collision target there");
+    return {target, c};
+  }
+  std::vector<Component*> targets;
+  for (Component* c : simulation.scene().components())
+    if (dynamic_cast<ShellContactTarget*>(c)) targets.push_back(c);
+  if (targets.empty()) throw SettingError("the scene has no collision target to study");
+  if (targets.size() > 1 && !setting.assignments.empty()) {
+    const std::string& field = setting.assignments.front().first;
+    const std::string path = field.substr(0, field.rfind('.'));
+    for (Component* c : targets)
+      if (c->path() == path) return {dynamic_cast<ShellContactTarget*>(c), c};
+  }
+  if (targets.size() > 1) throw SettingError("the scene has several collision targets: choose one with --target PATH");
+  return {dynamic_cast<ShellContactTarget*>(targets.front()), targets.front()};
+}
+
+const PointShellTool& findTool(const Simulation& simulation) {
+  const PointShellTool* tool = nullptr;
+  for (Component* c : simulation.scene().components())
+    if (auto* t = dynamic_cast<const PointShellTool*>(c)) {
+      if (tool) throw SettingError("the scene has several pointshell tools; a study probes a scene with one");
+      tool = t;
+    }
+  if (!tool) throw SettingError("the scene has no pointshell tool to probe the target with");
+  return *tool;
+}
+
+// The rate group that runs the component writing the haptic log: the haptic loop.
+const RateGroup* hapticGroup(const Simulation& simulation) {
+  for (const RateGroup& group : simulation.scheduler().groups())
+    for (const GroupMember& member : group.members)
+      if (member.component == simulation.hapticLogOwner()) return &group;
+  return nullptr;
+}
+
+std::vector<StudyPose> posesFromRun(const Simulation& simulation, int perKind) {
+  const HapticFrameLog& log = simulation.hapticLog();
+  std::vector<size_t> contactFrames;
+  for (size_t i = 0; i < log.size(); ++i)
+    if (log[i].contacts > 0) contactFrames.push_back(i);
+  std::vector<StudyPose> poses;
+  const size_t count = std::min<size_t>(contactFrames.size(), static_cast<size_t>(perKind));
+  for (const char* kind : {"proxy", "device"})
+    for (size_t j = 0; j < count; ++j) {
+      const HapticFrame& frame = log[contactFrames[j * contactFrames.size() / count]];
+      poses.push_back({kind, std::string(kind) == "proxy" ? frame.proxy : frame.device});
+    }
+  return poses;
+}
+
+void addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const PointShellTool& tool) {
+  const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
+  if (!source) return;
+  const LevelSet shape = source->exactShape();
+  // The exact contact is that of a sphere: only for a spherical tool.
+  if (!shape || tool.boundingRadius() != tool.leadingRadius()) return;
+  for (StudyPose& pose : poses) {
+    const ExactSphereContact exact = exactSphereContact(shape, pose.position, tool.leadingRadius());
+    pose.exactPenetration = std::max(0.0, exact.penetration);
+    pose.exactNormal = exact.normal;
+  }
+}
+
+std::string number(double value) {
+  std::ostringstream s;
+  s.precision(9);
+  s << value;
+  return s.str();
+}
+
+void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses) {
+  std::ostringstream s;
+  s << "kind,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz\n";
+  for (const StudyPose& p : poses)
+    s << p.kind << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
+      << ',' << number(p.exactPenetration) << ',' << number(p.exactNormal.x()) << ',' << number(p.exactNormal.y())
+      << ',' << number(p.exactNormal.z()) << '\n';
+  AtomicFile out(file);  // other processes wait for it: it appears whole or not at all
+  out.write(s.str());
+  out.commit();
+}
+
+std::vector<Vec3> readPositions(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw SettingError("cannot read " + file.string());
+  std::string line;
+  std::getline(in, line);
+  std::vector<Vec3> positions;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string kind, x, y, z;
+    if (!std::getline(row, kind, ',') || !std::getline(row, x, ',') || !std::getline(row, y, ',') ||
+        !std::getline(row, z, ','))
+      throw SettingError(file.string() + ": malformed row '" + line + "'");
+    positions.emplace_back(std::stod(x), std::stod(y), std::stod(z));
+  }
+  return positions;
+}
+
+// Queries the pristine target at every pose, the tool held in the world's
+// orientation (the spherical burr does not depend on it).
+void probe(Simulation& simulation, const StudyOptions& options, const StudySetting& setting,
+           const std::vector<Vec3>& positions, const std::filesystem::path& file) {
+  auto [target, component] = findTarget(simulation, options, setting);
+  const PointShellTool& tool = findTool(simulation);
+  target->refresh();
+  std::ostringstream s;
+  s << "penetration,nx,ny,nz,query_us\n";
+  for (const Vec3& p : positions) {
+    const auto start = std::chrono::steady_clock::now();
+    const ShellContact contact = target->collide(Pose{p, Quat::Identity()}, tool.shellPoints(), false);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    const bool touching = contact.points > 0;
+    const Vec3 n = touching ? contact.normal : Vec3::Zero();
+    s << number(touching ? contact.penetration : 0.0) << ',' << number(n.x()) << ',' << number(n.y()) << ','
+      << number(n.z()) << ',' << number(us) << '\n';
+  }
+  AtomicFile out(file);
+  out.write(s.str());
+  out.commit();
+}
+
+void writeResult(const Simulation& simulation, const std::filesystem::path& file) {
+  const HapticStats stats = simulation.hapticLog().stats();
+  const RateGroup* group = hapticGroup(simulation);
+  const TimingSummary step = group ? group->stepHistogram.summary() : TimingSummary{};
+  int64_t removed = 0;
+  for (size_t i = 0; i < simulation.hapticLog().size(); ++i) removed += simulation.hapticLog()[i].removed;
+  std::ostringstream s;
+  s << "complete,frames,contact_frames,step_p50_us,step_p99_us,force_step_p99_N,force_step_max_N,"
+       "unexplained_step_p99_N,proxy_inside_frames,nan_frames,force_reversals,removed,wall_s\n";
+  s << (simulation.complete() ? 1 : 0) << ',' << stats.frames << ',' << stats.contactFrames << ',' << number(step.p50)
+    << ',' << number(step.p99) << ',' << number(stats.forceStepP99) << ',' << number(stats.forceStepMax) << ','
+    << (stats.hasUnexplainedSteps ? number(stats.unexplainedStepP99) : "nan") << ',' << stats.proxyInsideFrames << ','
+    << stats.nanFrames << ',' << stats.forceReversals << ',' << removed << ',' << number(simulation.wallTime()) << '\n';
+  AtomicFile out(file);
+  out.write(s.str());
+  out.commit();
+}
+
+}  // namespace
+
+bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
+  const std::filesystem::path directory = options.out / setting.directoryName();
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  for (const char* stale : {kProbeFile, kResultFile, kErrorFile}) std::filesystem::remove(directory / stale, ec);
+  const std::filesystem::path posesFile = options.out / kPosesFile;
+  const bool isReference = setting.index == options.referenceIndex;
+  try {
+    auto simulation = load(options, setting);
+    if (isReference) {
+      // The reference's run gives the poses; its probe needs the target as
+      // loaded, before the run drilled or deformed it.
+      auto probed = load(options, setting);
+      simulation->run();
+      std::vector<StudyPose> poses = posesFromRun(*simulation, options.posesPerKind);
+      auto [target, component] = findTarget(*probed, options, setting);
+      addExactContacts(poses, *component, findTool(*probed));
+      writePoses(posesFile, poses);
+      std::vector<Vec3> positions;
+      for (const StudyPose& p : poses) positions.push_back(p.position);
+      probe(*probed, options, setting, positions, directory / kProbeFile);
+    } else {
+      probe(*simulation, options, setting, readPositions(posesFile), directory / kProbeFile);
+      simulation->run();
+    }
+    std::vector<std::string> errors;
+    simulation->writeOutputs(directory, &errors);
+    if (!simulation->complete()) throw SettingError("run incomplete: " + simulation->incompleteReason());
+    if (!errors.empty()) throw SettingError(errors.front());
+    writeResult(*simulation, directory / kResultFile);
+    return true;
+  } catch (const std::exception& e) {
+    std::ofstream(directory / kErrorFile) << setting.label() << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
+}  // namespace trephine::cli

@@ -1,0 +1,39 @@
+#pragma once
+// One setting of a study, run in this process: the scene with the setting's
+// overrides is loaded, its collision target queried at the study's tool poses
+// (before anything is drilled or deformed), then run; everything is written
+// under the study's directory, in settings/NNN/:
+//   summary.json, trace.csv, timings.csv  the run, as `trephine run` writes them
+//   probe.csv    per pose: the target's penetration and normal, query time
+//   result.csv   one row: closed-loop figures and time per frame of the run
+//   error.txt    instead of result.csv when the setting cannot be loaded or run
+// The reference setting runs first and also writes poses.csv at the top of the
+// study's directory: tool positions from its run's contact frames, with the
+// exact contact at each when the target has an exact shape.
+#include <filesystem>
+#include <string>
+
+#include "framework/runtime/Simulation.h"
+#include "tools/trephine/StudyPlan.h"
+
+namespace trephine::cli {
+
+struct StudyOptions {
+  std::filesystem::path scene;
+  std::filesystem::path out;
+  SimulationOptions simulation;  // duration, seed and the study's own --set overrides
+  std::string target;            // path of the target to probe; empty: the scene's only one
+  int referenceIndex = 0;        // setting whose run gives the poses (and the reference without an exact shape)
+  int posesPerKind = 200;        // proxy poses and as many device poses, evenly over the contact frames
+};
+
+inline constexpr const char* kPosesFile = "poses.csv";
+inline constexpr const char* kProbeFile = "probe.csv";
+inline constexpr const char* kResultFile = "result.csv";
+inline constexpr const char* kErrorFile = "error.txt";
+
+// Returns true when the setting ran to completion and its files are written;
+// otherwise error.txt says why.
+bool runStudySetting(const StudyOptions& options, const StudySetting& setting);
+
+}  // namespace trephine::cli
