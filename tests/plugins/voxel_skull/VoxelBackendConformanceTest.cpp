@@ -9,15 +9,14 @@
 //  - native: the trilinear surface departs from the sphere by about
 //    h^2 / 8R (0.013 mm here); the deepest point of 466 shell points lies
 //    within about 0.08 rad of the contact axis (2.5 mm (1 - cos 0.08) =
-//    0.008 mm); within a voxel of the surface depths are first-order in the
-//    density, (code - iso) / |gradient|, exact for a field linear in space,
-//    but the trilinear gradient of this radial field is off by a few percent;
-//    deeper they are measured along the shell points' normals (a first-order
-//    distance there is wrong in real bone, where the density levels off or
-//    rises again towards a cortical table), so the error grows with the
-//    depth: 0.03 mm plus 6% of the depth; the normal, a depth-weighted sum
-//    of point normals, turns by 0.05 rad with the centre 1 mm inside the
-//    ball (0.018 rad at 1.7 mm deep);
+//    0.008 mm); within half a voxel of the surface depths are first-order
+//    in the density, (code - iso) / |gradient|, whose trilinear gradient is
+//    off by a few percent here; deeper they are searched along the shell
+//    points' normals (a first-order distance there is wrong in real bone,
+//    where the density levels off or rises again towards a cortical table):
+//    0.04 mm plus 1% of the depth (0.036 mm worst measured); the normal, a
+//    depth-weighted sum of point normals, turns by 0.046 rad with the
+//    centre 1 mm inside the ball;
 //  - embree: the triangles lie within 0.041 mm of the sphere (IsoSurfaceTest),
 //    and the sphere's distance to them is exact; the normal, from the closest
 //    point to the centre, turns with the facets: 0.079 rad at worst with the
@@ -52,7 +51,7 @@ struct Backend {
 
 std::vector<Backend> backends() {
   std::vector<Backend> list = {
-      {"native", [] { return std::make_unique<NativeVoxelBackend>(); }, 0.03, 0.06, 0.06, 0.04}};
+      {"native", [] { return std::make_unique<NativeVoxelBackend>(); }, 0.04, 0.01, 0.06, 0.04}};
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
   list.push_back({"embree", [] { return std::make_unique<embree::EmbreeVoxelBackend>(); }, 0.06, 0.0, 0.1, 0.06});
 #endif
