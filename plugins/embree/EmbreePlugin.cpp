@@ -5,6 +5,7 @@
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.addBackend<trephine::embree::EmbreeVoxelBackend>(
       "VoxelSkull", "embree",
-      "The skull's isosurface as triangles in an Embree BVH: exact sphere distance by closest-point queries, inside "
-      "by ray parity, sweeps by conservative advancement");
+      "The skull's isosurface as triangles in an Embree BVH: exact sphere distance and a depth- and area-weighted "
+      "normal by closest-point queries, inside by ray parity, sweeps sampled every half voxel and refined by "
+      "bisection");
 }

@@ -32,6 +32,12 @@ struct ClosestQuery {
   double best2 = std::numeric_limits<double>::infinity();
   Vec3 closest = Vec3::Zero();
   bool found = false;
+  // Averaging: every triangle within `reach` adds its direction to the point,
+  // weighted by how deep the sphere of radius `reach` is in it and by its
+  // area (the query radius then stays at `reach`).
+  bool average = false;
+  double reach = 0;
+  Vec3 weighted = Vec3::Zero();
 };
 
 bool closestCallback(RTCPointQueryFunctionArguments* args) {
@@ -42,10 +48,18 @@ bool closestCallback(RTCPointQueryFunctionArguments* args) {
   const Vec3 c = closestOnTriangle(q->point, mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])],
                                    mesh.vertices[size_t(t[2])]);
   const double d2 = (c - q->point).squaredNorm();
+  if (q->average && d2 < q->reach * q->reach && d2 > 0) {
+    // The triangle's share: depth times area, so that the mean does not lean
+    // towards where the surface happens to be cut into more triangles.
+    const Vec3 &a = mesh.vertices[size_t(t[0])], &b = mesh.vertices[size_t(t[1])], &v = mesh.vertices[size_t(t[2])];
+    const double d = std::sqrt(d2), area = 0.5 * (b - a).cross(v - a).norm();
+    q->weighted += (q->reach - d) * area / d * (q->point - c);
+  }
   if (!(d2 < q->best2)) return false;
   q->best2 = d2;
   q->closest = c;
   q->found = true;
+  if (q->average) return false;  // every triangle within reach is visited
   // Shrink the search to the best distance so far (float, rounded up).
   args->query->radius = std::nextafter(float(std::sqrt(d2)), std::numeric_limits<float>::infinity());
   return true;
@@ -133,11 +147,15 @@ struct EmbreeVoxelBackend::State {
   }
 
   // The surface point closest to p within `radius` (mm), if any.
-  bool closest(const Vec3& p, double radius, Vec3& point, double& distance) const {
+  // The closest surface point within `radius` of p; with `averaged`, also the
+  // depth-weighted mean direction from the triangles within `radius` to p.
+  bool closest(const Vec3& p, double radius, Vec3& point, double& distance, Vec3* averaged = nullptr) const {
     ClosestQuery q;
     q.surface = &surface;
     q.point = p;
     q.best2 = radius * radius;
+    q.average = averaged != nullptr;
+    q.reach = radius;
     RTCPointQuery query;
     query.x = float(p.x()), query.y = float(p.y()), query.z = float(p.z());
     query.time = 0;
@@ -149,6 +167,7 @@ struct EmbreeVoxelBackend::State {
     if (!q.found) return false;
     point = q.closest;
     distance = std::sqrt(q.best2);
+    if (averaged) *averaged = q.weighted;
     return true;
   }
 
@@ -248,14 +267,19 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
   const Vec3 centre = X_WT.position;
   const double r = reserved->radius;
   if (reserved->sphere) {
-    Vec3 closest = Vec3::Zero();
+    Vec3 closest = Vec3::Zero(), averaged = Vec3::Zero();
     double d = 0;
-    const bool near = s.closest(centre, r, closest, d);
+    const bool near = s.closest(centre, r, closest, d, &averaged);
     const bool in = s.inside(centre);
     if (!near && !in) return result;
     if (in && !near && !s.closest(centre, std::numeric_limits<float>::max(), closest, d)) return result;
     if (!(d > 0)) return result;  // the centre on the surface: no direction
-    contact.normal = in ? Vec3((closest - centre) / d) : Vec3((centre - closest) / d);
+    // Outside, the normal is the depth-weighted mean over the triangles the
+    // sphere reaches: the closest point's direction alone jumps from face to
+    // face at a crease, and a proxy lifted along it chatters.
+    contact.normal = in                           ? Vec3((closest - centre) / d)
+                     : averaged.norm() > 1e-9 * r ? Vec3(averaged.normalized())
+                                                  : Vec3((centre - closest) / d);
     contact.penetration = in ? r + d : r - d;
     // The shell points beyond the tangent plane at the closest point.
     const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();

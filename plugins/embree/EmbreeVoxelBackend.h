@@ -7,14 +7,18 @@
 //    treated as the exact sphere: the closest point of the surface to the
 //    centre (rtcPointQuery) gives the distance d; the centre is inside the
 //    bone when a ray from it crosses the surface an odd number of times;
-//    penetration r - d outside, r + d inside, normal from the closest point
-//    to the centre (outside) or back (inside).
+//    penetration r - d outside, r + d inside. The normal outside is the mean
+//    over the triangles within r of their directions to the centre, weighted
+//    by depth and area: the closest point's own direction jumps from face to
+//    face at a crease, and a proxy lifted along it chatters. Inside, from the
+//    centre out through the closest point.
 //  - Other shells go point by point: inside by ray parity, depth to the
 //    closest point, normals weighted by depth, the deepest along the contact
 //    normal (as the native deepest-point variant).
-//  - Sweeps move the tool's bounding sphere by conservative advancement: step
-//    by the distance to the surface less the radius until within 1e-4 mm
-//    (whatever the probe: the sphere is swept exactly, not sampled).
+//  - Sweeps sample the sphere's exact depth every half voxel along the path
+//    and refine the first sample that is too deep by bisection (to 1e-4 mm):
+//    a free sphere stops where it touches; one resting in its skin may sink
+//    one skin deeper than it is (or than one skin) and slides.
 // Embree's types stay in the .cpp (the state behind a pointer).
 #include <memory>
 

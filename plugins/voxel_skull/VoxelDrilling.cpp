@@ -70,7 +70,7 @@ int VoxelSkull::cutAt(const Vec3& point_W) {
 ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
   if (!m_bound) return {};
   const bool thesisCut = removeMaterial && d_drill.value() && !m_forceRemoval;
-  VoxelContact c = m_backend->collide(X_WT, shell, thesisCut);
+  VoxelContact c = askBackend([&] { return m_backend->collide(X_WT, shell, thesisCut); });
   if (thesisCut) {
     int removed = 0;
     for (const int64_t voxel : c.touched) removed += lowerVoxel(voxel);
@@ -88,8 +88,7 @@ bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
 int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   if (!d_drill.value() || !m_forceRemoval) return 0;
   const double thrust = load.force_N.norm();  // N
-  if (!(thrust > 0) || !std::isfinite(thrust) || !load.center_W.allFinite() || !(load.dt > 0) ||
-      !(load.radius > 0))
+  if (!(thrust > 0) || !std::isfinite(thrust) || !load.center_W.allFinite() || !(load.dt > 0) || !(load.radius > 0))
     return 0;
   const Vec3 d = load.force_N / thrust;  // unit, into the bone
   const double h = m_grid.smallestSide();
@@ -104,8 +103,9 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   if (m_boneAhead && !ahead && !m_brokeThrough) {
     ++m_breakthroughs;
     m_brokeThrough = true;
-    if (m_events) m_events->log(load.t, "breakthrough", "no bone ahead of the burr", this, thrust,
-                                {front.x(), front.y(), front.z()});
+    if (m_events)
+      m_events->log(load.t, "breakthrough", "no bone ahead of the burr", this, thrust,
+                    {front.x(), front.y(), front.z()});
   }
   m_boneAhead = ahead;
   m_lastCutTime = load.t;
@@ -139,7 +139,7 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
       first[a] = SolidGrid::floorOf((load.center_W[a] - reach - m_grid.corner[a]) * m_grid.inverseSpacing[a]);
       last[a] = SolidGrid::floorOf((load.center_W[a] + reach - m_grid.corner[a]) * m_grid.inverseSpacing[a]);
     }
-    m_backend->dataChanged(first, last);
+    askBackend([&] { m_backend->dataChanged(first, last); });
   }
   m_removedCodes += result.codesRemoved;
   const int removed = result.emptied;

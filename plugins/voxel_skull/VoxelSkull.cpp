@@ -45,8 +45,9 @@ void VoxelSkull::init(InitContext& context) {
   checkRemovalFields(context);
   m_events = &context.events();
   if (m_backend && d_drill.value() && !m_forceRemoval && d_backend.value() != "native")
-    context.error(d_backend, "removal=\"thesis\" cuts the voxels the native back-end's contacts touch: use "
-                             "backend=\"native\" or removal=\"force\"");
+    context.error(d_backend,
+                  "removal=\"thesis\" cuts the voxels the native back-end's contacts touch: use "
+                  "backend=\"native\" or removal=\"force\"");
   try {
     setVolume(std::move(volume));
   } catch (const std::exception& e) {  // the back-end could not take the data
@@ -105,12 +106,18 @@ void VoxelSkull::setVolume(DensityVolume volume) {
 void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   if (m_bound) m_backend->reserveShell(shell);
 }
-SweepResult VoxelSkull::sweep(const SweepQuery& query) const { return m_bound ? m_backend->sweep(query) : SweepResult{}; }
+SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
+  return m_bound ? askBackend([&] { return m_backend->sweep(query); }) : SweepResult{};
+}
 bool VoxelSkull::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
-  return m_bound && m_backend->overlaps(X_WT, shell);
+  return m_bound && askBackend([&] { return m_backend->overlaps(X_WT, shell); });
 }
 std::optional<SurfaceHit> VoxelSkull::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
-  return m_bound ? m_backend->raycast(origin, direction, maxDistance) : std::nullopt;
+  return m_bound ? askBackend([&] { return m_backend->raycast(origin, direction, maxDistance); }) : std::nullopt;
+}
+
+void VoxelSkull::throwBackendFailure(const std::exception& e) const {
+  throw std::runtime_error("collision back-end \"" + d_backend.value() + "\" of " + path() + " failed: " + e.what());
 }
 
 LevelSet VoxelSkull::exactShape() const {

@@ -73,11 +73,11 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
                        FilePathField::Role::Input,
                        {"phantom"}};
   Field<std::string> d_backend{this,
-                                "backend",
-                                "native",
-                                {.help = "Collision back-end answering the contact, sweep and overlap queries: native "
-                                         "(the voxel method of the thesis) or one a plugin adds (its name; the "
-                                         "scene needs that plugin's <RequiredPlugin/>)"}};
+                               "backend",
+                               "native",
+                               {.help = "Collision back-end answering the contact, sweep and overlap queries: native "
+                                        "(the voxel method of the thesis) or one a plugin adds (its name; the "
+                                        "scene needs that plugin's <RequiredPlugin/>)"}};
   Field<double> d_isovalue{this, "isovalue", 400.0, {.help = "Voxels denser than this are bone", .unit = "density"}};
   Field<double> d_voxelSize{
       this,
@@ -188,18 +188,32 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   DensityVolume m_volume;
   SolidGrid m_grid;
-  int32_t m_drillStep = 1;            // codes removed per frame (removal="thesis")
-  bool m_forceRemoval = true;         // d_removal, read once at init
+  int32_t m_drillStep = 1;     // codes removed per frame (removal="thesis")
+  bool m_forceRemoval = true;  // d_removal, read once at init
   RemovalLaw m_law;
-  bool m_boneAhead = false;  // at the last cut: bone ahead of the burr (armed for a breakthrough event)
+  bool m_boneAhead = false;       // at the last cut: bone ahead of the burr (armed for a breakthrough event)
   double m_lastCutTime = -1e300;  // s
   bool m_brokeThrough = false;    // the breakthrough of this stretch of drilling was reported
   EventLog* m_events = nullptr;
   double m_removedCodes = 0;  // code steps removed by the force law, summed over voxels
-  double m_maxCutSpeed = 0;           // mm/s, largest recession speed reached
+  double m_maxCutSpeed = 0;   // mm/s, largest recession speed reached
   uint64_t m_cutFrames = 0, m_breakthroughs = 0;
   bool m_algorithm1 = false;          // d_penetration resolved for the surface, once in setVolume
   double m_framesToDrillDensest = 0;  // frames of contact that empty the densest voxel
+  // Calls the back-end: an exception from it (a third-party library's) is
+  // caught at this boundary and ends the tick naming this target and its
+  // back-end, so the run stops with every output written. Nothing is paid
+  // while nothing throws.
+  template <class Query>
+  decltype(auto) askBackend(Query&& query) const {
+    try {
+      return query();
+    } catch (const std::exception& e) {
+      throwBackendFailure(e);
+    }
+  }
+  [[noreturn]] void throwBackendFailure(const std::exception& e) const;
+
   // The collision back-end (d_backend), bound to m_volume and m_grid.
   std::unique_ptr<VoxelBackend> m_backend;
   bool m_bound = false;  // m_backend is bound to the loaded volume

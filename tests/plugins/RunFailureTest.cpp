@@ -1,6 +1,7 @@
 // Runs that go wrong still end cleanly and say what happened.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <thread>
@@ -33,6 +34,41 @@ TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasM
   EXPECT_NE(summary.find("\"t\": 0.25,\n      \"kind\": \"tick_failed\",\n      \"component\": \"/bad/thrower\""),
             std::string::npos)
       << "the failure is an event too";
+}
+
+// A collision back-end that throws inside a query (as a third-party library
+// might): the target catches it at its boundary, the run ends incomplete
+// naming the target and the back-end, and every output is written.
+TEST_F(RunFailureTest, ABackEndThatThrowsEndsTheRunNamingTheTargetWithEveryOutputWritten) {
+  test::TempDir dir;
+  const auto scene = dir.write("throws.xml", R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="test_faults"/>
+  <Node name="patient">
+    <VoxelSkull name="skull" file="phantom:halfspace?voxel=1&amp;size=20" isovalue="500" backend="throwing"/>
+  </Node>
+  <ScriptedDevice name="device" target="@/patient/skull" path="approach-press-slide" direction="0 0 -1"
+                  depth="1" slideDistance="5" tipOffset="2.5" record="false"/>
+  <PointshellTool name="burr" radius="2.5" device="@device"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull"/>
+  <ForceFeedback name="force" proxy="@proxy" stiffness="2" maxForce="3.3"/>
+</Node>
+)");
+  std::string out;
+  EXPECT_EQ(test::runProgram({"run", scene.string(), "--duration", "1", "--out", (dir / "out").string()}, &out,
+                             "TREPHINE_PLUGIN_PATH=" TREPHINE_TEST_PLUGIN_DIR),
+            3)
+      << out;
+  const std::string summary = test::readFile(dir / "out/summary.json");
+  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos);
+  EXPECT_NE(summary.find("collision back-end \\\"throwing\\\" of /patient/skull failed: deliberate back-end failure"),
+            std::string::npos)
+      << summary;
+  // The frames before the failure are in the trace: the header and one row per frame.
+  const std::string trace = test::readFile(dir / "out/trace.csv");
+  EXPECT_GE(std::count(trace.begin(), trace.end(), '\n'), 100) << trace.substr(0, 300);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/timings.csv"));
 }
 
 TEST_F(RunFailureTest, VirtualTimeCountsStepsLongerThanTheirPeriodAsDeadlineMisses) {

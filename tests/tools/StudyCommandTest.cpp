@@ -2,8 +2,11 @@
 // accuracy at the same poses against the exact shape, the files it writes,
 // failed settings, parallel workers and two MPI ranks.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -168,6 +171,29 @@ TEST(StudyCommandTest, TwoMpiRanksShareTheSettingsAndRankZeroGathers) {
   EXPECT_NE(out1.find("setting 2/3"), std::string::npos) << out1;
   EXPECT_EQ(out1.find("setting 1/3"), std::string::npos) << out1;
   EXPECT_EQ(out1.find("study.csv"), std::string::npos) << "only rank 0 gathers";
+  const auto rows = readStudy(dir / "study/study.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& row : rows) EXPECT_EQ(row.at("status"), "ok") << row.at("label");
+}
+
+// The same under Open MPI's own launcher, when it is installed (tools/setup
+// installs openmpi-bin).
+TEST(StudyCommandTest, MpirunOnTwoRanksGathersEverySetting) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  const std::string command =
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -n 2 '" +
+      test::programPath().string() + "' study '" + scene.string() +
+      "' --vary /tool/burr.pointCount=92,162,466 --out '" + (dir / "study").string() + "' --poses 20 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_TRUE(pipe);
+  std::string out;
+  char buffer[4096];
+  for (size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  EXPECT_NE(out.find("study     3 settings, 0 failed"), std::string::npos) << out;
   const auto rows = readStudy(dir / "study/study.csv");
   ASSERT_EQ(rows.size(), 3u);
   for (const auto& row : rows) EXPECT_EQ(row.at("status"), "ok") << row.at("label");

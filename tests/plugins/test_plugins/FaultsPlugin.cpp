@@ -5,6 +5,7 @@
 
 #include "framework/core/Component.h"
 #include "framework/core/Registry.h"
+#include "plugins/voxel_skull/VoxelBackend.h"
 
 namespace {
 
@@ -35,9 +36,34 @@ class SlowComponent final : public trephine::Component {
   trephine::Field<double> d_busy{this, "busy", 0.002, {.help = "Time spent per call", .unit = "s"}};
 };
 
+// A VoxelSkull back-end whose contact query throws at its 100th call (as a
+// third-party library might): the target must end the run naming itself.
+class ThrowingVoxelBackend final : public trephine::voxel::VoxelBackend {
+ public:
+  void bind(const trephine::voxel::VoxelData&) override {}
+  void reserveShell(std::span<const trephine::ShellPoint>) override {}
+  trephine::voxel::VoxelContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool) override {
+    if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
+    return {};
+  }
+  trephine::SweepResult sweep(const trephine::SweepQuery&) const override { return {}; }
+  bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
+  std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
+                                              double) const override {
+    // A floor through the origin, so that scripted devices find a surface.
+    if (!(direction.z() < 0)) return std::nullopt;
+    const double s = -origin.z() / direction.z();
+    return trephine::SurfaceHit{origin + s * direction, trephine::Vec3::UnitZ(), s};
+  }
+
+ private:
+  int m_calls = 0;
+};
+
 }  // namespace
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
+  registrar.addBackend<ThrowingVoxelBackend>("VoxelSkull", "throwing", "Throws from its 100th contact query");
   registrar.add<ThrowingComponent>("ThrowingComponent", "Throws from its tick");
   registrar.add<SlowComponent>("SlowComponent", "Spends a set time per call");
 }

@@ -1,0 +1,10 @@
+// Collision back-ends on Bullet's collision world.
+#include "framework/core/Registry.h"
+#include "plugins/bullet/BulletVoxelBackend.h"
+
+TREPHINE_PLUGIN_ENTRY(registrar) {
+  registrar.addBackend<trephine::bullet::BulletVoxelBackend>(
+      "VoxelSkull", "bullet",
+      "The skull's isosurface as Bullet triangle meshes (btBvhTriangleMeshShape per block): the burr as a Bullet "
+      "sphere through contactTest, sweeps by convex casts");
+}
