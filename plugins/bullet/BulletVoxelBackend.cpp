@@ -55,12 +55,11 @@ btVector3 toBullet(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 Vec3 fromBullet(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
 btTransform at(const Vec3& p) { return btTransform(btQuaternion::getIdentity(), toBullet(p)); }
 
-// A triangle's share of the contact normal: how deep the sphere is in it
-// times its area, so that the mean does not lean towards where the surface
-// happens to be cut into more triangles.
-double depthWeight(double depth, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return depth * 0.5 * (b - a).cross(c - a).norm();
-}
+// A triangle's share of the contact normal: its face normal (out of the
+// bone) times its area (half the cross product), so that the mean does not
+// lean towards where the surface happens to be cut into more triangles; the
+// caller weights it by depth.
+Vec3 areaNormal(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a); }
 
 // The closest point of the surface to the sphere's centre among the
 // contacts Bullet reports (one per triangle within reach).
@@ -73,7 +72,7 @@ struct ClosestContact final : btCollisionWorld::ContactResultCallback {
   int block = -1, triangle = -1;
   int contacts = 0;
   double reach = 0;              // mm, the sphere's radius
-  Vec3 weighted = Vec3::Zero();  // depth-weighted sum of the directions from the contacts to the centre
+  Vec3 weighted = Vec3::Zero();  // sum of the reached triangles' face normals times depth and area
 
   btScalar addSingleResult(btManifoldPoint&, const btCollisionObjectWrapper* a, int, int indexA,
                            const btCollisionObjectWrapper* b, int, int indexB) override {
@@ -91,7 +90,7 @@ struct ClosestContact final : btCollisionWorld::ContactResultCallback {
     const Vec3 onMesh = closestOnTriangle(centre, v0, v1, v2);
     ++contacts;
     const double d = (onMesh - centre).norm();
-    if (d < reach && d > 0) weighted += depthWeight(reach - d, v0, v1, v2) / d * (centre - onMesh);
+    if (d < reach) weighted += areaNormal(v0, v1, v2) * (reach - d);
     if (d < distance) {
       distance = d;
       point = onMesh;
@@ -265,9 +264,10 @@ voxel::VoxelContact BulletVoxelBackend::collide(const Pose& X_WT, std::span<cons
   if (c.block < 0 || !(c.distance > 0)) return result;  // out of reach, or the centre on the surface: no direction
   // Behind the closest triangle: the centre is in the bone.
   const bool in = (centre - c.point).dot(s.faceNormal(c.block, c.triangle)) < 0;
-  // Outside, the normal is the depth-weighted mean over the triangles the
-  // sphere reaches: the closest point's direction alone jumps from face to
-  // face at a crease, and a proxy lifted along it chatters.
+  // Outside, the normal is the mean of the face normals of the triangles the
+  // sphere reaches, weighted by depth and area: the closest point's direction
+  // alone jumps from face to face at a crease, and a proxy lifted along it
+  // chatters.
   contact.normal = in                             ? Vec3((c.point - centre) / c.distance)
                    : c.weighted.norm() > 1e-9 * r ? Vec3(c.weighted.normalized())
                                                   : Vec3((centre - c.point) / c.distance);

@@ -8,9 +8,9 @@
 //    spherical shell only; another shell (CapsuleTool) is refused when the
 //    scene loads. contactTest gives one contact per triangle the sphere
 //    reaches (Bullet's sphere-triangle detector); the closest point of each
-//    to the centre gives the penetration, r - d, and the normal is their
-//    directions' mean weighted by depth and area (as the embree back-end:
-//    continuous across creases). A centre behind the closest triangle is
+//    to the centre gives the penetration, r - d, and the normal is the mean
+//    of their face normals weighted by depth and area (as the embree
+//    back-end: continuous across creases). A centre behind the closest triangle is
 //    inside: r + d, the normal out through the closest point.
 //  - Sweeps are Bullet convex casts (convexSweepTest) of the sphere shrunk
 //    by the depth the proxy may keep: a free sphere stops where it touches,

@@ -32,9 +32,9 @@ struct ClosestQuery {
   double best2 = std::numeric_limits<double>::infinity();
   Vec3 closest = Vec3::Zero();
   bool found = false;
-  // Averaging: every triangle within `reach` adds its direction to the point,
-  // weighted by how deep the sphere of radius `reach` is in it and by its
-  // area (the query radius then stays at `reach`).
+  // Averaging: every triangle within `reach` adds its face normal, weighted
+  // by how deep the sphere of radius `reach` is in it and by its area (the
+  // query radius then stays at `reach`).
   bool average = false;
   double reach = 0;
   Vec3 weighted = Vec3::Zero();
@@ -49,11 +49,11 @@ bool closestCallback(RTCPointQueryFunctionArguments* args) {
                                    mesh.vertices[size_t(t[2])]);
   const double d2 = (c - q->point).squaredNorm();
   if (q->average && d2 < q->reach * q->reach && d2 > 0) {
-    // The triangle's share: depth times area, so that the mean does not lean
-    // towards where the surface happens to be cut into more triangles.
+    // The triangle's share: its face normal (out of the bone) times depth and
+    // area (half the cross product), so that the mean does not lean towards
+    // where the surface happens to be cut into more triangles.
     const Vec3 &a = mesh.vertices[size_t(t[0])], &b = mesh.vertices[size_t(t[1])], &v = mesh.vertices[size_t(t[2])];
-    const double d = std::sqrt(d2), area = 0.5 * (b - a).cross(v - a).norm();
-    q->weighted += (q->reach - d) * area / d * (q->point - c);
+    q->weighted += 0.5 * (q->reach - std::sqrt(d2)) * (b - a).cross(v - a);
   }
   if (!(d2 < q->best2)) return false;
   q->best2 = d2;
@@ -148,7 +148,7 @@ struct EmbreeVoxelBackend::State {
 
   // The surface point closest to p within `radius` (mm), if any.
   // The closest surface point within `radius` of p; with `averaged`, also the
-  // depth-weighted mean direction from the triangles within `radius` to p.
+  // sum of the face normals of the triangles within `radius`, weighted by depth and area.
   bool closest(const Vec3& p, double radius, Vec3& point, double& distance, Vec3* averaged = nullptr) const {
     ClosestQuery q;
     q.surface = &surface;
@@ -274,9 +274,10 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
     if (!near && !in) return result;
     if (in && !near && !s.closest(centre, std::numeric_limits<float>::max(), closest, d)) return result;
     if (!(d > 0)) return result;  // the centre on the surface: no direction
-    // Outside, the normal is the depth-weighted mean over the triangles the
-    // sphere reaches: the closest point's direction alone jumps from face to
-    // face at a crease, and a proxy lifted along it chatters.
+    // Outside, the normal is the mean of the face normals of the triangles the
+    // sphere reaches, weighted by depth and area: the closest point's
+    // direction alone jumps from face to face at a crease, and a proxy lifted
+    // along it chatters.
     contact.normal = in                           ? Vec3((closest - centre) / d)
                      : averaged.norm() > 1e-9 * r ? Vec3(averaged.normalized())
                                                   : Vec3((centre - closest) / d);

@@ -8,10 +8,10 @@
 //    centre (rtcPointQuery) gives the distance d; the centre is inside the
 //    bone when a ray from it crosses the surface an odd number of times;
 //    penetration r - d outside, r + d inside. The normal outside is the mean
-//    over the triangles within r of their directions to the centre, weighted
-//    by depth and area: the closest point's own direction jumps from face to
-//    face at a crease, and a proxy lifted along it chatters. Inside, from the
-//    centre out through the closest point.
+//    of the face normals of the triangles within r, weighted by depth and
+//    area: the closest point's own direction jumps from face to face at a
+//    crease, and a proxy lifted along it chatters. Inside, from the centre
+//    out through the closest point.
 //  - Other shells go point by point: inside by ray parity, depth to the
 //    closest point, normals weighted by depth, the deepest along the contact
 //    normal (as the native deepest-point variant).

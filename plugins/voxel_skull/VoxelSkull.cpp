@@ -44,10 +44,15 @@ void VoxelSkull::init(InitContext& context) {
   m_forceRemoval = d_removal.is("force");
   checkRemovalFields(context);
   m_events = &context.events();
-  if (m_backend && d_drill.value() && !m_forceRemoval && d_backend.value() != "native")
+  if (m_backend && d_drill.value() && !m_forceRemoval && d_backend.value() != "native") {
+    // Refused: the back-end is not bound (a mesh back-end would build its
+    // surface, and start its threads, for nothing).
     context.error(d_backend,
                   "removal=\"thesis\" cuts the voxels the native back-end's contacts touch: use "
                   "backend=\"native\" or removal=\"force\"");
+    m_bound = false;
+    return;
+  }
   try {
     setVolume(std::move(volume));
   } catch (const std::exception& e) {  // the back-end could not take the data
