@@ -6,6 +6,7 @@
 //   collide  - which shell points are inside, and the contact normal and
 //              penetration they give (and, for a drillable target, removal);
 //   overlaps - whether a displayed tool pose visibly overlaps the target.
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -73,6 +74,14 @@ class ShellContactTarget : public SurfaceTarget {
   // that cannot be cut, or is not set to, ignores it.
   virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) = 0;
   virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
+  // Only the broad phase of collide() (the search for candidate primitives),
+  // so that studies can time it apart; returns the candidates, or nothing
+  // when the target does not split its query so.
+  virtual std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
+    (void)X_WT;
+    (void)shell;
+    return std::nullopt;
+  }
   // The tool cuts where a sweep stopped it although none of its shell points
   // is inside there (the probe is between them): returns the primitives
   // removed. A target that cannot be cut, or is not set to, does nothing.

@@ -124,6 +124,22 @@ struct FirstHit final : btCollisionWorld::RayResultCallback {
   }
 };
 
+// The broad phase alone: the blocks whose boxes meet the tool's (Bullet's
+// dynamic AABB tree), then the triangles of each whose boxes do (its BVH).
+struct TriangleCount final : btTriangleCallback {
+  size_t triangles = 0;
+  void processTriangle(btVector3*, int, int) override { ++triangles; }
+};
+struct BlockTriangles final : btBroadphaseAabbCallback {
+  btVector3 min, max;
+  TriangleCount count;
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    static_cast<const btConcaveShape*>(object->getCollisionShape())->processAllTriangles(&count, min, max);
+    return true;
+  }
+};
+
 }  // namespace
 
 struct BulletVoxelBackend::State {
@@ -283,6 +299,17 @@ voxel::VoxelContact BulletVoxelBackend::collide(const Pose& X_WT, std::span<cons
   contact.primitives = c.contacts;
   ++s.contactFrames;
   return result;
+}
+
+size_t BulletVoxelBackend::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  State& s = *m_state;
+  const State::Shell* reserved = s.findShell(shell);
+  if (!reserved || s.blocks.empty()) return 0;
+  BlockTriangles blocks;
+  blocks.min = toBullet(X_WT.position - Vec3::Constant(reserved->radius));
+  blocks.max = toBullet(X_WT.position + Vec3::Constant(reserved->radius));
+  s.broadphase.aabbTest(blocks.min, blocks.max, blocks);
+  return blocks.count.triangles;
 }
 
 SweepResult BulletVoxelBackend::sweep(const SweepQuery& query) const {

@@ -65,6 +65,12 @@ bool closestCallback(RTCPointQueryFunctionArguments* args) {
   return true;
 }
 
+// The broad phase alone: counts the triangles whose boxes the query reaches.
+bool countCallback(RTCPointQueryFunctionArguments* args) {
+  ++*static_cast<size_t*>(args->userPtr);
+  return false;
+}
+
 }  // namespace
 
 struct EmbreeVoxelBackend::State {
@@ -314,6 +320,21 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
   contact.primitives = contact.points;
   ++s.contactFrames;
   return result;
+}
+
+size_t EmbreeVoxelBackend::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  const State& s = *m_state;
+  const State::Shell* reserved = s.findShell(shell);
+  if (!reserved || !s.scene) return 0;
+  size_t candidates = 0;
+  RTCPointQuery query;
+  query.x = float(X_WT.position.x()), query.y = float(X_WT.position.y()), query.z = float(X_WT.position.z());
+  query.time = 0;
+  query.radius = std::nextafter(float(reserved->radius), std::numeric_limits<float>::infinity());
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(s.scene, &query, &context, countCallback, &candidates);
+  return candidates;
 }
 
 SweepResult EmbreeVoxelBackend::sweep(const SweepQuery& query) const {

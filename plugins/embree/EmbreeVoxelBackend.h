@@ -34,6 +34,7 @@ class EmbreeVoxelBackend final : public voxel::VoxelBackend {
   void bind(const voxel::VoxelData& data) override;
   void reserveShell(std::span<const ShellPoint> shell) override;
   voxel::VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) override;
+  size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   SweepResult sweep(const SweepQuery& query) const override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;

@@ -19,6 +19,7 @@ class NativeVoxelBackend final : public VoxelBackend {
   void bind(const VoxelData& data) override;
   void reserveShell(std::span<const ShellPoint> shell) override;
   VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) override;
+  size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   SweepResult sweep(const SweepQuery& query) const override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;

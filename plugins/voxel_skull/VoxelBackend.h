@@ -37,6 +37,10 @@ class VoxelBackend : public CollisionBackend {
   virtual void bind(const VoxelData& data) = 0;
   virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
   virtual VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) = 0;
+  // The broad phase of collide() alone, for timing it apart (studies): the
+  // candidates the narrow phase would examine (native: the shell points in
+  // bone; mesh back-ends: the triangles within the tool's reach).
+  virtual size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) = 0;
   virtual SweepResult sweep(const SweepQuery& query) const = 0;
   virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
   virtual std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const = 0;

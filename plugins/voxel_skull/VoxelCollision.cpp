@@ -36,6 +36,17 @@ double depthToFreeVoxel(const SolidGrid& grid, const Vec3& p, int64_t voxel, con
 
 }  // namespace
 
+// The thesis's detection: which shell points are in bone (the point test over
+// the occupancy cells); the contact parameters are the narrow phase.
+size_t NativeVoxelBackend::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  const ReservedShell* reserved = findShell(shell);
+  if (!reserved) return 0;
+  m_pointTest(grid(), reserved->arrays, X_WT, {m_voxels.data(), m_solid.data()});
+  size_t inBone = 0;
+  for (size_t i = 0; i < shell.size(); ++i) inBone += m_solid[i] != 0;
+  return inBone;
+}
+
 VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) {
   VoxelContact result;
   ShellContact& contact = result.contact;

@@ -121,6 +121,11 @@ std::optional<SurfaceHit> VoxelSkull::raycast(const Vec3& origin, const Vec3& di
   return m_bound ? askBackend([&] { return m_backend->raycast(origin, direction, maxDistance); }) : std::nullopt;
 }
 
+std::optional<size_t> VoxelSkull::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  if (!m_bound) return std::nullopt;
+  return askBackend([&] { return m_backend->broadPhase(X_WT, shell); });
+}
+
 void VoxelSkull::throwBackendFailure(const std::exception& e) const {
   throw std::runtime_error("collision back-end \"" + d_backend.value() + "\" of " + path() + " failed: " + e.what());
 }

@@ -38,6 +38,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   // SurfaceTarget
   Box3 bounds() const override;
+  std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   // A phantom's solid (file="phantom:..."); none for a scan.
   LevelSet exactShape() const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;

@@ -20,7 +20,9 @@ struct StudyRow {
   double penetrationErrorP50 = 0, penetrationErrorP99 = 0, penetrationErrorMax = 0;  // mm
   double normalErrorP50 = 0, normalErrorP99 = 0;                                     // deg
   double queryP50 = 0, queryP99 = 0;                                                 // µs per target query
-  std::vector<std::pair<std::string, std::string>> run;                              // result.csv, column by column
+  double broadP50 = 0, narrowP50 = 0;  // µs: the broad phase alone, the rest of the query (NaN if not split)
+  double candidatesP50 = 0;            // candidates of the broad phase (points in bone, triangles in reach)
+  std::vector<std::pair<std::string, std::string>> run;  // result.csv, column by column
   bool pareto = false;
   double runValue(const std::string& column) const;  // NaN when absent
 };

@@ -147,22 +147,37 @@ std::vector<Vec3> readPositions(const std::filesystem::path& file) {
 }
 
 // Queries the pristine target at every pose, the tool held in the world's
-// orientation (the spherical burr does not depend on it).
+// orientation (the spherical burr does not depend on it): first the broad
+// phase alone at every pose (when the target splits its query), then the
+// whole query, each timed (two passes, so neither warms the other's caches
+// pose by pose).
 void probe(Simulation& simulation, const StudyOptions& options, const StudySetting& setting,
            const std::vector<Vec3>& positions, const std::filesystem::path& file) {
   auto [target, component] = findTarget(simulation, options, setting);
   const PointShellTool& tool = findTool(simulation);
   target->refresh();
+  using Clock = std::chrono::steady_clock;
+  const auto microseconds = [](Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); };
+  std::vector<double> broadUs(positions.size(), std::nan(""));
+  std::vector<double> candidates(positions.size(), std::nan(""));
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const auto start = Clock::now();
+    const std::optional<size_t> found = target->broadPhase(Pose{positions[i], Quat::Identity()}, tool.shellPoints());
+    const double us = microseconds(Clock::now() - start);
+    if (!found) break;
+    broadUs[i] = us;
+    candidates[i] = double(*found);
+  }
   std::ostringstream s;
-  s << "penetration,nx,ny,nz,query_us\n";
-  for (const Vec3& p : positions) {
-    const auto start = std::chrono::steady_clock::now();
-    const ShellContact contact = target->collide(Pose{p, Quat::Identity()}, tool.shellPoints(), false);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+  s << "penetration,nx,ny,nz,query_us,broad_us,candidates\n";
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const auto start = Clock::now();
+    const ShellContact contact = target->collide(Pose{positions[i], Quat::Identity()}, tool.shellPoints(), false);
+    const double us = microseconds(Clock::now() - start);
     const bool touching = contact.points > 0;
     const Vec3 n = touching ? contact.normal : Vec3::Zero();
     s << number(touching ? contact.penetration : 0.0) << ',' << number(n.x()) << ',' << number(n.y()) << ','
-      << number(n.z()) << ',' << number(us) << '\n';
+      << number(n.z()) << ',' << number(us) << ',' << number(broadUs[i]) << ',' << number(candidates[i]) << '\n';
   }
   AtomicFile out(file);
   out.write(s.str());

@@ -46,6 +46,7 @@ class ThrowingVoxelBackend final : public trephine::voxel::VoxelBackend {
     if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
     return {};
   }
+  size_t broadPhase(const trephine::Pose&, std::span<const trephine::ShellPoint>) override { return 0; }
   trephine::SweepResult sweep(const trephine::SweepQuery&) const override { return {}; }
   bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
   std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
