@@ -77,6 +77,27 @@ void PluginRegistrar::addBackendEntry(BackendEntry entry) {
   if (auto error = m_registry.addBackend(std::move(entry))) m_errors.push_back(*error);
 }
 
+std::optional<std::string> Registry::addPhantomWriter(PhantomWriterEntry entry) {
+  for (const std::string& suffix : entry.suffixes)
+    if (const PhantomWriterEntry* existing = phantomWriterFor("x" + suffix))
+      return "phantom files '" + suffix + "' are written by both plugin '" + existing->plugin + "' and plugin '" +
+             entry.plugin + "'";
+  m_phantomWriters.push_back(std::move(entry));
+  return std::nullopt;
+}
+
+const PhantomWriterEntry* Registry::phantomWriterFor(std::string_view fileName) const {
+  for (const PhantomWriterEntry& writer : m_phantomWriters)
+    for (const std::string& suffix : writer.suffixes)
+      if (fileName.size() > suffix.size() && fileName.ends_with(suffix)) return &writer;
+  return nullptr;
+}
+
+void PluginRegistrar::addPhantomWriter(PhantomWriterEntry entry) {
+  entry.plugin = m_plugin;
+  if (auto error = m_registry.addPhantomWriter(std::move(entry))) m_errors.push_back(*error);
+}
+
 void PluginRegistrar::addEntry(ComponentEntry entry) {
   if (auto error = m_registry.add(std::move(entry))) m_errors.push_back(*error);
 }

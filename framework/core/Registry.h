@@ -31,6 +31,22 @@ struct BackendEntry {
   std::function<std::unique_ptr<CollisionBackend>()> create;
 };
 
+// Generated data a plugin can write to a file (`trephine phantom SPEC --out
+// FILE`): the phantoms its components also read as file="phantom:SPEC". The
+// output file's suffix picks the writer (the same phantom name, "cube", is a
+// volume in a .mha and a tetrahedral mesh in a .mesh).
+struct PhantomWriterEntry {
+  std::string kind;                   // what it writes, for messages: "volume", "tetrahedral mesh"
+  std::vector<std::string> suffixes;  // the file names it writes end so: ".mha", ".mhd"
+  std::string plugin;                 // filled in by the registrar
+  std::string help;                   // its phantoms and their keys, one per line
+  bool canWriteRaw = false;           // takes --raw (uncompressed output)
+  // Writes phantom `specification` to `file` and returns a one-line
+  // description of what it wrote; throws std::exception (the specification
+  // or the file is wrong).
+  std::function<std::string(const std::string& specification, const std::string& file, bool raw)> write;
+};
+
 class Registry {
  public:
   // Adds an entry. Returns an error naming both providers when the type is already registered.
@@ -51,9 +67,16 @@ class Registry {
   // A new back-end, or null when none of that name is registered for `kind`.
   std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) const;
 
+  // Returns an error naming both plugins when a suffix is already taken.
+  std::optional<std::string> addPhantomWriter(PhantomWriterEntry entry);
+  // The writer for a file of that name (by its suffix), or null.
+  const PhantomWriterEntry* phantomWriterFor(std::string_view fileName) const;
+  const std::vector<PhantomWriterEntry>& phantomWriters() const { return m_phantomWriters; }
+
  private:
   std::map<std::string, ComponentEntry, std::less<>> m_entries;
   std::map<std::pair<std::string, std::string>, BackendEntry> m_backends;
+  std::vector<PhantomWriterEntry> m_phantomWriters;
 };
 
 // Handed to a plugin's registration function.
@@ -73,6 +96,8 @@ class PluginRegistrar {
     addBackendEntry({std::string(kind), std::string(name), m_plugin, std::string(summary),
                      [] { return std::unique_ptr<CollisionBackend>(new T()); }});
   }
+
+  void addPhantomWriter(PhantomWriterEntry entry);
 
   const std::string& plugin() const { return m_plugin; }
   const std::vector<std::string>& errors() const { return m_errors; }

@@ -1,11 +1,25 @@
 // Deformable brains as tetrahedral meshes: collision of pointshell tools.
+#include <string>
+
 #include "framework/core/Registry.h"
 #include "plugins/tetra_brain/ScriptedDeformation.h"
+#include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
+#include "plugins/tetra_brain/io/MeditWriter.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<trephine::tetra::TetraBrain>(
       "TetraBrain", "Brain as a tetrahedral mesh: pointshell collision through a uniform grid (Algorithm 2)");
   registrar.add<trephine::tetra::ScriptedDeformation>(
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
+  registrar.addPhantomWriter({.kind = "tetrahedral mesh",
+                              .suffixes = {".mesh", ".mesh.gz"},
+                              .help = trephine::tetra::tetPhantomHelp(),
+                              .canWriteRaw = false,
+                              .write = [](const std::string& specification, const std::string& file, bool) {
+                                const trephine::tetra::TetMesh mesh = trephine::tetra::makeTetPhantom(specification);
+                                trephine::tetra::writeMeditMesh(mesh, file);
+                                return std::to_string(mesh.nodeCount()) + " nodes, " + std::to_string(mesh.tetCount()) +
+                                       " tetrahedra";
+                              }});
 }

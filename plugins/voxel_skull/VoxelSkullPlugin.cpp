@@ -1,11 +1,30 @@
 // Rigid skulls as CT density voxels: collision, drilling.
+#include <sstream>
+
 #include "framework/core/Registry.h"
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
+#include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
+#include "plugins/voxel_skull/io/VolumeWriter.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<trephine::voxel::VoxelSkull>(
       "VoxelSkull", "Rigid skull of CT density voxels: pointshell collision, sweeps and drilling");
   registrar.addBackend<trephine::voxel::NativeVoxelBackend>(
       "VoxelSkull", "native", "The thesis's voxel method: pointshell against voxels or the smooth isosurface");
+  registrar.addPhantomWriter({.kind = "volume",
+                              .suffixes = {".mha", ".mhd"},
+                              .help = trephine::voxel::phantomHelp(),
+                              .canWriteRaw = true,
+                              .write = [](const std::string& specification, const std::string& file, bool raw) {
+                                const trephine::voxel::DensityVolume volume =
+                                    trephine::voxel::makePhantom(specification);
+                                trephine::voxel::writeMetaImage(volume, file, !raw);
+                                const auto& d = volume.dims();
+                                std::ostringstream description;
+                                description << d[0] << " x " << d[1] << " x " << d[2] << " voxels of "
+                                            << volume.spacing().x() << " mm, densities " << volume.minDensity()
+                                            << " to " << volume.maxDensity();
+                                return description.str();
+                              }});
 }

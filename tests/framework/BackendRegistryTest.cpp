@@ -50,5 +50,29 @@ TEST(BackendRegistryTest, TheSameNameForTheSameKindTwiceIsAnErrorNamingBothPlugi
   EXPECT_NE(dynamic_cast<FirstBackend*>(registry.createBackend("VoxelSkull", "native").get()), nullptr);
 }
 
+// Phantom writers: the output file's suffix picks one, the longer suffix of
+// the same stem included (.mesh.gz), and a suffix two plugins claim is an
+// error naming both.
+TEST(BackendRegistryTest, APhantomFileIsWrittenByThePluginThatClaimsItsSuffix) {
+  Registry registry;
+  PluginRegistrar volumes(registry, "volumes");
+  volumes.addPhantomWriter({.kind = "volume", .suffixes = {".mha", ".mhd"}, .write = {}});
+  PluginRegistrar meshes(registry, "meshes");
+  meshes.addPhantomWriter({.kind = "mesh", .suffixes = {".mesh", ".mesh.gz"}, .write = {}});
+  EXPECT_TRUE(volumes.errors().empty() && meshes.errors().empty());
+  ASSERT_NE(registry.phantomWriterFor("out/skull.mha"), nullptr);
+  EXPECT_EQ(registry.phantomWriterFor("out/skull.mha")->plugin, "volumes");
+  ASSERT_NE(registry.phantomWriterFor("brain.mesh.gz"), nullptr);
+  EXPECT_EQ(registry.phantomWriterFor("brain.mesh.gz")->kind, "mesh");
+  EXPECT_EQ(registry.phantomWriterFor("brain.vtk"), nullptr);
+  EXPECT_EQ(registry.phantomWriterFor(".mha"), nullptr) << "a suffix alone is no file name";
+
+  PluginRegistrar again(registry, "again");
+  again.addPhantomWriter({.kind = "volume", .suffixes = {".mhd"}, .write = {}});
+  ASSERT_EQ(again.errors().size(), 1u);
+  EXPECT_EQ(again.errors()[0], "phantom files '.mhd' are written by both plugin 'volumes' and plugin 'again'");
+  EXPECT_EQ(registry.phantomWriters().size(), 2u);
+}
+
 }  // namespace
 }  // namespace trephine

@@ -137,6 +137,13 @@ TEST(TrephineProgramTest, PhantomWritesAVolumeTheSceneCanLoad) {
   EXPECT_EQ(runProgram({"phantom", "sphere", "--out", (dir / "x.mha").string()}, &out), 1);
   EXPECT_NE(out.find("unknown phantom 'sphere'"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"phantom", "skull?voxel=4"}, &out), 2) << "no --out";
+  // The plugins write their phantoms: a mesh from tetra_brain, by the suffix.
+  ASSERT_EQ(runProgram({"phantom", "cube?cells=3", "--out", (dir / "cube.mesh").string()}, &out), 0) << out;
+  EXPECT_NE(out.find("64 nodes, 135 tetrahedra"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"phantom", "cube?cells=3", "--out", (dir / "cube.vtk").string()}, &out), 2);
+  EXPECT_NE(out.find("expected .mesh or .mesh.gz (a tetrahedral mesh) or .mha or .mhd (a volume)"), std::string::npos)
+      << out;
+  EXPECT_EQ(runProgram({"phantom", "cube?cells=3", "--raw", "--out", (dir / "cube.mesh").string()}, &out), 2);
 }
 
 TEST(TrephineProgramTest, TheSceneReferenceInTheDocsIsCurrent) {

@@ -1,72 +1,57 @@
 #include "tools/trephine/PhantomCommand.h"
 
 #include <iostream>
-#include <string_view>
 
-#include "plugins/tetra_brain/TetPhantoms.h"
-#include "plugins/tetra_brain/io/MeditWriter.h"
-#include "plugins/voxel_skull/Phantoms.h"
-#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "framework/core/PluginLoader.h"
+#include "framework/core/Registry.h"
+#include "framework/runtime/Simulation.h"
 
 namespace trephine::cli {
 
-namespace {
-
-constexpr const char* kUsageLine =
-    "usage: trephine phantom SPEC --out FILE.mha|FILE.mhd [--raw]   (a volume)\n"
-    "       trephine phantom SPEC --out FILE.mesh|FILE.mesh.gz     (a tetrahedral mesh)\n";
-
-// The output file's name decides which kind of phantom SPEC names: the same
-// name (cube) is a voxel phantom in a volume and a tetrahedral one in a mesh.
-enum class PhantomKind { kVolume, kTetMesh, kUnknown };
-
-PhantomKind kindFromFileName(std::string_view file) {
-  if (file.ends_with(".mesh") || file.ends_with(".mesh.gz")) return PhantomKind::kTetMesh;
-  if (file.ends_with(".mha") || file.ends_with(".mhd")) return PhantomKind::kVolume;
-  return PhantomKind::kUnknown;
-}
-
-void writeVolumePhantom(const std::string& spec, const std::string& out, bool compress) {
-  const voxel::DensityVolume volume = voxel::makePhantom(spec);
-  voxel::writeMetaImage(volume, out, compress);
-  const auto& d = volume.dims();
-  std::cout << out << ": " << d[0] << " x " << d[1] << " x " << d[2] << " voxels of " << volume.spacing().x()
-            << " mm, densities " << volume.minDensity() << " to " << volume.maxDensity() << "\n";
-}
-
-void writeTetPhantom(const std::string& spec, const std::string& out) {
-  const tetra::TetMesh mesh = tetra::makeTetPhantom(spec);
-  tetra::writeMeditMesh(mesh, out);
-  std::cout << out << ": " << mesh.nodeCount() << " nodes, " << mesh.tetCount() << " tetrahedra\n";
-}
-
-}  // namespace
-
+// The phantoms come from the plugins, through the registry: each plugin that
+// generates data registers a writer for the file names it writes.
 int phantomCommand(const Arguments& arguments) {
+  Registry registry;
+  registerCoreComponents(registry);
+  PluginLoader plugins;
+  std::string loadErrors;
+  for (const std::string& name : plugins.available())
+    if (auto e = plugins.load(name, registry)) loadErrors += "trephine phantom: " + *e + "\n";
+
   if (arguments.positional.size() != 1 || !arguments.has("--out")) {
-    std::cerr << kUsageLine << "volume phantoms (.mha, .mhd):\n"
-              << voxel::phantomHelp() << "tetrahedral phantoms (.mesh, .mesh.gz):\n"
-              << tetra::tetPhantomHelp();
+    std::cerr << loadErrors;
+    for (const PhantomWriterEntry& writer : registry.phantomWriters()) {
+      std::cerr << "usage: trephine phantom SPEC --out FILE";
+      for (size_t i = 0; i < writer.suffixes.size(); ++i) std::cerr << (i ? "|FILE" : "") << writer.suffixes[i];
+      std::cerr << (writer.canWriteRaw ? " [--raw]" : "") << "   (a " << writer.kind << ", plugin " << writer.plugin
+                << ")\n";
+    }
+    for (const PhantomWriterEntry& writer : registry.phantomWriters())
+      std::cerr << writer.kind << " phantoms:\n" << writer.help;
     return kUsage;
   }
   const std::string spec = arguments.positional[0];
   const std::string out = *arguments.get("--out");
-  const PhantomKind kind = kindFromFileName(out);
-  if (kind == PhantomKind::kUnknown) {
-    std::cerr << "trephine phantom: cannot tell what to write to '" << out
-              << "': expected .mha or .mhd (a volume) or .mesh or .mesh.gz (a tetrahedral mesh)\n";
+  const PhantomWriterEntry* writer = registry.phantomWriterFor(out);
+  if (!writer) {
+    std::cerr << loadErrors << "trephine phantom: cannot tell what to write to '" << out << "': expected";
+    bool first = true;
+    for (const PhantomWriterEntry& w : registry.phantomWriters()) {
+      std::cerr << (first ? " " : " or ");
+      for (size_t i = 0; i < w.suffixes.size(); ++i) std::cerr << (i ? " or " : "") << w.suffixes[i];
+      std::cerr << " (a " << w.kind << ")";
+      first = false;
+    }
+    std::cerr << (first ? " a plugin that writes phantoms (none was found)" : "") << "\n";
     return kUsage;
   }
-  if (kind == PhantomKind::kTetMesh && arguments.has("--raw")) {
-    std::cerr << "trephine phantom: --raw is for volumes (.mha, .mhd); a .mesh is plain text, a .mesh.gz gzipped\n";
+  if (arguments.has("--raw") && !writer->canWriteRaw) {
+    std::cerr << "trephine phantom: --raw is for files a plugin can write uncompressed; a " << writer->kind
+              << " is not (" << out << ")\n";
     return kUsage;
   }
   try {
-    if (kind == PhantomKind::kTetMesh) {
-      writeTetPhantom(spec, out);
-    } else {
-      writeVolumePhantom(spec, out, !arguments.has("--raw"));
-    }
+    std::cout << out << ": " << writer->write(spec, out, arguments.has("--raw")) << "\n";
   } catch (const std::exception& e) {
     std::cerr << "trephine phantom: " << e.what() << "\n";
     return kSceneError;
