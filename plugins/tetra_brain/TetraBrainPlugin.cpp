@@ -14,6 +14,7 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
   registrar.addPhantomWriter({.kind = "tetrahedral mesh",
                               .suffixes = {".mesh", ".mesh.gz"},
+                              .plugin = {},
                               .help = trephine::tetra::tetPhantomHelp(),
                               .canWriteRaw = false,
                               .write = [](const std::string& specification, const std::string& file, bool) {

@@ -14,6 +14,7 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
       "VoxelSkull", "native", "The thesis's voxel method: pointshell against voxels or the smooth isosurface");
   registrar.addPhantomWriter({.kind = "volume",
                               .suffixes = {".mha", ".mhd"},
+                              .plugin = {},
                               .help = trephine::voxel::phantomHelp(),
                               .canWriteRaw = true,
                               .write = [](const std::string& specification, const std::string& file, bool raw) {
