@@ -78,19 +78,27 @@ void PluginRegistrar::addBackendEntry(BackendEntry entry) {
 }
 
 std::optional<std::string> Registry::addPhantomWriter(PhantomWriterEntry entry) {
+  // Suffixes of different writers must not end one another (".gz" and
+  // ".mesh.gz"), or a file name would not say which writer it is for.
   for (const std::string& suffix : entry.suffixes)
-    if (const PhantomWriterEntry* existing = phantomWriterFor("x" + suffix))
-      return "phantom files '" + suffix + "' are written by both plugin '" + existing->plugin + "' and plugin '" +
-             entry.plugin + "'";
+    for (const PhantomWriterEntry& existing : m_phantomWriters)
+      for (const std::string& other : existing.suffixes)
+        if (suffix.ends_with(other) || other.ends_with(suffix))
+          return "phantom files '" + suffix + "' are written by both plugin '" + existing.plugin + "' ('" + other +
+                 "') and plugin '" + entry.plugin + "'";
   m_phantomWriters.push_back(std::move(entry));
   return std::nullopt;
 }
 
 const PhantomWriterEntry* Registry::phantomWriterFor(std::string_view fileName) const {
+  // The longest matching suffix: a writer of .mesh and .mesh.gz gets both.
+  const PhantomWriterEntry* found = nullptr;
+  size_t longest = 0;
   for (const PhantomWriterEntry& writer : m_phantomWriters)
     for (const std::string& suffix : writer.suffixes)
-      if (fileName.size() > suffix.size() && fileName.ends_with(suffix)) return &writer;
-  return nullptr;
+      if (fileName.size() > suffix.size() && fileName.ends_with(suffix) && suffix.size() > longest)
+        found = &writer, longest = suffix.size();
+  return found;
 }
 
 void PluginRegistrar::addPhantomWriter(PhantomWriterEntry entry) {

@@ -3,6 +3,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -29,7 +30,9 @@ std::atomic<uint64_t> g_bulletBytes{0};
 void* countingAlloc(size_t size) {
   g_bulletAllocations.fetch_add(1, std::memory_order_relaxed);
   g_bulletBytes.fetch_add(size, std::memory_order_relaxed);
-  return std::malloc(size);
+  void* memory = std::malloc(size);
+  if (!memory) throw std::bad_alloc();  // Bullet would use the null pointer: fail where it can be caught
+  return memory;
 }
 void countingFree(void* memory) { std::free(memory); }
 
@@ -102,11 +105,21 @@ struct ClosestContact final : btCollisionWorld::ContactResultCallback {
 };
 
 // Counts the surface crossings along a ray (parity: inside the bone when odd).
+// A ray through an edge or a vertex hits every triangle there at the same
+// distance: hits closer than 1e-9 of the ray's length are one crossing.
 struct CrossingCount final : btCollisionWorld::RayResultCallback {
-  int crossings = 0;
-  btScalar addSingleResult(btCollisionWorld::LocalRayResult&, bool) override {
-    ++crossings;
+  static constexpr int kMaxHits = 256;
+  std::array<double, kMaxHits> fractions{};
+  int hits = 0;
+  btScalar addSingleResult(btCollisionWorld::LocalRayResult& result, bool) override {
+    if (hits < kMaxHits) fractions[size_t(hits++)] = result.m_hitFraction;
     return m_closestHitFraction;  // keep going: every hit
+  }
+  int crossings() {
+    std::sort(fractions.begin(), fractions.begin() + hits);
+    int distinct = 0;
+    for (int i = 0; i < hits; ++i) distinct += i == 0 || fractions[size_t(i)] - fractions[size_t(i - 1)] > 1e-9;
+    return distinct;
   }
 };
 
@@ -227,12 +240,22 @@ struct BulletVoxelBackend::State {
     return (mesh.vertices[size_t(t[1])] - a).cross(mesh.vertices[size_t(t[2])] - a).normalized();
   }
 
+  // Whether `centre` is in the bone, given its closest surface point on
+  // (block, triangle): behind that triangle when the point is inside its face
+  // (the direction is along the face normal); at an edge or a vertex the
+  // faces there disagree, so a ray decides.
+  bool behindClosest(const Vec3& centre, const ClosestContact& c) const {
+    const Vec3 n = faceNormal(c.block, c.triangle);
+    const double along = (centre - c.point).dot(n) / c.distance;
+    return std::abs(along) > 0.999 ? along < 0 : inside(centre);
+  }
+
   bool inside(const Vec3& p) const {
     CrossingCount count;
     const double far = 2.0 * data.volume->bounds().diagonal().norm() + 10.0;  // mm: out of the volume
     world.rayTest(toBullet(p), toBullet(p + far * kParityDirection), count);
     ++rays;
-    return count.crossings % 2 == 1;
+    return count.crossings() % 2 == 1;
   }
 };
 
@@ -276,10 +299,20 @@ voxel::VoxelContact BulletVoxelBackend::collide(const Pose& X_WT, std::span<cons
   if (!reserved || s.blocks.empty()) return result;
   const Vec3 centre = X_WT.position;
   const double r = reserved->radius;
-  const ClosestContact c = s.closest(centre, r);
-  if (c.block < 0 || !(c.distance > 0)) return result;  // out of reach, or the centre on the surface: no direction
-  // Behind the closest triangle: the centre is in the bone.
-  const bool in = (centre - c.point).dot(s.faceNormal(c.block, c.triangle)) < 0;
+  ClosestContact c = s.closest(centre, r);
+  bool in = false;
+  if (c.block < 0) {
+    // Nothing within r: free, or the centre deeper than r in the bone (then
+    // the closest surface is searched farther out).
+    if (!s.inside(centre)) return result;
+    const double far = s.data.volume->bounds().diagonal().norm();
+    for (double reach = 2 * r; c.block < 0 && reach < 2 * far; reach *= 2) c = s.closest(centre, reach);
+    if (c.block < 0) return result;
+    in = true;
+  } else if (c.distance > 0) {
+    in = s.behindClosest(centre, c);
+  }
+  if (!(c.distance > 0)) return result;  // the centre on the surface: no direction
   // Outside, the normal is the mean of the face normals of the triangles the
   // sphere reaches, weighted by depth and area: the closest point's direction
   // alone jumps from face to face at a crease, and a proxy lifted along it
@@ -328,8 +361,9 @@ SweepResult BulletVoxelBackend::sweep(const SweepQuery& query) const {
   const double skin = 0.1 * s.data.grid->smallestSide();
   const ClosestContact start = s.closest(query.from, radius);
   const bool touching = start.block >= 0 && start.distance < radius;
-  if (touching && (query.from - start.point).dot(s.faceNormal(start.block, start.triangle)) < 0)
-    return result;  // the centre in bone: only new material blocks, so the tool may leave
+  // The centre in bone: only new material blocks (as the native sweeps), so
+  // the tool may leave; treated as free.
+  if (touching ? start.distance > 0 && s.behindClosest(query.from, start) : s.inside(query.from)) return result;
   const double allowed = touching ? std::max(skin, radius - start.distance) + skin : 0.0;
   const double castRadius = radius - allowed;
   if (!(castRadius > kSweepTolerance)) return result;

@@ -102,7 +102,7 @@ VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const Shell
       m_groupDepths[group] -= offset.dot(normal);
     } else if (grid().smooth) {
       // Smooth surface: the surface normal and the first-order distance to
-      // the isosurface, within a voxel of it. Deeper, the first-order distance
+      // the isosurface, within half a voxel of it. Deeper, the first-order distance
       // is wrong where the density levels off inside bone (it overestimates),
       // and the gradient may be that of the bone's inner structure (a cortical
       // table over diploe rises outwards, turning the normal inwards): there,

@@ -50,15 +50,22 @@ TEST(BackendRegistryTest, TheSameNameForTheSameKindTwiceIsAnErrorNamingBothPlugi
   EXPECT_NE(dynamic_cast<FirstBackend*>(registry.createBackend("VoxelSkull", "native").get()), nullptr);
 }
 
+PhantomWriterEntry writer(const std::string& kind, std::vector<std::string> suffixes) {
+  PhantomWriterEntry entry;
+  entry.kind = kind;
+  entry.suffixes = std::move(suffixes);
+  return entry;
+}
+
 // Phantom writers: the output file's suffix picks one, the longer suffix of
 // the same stem included (.mesh.gz), and a suffix two plugins claim is an
 // error naming both.
 TEST(BackendRegistryTest, APhantomFileIsWrittenByThePluginThatClaimsItsSuffix) {
   Registry registry;
   PluginRegistrar volumes(registry, "volumes");
-  volumes.addPhantomWriter({.kind = "volume", .suffixes = {".mha", ".mhd"}, .write = {}});
+  volumes.addPhantomWriter(writer("volume", {".mha", ".mhd"}));
   PluginRegistrar meshes(registry, "meshes");
-  meshes.addPhantomWriter({.kind = "mesh", .suffixes = {".mesh", ".mesh.gz"}, .write = {}});
+  meshes.addPhantomWriter(writer("mesh", {".mesh", ".mesh.gz"}));
   EXPECT_TRUE(volumes.errors().empty() && meshes.errors().empty());
   ASSERT_NE(registry.phantomWriterFor("out/skull.mha"), nullptr);
   EXPECT_EQ(registry.phantomWriterFor("out/skull.mha")->plugin, "volumes");
@@ -68,9 +75,12 @@ TEST(BackendRegistryTest, APhantomFileIsWrittenByThePluginThatClaimsItsSuffix) {
   EXPECT_EQ(registry.phantomWriterFor(".mha"), nullptr) << "a suffix alone is no file name";
 
   PluginRegistrar again(registry, "again");
-  again.addPhantomWriter({.kind = "volume", .suffixes = {".mhd"}, .write = {}});
+  again.addPhantomWriter(writer("volume", {".mhd"}));
   ASSERT_EQ(again.errors().size(), 1u);
-  EXPECT_EQ(again.errors()[0], "phantom files '.mhd' are written by both plugin 'volumes' and plugin 'again'");
+  EXPECT_EQ(again.errors()[0], "phantom files '.mhd' are written by both plugin 'volumes' ('.mhd') and plugin 'again'");
+  PluginRegistrar gz(registry, "gz");
+  gz.addPhantomWriter(writer("gzip", {".gz"}));
+  ASSERT_EQ(gz.errors().size(), 1u) << "'.gz' ends '.mesh.gz': a .mesh.gz file would be claimed twice";
   EXPECT_EQ(registry.phantomWriters().size(), 2u);
 }
 

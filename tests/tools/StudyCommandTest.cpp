@@ -90,7 +90,6 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
   EXPECT_NE(out.find("reference: the exact shape of the phantom"), std::string::npos) << out;
   const auto rows = readStudy(dir / "study/study.csv");
   ASSERT_EQ(rows.size(), 4u);
-  int onFront = 0;
   for (const auto& row : rows) {
     EXPECT_EQ(row.at("status"), "ok");
     EXPECT_EQ(number(row, "poses"), 120) << "60 proxy and 60 device poses";
@@ -108,15 +107,19 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
     EXPECT_EQ(number(row, "proxy_inside_frames"), 0);
     EXPECT_GT(number(row, "step_p50_us"), 0);
     EXPECT_GT(number(row, "query_p50_us"), 0);
-    // The broad phase timed apart (the native one: the shell points in bone).
+    // The broad phase timed apart (the native one: the shell points in
+    // bone), a part of the whole query.
     EXPECT_GT(number(row, "broad_p50_us"), 0);
-    EXPECT_GE(number(row, "narrow_p50_us"), 0);
+    EXPECT_LT(number(row, "broad_p50_us"), number(row, "query_p50_us"));
     EXPECT_GT(number(row, "candidates_p50"), 0);
-    onFront += number(row, "pareto") == 1;
     for (const char* file : {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv"})
       EXPECT_TRUE(std::filesystem::exists(dir / "study/settings" / ("00" + row.at("setting")) / file)) << file;
   }
-  EXPECT_GE(onFront, 1);
+  // Halving the voxel size shrinks the error, whatever the shell (0.06 to
+  // 0.08 mm at 1 mm voxels, 0.02 to 0.03 mm at 0.5 mm measured).
+  for (int shell = 0; shell < 2; ++shell)
+    EXPECT_LT(number(rows[2 + shell], "pen_err_p99_mm"), 0.6 * number(rows[shell], "pen_err_p99_mm"))
+        << rows[2 + shell].at("label");
   EXPECT_EQ(rows[0].at("reference"), "1");
   EXPECT_EQ(rows[3].at("/tool/burr.pointCount"), "466");
   const std::string table = test::readFile(dir / "study/study.md");

@@ -17,9 +17,10 @@ struct ExactSphereContact {
 // Finds the surface point closest to `center` by searching over directions:
 // rays in a Fibonacci set of directions are marched at `step` (mm) to the
 // first change of sign and bisected, then the best direction is refined on
-// shrinking rings around it. The distance is searched up to `radius` + 1 mm
-// (farther the sphere cannot touch). Features thinner than `step` can be
-// missed.
+// shrinking rings around it (a pattern search). A centre outside is searched
+// up to `radius` + 1 mm (farther the sphere cannot touch); a centre inside up
+// to 4 `radius` + 5 mm, and deeper still the penetration returned is that
+// reach, a lower bound. Features thinner than `step` can be missed.
 ExactSphereContact exactSphereContact(const LevelSet& solid, const Vec3& center, double radius, double step = 0.05);
 
 }  // namespace trephine::cli

@@ -4,9 +4,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -144,28 +146,39 @@ std::vector<std::string> workerArguments(const StudyRequest& request, int index)
 
 // Starts `args` (args[0] is the program; searched in PATH when `searchPath`);
 // returns its pid, or -1.
-pid_t spawn(const std::vector<std::string>& args, bool searchPath) {
+pid_t spawn(const std::vector<std::string>& args, bool searchPath, int* error = nullptr) {
   std::vector<char*> argv;
   for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
   argv.push_back(nullptr);
   pid_t pid = -1;
   const int failed = searchPath ? posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)
                                 : posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+  if (failed && error) *error = failed;
   return failed ? -1 : pid;
 }
 
-// A worker that ended without saying why (killed, crashed) leaves error.txt.
-void recordAbnormalEnd(const StudyRequest& request, int index, int status) {
+// A worker that ended without saying why (killed, crashed, not started)
+// leaves error.txt, so that nobody waits for its setting.
+void recordAbnormalEnd(const StudyRequest& request, int index, const std::string& why) {
   const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
-  if (std::filesystem::exists(directory / kResultFile) || std::filesystem::exists(directory / kErrorFile)) return;
   std::error_code ec;
+  if (std::filesystem::exists(directory / kResultFile, ec) || std::filesystem::exists(directory / kErrorFile, ec))
+    return;  // the worker removed the earlier study's files first, so these are its own
   std::filesystem::create_directories(directory, ec);
-  std::ofstream error(directory / kErrorFile);
-  error << request.settings[index].label() << ": ";
-  if (WIFSIGNALED(status))
-    error << "the worker process was ended by signal " << WTERMSIG(status) << "\n";
-  else
-    error << "the worker process exited with status " << WEXITSTATUS(status) << " and wrote no result\n";
+  writeSettingError(directory, request.settings[index].label() + ": " + why);
+}
+
+std::string describeStatus(int status) {
+  if (WIFSIGNALED(status)) return "the worker process was ended by signal " + std::to_string(WTERMSIG(status));
+  return "the worker process exited with status " + std::to_string(WEXITSTATUS(status)) + " and wrote no result";
+}
+
+// Removes what an earlier study left for a setting, so that a worker that
+// dies before its first step is not mistaken for one that finished.
+void clearSetting(const StudyRequest& request, int index) {
+  const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
+  std::error_code ec;
+  for (const char* stale : {kProbeFile, kResultFile, kErrorFile}) std::filesystem::remove(directory / stale, ec);
 }
 
 // Runs the settings in worker processes, at most `jobs` at a time.
@@ -177,9 +190,12 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
       const int index = indices[next++];
       std::cout << "setting " << index + 1 << "/" << request.settings.size() << ": " << request.settings[index].label()
                 << std::endl;
-      const pid_t pid = spawn(workerArguments(request, index), false);
+      clearSetting(request, index);
+      int spawnError = 0;
+      const pid_t pid = spawn(workerArguments(request, index), false, &spawnError);
       if (pid < 0) {
-        recordAbnormalEnd(request, index, 127 << 8);
+        recordAbnormalEnd(request, index,
+                          std::string("the worker process could not start: ") + std::strerror(spawnError));
         continue;
       }
       running[pid] = index;
@@ -187,9 +203,14 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
     if (running.empty()) continue;
     int status = 0;
     const pid_t done = waitpid(-1, &status, 0);
-    if (done < 0) break;
+    if (done < 0) {
+      if (errno == EINTR) continue;
+      for (const auto& [pid, index] : running) recordAbnormalEnd(request, index, "its worker process was lost");
+      running.clear();
+      continue;
+    }
     if (auto it = running.find(done); it != running.end()) {
-      recordAbnormalEnd(request, it->second, status);
+      recordAbnormalEnd(request, it->second, describeStatus(status));
       running.erase(it);
     }
   }
@@ -253,6 +274,7 @@ int studyCommand(const Arguments& a) {
   const StudyOptions& options = request->options;
   if (request->onlySetting)
     return runStudySetting(options, request->settings[*request->onlySetting]) ? kOk : kRuntimeFailure;
+  const auto started = Clock::now() - std::chrono::seconds(10);
   // The scene must load before anything is run (a typo in a field shows here).
   {
     Diagnostics diagnostics;
@@ -264,7 +286,6 @@ int studyCommand(const Arguments& a) {
     }
   }
   const Rank rank = mpiRank();
-  const auto started = Clock::now() - std::chrono::seconds(10);
   std::error_code ec;
   std::filesystem::create_directories(options.out, ec);
   if (!std::filesystem::is_directory(options.out)) {

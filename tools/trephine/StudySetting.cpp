@@ -1,6 +1,7 @@
 #include "tools/trephine/StudySetting.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -141,7 +142,16 @@ std::vector<Vec3> readPositions(const std::filesystem::path& file) {
     if (!std::getline(row, kind, ',') || !std::getline(row, x, ',') || !std::getline(row, y, ',') ||
         !std::getline(row, z, ','))
       throw SettingError(file.string() + ": malformed row '" + line + "'");
-    positions.emplace_back(std::stod(x), std::stod(y), std::stod(z));
+    double v[3];
+    const std::string* cells[3] = {&x, &y, &z};
+    for (int a = 0; a < 3; ++a) {
+      const std::string& cell = *cells[a];
+      const auto result = std::from_chars(cell.data(), cell.data() + cell.size(), v[a]);
+      if (result.ec != std::errc() || result.ptr != cell.data() + cell.size())
+        throw SettingError(file.string() + ":" + std::to_string(positions.size() + 2) + ": expected a number, got '" +
+                           cell + "'");
+    }
+    positions.emplace_back(v[0], v[1], v[2]);
   }
   return positions;
 }
@@ -212,21 +222,26 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
   const std::filesystem::path posesFile = options.out / kPosesFile;
   const bool isReference = setting.index == options.referenceIndex;
   try {
+    // Every setting's probe runs on an instance of its own, loaded fresh and
+    // never run, so that the probe neither changes the run it measures (its
+    // counters, caches, warm starts) nor sees a drilled or deformed target.
     auto simulation = load(options, setting);
+    std::vector<Vec3> positions;
     if (isReference) {
-      // The reference's run gives the poses; its probe needs the target as
-      // loaded, before the run drilled or deformed it.
-      auto probed = load(options, setting);
+      // The reference's run gives the poses.
       simulation->run();
       std::vector<StudyPose> poses = posesFromRun(*simulation, options.posesPerKind);
+      if (poses.empty()) throw SettingError("the reference run has no frame in contact: there are no poses to compare");
+      auto probed = load(options, setting);
       auto [target, component] = findTarget(*probed, options, setting);
       addExactContacts(poses, *component, findTool(*probed));
       writePoses(posesFile, poses);
-      std::vector<Vec3> positions;
       for (const StudyPose& p : poses) positions.push_back(p.position);
       probe(*probed, options, setting, positions, directory / kProbeFile);
     } else {
-      probe(*simulation, options, setting, readPositions(posesFile), directory / kProbeFile);
+      auto probed = load(options, setting);
+      probe(*probed, options, setting, readPositions(posesFile), directory / kProbeFile);
+      probed.reset();
       simulation->run();
     }
     std::vector<std::string> errors;
@@ -236,8 +251,19 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
     writeResult(*simulation, directory / kResultFile);
     return true;
   } catch (const std::exception& e) {
-    std::ofstream(directory / kErrorFile) << setting.label() << ": " << e.what() << "\n";
+    writeSettingError(directory, setting.label() + ": " + e.what());
     return false;
+  }
+}
+
+void writeSettingError(const std::filesystem::path& directory, const std::string& message) {
+  // Other processes wait for this file: it appears whole or not at all.
+  try {
+    AtomicFile out(directory / kErrorFile);
+    out.write(message + "\n");
+    out.commit();
+  } catch (const std::exception&) {
+    std::ofstream(directory / kErrorFile) << message << "\n";
   }
 }
 

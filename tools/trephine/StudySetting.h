@@ -36,4 +36,7 @@ inline constexpr const char* kErrorFile = "error.txt";
 // otherwise error.txt says why.
 bool runStudySetting(const StudyOptions& options, const StudySetting& setting);
 
+// Writes error.txt of a setting whole (other processes wait for it).
+void writeSettingError(const std::filesystem::path& directory, const std::string& message);
+
 }  // namespace trephine::cli

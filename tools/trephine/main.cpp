@@ -33,8 +33,9 @@ usage:
       target has none; force steps, proxy inside, NaN; time per frame. Writes
       study.csv, study.md, pareto.png (python3-matplotlib) and settings/NNN/
       to DIR (default runs/study-<scene name>). --jobs runs N settings at a
-      time (their timings then share the cores). Under mpirun each rank takes
-      every K-th setting and rank 0 gathers (DIR on a shared file system).
+      time (their timings then share the cores). Under mpirun -n R each rank
+      takes every R-th setting and rank 0 gathers (DIR on a shared file
+      system).
   trephine components [NAME] [--json | --markdown | --xsd]
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
