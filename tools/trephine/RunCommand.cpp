@@ -23,14 +23,16 @@ extern "C" void onSignal(int signal) {
   g_stopRequested = true;
 }
 
-std::optional<SimulationOptions> readOptions(const Arguments& a, std::string& error) {
+}  // namespace
+
+std::optional<SimulationOptions> readSimulationOptions(const Arguments& a, std::string& error) {
   SimulationOptions options;
   options.overrides = a.overrides;
   options.realtime = a.has("--realtime");
   options.strict = a.has("--strict");
   if (auto d = a.get("--duration")) {
     double seconds = 0;
-    if (FieldTraits<double>::parse(*d, seconds) || seconds <= 0) {
+    if (FieldTraits<double>::parse(*d, seconds) || !(seconds > 0)) {
       error = "--duration expects a positive number of seconds, got '" + *d + "'";
       return std::nullopt;
     }
@@ -47,6 +49,8 @@ std::optional<SimulationOptions> readOptions(const Arguments& a, std::string& er
   }
   return options;
 }
+
+namespace {
 
 // Creates `directory` if needed and removes what an earlier run wrote there
 // (its three files, device and recording streams, plots), so that a reused
@@ -76,7 +80,7 @@ int validateCommand(const Arguments& a) {
     return kUsage;
   }
   std::string error;
-  const auto options = readOptions(a, error);
+  const auto options = readSimulationOptions(a, error);
   if (!options) {
     std::cerr << "trephine: " << error << "\n";
     return kUsage;
@@ -99,7 +103,7 @@ int runCommand(const Arguments& a) {
     return kUsage;
   }
   std::string error;
-  const auto options = readOptions(a, error);
+  const auto options = readSimulationOptions(a, error);
   if (!options) {
     std::cerr << "trephine: " << error << "\n";
     return kUsage;

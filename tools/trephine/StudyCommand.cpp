@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "framework/core/Strings.h"
+#include "tools/trephine/RunCommand.h"
 #include "tools/trephine/StudyReport.h"
 #include "tools/trephine/StudySetting.h"
 
@@ -94,24 +95,9 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   request.settings = expandSettings(variations);
   request.options.out = a.get("--out").value_or("runs/study-" + request.options.scene.stem().string());
   request.options.target = a.get("--target").value_or("");
-  request.options.simulation.overrides = a.overrides;
-  if (auto d = a.get("--duration")) {
-    double seconds = 0;
-    if (FieldTraits<double>::parse(*d, seconds) || !(seconds > 0)) {
-      error = "--duration expects a positive number of seconds, got '" + *d + "'";
-      return std::nullopt;
-    }
-    request.options.simulation.duration = seconds;
-  }
-  if (auto s = a.get("--seed")) {
-    uint64_t seed = 0;
-    const auto result = std::from_chars(s->data(), s->data() + s->size(), seed);
-    if (s->empty() || result.ec != std::errc() || result.ptr != s->data() + s->size()) {
-      error = "--seed expects a non-negative integer, got '" + *s + "'";
-      return std::nullopt;
-    }
-    request.options.simulation.seed = seed;
-  }
+  auto simulation = readSimulationOptions(a, error);
+  if (!simulation) return std::nullopt;
+  request.options.simulation = *simulation;
   const int count = static_cast<int>(request.settings.size());
   if (auto jobs = positiveInteger(a, "--jobs", error)) request.jobs = *jobs;
   if (auto reference = positiveInteger(a, "--reference", error)) request.options.referenceIndex = *reference - 1;
