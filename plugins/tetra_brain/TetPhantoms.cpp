@@ -1,5 +1,6 @@
 #include "plugins/tetra_brain/TetPhantoms.h"
 
+#include <functional>
 #include <stdexcept>
 
 #include "framework/core/SourceSpec.h"
@@ -8,34 +9,37 @@
 
 namespace trephine::tetra {
 
-TetMesh makeTetPhantom(const std::string& specification) {
+namespace {
+
+// A phantom named by its specification, parsed once: how to mesh it, and
+// the solid it approximates.
+struct TetPhantomDefinition {
+  std::function<TetMesh()> mesh;
+  LevelSet shape;
+};
+
+TetPhantomDefinition defineTetPhantom(const std::string& specification) {
   const auto [name, query] = SourceSpec::split(specification);
   if (name == "cube") {
     const SourceSpec k(name, query, {{"cells", 22}, {"size", 200}});
-    return makeCubeMesh(k.wholeNumber("cells", 1, 200), k.positive("size"));
+    const int cells = k.wholeNumber("cells", 1, 200);
+    const double size = k.positive("size");
+    return {[=] { return makeCubeMesh(cells, size); },
+            [half = 0.5 * size](const Vec3& p) { return (p.cwiseAbs() - Vec3::Constant(half)).maxCoeff(); }};
   }
   if (name == "brain") {
     const SourceSpec k(name, query, {{"tets", 22000}});
-    return makeBrainPhantom(k.wholeNumber("tets", 100, 2000000));
+    const int tets = k.wholeNumber("tets", 100, 2000000);
+    return {[=] { return makeBrainPhantom(tets); }, brainPhantomDistance};
   }
   throw std::invalid_argument("unknown phantom '" + name + "' (cube, brain)");
 }
 
-LevelSet tetPhantomShape(const std::string& specification) {
-  const auto [name, query] = SourceSpec::split(specification);
-  if (name == "cube") {
-    const SourceSpec k(name, query, {{"cells", 22}, {"size", 200}});
-    k.wholeNumber("cells", 1, 200);
-    const double half = 0.5 * k.positive("size");
-    return [half](const Vec3& p) { return (p.cwiseAbs() - Vec3::Constant(half)).maxCoeff(); };
-  }
-  if (name == "brain") {
-    const SourceSpec k(name, query, {{"tets", 22000}});
-    k.wholeNumber("tets", 100, 2000000);
-    return brainPhantomDistance;
-  }
-  throw std::invalid_argument("unknown phantom '" + name + "' (cube, brain)");
-}
+}  // namespace
+
+TetMesh makeTetPhantom(const std::string& specification) { return defineTetPhantom(specification).mesh(); }
+
+LevelSet tetPhantomShape(const std::string& specification) { return defineTetPhantom(specification).shape; }
 
 std::string tetPhantomHelp() {
   return "  cube?cells=22&size=200   cube of cells^3 cells, 5 tetrahedra each (Table 4.1: 7, 13, 22, 30, 40, 50, 60)\n"
