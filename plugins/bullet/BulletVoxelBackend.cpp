@@ -15,6 +15,7 @@
 
 #include "framework/geometry/ClosestPoint.h"
 #include "plugins/voxel_skull/IsoSurface.h"
+#include "plugins/voxel_skull/MeshSphereContact.h"
 
 namespace trephine::bullet {
 
@@ -312,23 +313,8 @@ voxel::VoxelContact BulletVoxelBackend::collide(const Pose& X_WT, std::span<cons
   } else if (c.distance > 0) {
     in = s.behindClosest(centre, c);
   }
-  if (!(c.distance > 0)) return result;  // the centre on the surface: no direction
-  // Outside, the normal is the mean of the face normals of the triangles the
-  // sphere reaches, weighted by depth and area: the closest point's direction
-  // alone jumps from face to face at a crease, and a proxy lifted along it
-  // chatters.
-  contact.normal = in                             ? Vec3((c.point - centre) / c.distance)
-                   : c.weighted.norm() > 1e-9 * r ? Vec3(c.weighted.normalized())
-                                                  : Vec3((centre - c.point) / c.distance);
-  contact.penetration = in ? r + c.distance : r - c.distance;
-  if (!(contact.penetration > 0)) {
-    result.contact = ShellContact{};
-    return result;
-  }
-  // The shell points beyond the tangent plane at the closest point.
-  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
-  for (const ShellPoint& p : shell) contact.points += (R * p.position).dot(-contact.normal) > r - contact.penetration;
-  contact.points = std::max(contact.points, 1);
+  contact = voxel::sphereContact(X_WT, shell, r, c.point, c.distance, in, c.weighted);
+  if (contact.points == 0) return result;
   contact.primitives = c.contacts;
   ++s.contactFrames;
   return result;
@@ -355,16 +341,15 @@ SweepResult BulletVoxelBackend::sweep(const SweepQuery& query) const {
   if (!(length > 0) || !std::isfinite(length) || s.blocks.empty()) return result;
   const State::Shell* reserved = s.findShell(query.shell);
   const double radius = reserved ? reserved->radius : query.leadingRadius;
-  // The same rule as the embree back-end: a free sphere stops where it
-  // touches; one resting in its skin may sink one skin deeper than it is (or
-  // than one skin) and slides. Cast as a sphere shrunk by that allowance.
-  const double skin = 0.1 * s.data.grid->smallestSide();
+  // The mesh back-ends' rule (sweepAllowance), cast as a sphere shrunk by the
+  // depth it allows.
   const ClosestContact start = s.closest(query.from, radius);
   const bool touching = start.block >= 0 && start.distance < radius;
   // The centre in bone: only new material blocks (as the native sweeps), so
   // the tool may leave; treated as free.
   if (touching ? start.distance > 0 && s.behindClosest(query.from, start) : s.inside(query.from)) return result;
-  const double allowed = touching ? std::max(skin, radius - start.distance) + skin : 0.0;
+  const double allowed =
+      voxel::sweepAllowance(touching, radius - start.distance, voxel::meshSkin(s.data.grid->smallestSide()));
   const double castRadius = radius - allowed;
   if (!(castRadius > kSweepTolerance)) return result;
   btCollisionWorld::ClosestConvexResultCallback hit(toBullet(query.from), toBullet(query.to));

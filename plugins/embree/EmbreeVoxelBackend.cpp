@@ -12,6 +12,7 @@
 #include "framework/core/Component.h"
 #include "framework/geometry/ClosestPoint.h"
 #include "plugins/voxel_skull/IsoSurface.h"
+#include "plugins/voxel_skull/MeshSphereContact.h"
 
 namespace trephine::embree {
 
@@ -279,19 +280,8 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
     const bool in = s.inside(centre);
     if (!near && !in) return result;
     if (in && !near && !s.closest(centre, std::numeric_limits<float>::max(), closest, d)) return result;
-    if (!(d > 0)) return result;  // the centre on the surface: no direction
-    // Outside, the normal is the mean of the face normals of the triangles the
-    // sphere reaches, weighted by depth and area: the closest point's
-    // direction alone jumps from face to face at a crease, and a proxy lifted
-    // along it chatters.
-    contact.normal = in                           ? Vec3((closest - centre) / d)
-                     : averaged.norm() > 1e-9 * r ? Vec3(averaged.normalized())
-                                                  : Vec3((centre - closest) / d);
-    contact.penetration = in ? r + d : r - d;
-    // The shell points beyond the tangent plane at the closest point.
-    const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
-    for (const ShellPoint& p : shell) contact.points += (R * p.position).dot(-contact.normal) > r - contact.penetration;
-    contact.points = std::max(contact.points, 1);
+    contact = voxel::sphereContact(X_WT, shell, r, closest, d, in, averaged);
+    if (contact.points == 0) return result;
     contact.primitives = 1;
     ++s.contactFrames;
     return result;
@@ -348,18 +338,10 @@ SweepResult EmbreeVoxelBackend::sweep(const SweepQuery& query) const {
   // The centre in bone: only new material blocks (as the native sweeps), so
   // the tool may leave; treated as free.
   if (s.inside(query.from)) return result;
-  // A free sphere stops where it touches the surface (the proxy then adds its
-  // skin, the target's contact depth, a tenth of a voxel). One that touches
-  // at the start may sink one skin deeper than it starts or than one skin: a
-  // proxy resting in its skin slides along the surface (a slide along the
-  // tangent plane sinks a little wherever the triangles fold inwards; the
-  // next frame's lift takes it back out), and a move into the surface stops
-  // at once (startsInside).
-  const double skin = 0.1 * s.data.grid->smallestSide();
   Vec3 closest = Vec3::Zero();
   double d = 0;
   const bool touching = s.closest(query.from, radius, closest, d);
-  const double allowed = touching ? std::max(skin, radius - d) + skin : 0.0;
+  const double allowed = voxel::sweepAllowance(touching, radius - d, voxel::meshSkin(s.data.grid->smallestSide()));
   // Depth of the sphere at fraction t of the path, and where it touches.
   const auto depthAt = [&](double t, Vec3& touch) {
     double distance = 0;
