@@ -16,6 +16,7 @@
 #include "framework/geometry/ClosestPoint.h"
 #include "plugins/voxel_skull/IsoSurface.h"
 #include "plugins/voxel_skull/MeshSphereContact.h"
+#include "plugins/voxel_skull/MeshSurfaceCounters.h"
 
 namespace trephine::bullet {
 
@@ -179,8 +180,7 @@ struct BulletVoxelBackend::State {
     double radius = 0;  // mm
   };
   std::vector<Shell> shells;
-  double buildMs = 0;
-  uint64_t rebuiltBlocks = 0, failedBlocks = 0, contactFrames = 0;
+  voxel::MeshSurfaceCounters counts;
   mutable uint64_t contactTests = 0, casts = 0, rays = 0;
   mutable uint64_t queries = 0, queryAllocations = 0, queryBytes = 0;  // collide, sweep, overlaps
 
@@ -274,7 +274,7 @@ void BulletVoxelBackend::bind(const voxel::VoxelData& data) {
   s.blocks.resize(s.surface.blockCount());
   for (size_t b = 0; b < s.surface.blockCount(); ++b) s.attachBlock(b);
   s.world.updateAabbs();
-  s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.counts.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void BulletVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
@@ -316,7 +316,7 @@ voxel::VoxelContact BulletVoxelBackend::collide(const Pose& X_WT, std::span<cons
   contact = voxel::sphereContact(X_WT, shell, r, c.point, c.distance, in, c.weighted);
   if (contact.points == 0) return result;
   contact.primitives = c.contacts;
-  ++s.contactFrames;
+  ++s.counts.contactFrames;
   return result;
 }
 
@@ -404,19 +404,15 @@ void BulletVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const 
       s.attachBlock(b);
     } catch (const std::bad_alloc&) {
       s.blocks[b] = State::Block{};
-      ++s.failedBlocks;
+      ++s.counts.failedBlocks;
     }
   }
-  s.rebuiltBlocks += changed.size();
+  s.counts.rebuiltBlocks += changed.size();
 }
 
 void BulletVoxelBackend::reportCounters(std::vector<Counter>& counters) const {
   const State& s = *m_state;
-  counters.push_back({"contact_frames", double(s.contactFrames)});
-  counters.push_back({"triangles", double(s.surface.triangleCount())});
-  counters.push_back({"surface_build_ms", s.buildMs});
-  counters.push_back({"rebuilt_blocks", double(s.rebuiltBlocks)});
-  if (s.failedBlocks) counters.push_back({"failed_blocks", double(s.failedBlocks)});
+  s.counts.report(counters, s.surface.triangleCount());
   counters.push_back({"contact_tests", double(s.contactTests)});
   counters.push_back({"convex_casts", double(s.casts)});
   counters.push_back({"rays", double(s.rays)});

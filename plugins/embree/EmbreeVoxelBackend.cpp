@@ -13,6 +13,7 @@
 #include "framework/geometry/ClosestPoint.h"
 #include "plugins/voxel_skull/IsoSurface.h"
 #include "plugins/voxel_skull/MeshSphereContact.h"
+#include "plugins/voxel_skull/MeshSurfaceCounters.h"
 
 namespace trephine::embree {
 
@@ -89,8 +90,7 @@ struct EmbreeVoxelBackend::State {
   std::vector<Shell> shells;
   mutable std::vector<double> depths;  // per shell point, the point-by-point contact
   mutable std::vector<Vec3> normals;
-  double buildMs = 0;
-  uint64_t rebuiltBlocks = 0, failedBlocks = 0, contactFrames = 0;
+  voxel::MeshSurfaceCounters counts;
   mutable uint64_t rays = 0, pointQueries = 0;
 
   ~State() {
@@ -250,7 +250,7 @@ void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
     if (!s.attachBlock(b)) throw std::runtime_error("Embree could not allocate the buffers of a block of the surface");
   rtcCommitScene(s.scene);
   if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
-  s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.counts.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void EmbreeVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
@@ -283,7 +283,7 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
     contact = voxel::sphereContact(X_WT, shell, r, closest, d, in, averaged);
     if (contact.points == 0) return result;
     contact.primitives = 1;
-    ++s.contactFrames;
+    ++s.counts.contactFrames;
     return result;
   }
   // Any other shell, point by point.
@@ -308,7 +308,7 @@ voxel::VoxelContact EmbreeVoxelBackend::collide(const Pose& X_WT, std::span<cons
       contact.penetration =
           std::max(contact.penetration, s.depths[i] * std::max(0.0, s.normals[i].dot(contact.normal)));
   contact.primitives = contact.points;
-  ++s.contactFrames;
+  ++s.counts.contactFrames;
   return result;
 }
 
@@ -404,18 +404,14 @@ void EmbreeVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const 
   if (!s.scene) return;
   const std::vector<size_t> changed = s.surface.update(*s.data.grid, first, last);
   // In the haptic loop: a block Embree cannot take is counted, not thrown.
-  for (const size_t b : changed) s.failedBlocks += s.attachBlock(b) ? 0 : 1;
+  for (const size_t b : changed) s.counts.failedBlocks += s.attachBlock(b) ? 0 : 1;
   if (!changed.empty()) rtcCommitScene(s.scene);
-  s.rebuiltBlocks += changed.size();
+  s.counts.rebuiltBlocks += changed.size();
 }
 
 void EmbreeVoxelBackend::reportCounters(std::vector<Counter>& counters) const {
   const State& s = *m_state;
-  counters.push_back({"contact_frames", double(s.contactFrames)});
-  counters.push_back({"triangles", double(s.surface.triangleCount())});
-  counters.push_back({"surface_build_ms", s.buildMs});
-  counters.push_back({"rebuilt_blocks", double(s.rebuiltBlocks)});
-  if (s.failedBlocks) counters.push_back({"failed_blocks", double(s.failedBlocks)});
+  s.counts.report(counters, s.surface.triangleCount());
   counters.push_back({"rays", double(s.rays)});
   counters.push_back({"point_queries", double(s.pointQueries)});
 }

@@ -14,6 +14,19 @@ namespace {
 
 using RunFailureTest = TestPluginFixture;
 
+// Runs `scene` for 1 s with the test plugins, expects the run-time failure
+// exit code and an incomplete run, and returns its summary.json.
+std::string runToFailure(const std::filesystem::path& scene, const std::filesystem::path& out) {
+  std::string printed;
+  EXPECT_EQ(test::runProgram({"run", scene.string(), "--duration", "1", "--out", out.string()}, &printed,
+                             "TREPHINE_PLUGIN_PATH=" TREPHINE_TEST_PLUGIN_DIR),
+            3)
+      << printed;
+  const std::string summary = test::readFile(out / "summary.json");
+  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos) << summary;
+  return summary;
+}
+
 TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasMeasured) {
   test::TempDir dir;
   const auto scene = dir.write("throws.xml", R"(<Node name="root">
@@ -21,13 +34,7 @@ TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasM
   <Node name="bad"><ThrowingComponent name="thrower" failAt="0.25"/></Node>
 </Node>
 )");
-  std::string out;
-  EXPECT_EQ(test::runProgram({"run", scene.string(), "--duration", "1", "--out", (dir / "out").string()}, &out,
-                             "TREPHINE_PLUGIN_PATH=" TREPHINE_TEST_PLUGIN_DIR),
-            3)
-      << out;
-  const std::string summary = test::readFile(dir / "out/summary.json");
-  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos);
+  const std::string summary = runToFailure(scene, dir / "out");
   EXPECT_NE(summary.find("\"reason\": \"run-time error: /bad/thrower: deliberate failure\""), std::string::npos)
       << summary;
   EXPECT_NE(summary.find("\"calls\": 250"), std::string::npos) << "the 250 calls before the failure were timed";
@@ -55,13 +62,7 @@ TEST_F(RunFailureTest, ABackEndThatThrowsEndsTheRunNamingTheTargetWithEveryOutpu
   <ForceFeedback name="force" proxy="@proxy" stiffness="2" maxForce="3.3"/>
 </Node>
 )");
-  std::string out;
-  EXPECT_EQ(test::runProgram({"run", scene.string(), "--duration", "1", "--out", (dir / "out").string()}, &out,
-                             "TREPHINE_PLUGIN_PATH=" TREPHINE_TEST_PLUGIN_DIR),
-            3)
-      << out;
-  const std::string summary = test::readFile(dir / "out/summary.json");
-  EXPECT_NE(summary.find("\"complete\": false"), std::string::npos);
+  const std::string summary = runToFailure(scene, dir / "out");
   EXPECT_NE(summary.find("collision back-end \\\"throwing\\\" of /patient/skull failed: deliberate back-end failure"),
             std::string::npos)
       << summary;

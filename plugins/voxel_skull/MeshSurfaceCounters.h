@@ -1,0 +1,26 @@
+#pragma once
+// What the mesh back-ends (embree, bullet) count of their copy of the skull's
+// surface, reported the same way by both.
+#include <cstdint>
+#include <vector>
+
+#include "framework/core/Component.h"
+
+namespace trephine::voxel {
+
+struct MeshSurfaceCounters {
+  double buildMs = 0;          // ms, extracting the surface and building the library's structure at bind
+  uint64_t rebuiltBlocks = 0;  // blocks re-extracted and rebuilt after cuts
+  uint64_t failedBlocks = 0;   // blocks the library could not take (counted in the haptic loop, not thrown)
+  uint64_t contactFrames = 0;  // collide() calls that found contact
+
+  void report(std::vector<Counter>& counters, size_t triangles) const {
+    counters.push_back({"contact_frames", double(contactFrames)});
+    counters.push_back({"triangles", double(triangles)});
+    counters.push_back({"surface_build_ms", buildMs});
+    counters.push_back({"rebuilt_blocks", double(rebuiltBlocks)});
+    if (failedBlocks) counters.push_back({"failed_blocks", double(failedBlocks)});
+  }
+};
+
+}  // namespace trephine::voxel
