@@ -1,32 +1,32 @@
-// TetraBrain: contact normal and penetration of the colliding points (nearest
+// NativeTetBackend: contact normal and penetration of the colliding points (nearest
 // boundary face, or the thesis's Algorithm 2), depth below the surface, and the
-// reaction of the contact force on the nodes.
+// sites where the contact presses on the nodes.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "framework/geometry/ClosestPoint.h"
-#include "plugins/tetra_brain/TetraBrain.h"
+#include "plugins/tetra_brain/NativeTetBackend.h"
 
 namespace trephine::tetra {
 
-Vec3 TetraBrain::faceNormal(const BoundaryFace& face) const {
-  const auto n = faceNodes(m_mesh.tets[face.tet], face.face);
+Vec3 NativeTetBackend::faceNormal(const BoundaryFace& face) const {
+  const auto n = faceNodes(m_mesh->tets[face.tet], face.face);
   const Vec3 normal = (m_nodes[n[1]] - m_nodes[n[0]]).cross(m_nodes[n[2]] - m_nodes[n[0]]);
   const double length = normal.norm();
   return length > 0 ? Vec3(normal / length) : Vec3::Zero();
 }
 
-double TetraBrain::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const {
+double NativeTetBackend::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const {
   // A tet that touches the surface only at a node or an edge: the nearest of
   // the boundary faces around its nodes (a handful), instead of a search of
   // the whole neighbourhood. Infinite when no node of the tet is on the surface.
   double best = std::numeric_limits<double>::infinity();
-  const auto& faces = m_topology.boundaryFaces();
-  for (int32_t node : m_mesh.tets[tet]) {
+  const auto& faces = m_topology->boundaryFaces();
+  for (int32_t node : m_mesh->tets[tet]) {
     for (uint32_t e = m_nodeFaceStart[node]; e < m_nodeFaceStart[node + 1]; ++e) {
       const BoundaryFace& face = faces[m_nodeFaces[e]];
-      const auto n = faceNodes(m_mesh.tets[face.tet], face.face);
+      const auto n = faceNodes(m_mesh->tets[face.tet], face.face);
       const double distance = (closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm();
       if (distance < best) {
         best = distance;
@@ -37,7 +37,7 @@ double TetraBrain::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal
   return best;
 }
 
-double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
+double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   // Rings of cells around p, nearest first, until no closer face can remain.
   const Vec3 g = (p - m_faceGrid.origin()) / m_faceGrid.cellSide();
   const auto& dims = m_faceGrid.dims();
@@ -54,7 +54,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   double best = std::numeric_limits<double>::infinity();
   normal.setZero();
   const int32_t maxRing = std::max({dims[0], dims[1], dims[2]});
-  const auto& faces = m_topology.boundaryFaces();
+  const auto& faces = m_topology->boundaryFaces();
   m_faceVisits.begin();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
     if ((ring - 1) * m_faceGrid.cellSide() - slack > best) break;
@@ -65,7 +65,7 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
           if (i < 0 || j < 0 || k < 0 || i >= dims[0] || j >= dims[1] || k >= dims[2]) continue;
           for (int32_t f : m_faceGrid.items(m_faceGrid.cellIndex(i, j, k))) {
             if (!m_faceVisits.firstVisit(f)) continue;
-            const auto n = faceNodes(m_mesh.tets[faces[f].tet], faces[f].face);
+            const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
             const Vec3 q = closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]);
             const double distance = (q - p).norm();
             if (distance < best) {
@@ -78,50 +78,54 @@ double TetraBrain::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   return std::isfinite(best) ? best : 0.0;
 }
 
-ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
-  ShellContact contact;
-  if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) {
-    ++m_unreservedShellCalls;
-    return contact;
-  }
-  return contactOfHits(shell, findHits(X_WT, shell));
+TetContact NativeTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) {
+  return contactOfHits(X_WT, shell, findHits(X_WT, shell), wantSites);
 }
 
-ShellContact TetraBrain::contactOfHits(std::span<const ShellPoint> shell, size_t hits) {
-  ShellContact contact;
-  const Eigen::Matrix3d& R = m_lastRotation;
-  const Pose X_WT{m_lastPosition, Quat::Identity()};  // only the position is read below
-  if (hits == 0) return contact;
-  ++m_contactFrames;
-  std::sort(m_hits.begin(), m_hits.begin() + hits,
-            [](const Hit& a, const Hit& b) { return a.tet < b.tet || (a.tet == b.tet && a.point < b.point); });
-  contact = m_algorithm2 ? contactAlgorithm2(R, X_WT.position, shell, hits)
-                         : contactNearestFace(R, X_WT.position, shell, hits);
-  contact.points = int(hits);
+TetContact NativeTetBackend::contactOfHits(const Pose& X_WT, std::span<const ShellPoint> shell, std::span<TetHit> hits,
+                                           bool wantSites) {
+  TetContact result;
+  if (hits.empty()) return result;
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  std::sort(hits.begin(), hits.end(),
+            [](const TetHit& a, const TetHit& b) { return a.tet < b.tet || (a.tet == b.tet && a.point < b.point); });
+  ShellContact& contact = result.contact;
+  contact = m_options.algorithm2 ? contactAlgorithm2(R, X_WT.position, shell, hits)
+                                 : contactNearestFace(R, X_WT.position, shell, hits);
+  contact.points = int(hits.size());
   int tets = 0;
-  for (size_t h = 0; h < hits; ++h) tets += h == 0 || m_hits[h].tet != m_hits[h - 1].tet;
+  for (size_t h = 0; h < hits.size(); ++h) tets += h == 0 || hits[h].tet != hits[h - 1].tet;
   contact.primitives = tets;
   m_maxCollidingTets = std::max<uint64_t>(m_maxCollidingTets, tets);
-  return contact;
+  if (wantSites) {
+    // Each colliding point presses on its tetrahedron's nodes by its
+    // barycentric coordinates (current nodes), as deep as it measured.
+    for (size_t h = 0; h < hits.size(); ++h) {
+      const Vec3 p = R * shell[hits[h].point].position + X_WT.position;
+      m_sites[h] = {m_mesh->tets[hits[h].tet], barycentric(hits[h].tet, p), m_depths[h]};
+    }
+    result.sites = {m_sites.data(), hits.size()};
+  }
+  return result;
 }
 
-ShellContact TetraBrain::contactNearestFace(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
-                                            size_t hits) {
+ShellContact NativeTetBackend::contactNearestFace(const Eigen::Matrix3d& R, const Vec3& t,
+                                                  std::span<const ShellPoint> shell, std::span<const TetHit> hits) {
   // Each colliding point measures to the nearest boundary face of its tet (the
   // plane it entered through), or, when its tet has none, to the nearest
   // boundary face of the mesh.
   ShellContact contact;
   Vec3 weighted = Vec3::Zero(), plain = Vec3::Zero();
-  for (size_t h = 0; h < hits; ++h) {
-    const int32_t tet = m_hits[h].tet;
-    const Vec3 p = R * shell[m_hits[h].point].position + t;
-    const uint8_t mask = m_topology.boundaryMask(tet);
+  for (size_t h = 0; h < hits.size(); ++h) {
+    const int32_t tet = hits[h].tet;
+    const Vec3 p = R * shell[hits[h].point].position + t;
+    const uint8_t mask = m_topology->boundaryMask(tet);
     double depth = std::numeric_limits<double>::infinity();
     Vec3 normal = Vec3::Zero();
     for (int f = 0; f < 4; ++f) {
       if (!(mask & (1u << f))) continue;
       const Vec3 n = faceNormal({tet, int8_t(f)});
-      const double d = (m_nodes[faceNodes(m_mesh.tets[tet], f)[0]] - p).dot(n);
+      const double d = (m_nodes[faceNodes(m_mesh->tets[tet], f)[0]] - p).dot(n);
       if (d < depth) depth = d, normal = n;
     }
     if (!std::isfinite(depth)) depth = depthToIncidentFaces(tet, p, normal);
@@ -141,13 +145,13 @@ ShellContact TetraBrain::contactNearestFace(const Eigen::Matrix3d& R, const Vec3
   } else if (pl > 1e-9) {
     contact.normal = plain / pl;
   }
-  for (size_t h = 0; h < hits; ++h)
+  for (size_t h = 0; h < hits.size(); ++h)
     contact.penetration = std::max(contact.penetration, m_depths[h] * std::max(0.0, m_normals[h].dot(contact.normal)));
   return contact;
 }
 
-ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
-                                           size_t hits) {
+ShellContact NativeTetBackend::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3& t,
+                                                 std::span<const ShellPoint> shell, std::span<const TetHit> hits) {
   // The normal averages the unit outward normals of the colliding tets'
   // boundary faces; the penetration is the largest distance of a colliding point
   // to the plane of one of the boundary faces of its tet (Algorithm 2).
@@ -155,20 +159,20 @@ ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3&
   Vec3 normalSum = Vec3::Zero();
   double penetration = 0;
   int faceCount = 0;
-  std::fill(m_depths.begin(), m_depths.begin() + hits, 0.0);  // per point, for the nodal force shares
-  for (size_t first = 0; first < hits;) {
+  std::fill(m_depths.begin(), m_depths.begin() + hits.size(), 0.0);  // per point, for the nodal force shares
+  for (size_t first = 0; first < hits.size();) {
     size_t last = first;
-    while (last < hits && m_hits[last].tet == m_hits[first].tet) ++last;
-    const int32_t tet = m_hits[first].tet;
-    const uint8_t mask = m_topology.boundaryMask(tet);
+    while (last < hits.size() && hits[last].tet == hits[first].tet) ++last;
+    const int32_t tet = hits[first].tet;
+    const uint8_t mask = m_topology->boundaryMask(tet);
     for (int f = 0; f < 4; ++f) {
       if (!(mask & (1u << f))) continue;
       const Vec3 n = faceNormal({tet, int8_t(f)});
       normalSum += n;
       ++faceCount;
-      const Vec3& onFace = m_nodes[faceNodes(m_mesh.tets[tet], f)[0]];
+      const Vec3& onFace = m_nodes[faceNodes(m_mesh->tets[tet], f)[0]];
       for (size_t h = first; h < last; ++h) {
-        m_depths[h] = std::max(m_depths[h], std::abs((onFace - (R * shell[m_hits[h].point].position + t)).dot(n)));
+        m_depths[h] = std::max(m_depths[h], std::abs((onFace - (R * shell[hits[h].point].position + t)).dot(n)));
         penetration = std::max(penetration, m_depths[h]);
       }
     }
@@ -181,9 +185,9 @@ ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3&
     ++m_deepFallbacks;
     double depth = 0;
     Vec3 normal = Vec3::Zero();
-    for (size_t h = 0; h < hits; ++h) {
+    for (size_t h = 0; h < hits.size(); ++h) {
       Vec3 candidate;
-      const double d = depthBelowSurface(R * shell[m_hits[h].point].position + t, candidate);
+      const double d = depthBelowSurface(R * shell[hits[h].point].position + t, candidate);
       if (d > depth) depth = d, normal = candidate;
     }
     contact.normal = normal;
@@ -193,38 +197,6 @@ ShellContact TetraBrain::contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3&
     contact.penetration = penetration;
   }
   return contact;
-}
-
-void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
-  // The reaction on the mesh: shared among the colliding points by depth (the
-  // points that press hardest carry most), then to the four nodes of each
-  // point's tet by its barycentric coordinates, so that the nodal forces sum to
-  // the contact force and act where it acts. Computed only for a reader.
-  if (m_nodeSlot.empty() || m_lastHits == 0 || !forceOnTarget_N.allFinite()) return;
-  double depthSum = 0;
-  for (size_t h = 0; h < m_lastHits; ++h) depthSum += m_depths[h];
-  std::vector<NodeForce>& forces = m_nodeForceValue.forces;
-  forces.resize(4 * m_lastHits);  // within the capacity reserveShell() gave it: no allocation
-  uint32_t count = 0;
-  for (size_t h = 0; h < m_lastHits; ++h) {
-    const double share = depthSum > 0 ? m_depths[h] / depthSum : 1.0 / double(m_lastHits);
-    if (share == 0) continue;
-    const Vec3 p = m_lastRotation * m_lastShell[m_hits[h].point].position + m_lastPosition;
-    const std::array<double, 4> w = barycentric(m_hits[h].tet, p);
-    const TetIndices& k = m_mesh.tets[m_hits[h].tet];
-    for (int i = 0; i < 4; ++i) {
-      int32_t& slot = m_nodeSlot[k[i]];
-      if (slot < 0) {
-        slot = int32_t(count++);
-        forces[slot] = {k[i], Vec3::Zero()};
-      }
-      forces[slot].force += (share * w[i]) * forceOnTarget_N;
-    }
-  }
-  forces.resize(count);
-  for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
-  m_nodeForceValue.t = t;
-  m_nodeForces->publish(m_nodeForceValue);
 }
 
 }  // namespace trephine::tetra

@@ -1,15 +1,15 @@
-// TetraBrain: which tetrahedron holds a point (the grid, a whole shell cell by
+// NativeTetBackend: which tetrahedron holds a point (the grid, a whole shell cell by
 // cell, or the thesis's scans), barycentric weights, the visible-overlap test.
 #include <algorithm>
 #include <cmath>
 
-#include "plugins/tetra_brain/TetraBrain.h"
+#include "plugins/tetra_brain/NativeTetBackend.h"
 
 namespace trephine::tetra {
 
-bool TetraBrain::inside(int32_t tet, const Vec3& p) const {
+bool NativeTetBackend::inside(int32_t tet, const Vec3& p) const {
   if (m_degenerate[tet]) return false;
-  const TetIndices& k = m_mesh.tets[tet];
+  const TetIndices& k = m_mesh->tets[tet];
   const Vec3 &a = m_nodes[k[0]], &b = m_nodes[k[1]], &c = m_nodes[k[2]], &d = m_nodes[k[3]];
   // Barycentric coordinates as sub-volumes; all of them non-negative inside (the
   // tets are positively oriented). A point on a face is inside both tets sharing it.
@@ -18,7 +18,7 @@ bool TetraBrain::inside(int32_t tet, const Vec3& p) const {
          signedVolume(a, b, p, d) >= tolerance && signedVolume(a, b, c, p) >= tolerance;
 }
 
-int32_t TetraBrain::locate(const Vec3& p) const {
+int32_t NativeTetBackend::locate(const Vec3& p) const {
   // A tet holding p now had its rest box within the displacement bound of p.
   const double slack = m_displacementBound;
   auto nearBox = [&](int32_t tet) {
@@ -48,7 +48,7 @@ int32_t TetraBrain::locate(const Vec3& p) const {
   return found;
 }
 
-bool TetraBrain::locatePoints(std::span<const Vec3> points, std::span<int32_t> tets, bool stopAtFirst) const {
+bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int32_t> tets, bool stopAtFirst) const {
   bool any = false;
   if (m_queryGrowth > 0 || points.size() > m_locator.capacity()) {
     // Widened queries (nodes beyond the margin): point by point.
@@ -82,8 +82,8 @@ bool TetraBrain::locatePoints(std::span<const Vec3> points, std::span<int32_t> t
   return any;
 }
 
-std::array<double, 4> TetraBrain::barycentric(int32_t tet, const Vec3& p) const {
-  const TetIndices& k = m_mesh.tets[tet];
+std::array<double, 4> NativeTetBackend::barycentric(int32_t tet, const Vec3& p) const {
+  const TetIndices& k = m_mesh->tets[tet];
   const Vec3 &a = m_nodes[k[0]], &b = m_nodes[k[1]], &c = m_nodes[k[2]], &d = m_nodes[k[3]];
   const double volume = signedVolume(a, b, c, d);
   if (!(std::abs(volume) > 0)) return {0.25, 0.25, 0.25, 0.25};
@@ -97,15 +97,11 @@ std::array<double, 4> TetraBrain::barycentric(int32_t tet, const Vec3& p) const 
   return w;
 }
 
-size_t TetraBrain::findHits(const Pose& X_WT, std::span<const ShellPoint> shell) {
-  if (shell.size() > m_hits.size()) {  // working memory is sized by reserveShell()
-    ++m_unreservedShellCalls;
-    m_lastHits = 0;
-    return 0;
-  }
+std::span<TetHit> NativeTetBackend::findHits(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  if (shell.size() > m_hits.size()) return {};  // working memory is sized by reserveShell()
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
-  if (m_search == Search::kGrid) {
+  if (m_options.search == Search::kGrid) {
     for (size_t i = 0; i < shell.size(); ++i) m_points[i] = R * shell[i].position + X_WT.position;
     const std::span<const Vec3> points(m_points.data(), shell.size());
     if (locatePoints(points, m_pointTets, false))
@@ -114,14 +110,10 @@ size_t TetraBrain::findHits(const Pose& X_WT, std::span<const ShellPoint> shell)
   } else {
     hits = findHitsByScan(R, X_WT.position, shell);
   }
-  m_lastHits = hits;
-  m_lastRotation = R;
-  m_lastPosition = X_WT.position;
-  m_lastShell = shell.data();
-  return hits;
+  return {m_hits.data(), hits};
 }
 
-size_t TetraBrain::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell) {
+size_t NativeTetBackend::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell) {
   // The thesis's search: the tetrahedra in stored order (from the first, or from
   // the last frame's first colliding one) until one whose box meets the tool's
   // box holds a shell point; then that tetrahedron and its neighbours up to two
@@ -132,8 +124,8 @@ size_t TetraBrain::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::
     toolBox.extend(m_points[i]);
   }
   if (!toolBox.intersects(m_bounds)) return 0;
-  const int32_t n = int32_t(m_mesh.tetCount());
-  const int32_t start = m_search == Search::kPreviousContact ? m_lastFirstTet : 0;
+  const int32_t n = int32_t(m_mesh->tetCount());
+  const int32_t start = m_options.search == Search::kPreviousContact ? m_lastFirstTet : 0;
   int32_t first = -1;
   for (int32_t s = 0; s < n && first < 0; ++s) {
     const int32_t tet = (start + s) % n;
@@ -156,7 +148,7 @@ size_t TetraBrain::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::
     const size_t ringEnd = count;
     for (size_t c = ringStart; c < ringEnd; ++c)
       for (int f = 0; f < 4; ++f) {
-        const int32_t nb = m_topology.neighbour(m_candidates[c], f);
+        const int32_t nb = m_topology->neighbour(m_candidates[c], f);
         if (nb < 0 || std::find(m_candidates.begin(), m_candidates.begin() + count, nb) != m_candidates.begin() + count)
           continue;
         m_candidates[count++] = nb;
@@ -174,7 +166,7 @@ size_t TetraBrain::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::
   return hits;
 }
 
-bool TetraBrain::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+bool NativeTetBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
   // Visible overlap: the tool's centre, or its shell pulled inwards by ten contact
   // depths, is inside the mesh.
   if (locate(X_WT.position) >= 0) return true;
@@ -184,7 +176,7 @@ bool TetraBrain::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) c
     for (const ShellPoint& p : shell) radius = std::max(radius, p.position.norm());
     if (grown.exteriorDistance(X_WT.position) > radius) return false;
   }
-  const double inset = 10 * d_contactDepth.value();
+  const double inset = 10 * m_options.contactDepth;
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   if (shell.size() > m_insetPoints.size()) return false;  // not a reserved shell
   for (size_t i = 0; i < shell.size(); ++i) {

@@ -1,11 +1,11 @@
-// TetraBrain: the sweep that keeps the proxy out, and the ray cast that aims
+// NativeTetBackend: the sweep that keeps the proxy out, and the ray cast that aims
 // scripted paths, by the boundary faces the segment's box covers.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "framework/geometry/FrontRings.h"
-#include "plugins/tetra_brain/TetraBrain.h"
+#include "plugins/tetra_brain/NativeTetBackend.h"
 
 namespace trephine::tetra {
 
@@ -30,7 +30,7 @@ double segmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& 
 
 }  // namespace
 
-double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInside, bool& startsInside) const {
+double NativeTetBackend::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInside, bool& startsInside) const {
   startsInside = locate(a) >= 0;
   if (startsInside && !skipInitialInside) return 0.0;
   // Boundary faces in the cells the segment's box covers; the first crossing
@@ -41,7 +41,7 @@ double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInsi
   box = Box3(box.min() - Vec3::Constant(m_queryGrowth), box.max() + Vec3::Constant(m_queryGrowth));
   std::array<int32_t, 3> lo, hi;
   if (!m_faceGrid.cellRange(box, lo, hi)) return 2.0;
-  const auto& faces = m_topology.boundaryFaces();
+  const auto& faces = m_topology->boundaryFaces();
   const Vec3 direction = b - a;
   double first = 2.0;
   m_faceVisits.begin();
@@ -52,14 +52,14 @@ double TetraBrain::firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInsi
           if (!m_faceVisits.firstVisit(f)) continue;
           const Vec3 n = faceNormal(faces[f]);
           if (direction.dot(n) >= 0) continue;  // leaving, or grazing
-          const auto v = faceNodes(m_mesh.tets[faces[f].tet], faces[f].face);
+          const auto v = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
           const double t = segmentTriangle(a, b, m_nodes[v[0]], m_nodes[v[1]], m_nodes[v[2]]);
           if (t < first && !(startsInside && t == 0)) first = t;
         }
   return first;
 }
 
-SweepResult TetraBrain::sweep(const SweepQuery& query) const {
+SweepResult NativeTetBackend::sweep(const SweepQuery& query) const {
   SweepResult result;
   const Vec3 path = query.to - query.from;
   const double length = path.norm();
@@ -92,7 +92,7 @@ SweepResult TetraBrain::sweep(const SweepQuery& query) const {
   return result;
 }
 
-std::optional<SurfaceHit> TetraBrain::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
+std::optional<SurfaceHit> NativeTetBackend::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
   bool startsInside = false;
   const Vec3 end = origin + maxDistance * direction;
   const double t = firstEntry(origin, end, false, startsInside);

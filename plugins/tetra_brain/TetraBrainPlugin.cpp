@@ -2,6 +2,7 @@
 #include <string>
 
 #include "framework/core/Registry.h"
+#include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/ScriptedDeformation.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
@@ -10,6 +11,10 @@
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<trephine::tetra::TetraBrain>(
       "TetraBrain", "Brain as a tetrahedral mesh: pointshell collision through a uniform grid (Algorithm 2)");
+  registrar.addBackend<trephine::tetra::NativeTetBackend>(
+      "TetraBrain", "native",
+      "The thesis's method: shell points located in tetrahedra through a uniform grid, depth from the boundary "
+      "faces");
   registrar.add<trephine::tetra::ScriptedDeformation>(
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
   registrar.addPhantomWriter({.kind = "tetrahedral mesh",

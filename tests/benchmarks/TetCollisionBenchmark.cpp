@@ -29,6 +29,7 @@
 #include "framework/core/Lifecycle.h"
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
+#include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 
 namespace trephine::bench {
@@ -60,6 +61,10 @@ class BenchInitContext final : public InitContext {
   ChannelHub& channels() override { return hub; }
   EventLog& events() override { return log; }
   HapticFrameLog* claimHapticLog(const Component&) override { return nullptr; }
+  std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) override {
+    if (kind == "TetraBrain" && name == "native") return std::make_unique<tetra::NativeTetBackend>();
+    return nullptr;
+  }
   ChannelHub hub;
   EventLog log{16};
   std::string errors;
@@ -103,6 +108,7 @@ void BM_TetCollisionStep(benchmark::State& state) {
   std::vector<ShellPoint> shell;
   for (const Vec3& d : haptics::evenDirections(211)) shell.push_back({kToolRadius * d, -d});
   brain.reserveShell(shell);
+  auto& native = dynamic_cast<tetra::NativeTetBackend&>(*brain.backend());
 
   // The path: around (30, 10), each pose placed on the surface found below it.
   std::vector<Pose> poses;
@@ -159,9 +165,9 @@ void BM_TetCollisionStep(benchmark::State& state) {
       const auto t0 = Clock::now();
       brain.refresh();
       const auto t1 = Clock::now();
-      const size_t hits = brain.findHits(poses[k], shell);
+      const std::span<tetra::TetHit> hits = native.findHits(poses[k], shell);
       const auto t2 = Clock::now();
-      const ShellContact c = brain.contactOfHits(shell, hits);  // collide() is these two calls
+      const ShellContact c = native.contactOfHits(poses[k], shell, hits, false).contact;  // collide() is these two calls
       const auto t3 = Clock::now();
       benchmark::DoNotOptimize(c);
       contacts += c.points > 0;

@@ -59,7 +59,7 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
   const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
   FollowingBrain following(22);  // 9 mm cells, average edge about 11 mm: auto margin about 2.8 mm
   following.brain.reserveShell(shell);
-  const double margin = following.brain.displacementMargin();
+  const double margin = shapes::native(following.brain).displacementMargin();
   ASSERT_GT(margin, 2.0);
   const std::vector<Vec3> rest = following.brain.mesh().nodes;
   // Within the margin (one grid cell per point) and far beyond it (widened queries).
@@ -82,7 +82,7 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
                                     std::to_string(press);
           expectSameContact(following.brain.collide(pose, shell, false), rigid.collide(pose, shell, false), where);
           EXPECT_EQ(following.brain.overlaps(pose, shell), rigid.overlaps(pose, shell)) << where;
-          EXPECT_EQ(following.brain.locate(pose.position), rigid.locate(pose.position)) << where;
+          EXPECT_EQ(shapes::native(following.brain).locate(pose.position), shapes::native(rigid).locate(pose.position)) << where;
           SweepQuery sweep;
           sweep.from = pose.position + Vec3(0.3, -0.2, 6.0);
           sweep.to = pose.position;
@@ -91,7 +91,7 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
           EXPECT_EQ(a.blocked, b.blocked) << where;
           EXPECT_NEAR(a.freeFraction, b.freeFraction, 1e-12) << where;
           Vec3 na, nb;
-          EXPECT_NEAR(following.brain.depthBelowSurface(pose.position, na), rigid.depthBelowSurface(pose.position, nb),
+          EXPECT_NEAR(shapes::native(following.brain).depthBelowSurface(pose.position, na), shapes::native(rigid).depthBelowSurface(pose.position, nb),
                       1e-9)
               << where;
         }
@@ -141,7 +141,7 @@ TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   double depths = 0;
   for (const ShellPoint& s : shell) {
     const Vec3 p = pose.position + s.position;
-    if (brain.locate(p) < 0) continue;
+    if (shapes::native(brain).locate(p) < 0) continue;
     centre += (100 - p.z()) * p;
     depths += 100 - p.z();
   }

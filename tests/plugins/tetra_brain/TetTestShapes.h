@@ -6,11 +6,17 @@
 #include <vector>
 
 #include "plugins/tetra_brain/CubePhantom.h"
+#include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 
 namespace trephine::tetra::shapes {
 
 // `count` points evenly spread (Fibonacci) on a sphere of `radius` mm, inward normals.
+// The native back-end of a brain built by setMesh() (its location and depth queries).
+inline const NativeTetBackend& native(const TetraBrain& brain) {
+  return dynamic_cast<const NativeTetBackend&>(*brain.backend());
+}
+
 inline std::vector<ShellPoint> sphereShell(double radius, int count) {
   std::vector<ShellPoint> shell;
   const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));

@@ -16,7 +16,7 @@ TEST(TetraBrainTest, PointsOnFacesEdgesAndVerticesAreCountedOnce) {
   TetraBrain brain;
   cubeBrain(brain, 2);  // nodes at -100, 0, 100 on each axis: faces, edges and vertices at 0
   for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0, 0, 50), Vec3(0, 30, 50), Vec3(20, 30, 0), Vec3(-100, -100, -100)}) {
-    const int32_t tet = brain.locate(p);
+    const int32_t tet = shapes::native(brain).locate(p);
     ASSERT_GE(tet, 0) << p.transpose();
     // The tet reported is the lowest-numbered tet that holds the point.
     for (int32_t t = 0; t < tet; ++t) {
@@ -30,7 +30,7 @@ TEST(TetraBrainTest, PointsOnFacesEdgesAndVerticesAreCountedOnce) {
       EXPECT_FALSE(holds) << "tet " << t << " holds " << p.transpose() << " before " << tet;
     }
   }
-  EXPECT_EQ(brain.locate(Vec3(0, 0, 100.001)), -1);
+  EXPECT_EQ(shapes::native(brain).locate(Vec3(0, 0, 100.001)), -1);
   // A shell whose points sit on shared faces: each counted once, contact consistent.
   std::vector<ShellPoint> shell = {{Vec3(0, 0, 0), Vec3(0, 0, 1)}, {Vec3(0, 50, 0), Vec3(0, 0, 1)}};
   brain.reserveShell(shell);

@@ -1,0 +1,170 @@
+// NativeTetBackend: the grids of the rest shape, the frames of a deforming
+// mesh, working memory and counters.
+#include "plugins/tetra_brain/NativeTetBackend.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "framework/core/Component.h"
+
+namespace trephine::tetra {
+
+void NativeTetBackend::bind(const TetData& data) {
+  m_mesh = data.mesh;
+  m_topology = data.topology;
+  m_options = data.options;
+  m_nodes = m_mesh->nodes.data();
+  m_displacementBound = m_queryGrowth = 0;
+  buildAccelerations();
+}
+
+void NativeTetBackend::buildAccelerations() {
+  const TetMesh& mesh = *m_mesh;
+  const size_t n = mesh.tetCount();
+  m_restBoxes.resize(n);
+  m_degenerate.assign(n, 0);
+  m_restBounds.setEmpty();
+  double edges = 0, volumes = 0;
+  for (const TetIndices& k : mesh.tets)
+    volumes += std::abs(signedVolume(mesh.nodes[k[0]], mesh.nodes[k[1]], mesh.nodes[k[2]], mesh.nodes[k[3]]));
+  // As in inspectMesh: a tet a millionth of the mean volume holds no point.
+  const double volumeTolerance = 1e-6 * volumes / double(n);
+  for (size_t t = 0; t < n; ++t) {
+    const TetIndices& k = mesh.tets[t];
+    Box3 box;
+    for (int32_t i : k) box.extend(mesh.nodes[i]);
+    m_restBoxes[t] = box;
+    m_restBounds.extend(box);
+    edges += (mesh.nodes[k[0]] - mesh.nodes[k[1]]).norm() + (mesh.nodes[k[2]] - mesh.nodes[k[3]]).norm();
+    const double v = signedVolume(mesh.nodes[k[0]], mesh.nodes[k[1]], mesh.nodes[k[2]], mesh.nodes[k[3]]);
+    m_degenerate[t] = !(std::abs(v) > volumeTolerance);
+  }
+  m_averageEdge = edges / (2.0 * double(n));
+  // Auto margin: a quarter of the average edge. Each cell then lists about
+  // (1.5 + 0.5)^3 / 1.5^3 = 2.4 times the tets of a rigid mesh (cells of half
+  // an edge, boxes of about an edge); with every node moving, a frame costs 1
+  // to 2.6 times the rigid one (docs/results.md). A full edge lists about 13 times.
+  m_margin = !m_options.deformable              ? 0.0
+             : m_options.displacementMargin > 0 ? m_options.displacementMargin
+                                                : 0.25 * m_averageEdge;
+  // Half the average edge by default: on the Brain3 phantom it halves the
+  // haptic step of the full edge (fewer candidate tets per cell) at 8x the cells.
+  const double cell = m_options.cellSize > 0 ? m_options.cellSize : 0.5 * m_averageEdge;
+  m_tetBoxes = m_restBoxes;
+  m_bounds = m_restBounds;
+  // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
+  const Vec3 grow = Vec3::Constant(m_margin);
+  auto grown = [&](Box3 box) { return Box3(box.min() - grow, box.max() + grow); };
+  std::vector<Box3> boxes(n);
+  for (size_t t = 0; t < n; ++t) boxes[t] = grown(m_restBoxes[t]);
+  m_tetGrid.build(grown(m_restBounds), cell, boxes);
+  const auto& faces = m_topology->boundaryFaces();
+  boxes.clear();
+  boxes.reserve(faces.size());
+  for (const BoundaryFace& f : faces) {
+    Box3 box;
+    for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) box.extend(mesh.nodes[i]);
+    boxes.push_back(grown(box));
+  }
+  m_faceGrid.build(grown(m_restBounds), m_tetGrid.cellSide(), boxes);
+  m_tetVisits.resize(n);
+  m_faceVisits.resize(faces.size());
+  // Node -> boundary faces, compressed rows.
+  m_nodeFaceStart.assign(mesh.nodeCount() + 1, 0);
+  for (const BoundaryFace& f : faces)
+    for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) ++m_nodeFaceStart[i + 1];
+  for (size_t i = 0; i < mesh.nodeCount(); ++i) m_nodeFaceStart[i + 1] += m_nodeFaceStart[i];
+  m_nodeFaces.resize(m_nodeFaceStart.back());
+  std::vector<uint32_t> fill(m_nodeFaceStart.begin(), m_nodeFaceStart.end() - 1);
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int32_t i : faceNodes(mesh.tets[faces[f].tet], faces[f].face)) m_nodeFaces[fill[i]++] = int32_t(f);
+  // Node -> tets, compressed rows, for the thesis's refresh of the moved tetrahedra.
+  m_nodeTetStart.clear();
+  m_nodeTets.clear();
+  m_tetMarked.clear();
+  if (m_options.deformable && m_options.search != Search::kGrid && !m_options.refreshEveryBox) {
+    m_nodeTetStart.assign(mesh.nodeCount() + 1, 0);
+    for (const TetIndices& k : mesh.tets)
+      for (int32_t i : k) ++m_nodeTetStart[i + 1];
+    for (size_t i = 0; i < mesh.nodeCount(); ++i) m_nodeTetStart[i + 1] += m_nodeTetStart[i];
+    m_nodeTets.resize(m_nodeTetStart.back());
+    std::vector<uint32_t> next(m_nodeTetStart.begin(), m_nodeTetStart.end() - 1);
+    for (size_t t = 0; t < n; ++t)
+      for (int32_t i : mesh.tets[t]) m_nodeTets[next[i]++] = int32_t(t);
+    m_tetMarked.assign(n, 0);
+  }
+}
+
+Box3 NativeTetBackend::currentBox(int32_t tet) const {
+  Box3 box;
+  for (int32_t i : m_mesh->tets[tet]) box.extend(m_nodes[i]);
+  return box;
+}
+
+void NativeTetBackend::moveNodes(const NodeFrame& frame) {
+  m_nodes = frame.nodes.data();
+  m_displacementBound = frame.displacementBound;
+  m_queryGrowth = std::max(0.0, m_displacementBound - m_margin);
+  if (m_queryGrowth > 0) ++m_framesBeyondMargin;
+  const Vec3 grow = Vec3::Constant(m_displacementBound);
+  m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);
+  if (m_options.search != Search::kGrid)
+    refreshBoxes(frame.movedNodes, m_options.refreshEveryBox || frame.allMoved || m_nodeTetStart.empty());
+}
+
+void NativeTetBackend::refreshBoxes(std::span<const int32_t> movedNodes, bool all) {
+  // The thesis's update of the tetrahedra's boxes to the deformed shape.
+  if (all) {
+    for (size_t t = 0; t < m_tetBoxes.size(); ++t) m_tetBoxes[t] = currentBox(int32_t(t));
+    m_refreshedBoxes += m_tetBoxes.size();
+    return;
+  }
+  const size_t nodes = m_mesh->nodeCount();
+  for (int32_t n : movedNodes) {
+    if (n < 0 || size_t(n) >= nodes) continue;
+    for (uint32_t e = m_nodeTetStart[n]; e < m_nodeTetStart[n + 1]; ++e) {
+      const int32_t t = m_nodeTets[e];
+      if (m_tetMarked[t]) continue;
+      m_tetMarked[t] = 1;
+      m_tetBoxes[t] = currentBox(t);
+      ++m_refreshedBoxes;
+    }
+  }
+  for (int32_t n : movedNodes) {
+    if (n < 0 || size_t(n) >= nodes) continue;
+    for (uint32_t e = m_nodeTetStart[n]; e < m_nodeTetStart[n + 1]; ++e) m_tetMarked[m_nodeTets[e]] = 0;
+  }
+}
+
+void NativeTetBackend::reserveShell(std::span<const ShellPoint> shell) {
+  m_candidates.resize(1 + 4 + 12);  // a tet, its 4 neighbours, their 12 others
+  if (m_hits.size() < shell.size()) {
+    m_hits.resize(shell.size());
+    m_depths.resize(shell.size());
+    m_normals.resize(shell.size());
+    m_sites.resize(shell.size());
+    m_points.resize(shell.size());
+    m_pointTets.resize(shell.size());
+    m_insetPoints.resize(shell.size());
+    m_insetTets.resize(shell.size());
+    m_locator.reserve(shell.size());
+  }
+}
+
+void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
+  counters.push_back({"average_edge_mm", m_averageEdge});
+  counters.push_back({"cell_size_mm", m_tetGrid.cellSide()});
+  counters.push_back({"grid_cells", double(m_tetGrid.cellCount())});
+  // Memory of the tetrahedron grid: 4 bytes per entry and per cell.
+  counters.push_back({"grid_entries", double(m_tetGrid.entryCount())});
+  counters.push_back({"max_colliding_tetrahedra", double(m_maxCollidingTets)});
+  counters.push_back({"deep_fallbacks", double(m_deepFallbacks)});
+  if (m_options.search != Search::kGrid) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
+  if (m_options.deformable) {
+    counters.push_back({"displacement_margin_mm", m_margin});
+    counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
+    if (m_options.search != Search::kGrid) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
+  }
+}
+
+}  // namespace trephine::tetra

@@ -1,0 +1,129 @@
+#pragma once
+// The native back-end of TetraBrain (thesis chapter 4). Shell points are
+// located in tetrahedra through a uniform grid of cells listing the
+// tetrahedra whose boxes overlap them, so the cost of a frame depends on the
+// tool's neighbourhood, not on the size of the mesh. Normal and penetration
+// come from the boundary faces: each colliding point measures to the nearest
+// one (its tetrahedron's, the ones around its nodes, else the mesh's), or, as
+// the thesis's Algorithm 2, the normals of the colliding tetrahedra's boundary
+// faces are averaged and the deepest point below them gives the penetration.
+//
+// On a deforming mesh the grids stay those of the rest shape, with every box
+// grown by a displacement margin, and each frame reads the current node
+// positions. While the deformation's displacement bound stays within the
+// margin nothing is refreshed; beyond it the queries widen by the excess, so
+// the results stay exact and only the cost grows. The thesis's scans instead
+// refresh tetrahedron boxes every frame (all of them, or those of the moved
+// nodes).
+//
+// Files: NativeTetBackend.cpp (grids, deformation, counters), TetLocation.cpp
+// (which tetrahedron holds a point, the scans, overlap), TetContact.cpp
+// (normal and penetration), TetSweep.cpp (sweeps and ray casts).
+#include <vector>
+
+#include "plugins/tetra_brain/ShellLocator.h"
+#include "plugins/tetra_brain/TetBackend.h"
+#include "plugins/tetra_brain/UniformGrid.h"
+#include "plugins/tetra_brain/VisitStamps.h"
+
+namespace trephine::tetra {
+
+// A shell point inside a tetrahedron.
+struct TetHit {
+  int32_t tet;
+  int32_t point;  // index in the shell
+};
+
+class NativeTetBackend final : public TetBackend {
+ public:
+  void bind(const TetData& data) override;
+  void reserveShell(std::span<const ShellPoint> shell) override;
+  size_t siteCapacity() const override { return m_hits.size(); }
+  void moveNodes(const NodeFrame& frame) override;
+  TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;
+  size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override { return findHits(X_WT, shell).size(); }
+  SweepResult sweep(const SweepQuery& query) const override;
+  bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
+  std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+
+  // collide() in its two steps (benchmarks time them apart): the shell points
+  // inside tetrahedra (empty for a shell larger than any reserved; valid until
+  // the next query), then the contact those hits give.
+  std::span<TetHit> findHits(const Pose& X_WT, std::span<const ShellPoint> shell);
+  TetContact contactOfHits(const Pose& X_WT, std::span<const ShellPoint> shell, std::span<TetHit> hits,
+                           bool wantSites);
+
+  // The tet containing p (the lowest index when p is on a shared face), or -1.
+  int32_t locate(const Vec3& p) const;
+  // locate() for many points at once (tets[i] for points[i]); true if any is
+  // inside. `stopAtFirst`: return at the first point found inside (the rest
+  // of `tets` is then incomplete).
+  bool locatePoints(std::span<const Vec3> points, std::span<int32_t> tets, bool stopAtFirst) const;
+  // Depth of p below the nearest boundary face (mm, > 0 inside) and that face's outward normal.
+  double depthBelowSurface(const Vec3& p, Vec3& normal) const;
+  // Distance of p to the nearest boundary face around the nodes of `tet`, or infinity when none.
+  double depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const;
+  double displacementMargin() const { return m_margin; }  // mm
+  double averageEdge() const { return m_averageEdge; }    // mm
+
+ private:
+  using Search = TetQueryOptions::Search;
+  void buildAccelerations();
+  void refreshBoxes(std::span<const int32_t> movedNodes, bool all);
+  Box3 currentBox(int32_t tet) const;
+  // Barycentric coordinates of p in a tet (current nodes).
+  std::array<double, 4> barycentric(int32_t tet, const Vec3& p) const;
+  bool inside(int32_t tet, const Vec3& p) const;
+  Vec3 faceNormal(const BoundaryFace& face) const;
+  size_t findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell);
+  ShellContact contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
+                                 std::span<const TetHit> hits);
+  ShellContact contactNearestFace(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
+                                  std::span<const TetHit> hits);
+  // First entry into the mesh along a -> b (fraction), ignoring the start when it is inside.
+  double firstEntry(const Vec3& a, const Vec3& b, bool skipInitialInside, bool& startsInside) const;
+
+  const TetMesh* m_mesh = nullptr;  // rest shape
+  const TetTopology* m_topology = nullptr;
+  TetQueryOptions m_options;
+  const Vec3* m_nodes = nullptr;  // current node positions: the rest nodes, or the deformation's latest
+  Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
+  std::vector<Box3> m_restBoxes;          // per tet, at rest (the grids are built from them, grown by the margin)
+  std::vector<Box3> m_tetBoxes;           // per tet, current: maintained only for the thesis's scans
+  std::vector<uint8_t> m_degenerate;      // 1: zero-volume tetrahedron, never contains a point
+  UniformGrid m_tetGrid, m_faceGrid;      // tetrahedra and boundary faces by cell
+  std::vector<uint32_t> m_nodeFaceStart;  // node -> boundary faces holding it (compressed rows)
+  std::vector<int32_t> m_nodeFaces;
+  double m_averageEdge = 0;  // mm
+
+  // Deformation.
+  double m_margin = 0;             // mm, by which the grids' boxes are grown
+  double m_displacementBound = 0;  // mm, the latest frame's bound
+  double m_queryGrowth = 0;        // mm, max(0, bound - margin): how far queries widen
+  std::vector<uint32_t> m_nodeTetStart;  // node -> tets (compressed rows), for boxRefresh="moved"
+  std::vector<int32_t> m_nodeTets;
+  std::vector<uint8_t> m_tetMarked;
+  uint64_t m_framesBeyondMargin = 0, m_refreshedBoxes = 0;
+
+  // Per-query working memory, sized by reserveShell().
+  std::vector<TetHit> m_hits;
+  std::vector<Vec3> m_points;        // per shell point, world
+  std::vector<int32_t> m_pointTets;  // per shell point, its tet or -1
+  std::vector<double> m_depths;      // per hit, mm
+  std::vector<Vec3> m_normals;       // per hit, outward unit normal of the face it measures to
+  std::vector<ContactSite> m_sites;  // per hit
+  // Scratch of the const queries (the haptic thread only).
+  mutable ShellLocator m_locator;
+  mutable VisitStamps m_tetVisits, m_faceVisits;  // blocks of cells: each item tested once
+  mutable std::vector<Vec3> m_insetPoints;
+  mutable std::vector<int32_t> m_insetTets;
+  std::vector<int32_t> m_candidates;  // tets within two rings of the first colliding one
+  // The previous-contact scan starts at the last frame's first colliding
+  // tetrahedron: the one state kept between queries, as the thesis's method is.
+  int32_t m_lastFirstTet = 0;
+  uint64_t m_scannedTets = 0;
+  uint64_t m_maxCollidingTets = 0, m_deepFallbacks = 0;
+};
+
+}  // namespace trephine::tetra

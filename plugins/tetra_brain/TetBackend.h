@@ -1,0 +1,86 @@
+#pragma once
+// The queries TetraBrain hands to its collision back-end (the `backend`
+// field): contact of a pointshell, sweeps, the overlap of a displayed proxy
+// and ray casts, on the mesh TetraBrain keeps and the node positions its
+// deformation gives. A back-end reads the data and never changes it; each
+// query's answer is in what it returns, so no query depends on another.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "framework/core/CollisionBackend.h"
+#include "framework/geometry/ShellContactTarget.h"
+#include "plugins/tetra_brain/TetMesh.h"
+#include "plugins/tetra_brain/TetTopology.h"
+
+namespace trephine::tetra {
+
+// The scene's choices that shape the queries (TetraBrain's fields). Only the
+// native back-end reads the thesis's options; TetraBrain refuses them for
+// another back-end.
+struct TetQueryOptions {
+  enum class Search { kGrid, kFirstTetrahedron, kPreviousContact };
+  Search search = Search::kGrid;
+  bool algorithm2 = false;         // penetration="algorithm2", else the nearest face
+  bool refreshEveryBox = true;     // boxRefresh="all" (the thesis's scans on a deforming mesh)
+  double cellSize = 0;             // mm, 0: half the average edge
+  double displacementMargin = 0;   // mm, 0: a quarter of the average edge
+  double contactDepth = 0.05;      // mm, how far a swept proxy sits in the surface
+  bool deformable = false;         // a deformation component moves the nodes
+};
+
+// The brain's data, owned by TetraBrain, at fixed addresses for the run.
+struct TetData {
+  const TetMesh* mesh = nullptr;          // the rest shape, tetrahedra positively oriented
+  const TetTopology* topology = nullptr;  // its boundary faces and neighbours
+  TetQueryOptions options;
+};
+
+// The node positions of one frame (a deforming mesh; the rest shape when the
+// deformation's frame was refused).
+struct NodeFrame {
+  std::span<const Vec3> nodes;     // mm, one per mesh node
+  double displacementBound = 0;    // mm, no node is farther from its rest position
+  std::span<const int32_t> movedNodes;  // nodes moved since the previous frame, unless allMoved
+  bool allMoved = true;            // or a frame in between was not seen
+};
+
+// Where a contact presses on the mesh: up to four nodes with weights summing
+// to 1 (a tetrahedron's barycentric coordinates, or a boundary triangle's with
+// a zero fourth), and how deep (mm). The contact force is shared among the
+// sites by depth, then among each site's nodes by weight.
+struct ContactSite {
+  std::array<int32_t, 4> nodes{-1, -1, -1, -1};
+  std::array<double, 4> weights{0, 0, 0, 0};
+  double depth = 0;
+};
+
+// A contact, and when asked for, its sites (valid until the back-end's next query).
+struct TetContact {
+  ShellContact contact;
+  std::span<const ContactSite> sites;
+};
+
+class TetBackend : public CollisionBackend {
+ public:
+  // At init, and again whenever the data is replaced. The node positions are
+  // the rest shape's until moveNodes().
+  virtual void bind(const TetData& data) = 0;
+  virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  // The most sites a contact of a reserved shell can have.
+  virtual size_t siteCapacity() const = 0;
+  // A deforming mesh's nodes for this frame, before any query of the frame.
+  // The span stays valid until the next call.
+  virtual void moveNodes(const NodeFrame& frame) = 0;
+  virtual TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) = 0;
+  // The broad phase of collide() alone, for timing it apart (studies): the
+  // candidates the narrow phase would examine (native: the shell points in
+  // tetrahedra; mesh back-ends: the boundary triangles within reach).
+  virtual size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) = 0;
+  virtual SweepResult sweep(const SweepQuery& query) const = 0;
+  virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
+  virtual std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const = 0;
+};
+
+}  // namespace trephine::tetra
