@@ -146,12 +146,6 @@ void BlockedIsoSurface::extractBlock(const SolidGrid& grid, size_t index) {
       }
 }
 
-size_t BlockedIsoSurface::triangleCount() const {
-  size_t n = 0;
-  for (const TriangleMesh& b : m_blocks) n += b.triangles.size();
-  return n;
-}
-
 TriangleMesh BlockedIsoSurface::merged() const {
   TriangleMesh all;
   for (const TriangleMesh& b : m_blocks) {

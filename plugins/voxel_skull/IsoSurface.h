@@ -24,16 +24,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/geometry/TriangleBlocks.h"
 #include "plugins/voxel_skull/SolidGrid.h"
 
 namespace trephine::voxel {
 
-struct TriangleMesh {
-  std::vector<Vec3> vertices;                     // mm, world
-  std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside the bone
-};
+using trephine::TriangleMesh;
 
-class BlockedIsoSurface {
+class BlockedIsoSurface final : public TriangleBlocks {
  public:
   static constexpr int kBlockCells = 16;
 
@@ -45,9 +43,8 @@ class BlockedIsoSurface {
   std::vector<size_t> update(const SolidGrid& grid, const std::array<int64_t, 3>& first,
                              const std::array<int64_t, 3>& last);
 
-  size_t blockCount() const { return m_blocks.size(); }
-  const TriangleMesh& block(size_t index) const { return m_blocks[index]; }
-  size_t triangleCount() const;
+  size_t blockCount() const override { return m_blocks.size(); }
+  const TriangleMesh& block(size_t index) const override { return m_blocks[index]; }
   // Every block's triangles in one mesh (the vertices of block faces repeated).
   TriangleMesh merged() const;
   uint64_t degenerateTriangles() const { return m_degenerate; }

@@ -1,16 +1,16 @@
 #pragma once
-// What the mesh back-ends (embree, bullet) count of their copy of the skull's
+// What the mesh back-ends (embree, bullet) count of their copy of a target's
 // surface, reported the same way by both.
 #include <cstdint>
 #include <vector>
 
 #include "framework/core/Component.h"
 
-namespace trephine::voxel {
+namespace trephine {
 
 struct MeshSurfaceCounters {
   double buildMs = 0;          // ms, extracting the surface and building the library's structure at bind
-  uint64_t rebuiltBlocks = 0;  // blocks re-extracted and rebuilt after cuts
+  uint64_t rebuiltBlocks = 0;  // blocks re-extracted and rebuilt after cuts, or rebuilt after deformation
   uint64_t failedBlocks = 0;   // blocks the library could not take (counted in the haptic loop, not thrown)
   uint64_t contactFrames = 0;  // collide() calls that found contact
 
@@ -23,4 +23,4 @@ struct MeshSurfaceCounters {
   }
 };
 
-}  // namespace trephine::voxel
+}  // namespace trephine

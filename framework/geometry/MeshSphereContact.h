@@ -1,12 +1,14 @@
 #pragma once
 // The rules the mesh back-ends (embree, bullet) share for a spherical burr
-// against the skull's isosurface, whichever library finds the triangles.
+// against a closed triangle surface (the skull's isosurface, the brain's
+// boundary), whichever library finds the triangles.
 #include <algorithm>
 #include <span>
+#include <vector>
 
 #include "framework/geometry/ShellContactTarget.h"
 
-namespace trephine::voxel {
+namespace trephine {
 
 // The sphere's contact from the closest surface point to its centre.
 //   closest, distance: the closest point and its distance d from the centre
@@ -38,16 +40,49 @@ inline ShellContact sphereContact(const Pose& X_WT, std::span<const ShellPoint> 
 
 // How deep (mm) a swept sphere may go before it is stopped. A free sphere
 // stops where it touches the surface (the proxy then adds its skin, the
-// target's contact depth, a tenth of a voxel). One that touches at the start
-// may sink one skin deeper than it starts, or than one skin: a proxy resting
-// in its skin slides along the surface (a slide along the tangent plane sinks
-// a little wherever the triangles fold inwards; the next frame's lift takes
-// it back out), and a move into the surface stops at once (startsInside).
+// target's contact depth). One that touches at the start may sink one skin
+// deeper than it starts, or than one skin: a proxy resting in its skin
+// slides along the surface (a slide along the tangent plane sinks a little
+// wherever the triangles fold inwards; the next frame's lift takes it back
+// out), and a move into the surface stops at once (startsInside).
 inline double sweepAllowance(bool touching, double startDepth, double skin) {
   return touching ? std::max(skin, startDepth) + skin : 0.0;
 }
 
-// The proxy's skin on the mesh back-ends: a tenth of the smallest voxel side (mm).
-inline double meshSkin(double smallestVoxelSide) { return 0.1 * smallestVoxelSide; }
 
-}  // namespace trephine::voxel
+// The shells a mesh back-end was told of (reserveShell), with the sphere
+// each is treated as.
+struct ReservedShell {
+  const ShellPoint* source = nullptr;
+  size_t size = 0;
+  double radius = 0;    // mm, the farthest point from the reference point
+  bool sphere = false;  // every point at `radius` (to 1e-9)
+};
+
+class ReservedShells {
+ public:
+  const ReservedShell& add(std::span<const ShellPoint> shell) {
+    if (const ReservedShell* known = find(shell)) return *known;
+    ReservedShell reserved{shell.data(), shell.size(), 0, true};
+    for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
+    for (const ShellPoint& p : shell)
+      reserved.sphere = reserved.sphere && p.position.norm() > (1 - 1e-9) * reserved.radius;
+    m_shells.push_back(reserved);
+    return m_shells.back();
+  }
+  const ReservedShell* find(std::span<const ShellPoint> shell) const {
+    for (const ReservedShell& s : m_shells)
+      if (s.source == shell.data() && s.size == shell.size()) return &s;
+    return nullptr;
+  }
+  size_t largest() const {
+    size_t n = 0;
+    for (const ReservedShell& s : m_shells) n = std::max(n, s.size);
+    return n;
+  }
+
+ private:
+  std::vector<ReservedShell> m_shells;
+};
+
+}  // namespace trephine

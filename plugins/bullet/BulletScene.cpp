@@ -1,0 +1,358 @@
+#include "plugins/bullet/BulletScene.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <new>
+
+#include "framework/core/Component.h"
+#include "framework/geometry/ClosestPoint.h"
+#include "framework/geometry/MeshSphereContact.h"
+
+namespace trephine::bullet {
+
+namespace {
+
+constexpr double kSweepTolerance = 1e-4;  // mm, as the other back-ends
+const Vec3 kParityDirection = Vec3(0.5403, 0.5871, 0.6029).normalized();
+
+// Every allocation Bullet makes goes through btAlignedAlloc: counted here, so
+// that the back-ends report what their queries allocate in the haptic loop.
+std::atomic<uint64_t> g_bulletAllocations{0};
+std::atomic<uint64_t> g_bulletBytes{0};
+void* countingAlloc(size_t size) {
+  g_bulletAllocations.fetch_add(1, std::memory_order_relaxed);
+  g_bulletBytes.fetch_add(size, std::memory_order_relaxed);
+  void* memory = std::malloc(size);
+  if (!memory) throw std::bad_alloc();  // Bullet would use the null pointer: fail where it can be caught
+  return memory;
+}
+void countingFree(void* memory) { std::free(memory); }
+
+// Allocations by Bullet during one query.
+struct QueryAllocations {
+  uint64_t& total;
+  uint64_t& bytes;
+  const uint64_t startCount = g_bulletAllocations.load(std::memory_order_relaxed);
+  const uint64_t startBytes = g_bulletBytes.load(std::memory_order_relaxed);
+  ~QueryAllocations() {
+    total += g_bulletAllocations.load(std::memory_order_relaxed) - startCount;
+    bytes += g_bulletBytes.load(std::memory_order_relaxed) - startBytes;
+  }
+};
+
+btVector3 toBullet(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+Vec3 fromBullet(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+btTransform at(const Vec3& p) { return btTransform(btQuaternion::getIdentity(), toBullet(p)); }
+
+// A triangle's share of the contact normal: its face normal (outward) times
+// its area (half the cross product), so that the mean does not lean towards
+// where the surface happens to be cut into more triangles; the caller
+// weights it by depth.
+Vec3 areaNormal(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a); }
+
+// The closest point of the surface to the sphere's centre among the
+// contacts Bullet reports (one per triangle within reach).
+struct ClosestContact final : btCollisionWorld::ContactResultCallback {
+  const btCollisionObject* tool = nullptr;
+  const TriangleBlocks* blocks = nullptr;
+  Vec3 centre = Vec3::Zero();
+  double reach = 0;  // mm, the sphere's radius
+  ClosestTriangle result;
+
+  btScalar addSingleResult(btManifoldPoint&, const btCollisionObjectWrapper* a, int, int indexA,
+                           const btCollisionObjectWrapper* b, int, int indexB) override {
+    // Bullet found the triangle; its closest point to the centre is computed
+    // here (Bullet's contact points of a sphere are on the sphere or the
+    // triangle depending on which object it takes first).
+    const bool toolIsA = a->getCollisionObject() == tool;
+    const btCollisionObject* mesh = toolIsA ? b->getCollisionObject() : a->getCollisionObject();
+    const int block = mesh->getUserIndex();
+    const int triangle = toolIsA ? indexB : indexA;
+    const TriangleMesh& triangles = blocks->block(size_t(block));
+    const auto& t = triangles.triangles[size_t(triangle)];
+    const Vec3 &v0 = triangles.vertices[size_t(t[0])], &v1 = triangles.vertices[size_t(t[1])],
+               &v2 = triangles.vertices[size_t(t[2])];
+    const Vec3 onMesh = closestOnTriangle(centre, v0, v1, v2);
+    ++result.contacts;
+    const double d = (onMesh - centre).norm();
+    if (d < reach) result.weighted += areaNormal(v0, v1, v2) * (reach - d);
+    if (!result.found() || d < result.distance) {
+      result.distance = d;
+      result.point = onMesh;
+      result.which = {block, triangle};
+    }
+    return 0;
+  }
+};
+
+// Counts the surface crossings along a ray (parity: inside when odd). A ray
+// through an edge or a vertex hits every triangle there at the same
+// distance: hits closer than 1e-9 of the ray's length are one crossing.
+struct CrossingCount final : btCollisionWorld::RayResultCallback {
+  static constexpr int kMaxHits = 256;
+  std::array<double, kMaxHits> fractions{};
+  int hits = 0;
+  btScalar addSingleResult(btCollisionWorld::LocalRayResult& result, bool) override {
+    if (hits < kMaxHits) fractions[size_t(hits++)] = result.m_hitFraction;
+    return m_closestHitFraction;  // keep going: every hit
+  }
+  int crossings() {
+    std::sort(fractions.begin(), fractions.begin() + hits);
+    int distinct = 0;
+    for (int i = 0; i < hits; ++i) distinct += i == 0 || fractions[size_t(i)] - fractions[size_t(i - 1)] > 1e-9;
+    return distinct;
+  }
+};
+
+// The first hit along a ray, with its block and triangle.
+struct FirstHit final : btCollisionWorld::RayResultCallback {
+  TriangleRef which;
+  btScalar addSingleResult(btCollisionWorld::LocalRayResult& result, bool) override {
+    if (result.m_hitFraction < m_closestHitFraction) {
+      m_closestHitFraction = result.m_hitFraction;
+      m_collisionObject = result.m_collisionObject;
+      which = {result.m_collisionObject->getUserIndex(),
+               result.m_localShapeInfo ? result.m_localShapeInfo->m_triangleIndex : -1};
+    }
+    return m_closestHitFraction;
+  }
+};
+
+// The broad phase alone: the blocks whose boxes meet the tool's (Bullet's
+// dynamic AABB tree), then the triangles of each whose boxes do (its BVH).
+struct TriangleCount final : btTriangleCallback {
+  size_t triangles = 0;
+  void processTriangle(btVector3*, int, int) override { ++triangles; }
+};
+struct BlockTriangles final : btBroadphaseAabbCallback {
+  btVector3 min, max;
+  TriangleCount count;
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    static_cast<const btConcaveShape*>(object->getCollisionShape())->processAllTriangles(&count, min, max);
+    return true;
+  }
+};
+
+Box3 boundsOf(const TriangleMesh& mesh) {
+  Box3 box;
+  for (const Vec3& v : mesh.vertices) box.extend(v);
+  return box;
+}
+
+}  // namespace
+
+// Installed before the first Bullet object of a back-end is made (malloc and
+// free underneath, as Bullet's own default, so earlier blocks free alike).
+AllocationHook::AllocationHook() { btAlignedAllocSetCustom(countingAlloc, countingFree); }
+
+BulletScene::BulletScene() { m_tool.setCollisionShape(&m_sphere); }
+BulletScene::~BulletScene() { clear(); }
+
+void BulletScene::clear() {
+  for (Block& b : m_blocks)
+    if (b.object) m_world.removeCollisionObject(b.object.get());
+  m_blocks.clear();
+}
+
+void BulletScene::build(const TriangleBlocks& blocks) {
+  const auto start = std::chrono::steady_clock::now();
+  clear();
+  m_source = &blocks;
+  m_bounds.setEmpty();
+  m_blocks.resize(blocks.blockCount());
+  for (size_t b = 0; b < blocks.blockCount(); ++b) {
+    attachBlock(b);
+    m_bounds.extend(boundsOf(blocks.block(b)));
+  }
+  m_world.updateAabbs();
+  m_counts.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// (Re)builds the Bullet mesh of block `index` from its triangles.
+void BulletScene::attachBlock(size_t index) {
+  Block& b = m_blocks[index];
+  if (b.object) m_world.removeCollisionObject(b.object.get());
+  b = Block{};
+  const TriangleMesh& mesh = m_source->block(index);
+  if (mesh.triangles.empty()) return;
+  // Bullet reads the block's own arrays: int triples, and (double
+  // precision) btScalar triples with Eigen's layout.
+  static_assert(sizeof(Vec3) == 3 * sizeof(btScalar));
+  b.mesh = std::make_unique<btTriangleIndexVertexArray>(
+      int(mesh.triangles.size()), const_cast<int*>(mesh.triangles.front().data()), int(3 * sizeof(int32_t)),
+      int(mesh.vertices.size()), const_cast<btScalar*>(mesh.vertices.front().data()), int(sizeof(Vec3)));
+  b.shape = std::make_unique<btBvhTriangleMeshShape>(b.mesh.get(), true, true);
+  b.shape->setMargin(0);  // the triangles themselves, not a shell around them
+  b.object = std::make_unique<btCollisionObject>();
+  b.object->setCollisionShape(b.shape.get());
+  b.object->setUserIndex(int(index));
+  m_world.addCollisionObject(b.object.get());
+}
+
+void BulletScene::rebuildBlocks(std::span<const size_t> changed) {
+  if (m_blocks.empty()) return;
+  for (const size_t b : changed) {
+    try {
+      attachBlock(b);
+    } catch (const std::bad_alloc&) {
+      m_blocks[b] = Block{};
+      ++m_counts.failedBlocks;
+    }
+  }
+  m_counts.rebuiltBlocks += changed.size();
+}
+
+void BulletScene::moveVertices(size_t index, bool rebuild) {
+  Block& b = m_blocks[index];
+  if (!b.shape) return;
+  const Box3 box = boundsOf(m_source->block(index));
+  m_bounds.extend(box);
+  // The quantized tree is refitted within the block's new bounds (which also
+  // resets the shape's own box); a rebuild makes a fresh tree over them.
+  b.shape->refitTree(toBullet(box.min()), toBullet(box.max()));
+  if (rebuild) {
+    b.shape->buildOptimizedBvh();
+    ++m_counts.rebuiltBlocks;
+  } else {
+    ++m_refits;
+  }
+  m_world.updateSingleAabb(b.object.get());
+}
+
+double BulletScene::farDistance() const { return 2.0 * m_bounds.diagonal().norm() + 10.0; }
+
+ClosestTriangle BulletScene::closest(const Vec3& centre, double radius) const {
+  ClosestContact c;
+  c.tool = &m_tool;
+  c.blocks = m_source;
+  c.centre = centre;
+  c.reach = radius;
+  m_sphere.setUnscaledRadius(radius);
+  m_tool.setWorldTransform(at(centre));
+  const_cast<btCollisionWorld&>(m_world).contactTest(&m_tool, c);
+  ++m_contactTests;
+  return c.result;
+}
+
+// Whether `centre` is inside, given its closest surface point: behind that
+// triangle when the point is inside its face (the direction is along the
+// face normal); at an edge or a vertex the faces there disagree, so a ray decides.
+bool BulletScene::behindClosest(const Vec3& centre, const ClosestTriangle& c) const {
+  const Vec3 n = faceNormal(*m_source, c.which);
+  const double along = (centre - c.point).dot(n) / c.distance;
+  return std::abs(along) > 0.999 ? along < 0 : inside(centre);
+}
+
+bool BulletScene::inside(const Vec3& p) const {
+  CrossingCount count;
+  m_world.rayTest(toBullet(p), toBullet(p + farDistance() * kParityDirection), count);
+  ++m_rays;
+  return count.crossings() % 2 == 1;
+}
+
+size_t BulletScene::trianglesWithin(const Vec3& p, double radius) const {
+  if (m_blocks.empty()) return 0;
+  BlockTriangles blocks;
+  blocks.min = toBullet(p - Vec3::Constant(radius));
+  blocks.max = toBullet(p + Vec3::Constant(radius));
+  const_cast<btDbvtBroadphase&>(m_broadphase).aabbTest(blocks.min, blocks.max, blocks);
+  return blocks.count.triangles;
+}
+
+ShellContact BulletScene::sphereContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius,
+                                        ClosestTriangle* nearest) const {
+  ++m_queries;
+  const QueryAllocations counting{m_queryAllocations, m_queryBytes};
+  if (m_blocks.empty()) return {};
+  const Vec3& centre = X_WT.position;
+  ClosestTriangle c = closest(centre, radius);
+  bool in = false;
+  if (!c.found()) {
+    // Nothing within r: free, or the centre deeper than r inside (then the
+    // closest surface is searched farther out).
+    if (!inside(centre)) return {};
+    const double far = m_bounds.diagonal().norm();
+    for (double reach = 2 * radius; !c.found() && reach < 2 * far; reach *= 2) c = closest(centre, reach);
+    if (!c.found()) return {};
+    in = true;
+  } else if (c.distance > 0) {
+    in = behindClosest(centre, c);
+  }
+  ShellContact contact = trephine::sphereContact(X_WT, shell, radius, c.point, c.distance, in, c.weighted);
+  if (contact.points == 0) return {};
+  contact.primitives = c.contacts;
+  ++m_counts.contactFrames;
+  if (nearest) *nearest = c;
+  return contact;
+}
+
+SweepResult BulletScene::sweepSphere(const SweepQuery& query, double radius, double skin) const {
+  ++m_queries;
+  const QueryAllocations counting{m_queryAllocations, m_queryBytes};
+  SweepResult result;
+  const Vec3 path = query.to - query.from;
+  const double length = path.norm();
+  if (!(length > 0) || !std::isfinite(length) || m_blocks.empty()) return result;
+  // The mesh back-ends' rule (sweepAllowance), cast as a sphere shrunk by the
+  // depth it allows.
+  const ClosestTriangle start = closest(query.from, radius);
+  const bool touching = start.found() && start.distance < radius;
+  // The centre inside: only new material blocks (as the native sweeps), so
+  // the tool may leave; treated as free.
+  if (touching ? start.distance > 0 && behindClosest(query.from, start) : inside(query.from)) return result;
+  const double allowed = sweepAllowance(touching, radius - start.distance, skin);
+  const double castRadius = radius - allowed;
+  if (!(castRadius > kSweepTolerance)) return result;
+  btCollisionWorld::ClosestConvexResultCallback hit(toBullet(query.from), toBullet(query.to));
+  m_sphere.setUnscaledRadius(castRadius);
+  m_world.convexSweepTest(&m_sphere, at(query.from), at(query.to), hit);
+  ++m_casts;
+  if (!hit.hasHit()) return result;
+  result.blocked = true;
+  // Back off by the tolerance, so the stop itself is free.
+  result.freeFraction = std::max(0.0, double(hit.m_closestHitFraction) - kSweepTolerance / length);
+  result.startsInside = touching && result.freeFraction * length <= kSweepTolerance;
+  result.contactPoint = fromBullet(hit.m_hitPointWorld);
+  return result;
+}
+
+bool BulletScene::overlapsSphere(const Vec3& centre, double radius, double inset) const {
+  ++m_queries;
+  const QueryAllocations counting{m_queryAllocations, m_queryBytes};
+  if (m_blocks.empty()) return false;
+  if (radius > inset && closest(centre, radius - inset).found()) return true;
+  return inside(centre);
+}
+
+std::optional<SurfaceHit> BulletScene::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
+  if (m_blocks.empty() || !(maxDistance > 0)) return std::nullopt;
+  const double far = std::min(maxDistance, 1e7);
+  FirstHit hit;
+  m_world.rayTest(toBullet(origin), toBullet(origin + far * direction), hit);
+  ++m_rays;
+  if (!hit.hasHit() || !hit.which.valid()) return std::nullopt;
+  SurfaceHit result;
+  result.distance = hit.m_closestHitFraction * far;
+  result.point = origin + result.distance * direction;
+  result.normal = faceNormal(*m_source, hit.which);
+  return result;
+}
+
+void BulletScene::reportCounters(std::vector<Counter>& counters) const {
+  m_counts.report(counters, m_source ? m_source->triangleCount() : 0);
+  counters.push_back({"contact_tests", double(m_contactTests)});
+  counters.push_back({"convex_casts", double(m_casts)});
+  counters.push_back({"rays", double(m_rays)});
+  counters.push_back({"queries", double(m_queries)});
+  counters.push_back({"query_allocations", double(m_queryAllocations)});
+  counters.push_back({"query_allocated_bytes", double(m_queryBytes)});
+  if (m_refits) counters.push_back({"refits", double(m_refits)});
+}
+
+}  // namespace trephine::bullet

@@ -1,0 +1,112 @@
+#pragma once
+// A closed triangle surface in a Bullet collision world, block by block
+// (TriangleBlocks): each block a btBvhTriangleMeshShape reading the block's
+// own arrays (double precision), its own object, so a block whose triangles
+// change (drilling) is rebuilt alone and a block whose vertices move
+// (deformation) is refitted alone. Shared by the skull's and the brain's
+// Bullet back-ends, with the queries a spherical burr needs:
+//  - contact: the burr as a btSphereShape in contactTest; Bullet finds the
+//    triangles within reach, the closest point of each is computed here;
+//    inside: behind the closest triangle's face, or by ray parity at an edge
+//    or a vertex and beyond the radius;
+//  - sweeps: convexSweepTest of the sphere shrunk by the depth the proxy may
+//    keep; rays: rayTest.
+// Every allocation Bullet makes is counted (btAlignedAllocSetCustom).
+// Bullet's types stay in this plugin (this header is not installed).
+#include <btBulletCollisionCommon.h>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "framework/geometry/MeshSurfaceCounters.h"
+#include "framework/geometry/ShellContactTarget.h"
+#include "framework/geometry/TriangleBlocks.h"
+
+namespace trephine {
+struct Counter;
+}
+
+namespace trephine::bullet {
+
+// The closest point of the surface to a sphere's centre, among the
+// triangles Bullet reports within the sphere.
+struct ClosestTriangle {
+  TriangleRef which;
+  double distance = 0;           // mm, centre to the closest point
+  Vec3 point = Vec3::Zero();     // mm, on the surface
+  int contacts = 0;              // triangles within reach
+  Vec3 weighted = Vec3::Zero();  // their face normals times depth and area (summed)
+  bool found() const { return which.valid(); }
+};
+
+// Installs the counting allocator before the first Bullet object is made.
+struct AllocationHook {
+  AllocationHook();
+};
+
+class BulletScene {
+ public:
+  BulletScene();
+  ~BulletScene();
+  BulletScene(const BulletScene&) = delete;
+  BulletScene& operator=(const BulletScene&) = delete;
+
+  // Builds every block of `blocks` (kept by reference: it must outlive the scene).
+  void build(const TriangleBlocks& blocks);
+  // The triangles of these blocks changed: rebuilds them. In the haptic
+  // loop: a block Bullet cannot take is counted, not thrown.
+  void rebuildBlocks(std::span<const size_t> changed);
+  // The vertices of a block moved in place (same arrays, same triangles):
+  // refits its BVH, or rebuilds it when `rebuild`.
+  void moveVertices(size_t index, bool rebuild);
+  bool empty() const { return m_blocks.empty(); }
+  const TriangleBlocks& blocks() const { return *m_source; }
+
+  ClosestTriangle closest(const Vec3& centre, double radius) const;
+  bool inside(const Vec3& p) const;
+  // Inside, given the closest point `c` of the surface to `centre` (found).
+  bool behindClosest(const Vec3& centre, const ClosestTriangle& c) const;
+  size_t trianglesWithin(const Vec3& p, double radius) const;
+
+  // A spherical burr of `radius` centred at X_WT.position; `nearest`: where
+  // the surface is nearest the centre.
+  ShellContact sphereContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius,
+                             ClosestTriangle* nearest = nullptr) const;
+  // `skin`: how deep a proxy rests (MeshSphereContact.h's sweepAllowance).
+  SweepResult sweepSphere(const SweepQuery& query, double radius, double skin) const;
+  // Visibly in: the sphere pulled `inset` in still reaches the surface, or the centre is inside.
+  bool overlapsSphere(const Vec3& centre, double radius, double inset) const;
+  std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const;
+
+  MeshSurfaceCounters& counts() { return m_counts; }
+  void reportCounters(std::vector<Counter>& counters) const;
+
+ private:
+  struct Block {
+    std::unique_ptr<btTriangleIndexVertexArray> mesh;
+    std::unique_ptr<btBvhTriangleMeshShape> shape;
+    std::unique_ptr<btCollisionObject> object;
+  };
+  void clear();
+  void attachBlock(size_t index);
+  double farDistance() const;  // mm, a ray this long leaves the surface's bounds
+
+  AllocationHook m_hook;  // first: before any Bullet member allocates
+  const TriangleBlocks* m_source = nullptr;
+  Box3 m_bounds;  // of every vertex the surface has had
+  btDefaultCollisionConfiguration m_configuration;
+  btCollisionDispatcher m_dispatcher{&m_configuration};
+  btDbvtBroadphase m_broadphase;
+  btCollisionWorld m_world{&m_dispatcher, &m_broadphase, &m_configuration};
+  std::vector<Block> m_blocks;  // per block; empty members when it has no triangles
+  mutable btSphereShape m_sphere{1.0};  // the burr, its radius set per query
+  mutable btCollisionObject m_tool;
+  mutable MeshSurfaceCounters m_counts;
+  uint64_t m_refits = 0;
+  mutable uint64_t m_contactTests = 0, m_casts = 0, m_rays = 0;
+  mutable uint64_t m_queries = 0, m_queryAllocations = 0, m_queryBytes = 0;  // contact, sweep, overlap
+};
+
+}  // namespace trephine::bullet
