@@ -160,15 +160,16 @@ void BulletScene::clear() {
   m_blocks.clear();
 }
 
-void BulletScene::build(const TriangleBlocks& blocks) {
+void BulletScene::build(const TriangleBlocks& blocks, double deformationMargin) {
   const auto start = std::chrono::steady_clock::now();
   clear();
   m_source = &blocks;
+  m_margin = deformationMargin;
   m_bounds.setEmpty();
   m_blocks.resize(blocks.blockCount());
   for (size_t b = 0; b < blocks.blockCount(); ++b) {
     attachBlock(b);
-    m_bounds.extend(boundsOf(blocks.block(b)));
+    m_bounds.extend(m_blocks[b].treeBounds);
   }
   m_world.updateAabbs();
   m_counts.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -187,7 +188,16 @@ void BulletScene::attachBlock(size_t index) {
   b.mesh = std::make_unique<btTriangleIndexVertexArray>(
       int(mesh.triangles.size()), const_cast<int*>(mesh.triangles.front().data()), int(3 * sizeof(int32_t)),
       int(mesh.vertices.size()), const_cast<btScalar*>(mesh.vertices.front().data()), int(sizeof(Vec3)));
-  b.shape = std::make_unique<btBvhTriangleMeshShape>(b.mesh.get(), true, true);
+  // The quantized tree covers the vertices' bounds grown by the margin, so
+  // that a refit holds them while they move within it.
+  const Box3 box = boundsOf(mesh);
+  const Vec3 grow = Vec3::Constant(m_margin);
+  b.treeBounds = Box3(box.min() - grow, box.max() + grow);
+  b.shape = std::make_unique<btBvhTriangleMeshShape>(b.mesh.get(), true, toBullet(b.treeBounds.min()),
+                                                     toBullet(b.treeBounds.max()), true);
+  // The shape's box is the tree's bounds, so that it holds the vertices
+  // wherever they move within them (grows it only; nothing is refitted here).
+  if (m_margin > 0) b.shape->partialRefitTree(toBullet(b.treeBounds.min()), toBullet(b.treeBounds.max()));
   b.shape->setMargin(0);  // the triangles themselves, not a shell around them
   b.object = std::make_unique<btCollisionObject>();
   b.object->setCollisionShape(b.shape.get());
@@ -211,18 +221,17 @@ void BulletScene::rebuildBlocks(std::span<const size_t> changed) {
 void BulletScene::moveVertices(size_t index, bool rebuild) {
   Block& b = m_blocks[index];
   if (!b.shape) return;
-  const Box3 box = boundsOf(m_source->block(index));
-  m_bounds.extend(box);
-  // The quantized tree is refitted within the block's new bounds (which also
-  // resets the shape's own box); a rebuild makes a fresh tree over them.
-  b.shape->refitTree(toBullet(box.min()), toBullet(box.max()));
   if (rebuild) {
-    b.shape->buildOptimizedBvh();
+    attachBlock(index);  // a fresh tree over the vertices' bounds now, grown by the margin
+    m_bounds.extend(b.treeBounds);
     ++m_counts.rebuiltBlocks;
-  } else {
-    ++m_refits;
+    return;
   }
-  m_world.updateSingleAabb(b.object.get());
+  // Every node of the tree is refitted; the shape's own box stays the tree's
+  // bounds (set at the build), which hold the vertices. Bullet's refitTree
+  // would also rescan every triangle six times for a tighter box.
+  b.shape->getOptimizedBvh()->refit(b.mesh.get(), toBullet(b.treeBounds.min()), toBullet(b.treeBounds.max()));
+  ++m_refits;
 }
 
 double BulletScene::farDistance() const { return 2.0 * m_bounds.diagonal().norm() + 10.0; }

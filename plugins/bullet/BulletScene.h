@@ -53,13 +53,18 @@ class BulletScene {
   BulletScene(const BulletScene&) = delete;
   BulletScene& operator=(const BulletScene&) = delete;
 
-  // Builds every block of `blocks` (kept by reference: it must outlive the scene).
-  void build(const TriangleBlocks& blocks);
+  // Builds every block of `blocks` (kept by reference: it must outlive the
+  // scene). `deformationMargin` (mm): the blocks' vertices will move, by up
+  // to this much from where they are at each build (the quantized trees
+  // cover their bounds grown by it; 0 for a surface that does not move).
+  void build(const TriangleBlocks& blocks, double deformationMargin = 0);
   // The triangles of these blocks changed: rebuilds them. In the haptic
   // loop: a block Bullet cannot take is counted, not thrown.
   void rebuildBlocks(std::span<const size_t> changed);
-  // The vertices of a block moved in place (same arrays, same triangles):
-  // refits its BVH, or rebuilds it when `rebuild`.
+  // The vertices of a block moved in place (same arrays, same triangles),
+  // within the deformation margin of where they were at its last build:
+  // refits its BVH; or rebuilds it when `rebuild` (needed before they move
+  // farther: the quantized tree cannot hold a box beyond its bounds).
   void moveVertices(size_t index, bool rebuild);
   bool empty() const { return m_blocks.empty(); }
   const TriangleBlocks& blocks() const { return *m_source; }
@@ -88,6 +93,7 @@ class BulletScene {
     std::unique_ptr<btTriangleIndexVertexArray> mesh;
     std::unique_ptr<btBvhTriangleMeshShape> shape;
     std::unique_ptr<btCollisionObject> object;
+    Box3 treeBounds;  // the quantized tree's bounds: the vertices' at the build, grown by the margin
   };
   void clear();
   void attachBlock(size_t index);
@@ -95,6 +101,7 @@ class BulletScene {
 
   AllocationHook m_hook;  // first: before any Bullet member allocates
   const TriangleBlocks* m_source = nullptr;
+  double m_margin = 0;  // mm, the deformation margin
   Box3 m_bounds;  // of every vertex the surface has had
   btDefaultCollisionConfiguration m_configuration;
   btCollisionDispatcher m_dispatcher{&m_configuration};

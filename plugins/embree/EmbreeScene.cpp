@@ -149,7 +149,10 @@ bool EmbreeScene::attachBlock(size_t index) {
     for (int a = 0; a < 3; ++a) indices[3 * t + size_t(a)] = unsigned(mesh.triangles[t][size_t(a)]);
   rtcCommitGeometry(geometry);
   b.scene = rtcNewScene(m_device);
-  if (m_deforming) rtcSetSceneBuildQuality(b.scene, RTC_BUILD_QUALITY_LOW);
+  if (m_deforming) {
+    rtcSetSceneFlags(b.scene, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(b.scene, RTC_BUILD_QUALITY_LOW);
+  }
   rtcAttachGeometry(b.scene, geometry);
   rtcCommitScene(b.scene);
   if (m_deforming) {

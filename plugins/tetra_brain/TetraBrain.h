@@ -56,8 +56,13 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   bool isDeformable() const { return m_positions.has_value(); }
 
   // Replaces the mesh (tests and tools): validates, reorients and binds the
-  // back-end to it (the native one when init() chose none).
+  // back-end to it (the native one when init() chose none, nor setBackend()).
   void setMesh(TetMesh mesh);
+  // The back-end for the next setMesh() (tests and tools, without a registry).
+  void setBackend(std::unique_ptr<TetBackend> backend) {
+    m_backend = std::move(backend);
+    m_bound = false;
+  }
   const TetMesh& mesh() const { return m_mesh; }
   const TetTopology& topology() const { return m_topology; }
   const MeshReport& report() const { return m_report; }

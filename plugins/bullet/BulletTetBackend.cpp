@@ -1,0 +1,98 @@
+#include "plugins/bullet/BulletTetBackend.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "framework/core/Component.h"
+#include "framework/geometry/MeshSphereContact.h"
+#include "plugins/bullet/BulletScene.h"
+#include "plugins/tetra_brain/MeshTetRules.h"
+
+namespace trephine::bullet {
+
+struct BulletTetBackend::State {
+  tetra::TetData data;
+  tetra::BoundarySurface surface;
+  BulletScene scene;
+  ReservedShells shells;
+  tetra::RefitPolicy refit;
+  tetra::FollowTiming following;
+  tetra::ContactSite site;  // the last contact's
+};
+
+BulletTetBackend::BulletTetBackend() : m_state(std::make_unique<State>()) {}
+BulletTetBackend::~BulletTetBackend() = default;
+
+void BulletTetBackend::bind(const tetra::TetData& data) {
+  State& s = *m_state;
+  const auto start = std::chrono::steady_clock::now();
+  s.data = data;
+  s.surface.build(*data.mesh, *data.topology);
+  if (s.surface.block(0).triangles.empty()) throw std::runtime_error("the mesh has no boundary faces");
+  s.refit = tetra::RefitPolicy(tetra::refitMargin(s.surface));
+  s.scene.build(s.surface, data.options.deformable ? s.refit.margin() : 0.0);
+  s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BulletTetBackend::reserveShell(std::span<const ShellPoint> shell) {
+  if (!m_state->shells.add(shell).sphere)
+    throw std::runtime_error(
+        "backend=\"bullet\" of TetraBrain takes a spherical burr (every shell point at one radius, as "
+        "PointshellTool); this tool's shell is not a sphere");
+}
+
+void BulletTetBackend::moveNodes(const tetra::NodeFrame& frame) {
+  State& s = *m_state;
+  const auto start = std::chrono::steady_clock::now();
+  s.surface.moveTo(frame.nodes);  // in place: Bullet reads these arrays
+  s.scene.moveVertices(0, s.refit.rebuild(frame.displacementBound));
+  s.following.add(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+}
+
+tetra::TetContact BulletTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) {
+  State& s = *m_state;
+  tetra::TetContact result;
+  const ReservedShell* reserved = s.shells.find(shell);
+  if (!reserved) return result;
+  ClosestTriangle nearest;
+  result.contact = s.scene.sphereContact(X_WT, shell, reserved->radius, &nearest);
+  if (wantSites && result.contact.points > 0 && nearest.found()) {
+    s.site = tetra::siteAt(s.surface, nearest.which, nearest.point, result.contact.penetration);
+    result.sites = {&s.site, 1};
+  }
+  return result;
+}
+
+size_t BulletTetBackend::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
+  const State& s = *m_state;
+  const ReservedShell* reserved = s.shells.find(shell);
+  return reserved ? s.scene.trianglesWithin(X_WT.position, reserved->radius) : 0;
+}
+
+SweepResult BulletTetBackend::sweep(const SweepQuery& query) const {
+  const State& s = *m_state;
+  const ReservedShell* reserved = s.shells.find(query.shell);
+  // The proxy rests contactDepth deep, as on the native back-end.
+  return s.scene.sweepSphere(query, reserved ? reserved->radius : query.leadingRadius, s.data.options.contactDepth);
+}
+
+bool BulletTetBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+  const State& s = *m_state;
+  const ReservedShell* reserved = s.shells.find(shell);
+  // Visibly in: ten contact depths in (as native).
+  return reserved && s.scene.overlapsSphere(X_WT.position, reserved->radius, 10 * s.data.options.contactDepth);
+}
+
+std::optional<SurfaceHit> BulletTetBackend::raycast(const Vec3& origin, const Vec3& direction,
+                                                    double maxDistance) const {
+  return m_state->scene.raycast(origin, direction, maxDistance);
+}
+
+void BulletTetBackend::reportCounters(std::vector<Counter>& counters) const {
+  m_state->scene.reportCounters(counters);
+  if (!m_state->data.options.deformable) return;
+  counters.push_back({"refit_margin_mm", m_state->refit.margin()});
+  m_state->following.report(counters);
+}
+
+}  // namespace trephine::bullet
