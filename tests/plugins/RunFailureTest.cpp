@@ -47,29 +47,40 @@ TEST_F(RunFailureTest, AThrowingTickEndsTheRunNamingTheComponentAndKeepsWhatWasM
 // might): the target catches it at its boundary, the run ends incomplete
 // naming the target and the back-end, and every output is written.
 TEST_F(RunFailureTest, ABackEndThatThrowsEndsTheRunNamingTheTargetWithEveryOutputWritten) {
-  test::TempDir dir;
-  const auto scene = dir.write("throws.xml", R"(<Node name="root">
-  <RequiredPlugin name="voxel_skull"/>
+  struct Target {
+    std::string plugin, element, path;
+  };
+  const Target targets[] = {
+      {"voxel_skull", R"(<VoxelSkull name="target" file="phantom:halfspace?voxel=1&amp;size=20" isovalue="500")",
+       "/patient/target"},
+      {"tetra_brain", R"(<TetraBrain name="target" file="phantom:cube?cells=4")", "/patient/target"}};
+  for (const Target& target : targets) {
+    SCOPED_TRACE(target.plugin);
+    test::TempDir dir;
+    const auto scene = dir.write("throws.xml", R"(<Node name="root">
+  <RequiredPlugin name=")" + target.plugin + R"("/>
   <RequiredPlugin name="haptics"/>
   <RequiredPlugin name="test_faults"/>
   <Node name="patient">
-    <VoxelSkull name="skull" file="phantom:halfspace?voxel=1&amp;size=20" isovalue="500" backend="throwing"/>
+    )" + target.element + R"( backend="throwing"/>
   </Node>
-  <ScriptedDevice name="device" target="@/patient/skull" path="approach-press-slide" direction="0 0 -1"
+  <ScriptedDevice name="device" target="@/patient/target" path="approach-press-slide" direction="0 0 -1"
                   depth="1" slideDistance="5" tipOffset="2.5" record="false"/>
   <PointshellTool name="burr" radius="2.5" device="@device"/>
-  <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@/patient/target"/>
   <ForceFeedback name="force" proxy="@proxy" stiffness="2" maxForce="3.3"/>
 </Node>
 )");
-  const std::string summary = runToFailure(scene, dir / "out");
-  EXPECT_NE(summary.find("collision back-end \\\"throwing\\\" of /patient/skull failed: deliberate back-end failure"),
-            std::string::npos)
-      << summary;
-  // The frames before the failure are in the trace: the header and one row per frame.
-  const std::string trace = test::readFile(dir / "out/trace.csv");
-  EXPECT_GE(std::count(trace.begin(), trace.end(), '\n'), 100) << trace.substr(0, 300);
-  EXPECT_TRUE(std::filesystem::exists(dir / "out/timings.csv"));
+    const std::string summary = runToFailure(scene, dir / "out");
+    EXPECT_NE(summary.find("collision back-end \\\"throwing\\\" of " + target.path +
+                           " failed: deliberate back-end failure"),
+              std::string::npos)
+        << summary;
+    // The frames before the failure are in the trace: the header and one row per frame.
+    const std::string trace = test::readFile(dir / "out/trace.csv");
+    EXPECT_GE(std::count(trace.begin(), trace.end(), '\n'), 100) << trace.substr(0, 300);
+    EXPECT_TRUE(std::filesystem::exists(dir / "out/timings.csv"));
+  }
 }
 
 TEST_F(RunFailureTest, VirtualTimeCountsStepsLongerThanTheirPeriodAsDeadlineMisses) {

@@ -5,6 +5,7 @@
 
 #include "framework/core/Component.h"
 #include "framework/core/Registry.h"
+#include "plugins/tetra_brain/TetBackend.h"
 #include "plugins/voxel_skull/VoxelBackend.h"
 
 namespace {
@@ -61,10 +62,36 @@ class ThrowingVoxelBackend final : public trephine::voxel::VoxelBackend {
   int m_calls = 0;
 };
 
+// The same for TetraBrain.
+class ThrowingTetBackend final : public trephine::tetra::TetBackend {
+ public:
+  void bind(const trephine::tetra::TetData&) override {}
+  void reserveShell(std::span<const trephine::ShellPoint>) override {}
+  size_t siteCapacity() const override { return 0; }
+  void moveNodes(const trephine::tetra::NodeFrame&) override {}
+  trephine::tetra::TetContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool) override {
+    if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
+    return {};
+  }
+  size_t broadPhase(const trephine::Pose&, std::span<const trephine::ShellPoint>) override { return 0; }
+  trephine::SweepResult sweep(const trephine::SweepQuery&) const override { return {}; }
+  bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
+  std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
+                                              double) const override {
+    if (!(direction.z() < 0)) return std::nullopt;
+    const double s = -origin.z() / direction.z();
+    return trephine::SurfaceHit{origin + s * direction, trephine::Vec3::UnitZ(), s};
+  }
+
+ private:
+  int m_calls = 0;
+};
+
 }  // namespace
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.addBackend<ThrowingVoxelBackend>("VoxelSkull", "throwing", "Throws from its 100th contact query");
+  registrar.addBackend<ThrowingTetBackend>("TetraBrain", "throwing", "Throws from its 100th contact query");
   registrar.add<ThrowingComponent>("ThrowingComponent", "Throws from its tick");
   registrar.add<SlowComponent>("SlowComponent", "Spends a set time per call");
 }
