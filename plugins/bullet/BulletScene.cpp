@@ -221,6 +221,7 @@ void BulletScene::rebuildBlocks(std::span<const size_t> changed) {
 void BulletScene::moveVertices(size_t index, bool rebuild) {
   Block& b = m_blocks[index];
   if (!b.shape) return;
+  const QueryAllocations counting{m_followAllocations, m_followBytes};
   if (rebuild) {
     attachBlock(index);  // a fresh tree over the vertices' bounds now, grown by the margin
     m_bounds.extend(b.treeBounds);
@@ -361,7 +362,12 @@ void BulletScene::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"queries", double(m_queries)});
   counters.push_back({"query_allocations", double(m_queryAllocations)});
   counters.push_back({"query_allocated_bytes", double(m_queryBytes)});
-  if (m_refits) counters.push_back({"refits", double(m_refits)});
+  if (m_refits || m_counts.rebuiltBlocks) {
+    counters.push_back({"refits", double(m_refits)});
+    // What following a deforming surface allocates: nothing to refit, a new tree to rebuild.
+    counters.push_back({"follow_allocations", double(m_followAllocations)});
+    counters.push_back({"follow_allocated_bytes", double(m_followBytes)});
+  }
 }
 
 }  // namespace trephine::bullet

@@ -111,7 +111,7 @@ class BulletScene {
   mutable btSphereShape m_sphere{1.0};  // the burr, its radius set per query
   mutable btCollisionObject m_tool;
   mutable MeshSurfaceCounters m_counts;
-  uint64_t m_refits = 0;
+  uint64_t m_refits = 0, m_followAllocations = 0, m_followBytes = 0;
   mutable uint64_t m_contactTests = 0, m_casts = 0, m_rays = 0;
   mutable uint64_t m_queries = 0, m_queryAllocations = 0, m_queryBytes = 0;  // contact, sweep, overlap
 };
