@@ -24,6 +24,17 @@ struct CuttingBurr {
   double sharpness = 0;         // tangential over normal force at the cutting edge (dimensionless)
 };
 
+// The solid a tool's shell samples, for targets whose back-ends test
+// primitives rather than points (Bullet): a sphere of `radius` at the
+// reference point and, when shaftLength > 0, a cylinder of shaftRadius from
+// the reference point along the unit shaftAxis (tool frame), open at its end.
+struct ToolSolid {
+  double radius = 0;       // mm
+  double shaftRadius = 0;  // mm
+  double shaftLength = 0;  // mm, 0: no shaft
+  Vec3 shaftAxis = Vec3::UnitZ();
+};
+
 class PointShellTool {
  public:
   static constexpr std::string_view kTypeName = "PointShellTool";
@@ -43,6 +54,8 @@ class PointShellTool {
   // The burr at the reference point, a sphere of leadingRadius(); a tool that
   // does not spin keeps the default (cuts nothing under the force law).
   virtual CuttingBurr cuttingBurr() const { return {}; }
+  // The solid the shell samples: by default the sphere of leadingRadius().
+  virtual ToolSolid solid() const { return {leadingRadius(), 0, 0, Vec3::UnitZ()}; }
 };
 
 }  // namespace trephine

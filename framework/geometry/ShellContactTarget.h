@@ -69,6 +69,13 @@ class ShellContactTarget : public SurfaceTarget {
   // this target (the span stays valid for the run): preallocates per-point
   // working memory and any per-shell data. Other shells are not tested.
   virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  // Called right after reserveShell() with the solid the shell samples, for
+  // targets whose back-ends test primitives; may throw when the target cannot
+  // take the tool (a load error at the caller).
+  virtual void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+    (void)shell;
+    (void)solid;
+  }
   virtual SweepResult sweep(const SweepQuery& query) const = 0;
   // `removeMaterial`: the tool cuts now (a drill that is running); a target
   // that cannot be cut, or is not set to, ignores it.

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <stdexcept>
 
 #include "framework/core/Component.h"
 #include "framework/geometry/ClosestPoint.h"
@@ -139,6 +140,37 @@ struct BlockTriangles final : btBroadphaseAabbCallback {
   }
 };
 
+// Bullet's contacts of a convex shape (the shaft) with the surface: the
+// deepest (Bullet's depth), and the face normals of the triangles in contact
+// weighted by depth (Bullet's own contact normal of a convex shape against a
+// triangle leans towards the triangle's edges; the face's does not).
+struct ConvexContacts final : btCollisionWorld::ContactResultCallback {
+  const btCollisionObject* tool = nullptr;
+  const TriangleBlocks* blocks = nullptr;
+  double deepest = 0;            // mm
+  Vec3 point = Vec3::Zero();     // mm, the deepest contact's point on the surface
+  Vec3 normal = Vec3::Zero();    // the deepest contact's face normal
+  Vec3 weighted = Vec3::Zero();  // sum of face normal times depth
+  int contacts = 0;
+
+  btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper* a, int, int indexA,
+                           const btCollisionObjectWrapper* b, int, int indexB) override {
+    const double depth = -double(cp.getDistance());
+    if (!(depth > 0)) return 0;  // within Bullet's contact threshold but apart
+    const bool toolIsA = a->getCollisionObject() == tool;
+    const btCollisionObject* mesh = toolIsA ? b->getCollisionObject() : a->getCollisionObject();
+    const Vec3 n = faceNormal(*blocks, {mesh->getUserIndex(), toolIsA ? indexB : indexA});
+    ++contacts;
+    weighted += depth * n;
+    if (depth > deepest) {
+      deepest = depth;
+      normal = n;
+      point = fromBullet(toolIsA ? cp.getPositionWorldOnB() : cp.getPositionWorldOnA());
+    }
+    return 0;
+  }
+};
+
 Box3 boundsOf(const TriangleMesh& mesh) {
   Box3 box;
   for (const Vec3& v : mesh.vertices) box.extend(v);
@@ -150,6 +182,42 @@ Box3 boundsOf(const TriangleMesh& mesh) {
 // Installed before the first Bullet object of a back-end is made (malloc and
 // free underneath, as Bullet's own default, so earlier blocks free alike).
 AllocationHook::AllocationHook() { btAlignedAllocSetCustom(countingAlloc, countingFree); }
+
+BulletShaft::BulletShaft(const ToolSolid& solid)
+    : m_burrRadius(solid.radius),
+      m_shape(btVector3(solid.shaftRadius, solid.shaftRadius, 0.5 * solid.shaftLength)) {
+  // Bullet's cylinder lies along its z axis, centred: turned onto the shaft's
+  // axis and moved half its length along it.
+  const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), solid.shaftAxis.normalized());
+  m_local = btTransform(btQuaternion(toAxis.x(), toAxis.y(), toAxis.z(), toAxis.w()),
+                        toBullet(0.5 * solid.shaftLength * solid.shaftAxis.normalized()));
+  // A thousandth of a millimetre of margin (Bullet's default, 0.04, rounds
+  // the cylinder's rim by as much and takes 0.01 mm off a tilted shaft's depth).
+  m_shape.setMargin(1e-3);
+  m_object.setCollisionShape(&m_shape);
+}
+
+void BulletTools::describe(std::span<const ShellPoint> shell, const ToolSolid& solid, const std::string& owner) {
+  const ReservedShell* reserved = m_shells.find(shell);
+  if (!reserved || reserved->sphere) return;
+  if (!(solid.shaftLength > 0 && solid.radius > 0 && solid.shaftRadius > 0))
+    throw std::runtime_error(owner +
+                             " takes a spherical burr (every shell point at one radius, as PointshellTool) or a "
+                             "burr on a shaft (CapsuleTool); this tool's shell is not a sphere and it describes no "
+                             "shaft");
+  for (auto& [source, shaft] : m_shafts)
+    if (source == shell.data()) return;
+  m_shafts.emplace_back(shell.data(), std::make_unique<BulletShaft>(solid));
+}
+
+std::optional<BulletTools::Tool> BulletTools::find(std::span<const ShellPoint> shell) const {
+  const ReservedShell* reserved = m_shells.find(shell);
+  if (!reserved) return std::nullopt;
+  if (reserved->sphere) return Tool{reserved->radius, nullptr};
+  for (const auto& [source, shaft] : m_shafts)
+    if (source == shell.data()) return Tool{shaft->burrRadius(), shaft.get()};
+  return std::nullopt;
+}
 
 BulletScene::BulletScene() { m_tool.setCollisionShape(&m_sphere); }
 BulletScene::~BulletScene() { clear(); }
@@ -299,6 +367,39 @@ ShellContact BulletScene::sphereContact(const Pose& X_WT, std::span<const ShellP
   contact.primitives = c.contacts;
   ++m_counts.contactFrames;
   if (nearest) *nearest = c;
+  return contact;
+}
+
+ShellContact BulletScene::toolContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius,
+                                      const BulletShaft* shaft, ClosestTriangle* nearest) const {
+  ShellContact burr = sphereContact(X_WT, shell, radius, nearest);
+  if (!shaft || m_blocks.empty()) return burr;
+  ++m_queries;
+  const QueryAllocations counting{m_queryAllocations, m_queryBytes};
+  ConvexContacts c;
+  c.tool = &shaft->m_object;
+  c.blocks = m_source;
+  const btTransform X(btQuaternion(X_WT.orientation.x(), X_WT.orientation.y(), X_WT.orientation.z(),
+                                   X_WT.orientation.w()),
+                      toBullet(X_WT.position));
+  shaft->m_object.setWorldTransform(X * shaft->m_local);
+  const_cast<btCollisionWorld&>(m_world).contactTest(&shaft->m_object, c);
+  ++m_contactTests;
+  if (c.contacts == 0) return burr;
+  if (burr.points == 0) ++m_counts.contactFrames;
+  ShellContact contact;
+  contact.penetration = std::max(burr.penetration, c.deepest);
+  const Vec3 weighted = burr.penetration * burr.normal + c.weighted;
+  contact.normal = weighted.norm() > 1e-12 ? Vec3(weighted.normalized()) : c.normal;
+  contact.primitives = burr.primitives + c.contacts;
+  // The shaft's shell points beyond the plane of its deepest contact.
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  int shaftPoints = 0;
+  for (const ShellPoint& p : shell) {
+    if (p.position.norm() <= (1 + 1e-9) * radius) continue;  // the burr's
+    shaftPoints += (R * p.position + X_WT.position - c.point).dot(c.normal) < 0;
+  }
+  contact.points = burr.points + std::max(shaftPoints, 1);
   return contact;
 }
 

@@ -18,8 +18,11 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "framework/geometry/MeshSphereContact.h"
 #include "framework/geometry/MeshSurfaceCounters.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/geometry/TriangleBlocks.h"
@@ -44,6 +47,23 @@ struct ClosestTriangle {
 // Installs the counting allocator before the first Bullet object is made.
 struct AllocationHook {
   AllocationHook();
+};
+
+// A tool's shaft (ToolSolid) as a Bullet cylinder, queried with Bullet's own
+// convex-triangle contacts (GJK and EPA): a cylinder of the shaft's radius
+// from the burr's centre along its axis, flat at its end as the shell is open.
+class BulletShaft {
+ public:
+  explicit BulletShaft(const ToolSolid& solid);
+  double burrRadius() const { return m_burrRadius; }
+
+ private:
+  friend class BulletScene;
+  AllocationHook m_hook;
+  double m_burrRadius = 0;  // mm
+  btTransform m_local;      // the cylinder's frame in the tool frame
+  btCylinderShapeZ m_shape;
+  mutable btCollisionObject m_object;
 };
 
 class BulletScene {
@@ -79,6 +99,10 @@ class BulletScene {
   // the surface is nearest the centre.
   ShellContact sphereContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius,
                              ClosestTriangle* nearest = nullptr) const;
+  // The burr and, when `shaft` is given, its shaft: penetration the deeper of
+  // the two, the normal their depth-weighted mean. `nearest`: the burr's.
+  ShellContact toolContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius,
+                           const BulletShaft* shaft, ClosestTriangle* nearest = nullptr) const;
   // `skin`: how deep a proxy rests (MeshSphereContact.h's sweepAllowance).
   SweepResult sweepSphere(const SweepQuery& query, double radius, double skin) const;
   // Visibly in: the sphere pulled `inset` in still reaches the surface, or the centre is inside.
@@ -114,6 +138,26 @@ class BulletScene {
   uint64_t m_refits = 0, m_followAllocations = 0, m_followBytes = 0;
   mutable uint64_t m_contactTests = 0, m_casts = 0, m_rays = 0;
   mutable uint64_t m_queries = 0, m_queryAllocations = 0, m_queryBytes = 0;  // contact, sweep, overlap
+};
+
+// The tools a Bullet back-end was told of: each shell's burr, and its shaft
+// when the shell is not a sphere (CapsuleTool).
+class BulletTools {
+ public:
+  struct Tool {
+    double radius = 0;                  // mm, the burr's
+    const BulletShaft* shaft = nullptr;  // or none: a spherical shell
+  };
+  void reserve(std::span<const ShellPoint> shell) { m_shells.add(shell); }
+  // Throws when the shell is not a sphere and the solid has no shaft.
+  void describe(std::span<const ShellPoint> shell, const ToolSolid& solid, const std::string& owner);
+  // A reserved shell's tool; none for a shell not reserved, or not a sphere
+  // and not described.
+  std::optional<Tool> find(std::span<const ShellPoint> shell) const;
+
+ private:
+  ReservedShells m_shells;
+  std::vector<std::pair<const ShellPoint*, std::unique_ptr<BulletShaft>>> m_shafts;
 };
 
 }  // namespace trephine::bullet

@@ -14,7 +14,7 @@ struct BulletTetBackend::State {
   tetra::TetData data;
   tetra::BoundarySurface surface;
   BulletScene scene;
-  ReservedShells shells;
+  BulletTools tools;
   tetra::RefitPolicy refit;
   tetra::FollowTiming following;
   tetra::ContactSite site;  // the last contact's
@@ -34,11 +34,10 @@ void BulletTetBackend::bind(const tetra::TetData& data) {
   s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void BulletTetBackend::reserveShell(std::span<const ShellPoint> shell) {
-  if (!m_state->shells.add(shell).sphere)
-    throw std::runtime_error(
-        "backend=\"bullet\" of TetraBrain takes a spherical burr (every shell point at one radius, as "
-        "PointshellTool); this tool's shell is not a sphere");
+void BulletTetBackend::reserveShell(std::span<const ShellPoint> shell) { m_state->tools.reserve(shell); }
+
+void BulletTetBackend::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+  m_state->tools.describe(shell, solid, "backend=\"bullet\" of TetraBrain");
 }
 
 void BulletTetBackend::moveNodes(const tetra::NodeFrame& frame) {
@@ -52,10 +51,10 @@ void BulletTetBackend::moveNodes(const tetra::NodeFrame& frame) {
 tetra::TetContact BulletTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) {
   State& s = *m_state;
   tetra::TetContact result;
-  const ReservedShell* reserved = s.shells.find(shell);
-  if (!reserved) return result;
+  const auto tool = s.tools.find(shell);
+  if (!tool) return result;
   ClosestTriangle nearest;
-  result.contact = s.scene.sphereContact(X_WT, shell, reserved->radius, &nearest);
+  result.contact = s.scene.toolContact(X_WT, shell, tool->radius, tool->shaft, &nearest);
   if (wantSites && result.contact.points > 0 && nearest.found()) {
     s.site = tetra::siteAt(s.surface, nearest.which, nearest.point, result.contact.penetration);
     result.sites = {&s.site, 1};
@@ -65,22 +64,22 @@ tetra::TetContact BulletTetBackend::collide(const Pose& X_WT, std::span<const Sh
 
 size_t BulletTetBackend::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
   const State& s = *m_state;
-  const ReservedShell* reserved = s.shells.find(shell);
-  return reserved ? s.scene.trianglesWithin(X_WT.position, reserved->radius) : 0;
+  const auto tool = s.tools.find(shell);
+  return tool ? s.scene.trianglesWithin(X_WT.position, tool->radius) : 0;
 }
 
 SweepResult BulletTetBackend::sweep(const SweepQuery& query) const {
   const State& s = *m_state;
-  const ReservedShell* reserved = s.shells.find(query.shell);
+  const auto tool = s.tools.find(query.shell);
   // The proxy rests contactDepth deep, as on the native back-end.
-  return s.scene.sweepSphere(query, reserved ? reserved->radius : query.leadingRadius, s.data.options.contactDepth);
+  return s.scene.sweepSphere(query, tool ? tool->radius : query.leadingRadius, s.data.options.contactDepth);
 }
 
 bool BulletTetBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
   const State& s = *m_state;
-  const ReservedShell* reserved = s.shells.find(shell);
+  const auto tool = s.tools.find(shell);
   // Visibly in: ten contact depths in (as native).
-  return reserved && s.scene.overlapsSphere(X_WT.position, reserved->radius, 10 * s.data.options.contactDepth);
+  return tool && s.scene.overlapsSphere(X_WT.position, tool->radius, 10 * s.data.options.contactDepth);
 }
 
 std::optional<SurfaceHit> BulletTetBackend::raycast(const Vec3& origin, const Vec3& direction,

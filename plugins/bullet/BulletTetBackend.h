@@ -20,6 +20,7 @@ class BulletTetBackend final : public tetra::TetBackend {
 
   void bind(const tetra::TetData& data) override;
   void reserveShell(std::span<const ShellPoint> shell) override;
+  void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   size_t siteCapacity() const override { return 1; }
   void moveNodes(const tetra::NodeFrame& frame) override;
   tetra::TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;

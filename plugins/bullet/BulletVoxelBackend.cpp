@@ -13,7 +13,7 @@ struct BulletVoxelBackend::State {
   voxel::VoxelData data;
   voxel::BlockedIsoSurface surface;
   BulletScene scene;
-  ReservedShells shells;
+  BulletTools tools;
 };
 
 BulletVoxelBackend::BulletVoxelBackend() : m_state(std::make_unique<State>()) {}
@@ -31,41 +31,39 @@ void BulletVoxelBackend::bind(const voxel::VoxelData& data) {
   s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void BulletVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
-  State& s = *m_state;
-  if (!s.shells.add(shell).sphere)
-    throw std::runtime_error(
-        "backend=\"bullet\" takes a spherical burr (every shell point at one radius, as PointshellTool); this "
-        "tool's shell is not a sphere");
+void BulletVoxelBackend::reserveShell(std::span<const ShellPoint> shell) { m_state->tools.reserve(shell); }
+
+void BulletVoxelBackend::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+  m_state->tools.describe(shell, solid, "backend=\"bullet\"");
 }
 
 voxel::VoxelContact BulletVoxelBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
   const State& s = *m_state;
   voxel::VoxelContact result;
-  if (const ReservedShell* reserved = s.shells.find(shell))
-    result.contact = s.scene.sphereContact(X_WT, shell, reserved->radius);
+  if (const auto tool = s.tools.find(shell))
+    result.contact = s.scene.toolContact(X_WT, shell, tool->radius, tool->shaft);
   return result;
 }
 
 size_t BulletVoxelBackend::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
   const State& s = *m_state;
-  const ReservedShell* reserved = s.shells.find(shell);
-  return reserved ? s.scene.trianglesWithin(X_WT.position, reserved->radius) : 0;
+  const auto tool = s.tools.find(shell);
+  return tool ? s.scene.trianglesWithin(X_WT.position, tool->radius) : 0;
 }
 
 SweepResult BulletVoxelBackend::sweep(const SweepQuery& query) const {
   const State& s = *m_state;
-  const ReservedShell* reserved = s.shells.find(query.shell);
+  const auto tool = s.tools.find(query.shell);
   // The proxy rests a tenth of the smallest voxel side deep.
-  return s.scene.sweepSphere(query, reserved ? reserved->radius : query.leadingRadius,
+  return s.scene.sweepSphere(query, tool ? tool->radius : query.leadingRadius,
                              0.1 * s.data.grid->smallestSide());
 }
 
 bool BulletVoxelBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
   const State& s = *m_state;
-  const ReservedShell* reserved = s.shells.find(shell);
+  const auto tool = s.tools.find(shell);
   // Visibly in: the sphere pulled one voxel in still reaches the bone.
-  return reserved && s.scene.overlapsSphere(X_WT.position, reserved->radius, s.data.grid->spacing.maxCoeff());
+  return tool && s.scene.overlapsSphere(X_WT.position, tool->radius, s.data.grid->spacing.maxCoeff());
 }
 
 std::optional<SurfaceHit> BulletVoxelBackend::raycast(const Vec3& origin, const Vec3& direction,

@@ -32,6 +32,7 @@ class BulletVoxelBackend final : public voxel::VoxelBackend {
 
   void bind(const voxel::VoxelData& data) override;
   void reserveShell(std::span<const ShellPoint> shell) override;
+  void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   voxel::VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) override;
   size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   SweepResult sweep(const SweepQuery& query) const override;

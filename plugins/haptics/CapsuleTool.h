@@ -24,6 +24,9 @@ class CapsuleTool final : public Component, public PointShellTool {
   double leadingRadius() const override { return d_radius.value(); }
   CuttingBurr cuttingBurr() const override { return d_burr.value(); }
   double boundingRadius() const override { return m_boundingRadius; }
+  ToolSolid solid() const override {
+    return {d_radius.value(), d_shaftRadius.value(), d_shaftLength.value(), d_axis.value().normalized()};
+  }
 
  private:
   Link<HapticDevice> l_device{this, "device", {.help = "Device that moves the tool", .required = true}};

@@ -20,6 +20,7 @@ constexpr double kCatchUp = 0.02;
 
 void GodObjectProxy::init(InitContext& context) {
   l_target->reserveShell(l_tool->shellPoints());
+  l_target->describeTool(l_tool->shellPoints(), l_tool->solid());
   m_sweeps = !d_sweep.is("none");
   m_probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
             : d_sweep.is("spheres") ? SweepProbe::Spheres

@@ -68,6 +68,12 @@ class TetBackend : public CollisionBackend {
   // the rest shape's until moveNodes().
   virtual void bind(const TetData& data) = 0;
   virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  // The solid a reserved shell samples (ShellContactTarget::describeTool);
+  // may throw when the back-end cannot take the tool.
+  virtual void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+    (void)shell;
+    (void)solid;
+  }
   // The most sites a contact of a reserved shell can have.
   virtual size_t siteCapacity() const = 0;
   // A deforming mesh's nodes for this frame, before any query of the frame.

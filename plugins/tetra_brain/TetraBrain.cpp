@@ -169,6 +169,10 @@ void TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
   if (m_nodeForceValue.forces.capacity() < 4 * sites) reserveNodeForces(4 * sites);
 }
 
+void TetraBrain::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+  if (m_bound) m_backend->describeTool(shell, solid);
+}
+
 // The queries go to the collision back-end once it is bound to the mesh.
 // Before that (the mesh or the back-end failed to load, and the tools' init
 // still announces their shells) there is nothing to hit.

@@ -37,6 +37,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
   // ShellContactTarget
   void reserveShell(std::span<const ShellPoint> shell) override;
+  void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   SweepResult sweep(const SweepQuery& query) const override;
   ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) override;
   std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;

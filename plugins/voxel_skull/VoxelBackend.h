@@ -36,6 +36,12 @@ class VoxelBackend : public CollisionBackend {
   // At init, and again whenever the data is replaced.
   virtual void bind(const VoxelData& data) = 0;
   virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  // The solid a reserved shell samples (ShellContactTarget::describeTool);
+  // may throw when the back-end cannot take the tool.
+  virtual void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+    (void)shell;
+    (void)solid;
+  }
   virtual VoxelContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool touchedVoxels) = 0;
   // The broad phase of collide() alone, for timing it apart (studies): the
   // candidates the narrow phase would examine (native: the shell points in

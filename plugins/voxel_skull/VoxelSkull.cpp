@@ -111,6 +111,9 @@ void VoxelSkull::setVolume(DensityVolume volume) {
 void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
   if (m_bound) m_backend->reserveShell(shell);
 }
+void VoxelSkull::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
+  if (m_bound) m_backend->describeTool(shell, solid);
+}
 SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
   return m_bound ? askBackend([&] { return m_backend->sweep(query); }) : SweepResult{};
 }

@@ -256,6 +256,40 @@ TEST_P(TetBackendConformanceTest, PokingAPulsatingBrainStaysStable) {
 INSTANTIATE_TEST_SUITE_P(Backends, TetBackendConformanceTest, ::testing::ValuesIn(backends()),
                          [](const auto& info) { return info.param.name; });
 
+#ifdef TREPHINE_HAS_BULLET_BACKEND
+// Bullet takes a burr on a shaft: the shaft, a Bullet cylinder, tilted 15
+// degrees below the horizontal and dipped into the top face while the burr
+// stays clear of it. The cylinder's lowest point is the rim of its end,
+// r cos(15 deg) below the end's centre.
+TEST(TetBackendFieldTest, BulletTakesABurrOnAShaftAndItsShaftMeasuresTheClosedForm) {
+  constexpr double r = 1.0, L = 20.0, theta = 15.0 * std::numbers::pi / 180.0, press = 0.6;
+  const Vec3 axis(std::cos(theta), 0, -std::sin(theta));
+  std::vector<ShellPoint> shell = shapes::sphereShell(kBurr, 266);
+  const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), axis);
+  for (int k = 0; k <= 40; ++k)
+    for (int i = 0; i < 12; ++i) {
+      const double phi = 2 * std::numbers::pi * i / 12;
+      const Vec3 radial(std::cos(phi), std::sin(phi), 0);
+      shell.push_back({toAxis * (r * radial + (2.3 + (L - 2.3) * k / 40.0) * Vec3::UnitZ()), toAxis * -radial});
+    }
+  TetraBrain brain;
+  brain.setBackend(std::make_unique<bullet::BulletTetBackend>());
+  shapes::cubeBrain(brain, kCells);
+  brain.reserveShell(shell);
+  // Without a shaft the shell is neither a sphere nor a burr on a shaft.
+  EXPECT_THROW(brain.describeTool(shell, ToolSolid{kBurr, 0, 0, Vec3::UnitZ()}), std::runtime_error);
+  brain.describeTool(shell, ToolSolid{kBurr, r, L, axis});
+  const double height = 100 - press + L * std::sin(theta) + r * std::cos(theta);
+  ASSERT_GT(height - kBurr, 100.5) << "the burr is clear of the face";
+  const ShellContact c = brain.collide({Vec3(3, -2, height), Quat::Identity()}, shell, false);
+  ASSERT_GT(c.points, 0);
+  EXPECT_NEAR(c.penetration, press, 1e-3);
+  EXPECT_GT(c.normal.z(), 1 - 1e-6) << c.normal.transpose();
+  // Lifted 0.1 mm clear: no contact.
+  EXPECT_EQ(brain.collide({Vec3(3, -2, height + press + 0.1), Quat::Identity()}, shell, false).points, 0);
+}
+#endif
+
 TEST(TetBackendFieldTest, AnUnknownBackEndOrANativeOptionElsewhereIsALoadErrorAtItsAttribute) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(pulsatingScene("nonesuch"), d));
