@@ -49,7 +49,6 @@ inline double sweepAllowance(bool touching, double startDepth, double skin) {
   return touching ? std::max(skin, startDepth) + skin : 0.0;
 }
 
-
 // The shells a mesh back-end was told of (reserveShell), with the sphere
 // each is treated as.
 struct ReservedShell {

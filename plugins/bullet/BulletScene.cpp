@@ -184,8 +184,7 @@ Box3 boundsOf(const TriangleMesh& mesh) {
 AllocationHook::AllocationHook() { btAlignedAllocSetCustom(countingAlloc, countingFree); }
 
 BulletShaft::BulletShaft(const ToolSolid& solid)
-    : m_burrRadius(solid.radius),
-      m_shape(btVector3(solid.shaftRadius, solid.shaftRadius, 0.5 * solid.shaftLength)) {
+    : m_burrRadius(solid.radius), m_shape(btVector3(solid.shaftRadius, solid.shaftRadius, 0.5 * solid.shaftLength)) {
   // Bullet's cylinder lies along its z axis, centred: turned onto the shaft's
   // axis and moved half its length along it.
   const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), solid.shaftAxis.normalized());
@@ -379,9 +378,9 @@ ShellContact BulletScene::toolContact(const Pose& X_WT, std::span<const ShellPoi
   ConvexContacts c;
   c.tool = &shaft->m_object;
   c.blocks = m_source;
-  const btTransform X(btQuaternion(X_WT.orientation.x(), X_WT.orientation.y(), X_WT.orientation.z(),
-                                   X_WT.orientation.w()),
-                      toBullet(X_WT.position));
+  const btTransform X(
+      btQuaternion(X_WT.orientation.x(), X_WT.orientation.y(), X_WT.orientation.z(), X_WT.orientation.w()),
+      toBullet(X_WT.position));
   shaft->m_object.setWorldTransform(X * shaft->m_local);
   const_cast<btCollisionWorld&>(m_world).contactTest(&shaft->m_object, c);
   ++m_contactTests;

@@ -101,8 +101,8 @@ class BulletScene {
                              ClosestTriangle* nearest = nullptr) const;
   // The burr and, when `shaft` is given, its shaft: penetration the deeper of
   // the two, the normal their depth-weighted mean. `nearest`: the burr's.
-  ShellContact toolContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius,
-                           const BulletShaft* shaft, ClosestTriangle* nearest = nullptr) const;
+  ShellContact toolContact(const Pose& X_WT, std::span<const ShellPoint> shell, double radius, const BulletShaft* shaft,
+                           ClosestTriangle* nearest = nullptr) const;
   // `skin`: how deep a proxy rests (MeshSphereContact.h's sweepAllowance).
   SweepResult sweepSphere(const SweepQuery& query, double radius, double skin) const;
   // Visibly in: the sphere pulled `inset` in still reaches the surface, or the centre is inside.
@@ -126,12 +126,12 @@ class BulletScene {
   AllocationHook m_hook;  // first: before any Bullet member allocates
   const TriangleBlocks* m_source = nullptr;
   double m_margin = 0;  // mm, the deformation margin
-  Box3 m_bounds;  // of every vertex the surface has had
+  Box3 m_bounds;        // of every vertex the surface has had
   btDefaultCollisionConfiguration m_configuration;
   btCollisionDispatcher m_dispatcher{&m_configuration};
   btDbvtBroadphase m_broadphase;
   btCollisionWorld m_world{&m_dispatcher, &m_broadphase, &m_configuration};
-  std::vector<Block> m_blocks;  // per block; empty members when it has no triangles
+  std::vector<Block> m_blocks;          // per block; empty members when it has no triangles
   mutable btSphereShape m_sphere{1.0};  // the burr, its radius set per query
   mutable btCollisionObject m_tool;
   mutable MeshSurfaceCounters m_counts;
@@ -145,7 +145,7 @@ class BulletScene {
 class BulletTools {
  public:
   struct Tool {
-    double radius = 0;                  // mm, the burr's
+    double radius = 0;                   // mm, the burr's
     const BulletShaft* shaft = nullptr;  // or none: a spherical shell
   };
   void reserve(std::span<const ShellPoint> shell) { m_shells.add(shell); }

@@ -31,7 +31,8 @@ void BulletTetBackend::bind(const tetra::TetData& data) {
   if (s.surface.block(0).triangles.empty()) throw std::runtime_error("the mesh has no boundary faces");
   s.refit = tetra::RefitPolicy(tetra::refitMargin(s.surface));
   s.scene.build(s.surface, data.options.deformable ? s.refit.margin() : 0.0);
-  s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.scene.counts().buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void BulletTetBackend::reserveShell(std::span<const ShellPoint> shell) { m_state->tools.reserve(shell); }

@@ -28,7 +28,8 @@ void BulletVoxelBackend::bind(const voxel::VoxelData& data) {
   s.surface.build(*data.grid);
   s.scene.build(s.surface);
   // The build time counts the extraction too.
-  s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.scene.counts().buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void BulletVoxelBackend::reserveShell(std::span<const ShellPoint> shell) { m_state->tools.reserve(shell); }
@@ -55,8 +56,7 @@ SweepResult BulletVoxelBackend::sweep(const SweepQuery& query) const {
   const State& s = *m_state;
   const auto tool = s.tools.find(query.shell);
   // The proxy rests a tenth of the smallest voxel side deep.
-  return s.scene.sweepSphere(query, tool ? tool->radius : query.leadingRadius,
-                             0.1 * s.data.grid->smallestSide());
+  return s.scene.sweepSphere(query, tool ? tool->radius : query.leadingRadius, 0.1 * s.data.grid->smallestSide());
 }
 
 bool BulletVoxelBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {

@@ -39,7 +39,8 @@ void EmbreeTetBackend::bind(const tetra::TetData& data) {
   if (s.surface.block(0).triangles.empty()) throw std::runtime_error("the mesh has no boundary faces");
   s.scene.build(s.surface, data.options.deformable);
   s.refit = tetra::RefitPolicy(tetra::refitMargin(s.surface));
-  s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.scene.counts().buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void EmbreeTetBackend::reserveShell(std::span<const ShellPoint> shell) {

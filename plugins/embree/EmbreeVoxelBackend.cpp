@@ -37,7 +37,8 @@ void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
   s.surface.build(*data.grid);
   s.scene.build(s.surface, false);
   // The build time counts the extraction too.
-  s.scene.counts().buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.scene.counts().buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void EmbreeVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {

@@ -202,13 +202,13 @@ void GodObjectProxy::tick(const TickContext&) {
     // by the proxy's lag (a drag); held by two planes, it points from the
     // device to the crease. Without the god-object the proxy is not over the
     // device: the thesis's depth along the normal.
-    const Vec3 spring = d_godObject.value() ? Vec3(P2 + skin * normal - D) : Vec3(((P2 - D).dot(normal) + skin) * normal);
+    const Vec3 spring =
+        d_godObject.value() ? Vec3(P2 + skin * normal - D) : Vec3(((P2 - D).dot(normal) + skin) * normal);
     if (crease) ++m_creaseFrames;
     // The device presses when the spring points out along this contact's
     // normal or the last frame's (a normal that swings for a frame in a
     // drilled pit must not drop the force for that frame).
-    const bool pressing =
-        spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace);
+    const bool pressing = spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace);
     if (pressing) {
       s.penetration = spring.norm();
       s.normal = spring / s.penetration;

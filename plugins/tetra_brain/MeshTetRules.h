@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "framework/core/Component.h"
-
 #include "plugins/tetra_brain/BoundarySurface.h"
 #include "plugins/tetra_brain/TetBackend.h"
 

@@ -41,7 +41,9 @@ class NativeTetBackend final : public TetBackend {
   size_t siteCapacity() const override { return m_hits.size(); }
   void moveNodes(const NodeFrame& frame) override;
   TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;
-  size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override { return findHits(X_WT, shell).size(); }
+  size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override {
+    return findHits(X_WT, shell).size();
+  }
   SweepResult sweep(const SweepQuery& query) const override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
@@ -51,8 +53,7 @@ class NativeTetBackend final : public TetBackend {
   // inside tetrahedra (empty for a shell larger than any reserved; valid until
   // the next query), then the contact those hits give.
   std::span<TetHit> findHits(const Pose& X_WT, std::span<const ShellPoint> shell);
-  TetContact contactOfHits(const Pose& X_WT, std::span<const ShellPoint> shell, std::span<TetHit> hits,
-                           bool wantSites);
+  TetContact contactOfHits(const Pose& X_WT, std::span<const ShellPoint> shell, std::span<TetHit> hits, bool wantSites);
 
   // The tet containing p (the lowest index when p is on a shared face), or -1.
   int32_t locate(const Vec3& p) const;
@@ -87,7 +88,7 @@ class NativeTetBackend final : public TetBackend {
   const TetMesh* m_mesh = nullptr;  // rest shape
   const TetTopology* m_topology = nullptr;
   TetQueryOptions m_options;
-  const Vec3* m_nodes = nullptr;  // current node positions: the rest nodes, or the deformation's latest
+  const Vec3* m_nodes = nullptr;          // current node positions: the rest nodes, or the deformation's latest
   Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
   std::vector<Box3> m_restBoxes;          // per tet, at rest (the grids are built from them, grown by the margin)
   std::vector<Box3> m_tetBoxes;           // per tet, current: maintained only for the thesis's scans
@@ -98,9 +99,9 @@ class NativeTetBackend final : public TetBackend {
   double m_averageEdge = 0;  // mm
 
   // Deformation.
-  double m_margin = 0;             // mm, by which the grids' boxes are grown
-  double m_displacementBound = 0;  // mm, the latest frame's bound
-  double m_queryGrowth = 0;        // mm, max(0, bound - margin): how far queries widen
+  double m_margin = 0;                   // mm, by which the grids' boxes are grown
+  double m_displacementBound = 0;        // mm, the latest frame's bound
+  double m_queryGrowth = 0;              // mm, max(0, bound - margin): how far queries widen
   std::vector<uint32_t> m_nodeTetStart;  // node -> tets (compressed rows), for boxRefresh="moved"
   std::vector<int32_t> m_nodeTets;
   std::vector<uint8_t> m_tetMarked;

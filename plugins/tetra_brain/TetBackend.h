@@ -22,12 +22,12 @@ namespace trephine::tetra {
 struct TetQueryOptions {
   enum class Search { kGrid, kFirstTetrahedron, kPreviousContact };
   Search search = Search::kGrid;
-  bool algorithm2 = false;         // penetration="algorithm2", else the nearest face
-  bool refreshEveryBox = true;     // boxRefresh="all" (the thesis's scans on a deforming mesh)
-  double cellSize = 0;             // mm, 0: half the average edge
-  double displacementMargin = 0;   // mm, 0: a quarter of the average edge
-  double contactDepth = 0.05;      // mm, how far a swept proxy sits in the surface
-  bool deformable = false;         // a deformation component moves the nodes
+  bool algorithm2 = false;        // penetration="algorithm2", else the nearest face
+  bool refreshEveryBox = true;    // boxRefresh="all" (the thesis's scans on a deforming mesh)
+  double cellSize = 0;            // mm, 0: half the average edge
+  double displacementMargin = 0;  // mm, 0: a quarter of the average edge
+  double contactDepth = 0.05;     // mm, how far a swept proxy sits in the surface
+  bool deformable = false;        // a deformation component moves the nodes
 };
 
 // The brain's data, owned by TetraBrain, at fixed addresses for the run.
@@ -40,10 +40,10 @@ struct TetData {
 // The node positions of one frame (a deforming mesh; the rest shape when the
 // deformation's frame was refused).
 struct NodeFrame {
-  std::span<const Vec3> nodes;     // mm, one per mesh node
-  double displacementBound = 0;    // mm, no node is farther from its rest position
+  std::span<const Vec3> nodes;          // mm, one per mesh node
+  double displacementBound = 0;         // mm, no node is farther from its rest position
   std::span<const int32_t> movedNodes;  // nodes moved since the previous frame, unless allMoved
-  bool allMoved = true;            // or a frame in between was not seen
+  bool allMoved = true;                 // or a frame in between was not seen
 };
 
 // Where a contact presses on the mesh: up to four nodes with weights summing

@@ -92,7 +92,8 @@ SweepResult NativeTetBackend::sweep(const SweepQuery& query) const {
   return result;
 }
 
-std::optional<SurfaceHit> NativeTetBackend::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
+std::optional<SurfaceHit> NativeTetBackend::raycast(const Vec3& origin, const Vec3& direction,
+                                                    double maxDistance) const {
   bool startsInside = false;
   const Vec3 end = origin + maxDistance * direction;
   const double t = firstEntry(origin, end, false, startsInside);

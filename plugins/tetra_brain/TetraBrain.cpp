@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "framework/core/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
@@ -13,18 +14,7 @@ namespace trephine::tetra {
 
 void TetraBrain::init(InitContext& context) {
   // The collision back-end first: an unknown one is reported with any error of the mesh.
-  std::unique_ptr<CollisionBackend> backend = context.createBackend(kTypeName, d_backend.value());
-  if (auto* tetBackend = dynamic_cast<TetBackend*>(backend.get())) {
-    backend.release();
-    m_backend.reset(tetBackend);
-  } else {
-    std::string known;
-    for (const std::string& name : context.backendNames(kTypeName)) known += (known.empty() ? "" : ", ") + name;
-    const std::string& name = d_backend.value();
-    context.error(d_backend, "no collision back-end \"" + name + "\" for TetraBrain (registered: " +
-                                 (known.empty() ? "none" : known) + "); if a plugin provides it, add " +
-                                 "<RequiredPlugin name=\"" + name + "\"/> to the scene");
-  }
+  m_backend = createBackendAt<TetBackend>(context, d_backend, kTypeName);
   checkNativeOnlyFields(context);
   try {
     m_mesh = d_file.isScheme() ? makeTetPhantom(std::string(d_file.schemeBody())) : readTetMesh(d_file.path());
@@ -145,7 +135,7 @@ void TetraBrain::refresh() {
     ++m_rejectedFrames;
     m_nodes = m_mesh.nodes.data();
     m_bounds = m_restBounds;
-    askBackend([&] { m_backend->moveNodes({m_mesh.nodes, 0.0, {}, true}); });
+    askBackend(*this, d_backend, [&] { m_backend->moveNodes({m_mesh.nodes, 0.0, {}, true}); });
     return;
   }
   const bool skipped = frame.step != m_lastStep + 1;  // a step in between was not seen: its moves are unknown
@@ -155,7 +145,7 @@ void TetraBrain::refresh() {
   m_largestBound = std::max(m_largestBound, frame.displacementBound);
   const Vec3 grow = Vec3::Constant(frame.displacementBound);
   m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);
-  askBackend([&] {
+  askBackend(*this, d_backend, [&] {
     m_backend->moveNodes({frame.positions, frame.displacementBound, frame.movedNodes, frame.allMoved || skipped});
   });
 }
@@ -184,7 +174,7 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
     return {};
   }
   const bool wantSites = !m_nodeSlot.empty();
-  const TetContact result = askBackend([&] { return m_backend->collide(X_WT, shell, wantSites); });
+  const TetContact result = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, wantSites); });
   if (result.contact.points > 0) ++m_contactFrames;
   // Kept for applyContactForce (the back-end's span lasts until its next query).
   const size_t kept = std::min(result.sites.size(), m_lastSites.capacity());
@@ -194,20 +184,17 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
 
 std::optional<size_t> TetraBrain::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
   if (!m_bound) return std::nullopt;
-  return askBackend([&] { return m_backend->broadPhase(X_WT, shell); });
+  return askBackend(*this, d_backend, [&] { return m_backend->broadPhase(X_WT, shell); });
 }
 SweepResult TetraBrain::sweep(const SweepQuery& query) const {
-  return m_bound ? askBackend([&] { return m_backend->sweep(query); }) : SweepResult{};
+  return m_bound ? askBackend(*this, d_backend, [&] { return m_backend->sweep(query); }) : SweepResult{};
 }
 bool TetraBrain::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
-  return m_bound && askBackend([&] { return m_backend->overlaps(X_WT, shell); });
+  return m_bound && askBackend(*this, d_backend, [&] { return m_backend->overlaps(X_WT, shell); });
 }
 std::optional<SurfaceHit> TetraBrain::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
-  return m_bound ? askBackend([&] { return m_backend->raycast(origin, direction, maxDistance); }) : std::nullopt;
-}
-
-void TetraBrain::throwBackendFailure(const std::exception& e) const {
-  throw std::runtime_error("collision back-end \"" + d_backend.value() + "\" of " + path() + " failed: " + e.what());
+  return m_bound ? askBackend(*this, d_backend, [&] { return m_backend->raycast(origin, direction, maxDistance); })
+                 : std::nullopt;
 }
 
 void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {

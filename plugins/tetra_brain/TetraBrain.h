@@ -78,18 +78,6 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   void bindBackend();
   void checkNativeOnlyFields(InitContext& context);
   void reserveNodeForces(size_t entries);
-  // Calls the back-end: an exception from it (a third-party library's) is
-  // caught at this boundary and ends the tick naming this target and its
-  // back-end, so the run stops with every output written.
-  template <class Query>
-  decltype(auto) askBackend(Query&& query) const {
-    try {
-      return query();
-    } catch (const std::exception& e) {
-      throwBackendFailure(e);
-    }
-  }
-  [[noreturn]] void throwBackendFailure(const std::exception& e) const;
 
   FilePathField d_file{this,
                        "file",
@@ -176,7 +164,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   const Vec3* m_nodes = nullptr;  // current node positions: the rest nodes, or the deformation's latest
   MeshReport m_report;
   size_t m_reoriented = 0;
-  Box3 m_restBounds, m_bounds;  // m_bounds: the rest bounds grown by the displacement bound
+  Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
   std::unique_ptr<TetBackend> m_backend;  // d_backend, bound to m_mesh
   bool m_bound = false;
   std::vector<const ShellPoint*> m_shells;  // the reserved shells
@@ -191,8 +179,8 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   // from the sites of the last contact, kept here until the force is known.
   Channel<NodeForces>* m_nodeForces = nullptr;
   NodeForces m_nodeForceValue;
-  std::vector<int32_t> m_nodeSlot;         // per node: its entry in m_nodeForceValue, or -1
-  std::vector<ContactSite> m_lastSites;    // capacity reserved with the shells
+  std::vector<int32_t> m_nodeSlot;       // per node: its entry in m_nodeForceValue, or -1
+  std::vector<ContactSite> m_lastSites;  // capacity reserved with the shells
   uint64_t m_contactFrames = 0, m_unreservedShellCalls = 0;
 };
 

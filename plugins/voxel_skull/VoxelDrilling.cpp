@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "framework/core/BackendBinding.h"
 #include "framework/logs/EventLog.h"
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
@@ -70,7 +71,7 @@ int VoxelSkull::cutAt(const Vec3& point_W) {
 ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
   if (!m_bound) return {};
   const bool thesisCut = removeMaterial && d_drill.value() && !m_forceRemoval;
-  VoxelContact c = askBackend([&] { return m_backend->collide(X_WT, shell, thesisCut); });
+  VoxelContact c = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, thesisCut); });
   if (thesisCut) {
     int removed = 0;
     for (const int64_t voxel : c.touched) removed += lowerVoxel(voxel);
@@ -139,7 +140,7 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
       first[a] = SolidGrid::floorOf((load.center_W[a] - reach - m_grid.corner[a]) * m_grid.inverseSpacing[a]);
       last[a] = SolidGrid::floorOf((load.center_W[a] + reach - m_grid.corner[a]) * m_grid.inverseSpacing[a]);
     }
-    askBackend([&] { m_backend->dataChanged(first, last); });
+    askBackend(*this, d_backend, [&] { m_backend->dataChanged(first, last); });
   }
   m_removedCodes += result.codesRemoved;
   const int removed = result.emptied;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "framework/core/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/io/Resample.h"
@@ -14,18 +15,7 @@ namespace trephine::voxel {
 
 void VoxelSkull::init(InitContext& context) {
   // The collision back-end first: an unknown one is reported with any error of the volume.
-  std::unique_ptr<CollisionBackend> backend = context.createBackend(kTypeName, d_backend.value());
-  if (auto* voxelBackend = dynamic_cast<VoxelBackend*>(backend.get())) {
-    backend.release();
-    m_backend.reset(voxelBackend);
-  } else {
-    std::string known;
-    for (const std::string& name : context.backendNames(kTypeName)) known += (known.empty() ? "" : ", ") + name;
-    const std::string& name = d_backend.value();
-    context.error(d_backend, "no collision back-end \"" + name + "\" for VoxelSkull (registered: " +
-                                 (known.empty() ? "none" : known) + "); if a plugin provides it, add " +
-                                 "<RequiredPlugin name=\"" + name + "\"/> to the scene");
-  }
+  m_backend = createBackendAt<VoxelBackend>(context, d_backend, kTypeName);
   DensityVolume volume;
   try {
     volume = d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : readVolume(d_file.path());
@@ -115,22 +105,19 @@ void VoxelSkull::describeTool(std::span<const ShellPoint> shell, const ToolSolid
   if (m_bound) m_backend->describeTool(shell, solid);
 }
 SweepResult VoxelSkull::sweep(const SweepQuery& query) const {
-  return m_bound ? askBackend([&] { return m_backend->sweep(query); }) : SweepResult{};
+  return m_bound ? askBackend(*this, d_backend, [&] { return m_backend->sweep(query); }) : SweepResult{};
 }
 bool VoxelSkull::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
-  return m_bound && askBackend([&] { return m_backend->overlaps(X_WT, shell); });
+  return m_bound && askBackend(*this, d_backend, [&] { return m_backend->overlaps(X_WT, shell); });
 }
 std::optional<SurfaceHit> VoxelSkull::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
-  return m_bound ? askBackend([&] { return m_backend->raycast(origin, direction, maxDistance); }) : std::nullopt;
+  return m_bound ? askBackend(*this, d_backend, [&] { return m_backend->raycast(origin, direction, maxDistance); })
+                 : std::nullopt;
 }
 
 std::optional<size_t> VoxelSkull::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
   if (!m_bound) return std::nullopt;
-  return askBackend([&] { return m_backend->broadPhase(X_WT, shell); });
-}
-
-void VoxelSkull::throwBackendFailure(const std::exception& e) const {
-  throw std::runtime_error("collision back-end \"" + d_backend.value() + "\" of " + path() + " failed: " + e.what());
+  return askBackend(*this, d_backend, [&] { return m_backend->broadPhase(X_WT, shell); });
 }
 
 LevelSet VoxelSkull::exactShape() const {

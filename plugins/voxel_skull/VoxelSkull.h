@@ -202,19 +202,6 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   uint64_t m_cutFrames = 0, m_breakthroughs = 0;
   bool m_algorithm1 = false;          // d_penetration resolved for the surface, once in setVolume
   double m_framesToDrillDensest = 0;  // frames of contact that empty the densest voxel
-  // Calls the back-end: an exception from it (a third-party library's) is
-  // caught at this boundary and ends the tick naming this target and its
-  // back-end, so the run stops with every output written. Nothing is paid
-  // while nothing throws.
-  template <class Query>
-  decltype(auto) askBackend(Query&& query) const {
-    try {
-      return query();
-    } catch (const std::exception& e) {
-      throwBackendFailure(e);
-    }
-  }
-  [[noreturn]] void throwBackendFailure(const std::exception& e) const;
 
   // The collision back-end (d_backend), bound to m_volume and m_grid.
   std::unique_ptr<VoxelBackend> m_backend;

@@ -28,8 +28,8 @@
 
 #include "framework/core/Lifecycle.h"
 #include "plugins/haptics/ShellSampling.h"
-#include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
+#include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 
 namespace trephine::bench {
@@ -152,12 +152,14 @@ void BM_TetCollisionStep(benchmark::State& state) {
     refreshUs.clear(), searchUs.clear(), restUs.clear(), totalUs.clear();
     contacts = 0, points = 0;
     for (size_t k = 0; k < poses.size(); ++k) {
-      if (motion > 0) {  // untimed: the deformation's own work
+      if (motion > 0) {                                                  // untimed: the deformation's own work
         const double phase = 2 * std::numbers::pi * double(k) / 1000.0;  // 1 Hz at 1 kHz
         if (motion == 1) {
-          for (size_t i = 0; i < rest.size(); ++i) frame.positions[i] = rest[i] + 0.5 * std::sin(profile[i] - phase) * Vec3::UnitZ();
+          for (size_t i = 0; i < rest.size(); ++i)
+            frame.positions[i] = rest[i] + 0.5 * std::sin(profile[i] - phase) * Vec3::UnitZ();
         } else {
-          for (int32_t i : frame.movedNodes) frame.positions[i] = rest[i] + 0.5 * std::sin(phase) * profile[i] * Vec3::UnitZ();
+          for (int32_t i : frame.movedNodes)
+            frame.positions[i] = rest[i] + 0.5 * std::sin(phase) * profile[i] * Vec3::UnitZ();
         }
         ++frame.step;
         channel.publish(frame);
@@ -167,7 +169,8 @@ void BM_TetCollisionStep(benchmark::State& state) {
       const auto t1 = Clock::now();
       const std::span<tetra::TetHit> hits = native.findHits(poses[k], shell);
       const auto t2 = Clock::now();
-      const ShellContact c = native.contactOfHits(poses[k], shell, hits, false).contact;  // collide() is these two calls
+      const ShellContact c =
+          native.contactOfHits(poses[k], shell, hits, false).contact;  // collide() is these two calls
       const auto t3 = Clock::now();
       benchmark::DoNotOptimize(c);
       contacts += c.points > 0;
@@ -198,10 +201,10 @@ void BM_TetCollisionStep(benchmark::State& state) {
 void arguments(benchmark::internal::Benchmark* b) {
   for (int mesh = 0; mesh < 12; ++mesh) {
     for (int method = 0; method < 3; ++method) b->Args({mesh, method, 0});  // rigid: the thesis's experiments
-    b->Args({mesh, 0, 1});                                                   // every node moves: the grid,
-    b->Args({mesh, 2, 1});                                                   // the thesis refreshing every box,
-    b->Args({mesh, 2, 2});                                                   // a local bump: all boxes
-    b->Args({mesh, 3, 2});                                                   // or only the moved ones
+    b->Args({mesh, 0, 1});                                                  // every node moves: the grid,
+    b->Args({mesh, 2, 1});                                                  // the thesis refreshing every box,
+    b->Args({mesh, 2, 2});                                                  // a local bump: all boxes
+    b->Args({mesh, 3, 2});                                                  // or only the moved ones
   }
 }
 BENCHMARK(BM_TetCollisionStep)->Apply(arguments)->Iterations(1)->Unit(benchmark::kMillisecond);

@@ -72,9 +72,9 @@ TEST_F(RunFailureTest, ABackEndThatThrowsEndsTheRunNamingTheTargetWithEveryOutpu
 </Node>
 )");
     const std::string summary = runToFailure(scene, dir / "out");
-    EXPECT_NE(summary.find("collision back-end \\\"throwing\\\" of " + target.path +
-                           " failed: deliberate back-end failure"),
-              std::string::npos)
+    EXPECT_NE(
+        summary.find("collision back-end \\\"throwing\\\" of " + target.path + " failed: deliberate back-end failure"),
+        std::string::npos)
         << summary;
     // The frames before the failure are in the trace: the header and one row per frame.
     const std::string trace = test::readFile(dir / "out/trace.csv");

@@ -82,7 +82,8 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
                                     std::to_string(press);
           expectSameContact(following.brain.collide(pose, shell, false), rigid.collide(pose, shell, false), where);
           EXPECT_EQ(following.brain.overlaps(pose, shell), rigid.overlaps(pose, shell)) << where;
-          EXPECT_EQ(shapes::native(following.brain).locate(pose.position), shapes::native(rigid).locate(pose.position)) << where;
+          EXPECT_EQ(shapes::native(following.brain).locate(pose.position), shapes::native(rigid).locate(pose.position))
+              << where;
           SweepQuery sweep;
           sweep.from = pose.position + Vec3(0.3, -0.2, 6.0);
           sweep.to = pose.position;
@@ -91,8 +92,8 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
           EXPECT_EQ(a.blocked, b.blocked) << where;
           EXPECT_NEAR(a.freeFraction, b.freeFraction, 1e-12) << where;
           Vec3 na, nb;
-          EXPECT_NEAR(shapes::native(following.brain).depthBelowSurface(pose.position, na), shapes::native(rigid).depthBelowSurface(pose.position, nb),
-                      1e-9)
+          EXPECT_NEAR(shapes::native(following.brain).depthBelowSurface(pose.position, na),
+                      shapes::native(rigid).depthBelowSurface(pose.position, nb), 1e-9)
               << where;
         }
       }
@@ -200,10 +201,10 @@ std::string deformingScene(const std::string& brain, const std::string& deformat
 
 TEST(DeformingBrainTest, ASecondDeformationOfOneMeshIsRefusedAtItsLink) {
   Diagnostics d;
-  const auto simulation = test::loadScene(
-      deformingScene("", R"(<ScriptedDeformation name="a" mesh="@brain" rate="1000"/>
+  const auto simulation =
+      test::loadScene(deformingScene("", R"(<ScriptedDeformation name="a" mesh="@brain" rate="1000"/>
     <ScriptedDeformation name="b" mesh="@brain" rate="1000"/>)"),
-      d);
+                      d);
   EXPECT_FALSE(simulation);
   const std::string text = test::messages(d);
   EXPECT_NE(text.find("inline.xml:7:41:"), std::string::npos) << text;
@@ -213,7 +214,8 @@ TEST(DeformingBrainTest, ASecondDeformationOfOneMeshIsRefusedAtItsLink) {
 TEST(DeformingBrainTest, ADeformationRefusesAZeroDirectionAndFieldsItsShapeIgnores) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(
-      deformingScene("", R"(<ScriptedDeformation name="a" mesh="@brain" direction="0 0 0" radius="3" rate="1000"/>)"), d));
+      deformingScene("", R"(<ScriptedDeformation name="a" mesh="@brain" direction="0 0 0" radius="3" rate="1000"/>)"),
+      d));
   const std::string text = test::messages(d);
   EXPECT_NE(text.find("direction must be a non-zero vector"), std::string::npos) << text;
   EXPECT_NE(text.find("has no effect with shape=\"wave\""), std::string::npos) << text;

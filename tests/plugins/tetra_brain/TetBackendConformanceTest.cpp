@@ -48,8 +48,7 @@ struct Backend {
 void PrintTo(const Backend& backend, std::ostream* os) { *os << backend.name; }
 
 std::vector<Backend> backends() {
-  std::vector<Backend> list = {
-      {"native", [] { return std::make_unique<NativeTetBackend>(); }, 0.01, 1e-6, false}};
+  std::vector<Backend> list = {{"native", [] { return std::make_unique<NativeTetBackend>(); }, 0.01, 1e-6, false}};
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
   list.push_back({"embree", [] { return std::make_unique<embree::EmbreeTetBackend>(); }, 1e-4, 1e-3, true});
 #endif
@@ -203,7 +202,9 @@ TEST_P(TetBackendConformanceTest, ADeformingMeshAnswersAsTheSameShapeBuiltRigidW
     }
     // Bullet's allocations are counted: its refits (every frame within the
     // margin) allocate nothing.
-    if (b.name == "bullet" && amplitude < 10.0) EXPECT_EQ(test::counter(brain, "follow_allocations"), 0.0);
+    if (b.name == "bullet" && amplitude < 10.0) {
+      EXPECT_EQ(test::counter(brain, "follow_allocations"), 0.0);
+    }
   }
   // Beyond the margin the native queries widened and the trees were rebuilt.
   if (b.name == "native") {
@@ -212,7 +213,9 @@ TEST_P(TetBackendConformanceTest, ADeformingMeshAnswersAsTheSameShapeBuiltRigidW
     EXPECT_GT(test::counter(brain, "rebuilt_blocks"), 0.0);
     EXPECT_GT(test::counter(brain, "refits"), 0.0);
   }
-  if (b.name == "bullet") EXPECT_GT(test::counter(brain, "follow_allocations"), 0.0) << "a rebuild makes a new tree";
+  if (b.name == "bullet") {
+    EXPECT_GT(test::counter(brain, "follow_allocations"), 0.0) << "a rebuild makes a new tree";
+  }
 }
 
 // A scene poking a brain that pulsates (every node moves every frame), on `backend`.
@@ -222,7 +225,8 @@ std::string pulsatingScene(const std::string& backend, const std::string& brainF
   return R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
   <RequiredPlugin name="haptics"/>
-  )" + plugin + R"(
+  )" + plugin +
+         R"(
   <Node name="patient">
     <TetraBrain name="brain" file="phantom:cube?cells=13" backend=")" +
          backend + "\" " + brainFields + R"(/>
@@ -301,8 +305,7 @@ TEST(TetBackendFieldTest, AnUnknownBackEndOrANativeOptionElsewhereIsALoadErrorAt
   Diagnostics d2;
   EXPECT_FALSE(test::loadScene(pulsatingScene("embree", R"(search="previous-contact" cellSize="3")"), d2));
   m = test::messages(d2);
-  EXPECT_NE(m.find("invalid search of TetraBrain 'brain': applies to backend=\"native\" only"), std::string::npos)
-      << m;
+  EXPECT_NE(m.find("invalid search of TetraBrain 'brain': applies to backend=\"native\" only"), std::string::npos) << m;
   EXPECT_NE(m.find("invalid cellSize"), std::string::npos) << m;
 #endif
 }
