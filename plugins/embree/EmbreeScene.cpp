@@ -69,6 +69,18 @@ bool countCallback(RTCPointQueryFunctionArguments* args) {
   return false;
 }
 
+// Visits the triangles whose boxes come within `radius` of p (rounded up to
+// float) with `callback`, which may shrink the query's radius.
+void pointQuery(RTCScene scene, const Vec3& p, double radius, RTCPointQueryFunction callback, void* user) {
+  RTCPointQuery query;
+  query.x = float(p.x()), query.y = float(p.y()), query.z = float(p.z());
+  query.time = 0;
+  query.radius = std::nextafter(float(radius), std::numeric_limits<float>::infinity());
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(scene, &query, &context, callback, user);
+}
+
 }  // namespace
 
 EmbreeScene::~EmbreeScene() {
@@ -204,13 +216,7 @@ bool EmbreeScene::closest(const Vec3& p, double radius, Vec3& point, double& dis
   q.best2 = radius * radius;
   q.average = averaged != nullptr;
   q.reach = radius;
-  RTCPointQuery query;
-  query.x = float(p.x()), query.y = float(p.y()), query.z = float(p.z());
-  query.time = 0;
-  query.radius = std::nextafter(float(radius), std::numeric_limits<float>::infinity());
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  rtcPointQuery(m_scene, &query, &context, closestCallback, &q);
+  pointQuery(m_scene, p, radius, closestCallback, &q);
   ++m_pointQueries;
   if (!q.which.valid()) return false;
   point = q.closest;
@@ -257,13 +263,7 @@ bool EmbreeScene::inside(const Vec3& p) const {
 
 size_t EmbreeScene::trianglesWithin(const Vec3& p, double radius) const {
   size_t candidates = 0;
-  RTCPointQuery query;
-  query.x = float(p.x()), query.y = float(p.y()), query.z = float(p.z());
-  query.time = 0;
-  query.radius = std::nextafter(float(radius), std::numeric_limits<float>::infinity());
-  RTCPointQueryContext context;
-  rtcInitPointQueryContext(&context);
-  rtcPointQuery(m_scene, &query, &context, countCallback, &candidates);
+  pointQuery(m_scene, p, radius, countCallback, &candidates);
   return candidates;
 }
 

@@ -37,6 +37,14 @@ class SlowComponent final : public trephine::Component {
   trephine::Field<double> d_busy{this, "busy", 0.002, {.help = "Time spent per call", .unit = "s"}};
 };
 
+// What the throwing back-ends' rays hit: a floor through the origin, so that
+// scripted devices find a surface.
+std::optional<trephine::SurfaceHit> floorHit(const trephine::Vec3& origin, const trephine::Vec3& direction) {
+  if (!(direction.z() < 0)) return std::nullopt;
+  const double s = -origin.z() / direction.z();
+  return trephine::SurfaceHit{origin + s * direction, trephine::Vec3::UnitZ(), s};
+}
+
 // A VoxelSkull back-end whose contact query throws at its 100th call (as a
 // third-party library might): the target must end the run naming itself.
 class ThrowingVoxelBackend final : public trephine::voxel::VoxelBackend {
@@ -52,10 +60,7 @@ class ThrowingVoxelBackend final : public trephine::voxel::VoxelBackend {
   bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
   std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
                                               double) const override {
-    // A floor through the origin, so that scripted devices find a surface.
-    if (!(direction.z() < 0)) return std::nullopt;
-    const double s = -origin.z() / direction.z();
-    return trephine::SurfaceHit{origin + s * direction, trephine::Vec3::UnitZ(), s};
+    return floorHit(origin, direction);
   }
 
  private:
@@ -78,9 +83,7 @@ class ThrowingTetBackend final : public trephine::tetra::TetBackend {
   bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
   std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
                                               double) const override {
-    if (!(direction.z() < 0)) return std::nullopt;
-    const double s = -origin.z() / direction.z();
-    return trephine::SurfaceHit{origin + s * direction, trephine::Vec3::UnitZ(), s};
+    return floorHit(origin, direction);
   }
 
  private:
