@@ -107,7 +107,8 @@ class ShellContactTarget : public SurfaceTarget {
   virtual void refresh() {}
   // The force (N) the tool's contact exerts on the target this frame (the
   // opposite of the force rendered to the user), from the last collide():
-  // for a deformable target to pass on to its deformation model.
+  // for a deformable target to pass on to its deformation model. Called every
+  // haptic frame, with zero when the tool touches nothing.
   virtual void applyContactForce(const Vec3& forceOnTarget_N, double t) {}
 };
 

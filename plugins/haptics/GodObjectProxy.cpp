@@ -28,8 +28,9 @@ void GodObjectProxy::init(InitContext& context) {
 }
 
 int GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) {
+  // Every frame, so that a deformable target knows when the contact ended.
+  l_target->applyContactForce(m_state.contact ? Vec3(-forceOnTool_N) : Vec3::Zero(), t);
   if (!m_state.contact) return 0;
-  l_target->applyContactForce(-forceOnTool_N, t);
   if (!m_state.cutting) return 0;
   CuttingLoad load;
   load.center_W = m_state.proxy;

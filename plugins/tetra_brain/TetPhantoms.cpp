@@ -1,5 +1,7 @@
 #include "plugins/tetra_brain/TetPhantoms.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <stdexcept>
 
@@ -27,12 +29,26 @@ TetPhantomDefinition defineTetPhantom(const std::string& specification) {
     return {[=] { return makeCubeMesh(cells, size); },
             [half = 0.5 * size](const Vec3& p) { return (p.cwiseAbs() - Vec3::Constant(half)).maxCoeff(); }};
   }
+  if (name == "bar") {
+    // A bar of square section along x, from x = 0 to the length, centred on
+    // the x axis: the cantilever of the FEM's tests and scenes.
+    const SourceSpec k(name, query, {{"length", 100}, {"width", 10}, {"cells", 4}});
+    const double length = k.positive("length"), width = k.positive("width");
+    const int cells = k.wholeNumber("cells", 1, 200);
+    const int along = std::max(1, int(std::lround(cells * length / width)));
+    const Vec3 low(0, -width / 2, -width / 2), high(length, width / 2, width / 2);
+    return {[=] { return makeBoxMesh({along, cells, cells}, low, high); },
+            [=](const Vec3& p) {
+              const Vec3 centre = 0.5 * (low + high), half = 0.5 * (high - low);
+              return ((p - centre).cwiseAbs() - half).maxCoeff();
+            }};
+  }
   if (name == "brain") {
     const SourceSpec k(name, query, {{"tets", 22000}});
     const int tets = k.wholeNumber("tets", 100, 2000000);
     return {[=] { return makeBrainPhantom(tets); }, brainPhantomDistance};
   }
-  throw std::invalid_argument("unknown phantom '" + name + "' (cube, brain)");
+  throw std::invalid_argument("unknown phantom '" + name + "' (cube, bar, brain)");
 }
 
 }  // namespace
@@ -43,6 +59,7 @@ LevelSet tetPhantomShape(const std::string& specification) { return defineTetPha
 
 std::string tetPhantomHelp() {
   return "  cube?cells=22&size=200   cube of cells^3 cells, 5 tetrahedra each (Table 4.1: 7, 13, 22, 30, 40, 50, 60)\n"
+         "  bar?length=100&width=10&cells=4   bar of square section along x from x = 0, cells across its width\n"
          "  brain?tets=22000         brain-shaped mesh (CGAL Mesh_3; Table 4.2: 3500, 12500, 22000, 40500, 50000)\n";
 }
 

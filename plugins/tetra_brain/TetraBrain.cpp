@@ -202,7 +202,15 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   // points that press hardest carry most), then among each site's nodes by
   // its weights, so that the nodal forces sum to the contact force and act
   // where it acts. Computed only for a reader.
-  if (m_nodeSlot.empty() || m_lastSites.empty() || !forceOnTarget_N.allFinite()) return;
+  if (m_nodeSlot.empty()) return;
+  if (m_lastSites.empty() || !forceOnTarget_N.allFinite() || forceOnTarget_N.isZero(0.0)) {
+    // No contact: the reader's last forces must end too (published once).
+    if (m_nodeForceValue.forces.empty()) return;
+    m_nodeForceValue.forces.clear();
+    m_nodeForceValue.t = t;
+    m_nodeForces->publish(m_nodeForceValue);
+    return;
+  }
   double depthSum = 0;
   for (const ContactSite& site : m_lastSites) depthSum += site.depth;
   std::vector<NodeForce>& forces = m_nodeForceValue.forces;

@@ -1,0 +1,127 @@
+#include "plugins/fem/TLEDForceField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "framework/core/Lifecycle.h"
+
+namespace trephine::fem {
+
+namespace {
+constexpr double kNewtonsToModelForce = 1000.0;  // N -> mN (kg mm / s^2)
+
+std::string seconds(double s) {
+  std::ostringstream out;
+  out.precision(3);
+  out << s * 1e3 << " ms";
+  return out.str();
+}
+}  // namespace
+
+void TLEDForceField::init(InitContext& context) {
+  tetra::TetraBrain& brain = *l_mesh;
+  const tetra::TetMesh& mesh = brain.mesh();
+  const ElementMaterial material = this->material();
+  try {
+    m_model = std::make_unique<TledModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
+  } catch (const std::invalid_argument& e) {
+    context.error(l_mesh, std::string("cannot build the FEM model of this mesh: ") + e.what());
+    return;
+  }
+  m_labels = mesh.labels;
+  if (auto error = checkTimeStep()) context.error(d_dt, *error);
+
+  m_channel = &context.channels().publish<tetra::NodePositions>(*this, tetra::kNodePositionsChannel);
+  if (auto error = brain.followDeformation(*this, context.channels())) {
+    context.error(l_mesh, *error);
+    return;
+  }
+  m_frame.positions = mesh.nodes;
+  m_frame.allMoved = true;
+  m_channel->reserve(m_frame);  // slots as large as a frame: publishing never allocates
+  m_forces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
+}
+
+std::optional<std::string> TLEDForceField::checkTimeStep() const {
+  const double critical = m_model->criticalTimeStep(d_damping.value());
+  if (d_dt.value() <= critical || d_acceptUnstable.value()) return std::nullopt;
+  return "dt = " + seconds(d_dt.value()) + " is above the critical time step of this mesh, " + seconds(critical) +
+         " (element " + std::to_string(m_model->criticalElement()) +
+         ": its characteristic length over the dilatational wave speed, with the damping): the explicit integration "
+         "would diverge. Use dt <= " +
+         seconds(critical) + ", or set acceptUnstableTimeStep=\"true\"";
+}
+
+std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const ElementMaterial& material) {
+  if (m_labels.empty()) return "the mesh " + l_mesh->path() + " carries no tissue labels";
+  std::vector<int32_t> elements;
+  for (size_t e = 0; e < m_labels.size(); ++e)
+    if (m_labels[e] == label) elements.push_back(int32_t(e));
+  if (elements.empty()) return "no element of " + l_mesh->path() + " has label " + std::to_string(label);
+  m_model->assignMaterial(elements, material);
+  return checkTimeStep();
+}
+
+void TLEDForceField::prepare(const RunPlan&) {
+  m_model->setTimeStep(d_dt.value(), d_damping.value());
+  m_pushedNodes.reserve(m_model->nodeCount());
+}
+
+void TLEDForceField::tick(const TickContext& context) {
+  ++m_ticks;
+  if (m_forces->fetch()) {
+    // The tool's latest reaction replaces the previous one.
+    for (int32_t node : m_pushedNodes) m_model->setExternalForce(node, Vec3::Zero());
+    m_pushedNodes.clear();
+    const tetra::NodeForces& latest = m_forces->read();
+    for (const tetra::NodeForce& f : latest.forces) {
+      if (f.node < 0 || size_t(f.node) >= m_model->nodeCount() || !f.force.allFinite()) {
+        ++m_droppedForces;
+        continue;
+      }
+      m_model->setExternalForce(f.node, kNewtonsToModelForce * f.force);
+      if (m_pushedNodes.size() < m_pushedNodes.capacity()) m_pushedNodes.push_back(f.node);
+    }
+    ++m_forceUpdates;
+  }
+  // As many steps as fit: the model's time stays within one step of the end of this period.
+  const double dt = m_model->timeStep();
+  const auto target = uint64_t(std::floor((context.t + context.dt) / dt + 1e-9));
+  uint64_t substeps = 0;
+  while (m_model->steps() < target) {
+    m_model->step();
+    m_mostInverted = std::max(m_mostInverted, m_model->invertedNow());
+    ++substeps;
+  }
+  m_mostSubsteps = std::max(m_mostSubsteps, substeps);
+  const double largest = m_model->writePositions(m_frame.positions);
+  if (!std::isfinite(largest)) {
+    // Diverged (an accepted unstable step, or forces beyond reason): the
+    // collision keeps the last finite shape.
+    if (m_nonFinite++ == 0 && context.events) context.events->log(context.t, "fem_diverged", "non_finite", this);
+    return;
+  }
+  m_largestDisplacement = std::max(m_largestDisplacement, largest);
+  m_frame.displacementBound = largest;
+  ++m_frame.step;
+  m_channel->publish(m_frame);
+}
+
+void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
+  if (!m_model) return;
+  counters.push_back({"elements", double(m_model->elementCount())});
+  counters.push_back({"critical_dt_s", m_model->criticalTimeStep(d_damping.value())});
+  counters.push_back({"steps", double(m_model->steps())});
+  counters.push_back({"most_substeps", double(m_mostSubsteps)});
+  counters.push_back({"inverted_element_steps", double(m_model->counts().inverted)});
+  counters.push_back({"most_inverted_elements", double(m_mostInverted)});
+  counters.push_back({"far_from_rest_element_steps", double(m_model->counts().farFromRest)});
+  counters.push_back({"largest_displacement_mm", m_largestDisplacement});
+  counters.push_back({"force_updates", double(m_forceUpdates)});
+  counters.push_back({"dropped_forces", double(m_droppedForces)});
+  counters.push_back({"non_finite_ticks", double(m_nonFinite)});
+  counters.push_back({"published_steps", double(m_frame.step)});
+}
+
+}  // namespace trephine::fem

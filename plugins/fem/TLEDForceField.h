@@ -1,0 +1,106 @@
+#pragma once
+// The brain's mechanics: TLED on the linear tetrahedra of a TetraBrain
+// (TledModel), ticked in its own rate group. Each tick it takes the latest
+// reaction forces of the tool on the nodes (the brain's node_forces, N),
+// advances as many time steps as fit in the period, and publishes the node
+// positions on node_positions, which the brain reads at the start of each
+// haptic frame. Constraints (FixedConstraint), body forces (Gravity) and
+// per-tissue materials (LabelMaterial) are components of their own that link
+// here: a scene without them has none.
+//
+// Units: the scene's (mm, kg, s), as the thesis's Table 6.1: density kg/mm^3,
+// Young's modulus kPa, forces on the model mN. The tool's forces arrive in N
+// and are multiplied by 1000 at the channel.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "framework/core/ChannelHub.h"
+#include "framework/core/Component.h"
+#include "plugins/fem/TledModel.h"
+#include "plugins/tetra_brain/MeshDeformation.h"
+#include "plugins/tetra_brain/TetraBrain.h"
+
+namespace trephine::fem {
+
+class TLEDForceField final : public Component {
+ public:
+  static constexpr std::string_view kTypeName = "TLEDForceField";
+
+  void init(InitContext& context) override;
+  void prepare(const RunPlan& plan) override;
+  void tick(const TickContext& context) override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+
+  // For the components that link here, during their init() (after this one's).
+  TledModel& model() { return *m_model; }
+  const tetra::TetraBrain& brain() const { return *l_mesh; }
+  bool hasModel() const { return m_model != nullptr; }
+  // Gives the elements of tissue `label` their own material; returns why it
+  // cannot (no element has the label, the time step is no longer stable).
+  std::optional<std::string> assignLabelMaterial(int label, const ElementMaterial& material);
+  double timeStep() const { return d_dt.value(); }
+  // The FEM's own material (fields density, youngModulus, poissonRatio).
+  ElementMaterial material() const { return {d_density.value(), d_youngModulus.value(), d_poissonRatio.value()}; }
+
+ private:
+  // Why dt is above the stable step, or nothing (or accepted).
+  std::optional<std::string> checkTimeStep() const;
+
+  Link<tetra::TetraBrain> l_mesh{this, "mesh", {.help = "The tetrahedral mesh this deforms", .required = true}};
+  Field<double> d_density{this,
+                          "density",
+                          1e-6,
+                          {.help = "Mass density (Table 6.1: 1e-6, water's)",
+                           .unit = "kg/mm^3",
+                           .min = 0.0,
+                           .minExclusive = true}};
+  Field<double> d_youngModulus{this,
+                               "youngModulus",
+                               30.0,
+                               {.help = "Young's modulus of the neo-Hookean material (Table 6.1: 30)",
+                                .unit = "kPa",
+                                .min = 0.0,
+                                .minExclusive = true}};
+  Field<double> d_poissonRatio{
+      this,
+      "poissonRatio",
+      0.3,
+      {.help = "Poisson's ratio (Table 6.1: 0.3); below 0.5, and the closer to it the smaller the stable time step",
+       .min = -0.99,
+       .max = 0.499}};
+  Field<double> d_damping{this,
+                          "damping",
+                          50.0,
+                          {.help = "Mass-proportional damping coefficient: each node feels -damping m v",
+                           .unit = "1/s",
+                           .min = 0.0}};
+  Field<double> d_dt{this,
+                     "dt",
+                     0.33e-3,
+                     {.help = "Time step of the central differences (the thesis's 0.33 ms); the FEM takes as many "
+                              "steps per tick as fit in its period. Above the critical step of the mesh it is a load "
+                              "error unless acceptUnstableTimeStep is set",
+                      .unit = "s",
+                      .min = 0.0,
+                      .minExclusive = true}};
+  Field<bool> d_acceptUnstable{this,
+                               "acceptUnstableTimeStep",
+                               false,
+                               {.help = "Run with a dt above the critical time step of the mesh (the simulation will "
+                                        "diverge: for tests of what follows)"}};
+  RateField d_rate{this, 1000.0, "Rate of the FEM's group: each tick advances the model by one period"};
+
+  std::unique_ptr<TledModel> m_model;
+  std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
+  std::optional<ChannelReader<tetra::NodeForces>> m_forces;
+  std::vector<int32_t> m_pushedNodes;  // nodes given a tool force by the last fetched value
+  Channel<tetra::NodePositions>* m_channel = nullptr;
+  tetra::NodePositions m_frame;
+  uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;
+  uint64_t m_mostInverted = 0;
+  double m_largestDisplacement = 0;  // mm
+};
+
+}  // namespace trephine::fem

@@ -1,0 +1,163 @@
+#pragma once
+// Total Lagrangian Explicit Dynamics on linear tetrahedra (Miller, Joldes,
+// Lance and Wittek 2007): the element matrices are computed once on the rest
+// shape (shape-function derivatives and volumes), each step evaluates the
+// deformation gradient of every element from the nodal displacements, the
+// neo-Hookean stress (NeoHookean.h) and the internal nodal forces, and
+// advances the displacements by central differences with lumped masses and
+// mass-proportional damping:
+//   u+ = (dt^2 / m (f_ext - f_int) + 2 u - (1 - a dt / 2) u-) / (1 + a dt / 2).
+// Linear tetrahedra have one integration point and no hourglass modes.
+//
+// Units (mm, kg, s): lengths mm, density kg/mm^3, moduli kPa (kg / (mm s^2)),
+// forces mN (kg mm / s^2), accelerations mm/s^2, energies uJ. The coupling
+// with the haptic side, in newtons, converts (TLEDForceField).
+//
+// Storage is structure-of-arrays, elements and nodes alike, so that the
+// element loop vectorises (TledKernel.cpp); nothing allocates after the
+// model is built.
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "framework/math/Math.h"
+#include "plugins/fem/NeoHookean.h"
+#include "plugins/tetra_brain/TetMesh.h"
+
+namespace trephine::fem {
+
+struct ElementMaterial {
+  double density = 1e-6;      // kg/mm^3 (1000 kg/m^3)
+  double youngModulus = 30;   // kPa
+  double poissonRatio = 0.3;  // below 0.5
+};
+
+// Per-step figures of the element loop.
+struct ElementStepCounts {
+  uint64_t inverted = 0;  // elements with J <= 0 (their isochoric stress is taken at J = kMinIsochoricJ)
+  uint64_t farFromRest = 0;  // elements whose J^(-1/3) took the exact (slow) path
+};
+
+// The element arrays, structure of arrays, padded to a multiple of kLanes with
+// elements of zero volume on node 0 (they add nothing).
+struct TledElements {
+  static constexpr size_t kLanes = 8;
+  size_t count = 0;   // real elements
+  size_t padded = 0;  // count rounded up to kLanes
+  std::vector<int32_t> node[4];
+  // Rest-shape derivatives of the shape functions of local nodes 1..3 (node 0's
+  // are minus their sum), 1/mm: grad[3 * (a - 1) + j][e] = dN_a / dX_j.
+  std::vector<double> grad[9];
+  std::vector<double> volume;  // rest volume, mm^3
+  std::vector<double> mu, kappa;  // kPa
+};
+
+// Computes the internal nodal forces f_int (mN) of every element from the
+// displacements, adding them into fx, fy, fz. Defined in TledKernel.cpp.
+ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* ux, const double* uy,
+                                           const double* uz, double* fx, double* fy, double* fz);
+
+// J below which the isochoric part of the stress is evaluated at this J
+// instead: it grows as J^(-5/3) and an element squeezed flat (or inverted)
+// would otherwise produce an unbounded force or a NaN. The volumetric part,
+// kappa (J - 1) cof F, is polynomial and stays as it is: it pushes an inverted
+// element back.
+inline constexpr double kMinIsochoricJ = 0.05;
+
+class TledModel {
+ public:
+  // Precomputes the element matrices and the lumped masses. `materials` has
+  // one entry per tetrahedron, or one for all. Throws std::invalid_argument
+  // for an element of non-positive rest volume (its index), or a material out
+  // of range.
+  TledModel(std::span<const Vec3> restNodes, std::span<const tetra::TetIndices> tets,
+            std::span<const ElementMaterial> materials);
+
+  size_t nodeCount() const { return m_rest.size(); }
+  size_t elementCount() const { return m_elements.count; }
+
+  // The largest stable time step of central differences without damping (s):
+  // the smallest, over the elements, of the element's characteristic length
+  // over its dilatational wave speed, L / c with L = 1 / |grad N| (a regular
+  // tetrahedron's is half its height). `criticalElement` sets it.
+  double criticalTimeStep() const { return m_criticalStep; }
+  size_t criticalElement() const { return m_criticalElement; }
+  // With mass-proportional damping a (1/s) the bound is lowered to
+  // dt_cr (sqrt(1 + xi^2) - xi), xi = a dt_cr / 2 at the highest frequency.
+  double criticalTimeStep(double damping) const;
+
+  // Gives `elements` another material: their moduli, their share of the
+  // lumped masses and the critical time step follow. Call setTimeStep() after.
+  void assignMaterial(std::span<const int32_t> elements, const ElementMaterial& material);
+
+  // Time step (s) and mass-proportional damping (1/s).
+  void setTimeStep(double dt, double damping);
+  double timeStep() const { return m_dt; }
+  double damping() const { return m_damping; }
+
+  // Uniform acceleration of every node (gravity), mm/s^2.
+  void setBodyAcceleration(const Vec3& acceleration) { m_bodyAcceleration = acceleration; }
+  // Holds `axes` (bit 0: x, 1: y, 2: z) of a node at its rest position plus
+  // `displacement` (mm); the node's own forces no longer move those axes.
+  void fixNode(int32_t node, const Vec3& displacement = Vec3::Zero(), unsigned axes = 7);
+  bool isFixed(int32_t node, int axis) const { return m_free[axis][node] == 0.0; }
+
+  // External force on a node (mN) for the next steps, until changed.
+  void setExternalForce(int32_t node, const Vec3& force_mN);
+  void clearExternalForces();
+
+  // Advances one time step. Allocation-free.
+  void step();
+  uint64_t steps() const { return m_steps; }
+
+  // State, mm.
+  Vec3 displacement(int32_t node) const { return {m_u[0][node], m_u[1][node], m_u[2][node]}; }
+  Vec3 position(int32_t node) const { return m_rest[node] + displacement(node); }
+  const std::vector<Vec3>& restNodes() const { return m_rest; }
+  // Sets the displacement of every node now and one step ago (mm): a start
+  // with a velocity (u - uPrevious) / dt.
+  void setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious);
+  // Writes rest + displacement into `positions` (nodeCount() entries); returns
+  // the largest displacement (mm).
+  double writePositions(std::span<Vec3> positions) const;
+
+  double mass(int32_t node) const { return m_mass[node]; }  // kg
+  double totalMass() const;
+  const TledElements& elements() const { return m_elements; }
+  // The internal force on every node (mN) at the current displacements
+  // (tests, static solves); allocation-free into the caller's array.
+  void internalForces(std::span<Vec3> forces) const;
+
+  // Energies, uJ: kinetic from the velocity at the half step just taken,
+  // strain from the neo-Hookean energy of every element (slow: reports and tests).
+  double kineticEnergy() const;
+  double strainEnergy() const;
+
+  // Running totals of the element loop.
+  const ElementStepCounts& counts() const { return m_counts; }
+  // Elements with J <= 0 in the last step.
+  uint64_t invertedNow() const { return m_invertedNow; }
+
+ private:
+  std::vector<Vec3> m_rest;
+  TledElements m_elements;
+  std::vector<double> m_density;           // per element, kg/mm^3
+  std::vector<double> m_length;            // per element, its characteristic length 1 / |grad N|, mm
+  std::vector<double> m_mass;              // kg, lumped (a quarter of each element's mass per node)
+  std::vector<double> m_u[3], m_uPrev[3];  // mm, now and one step ago
+  std::vector<double> m_f[3];              // mN: external forces, and the step's scratch
+  std::vector<double> m_external[3];       // mN
+  std::vector<double> m_free[3];           // 1: the axis moves; 0: held at m_held
+  std::vector<double> m_held[3];           // mm
+  std::vector<double> m_stepScale;         // dt^2 / (m (1 + a dt / 2)), mm / mN
+  double m_dt = 0, m_damping = 0;
+  Vec3 m_bodyAcceleration = Vec3::Zero();
+  void findCriticalStep();
+  double m_criticalStep = 0;
+  size_t m_criticalElement = 0;
+  uint64_t m_steps = 0, m_invertedNow = 0;
+  ElementStepCounts m_counts;
+};
+
+}  // namespace trephine::fem

@@ -1,0 +1,365 @@
+// TLED against closed forms: the kernel against the scalar neo-Hookean
+// formulas, uniaxial stretch against the material's stress-strain curve, a
+// cantilever against Euler-Bernoulli, energy conservation, rigid motions,
+// inverted elements, the critical time step, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <random>
+
+#include "plugins/fem/TledModel.h"
+#include "plugins/tetra_brain/CubePhantom.h"
+
+namespace trephine::fem {
+namespace {
+
+using tetra::makeBoxMesh;
+using tetra::TetIndices;
+using tetra::TetMesh;
+
+constexpr ElementMaterial kBrain{1e-6, 30.0, 0.3};  // Table 6.1
+
+TledModel modelOf(const TetMesh& mesh, const ElementMaterial& material = kBrain) {
+  return TledModel(mesh.nodes, mesh.tets, std::span(&material, 1));
+}
+
+// The reference: the scalar formulas of NeoHookean.h on one element.
+std::array<Vec3, 4> referenceForces(const std::array<Vec3, 4>& X, const std::array<Vec3, 4>& x,
+                                    const ElasticModuli& m) {
+  Mat3 D, d;
+  for (int a = 0; a < 3; ++a) {
+    D.col(a) = X[a + 1] - X[0];
+    d.col(a) = x[a + 1] - x[0];
+  }
+  const Mat3 F = d * D.inverse();
+  const double V = D.determinant() / 6;
+  const Mat3 P = neoHookeanStress(F, m);
+  const Mat3 G = D.inverse();  // row a: gradient of N_(a+1)
+  std::array<Vec3, 4> f;
+  f[0] = Vec3::Zero();
+  for (int a = 0; a < 3; ++a) {
+    f[a + 1] = V * P * G.row(a).transpose();
+    f[0] -= f[a + 1];
+  }
+  return f;
+}
+
+TEST(TledModelTest, KernelForcesMatchTheScalarNeoHookeanFormulas) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const ElasticModuli moduli = ElasticModuli::fromYoung(kBrain.youngModulus, kBrain.poissonRatio);
+  // One element per case, deformed by a random F scaled to a chosen J: near
+  // rest (the fast root) and far from it (the exact one).
+  for (double targetJ : {1.0, 0.97, 1.05, 0.62, 1.58, 0.3, 2.5, 6.0}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      std::array<Vec3, 4> X{Vec3(0, 0, 0), Vec3(3, 0.2, 0.1), Vec3(0.5, 2.5, -0.3), Vec3(0.2, 0.4, 2.8)};
+      for (Vec3& p : X) p += 0.3 * Vec3(unit(random), unit(random), unit(random));
+      Mat3 F = Mat3::Identity() + 0.15 * Mat3::NullaryExpr([&](Eigen::Index, Eigen::Index) { return unit(random); });
+      F *= std::cbrt(targetJ / F.determinant());
+      std::array<Vec3, 4> x;
+      for (int a = 0; a < 4; ++a) x[a] = F * X[a] + Vec3(1, 2, 3);
+      const TetMesh mesh{{X.begin(), X.end()}, {TetIndices{0, 1, 2, 3}}, {}};
+      TledModel model = modelOf(mesh);
+      std::vector<Vec3> u(4), forces(4);
+      for (int a = 0; a < 4; ++a) u[a] = x[a] - X[a];
+      model.setDisplacements(u, u);
+      model.internalForces(forces);
+      const auto expected = referenceForces(X, x, moduli);
+      double scale = 0;
+      for (const Vec3& f : expected) scale = std::max(scale, f.norm());
+      for (int a = 0; a < 4; ++a)
+        EXPECT_LT((forces[a] - expected[a]).norm(), 1e-12 * std::max(scale, 1.0))
+            << "J " << targetJ << " node " << a << ": " << forces[a].transpose() << " vs "
+            << expected[a].transpose();
+    }
+  }
+}
+
+// Uniaxial stretch lambda along x with free lateral faces: F = diag(lambda,
+// t, t) with t from P22 = 0, found here by bisection on the closed form.
+double uniaxialNominalStress(double lambda, const ElasticModuli& m) {
+  const auto P = [&](double t) {
+    Mat3 F = Mat3::Identity();
+    F(0, 0) = lambda;
+    F(1, 1) = F(2, 2) = t;
+    return neoHookeanStress(F, m);
+  };
+  double low = 0.2, high = 2.0;  // P22 rises with t
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (low + high);
+    (P(mid)(1, 1) > 0 ? high : low) = mid;
+  }
+  return P(0.5 * (low + high))(0, 0);
+}
+
+TEST(TledModelTest, UniaxialStretchOfACubeFollowsTheNeoHookeanCurveWithinOnePercent) {
+  const double L = 10;  // mm
+  const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(L));
+  const ElasticModuli moduli = ElasticModuli::fromYoung(kBrain.youngModulus, kBrain.poissonRatio);
+  for (double lambda : {0.8, 0.9, 1.1, 1.3, 1.5}) {
+    TledModel model = modelOf(mesh);
+    // Symmetry planes x = 0, y = 0, z = 0; the face x = L pulled to lambda L.
+    std::vector<int32_t> pulled;
+    for (size_t i = 0; i < mesh.nodeCount(); ++i) {
+      const Vec3& X = mesh.nodes[i];
+      unsigned axes = (X.x() == 0 ? 1u : 0u) | (X.y() == 0 ? 2u : 0u) | (X.z() == 0 ? 4u : 0u);
+      if (axes) model.fixNode(int32_t(i), Vec3::Zero(), axes);
+      if (X.x() == L) pulled.push_back(int32_t(i));
+    }
+    // Dynamic relaxation: damping about twice the lowest frequency (c / L ~ 630 rad/s).
+    // The face is pulled over the first 2000 steps (a jump would crush the
+    // elements next to it), then held.
+    model.setTimeStep(0.9 * model.criticalTimeStep(), 2000);
+    for (int step = 1; step <= 5000; ++step) {
+      const double share = std::min(1.0, step / 2000.0);
+      for (int32_t i : pulled) model.fixNode(i, Vec3(share * (lambda - 1) * L, 0, 0), 1u);
+      model.step();
+    }
+    std::vector<Vec3> forces(mesh.nodeCount());
+    model.internalForces(forces);
+    double reaction = 0;  // mN: what holds the pulled face
+    for (int32_t i : pulled) reaction += forces[i].x();
+    const double expected = uniaxialNominalStress(lambda, moduli) * L * L;  // kPa mm^2 = mN
+    EXPECT_NEAR(reaction / expected, 1.0, 0.01) << "stretch " << lambda << ": " << reaction << " mN against "
+                                                << expected << " mN";
+  }
+}
+
+// A cantilever along x (length 100 mm, square section 10 mm) clamped at
+// x = 0 under its own weight, at a small acceleration so that the strain stays
+// small (Euler-Bernoulli: tip deflection 3 rho g L^4 / (2 E h^2) = 0.5 mm).
+struct Cantilever {
+  static constexpr double L = 100, h = 10, g = 10;  // mm, mm, mm/s^2
+  TetMesh mesh;
+  std::vector<char> clamped;
+  explicit Cantilever(int cellsAcross)
+      : mesh(makeBoxMesh({10 * cellsAcross, cellsAcross, cellsAcross}, Vec3(0, -h / 2, -h / 2), Vec3(L, h / 2, h / 2))) {
+    for (const Vec3& X : mesh.nodes) clamped.push_back(X.x() == 0);
+  }
+  static double eulerBernoulli() { return -3 * kBrain.density * g * std::pow(L, 4) / (2 * kBrain.youngModulus * h * h); }
+  double meanTip(const std::function<double(size_t)>& deflection) const {
+    double sum = 0;
+    int count = 0;
+    for (size_t i = 0; i < mesh.nodeCount(); ++i)
+      if (mesh.nodes[i].x() == L) sum += deflection(i), ++count;
+    return sum / count;
+  }
+};
+
+// The static deflection from the kernel's own forces: K u = m g solved by
+// conjugate gradients (Jacobi preconditioned), K v the central difference of
+// the internal forces along v at rest (the small-strain stiffness).
+double staticTipDeflection(const Cantilever& beam) {
+  const TledModel model = modelOf(beam.mesh);
+  const TledElements& el = model.elements();
+  const size_t n = 3 * beam.mesh.nodeCount();
+  using Vector = std::vector<double>;  // x of every node, then y, then z
+  Vector plus(n), minus(n), forcePlus(n), forceMinus(n);
+  const auto free = [&](size_t k) { return !beam.clamped[k % beam.mesh.nodeCount()]; };
+  const auto stiffness = [&](const Vector& v, Vector& out) {
+    double largest = 1e-300;
+    for (double x : v) largest = std::max(largest, std::abs(x));
+    const double epsilon = 1e-6 / largest;  // mm of the largest entry
+    for (size_t k = 0; k < n; ++k) plus[k] = epsilon * v[k], minus[k] = -plus[k];
+    std::fill(forcePlus.begin(), forcePlus.end(), 0.0);
+    std::fill(forceMinus.begin(), forceMinus.end(), 0.0);
+    const size_t m = n / 3;
+    accumulateInternalForces(el, &plus[0], &plus[m], &plus[2 * m], &forcePlus[0], &forcePlus[m], &forcePlus[2 * m]);
+    accumulateInternalForces(el, &minus[0], &minus[m], &minus[2 * m], &forceMinus[0], &forceMinus[m],
+                             &forceMinus[2 * m]);
+    for (size_t k = 0; k < n; ++k) out[k] = free(k) ? (forcePlus[k] - forceMinus[k]) / (2 * epsilon) : 0.0;
+  };
+  // Jacobi: the diagonal of the linear-elastic element stiffness.
+  Vector diagonal(n, 0.0);
+  const size_t m = n / 3;
+  for (size_t e = 0; e < el.count; ++e) {
+    std::array<Vec3, 4> g;
+    for (int a = 0; a < 3; ++a) g[a + 1] = Vec3(el.grad[3 * a][e], el.grad[3 * a + 1][e], el.grad[3 * a + 2][e]);
+    g[0] = -(g[1] + g[2] + g[3]);
+    const double lambda = el.kappa[e] - 2 * el.mu[e] / 3;
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        diagonal[i * m + el.node[a][e]] +=
+            el.volume[e] * ((lambda + el.mu[e]) * g[a][i] * g[a][i] + el.mu[e] * g[a].squaredNorm());
+  }
+  Vector x(n, 0.0), r(n, 0.0), z(n), p(n), Ap(n);
+  for (size_t i = 0; i < m; ++i) r[2 * m + i] = free(i) ? -model.mass(int32_t(i)) * Cantilever::g : 0.0;
+  const auto dot = [](const Vector& a, const Vector& b) {
+    double s = 0;
+    for (size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
+    return s;
+  };
+  const double bb = dot(r, r);
+  for (size_t k = 0; k < n; ++k) z[k] = free(k) ? r[k] / diagonal[k] : 0.0;
+  p = z;
+  double rz = dot(r, z);
+  for (int iteration = 0; iteration < 5000 && dot(r, r) > 1e-20 * bb; ++iteration) {
+    stiffness(p, Ap);
+    const double alpha = rz / dot(p, Ap);
+    for (size_t k = 0; k < n; ++k) x[k] += alpha * p[k], r[k] -= alpha * Ap[k];
+    for (size_t k = 0; k < n; ++k) z[k] = free(k) ? r[k] / diagonal[k] : 0.0;
+    const double next = dot(r, z);
+    for (size_t k = 0; k < n; ++k) p[k] = z[k] + (next / rz) * p[k];
+    rz = next;
+  }
+  EXPECT_LE(dot(r, r), 1e-20 * bb) << "conjugate gradients did not converge";
+  return beam.meanTip([&](size_t i) { return x[2 * m + i]; });
+}
+
+TEST(TledModelTest, ACantileverUnderGravityConvergesToEulerBernoulli) {
+  // Linear tetrahedra are stiff in bending: the error falls with the square
+  // of the element size (here 32%, 11% and 3% with 2, 4 and 8 cells across).
+  const double exact = Cantilever::eulerBernoulli();
+  double previousError = INFINITY;
+  for (int cells : {2, 4, 8}) {
+    const double tip = staticTipDeflection(Cantilever(cells));
+    const double error = std::abs(tip / exact - 1);
+    EXPECT_LT(error, previousError) << cells << " cells across";
+    previousError = error;
+  }
+  EXPECT_LT(previousError, 0.05) << "8 cells across";
+}
+
+TEST(TledModelTest, TheDampedCantileverSettlesOnItsStaticDeflection) {
+  const Cantilever beam(2);
+  const double expected = staticTipDeflection(beam);
+  TledModel model = modelOf(beam.mesh);
+  for (size_t i = 0; i < beam.mesh.nodeCount(); ++i)
+    if (beam.clamped[i]) model.fixNode(int32_t(i));
+  model.setBodyAcceleration(Vec3(0, 0, -Cantilever::g));
+  // The first bending mode is at 3.5 (h / L^2) sqrt(E / (12 rho)) = 5.6 rad/s; damping twice that.
+  model.setTimeStep(0.9 * model.criticalTimeStep(), 11);
+  const int steps = int(std::ceil(4.0 / model.timeStep()));  // 4 s
+  for (int step = 0; step < steps; ++step) model.step();
+  const double tip = beam.meanTip([&](size_t i) { return model.displacement(int32_t(i)).z(); });
+  EXPECT_NEAR(tip / expected, 1.0, 0.01) << tip << " mm against " << expected << " mm";
+}
+
+TEST(TledModelTest, ARigidMotionProducesNoForce) {
+  const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(30));
+  TledModel model = modelOf(mesh);
+  const Mat3 R = Eigen::AngleAxisd(0.9, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<Vec3> u(mesh.nodeCount()), forces(mesh.nodeCount());
+  for (size_t i = 0; i < u.size(); ++i) u[i] = R * mesh.nodes[i] + Vec3(40, -7, 3) - mesh.nodes[i];
+  model.setDisplacements(u, u);
+  model.internalForces(forces);
+  // A scale: the force of a 1% strain on a cell face, E 0.01 h^2 = 30 mN.
+  for (const Vec3& f : forces) EXPECT_LT(f.norm(), 1e-9 * 30) << f.transpose();
+  // Released at rest, it stays where it is.
+  model.setTimeStep(0.5 * model.criticalTimeStep(), 0);
+  for (int step = 0; step < 200; ++step) model.step();
+  for (size_t i = 0; i < u.size(); ++i) EXPECT_LT((model.displacement(int32_t(i)) - u[i]).norm(), 1e-9);
+}
+
+TEST(TledModelTest, AnInvertedElementGivesFiniteRestoringForcesAndIsCounted) {
+  const std::vector<Vec3> nodes{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  const TetMesh mesh{nodes, {TetIndices{0, 1, 2, 3}}, {}};
+  for (double z : {0.0, -0.5, -3.0}) {  // flat (J = 0), inverted, far inverted
+    TledModel model = modelOf(mesh);
+    for (int32_t i = 0; i < 3; ++i) model.fixNode(i);
+    std::vector<Vec3> u(4, Vec3::Zero()), forces(4);
+    u[3] = Vec3(0, 0, z - 1);
+    model.setDisplacements(u, u);
+    model.internalForces(forces);
+    for (const Vec3& f : forces) EXPECT_TRUE(f.allFinite()) << "z " << z;
+    // The internal force on the apex points down (it resists): released, it moves up.
+    EXPECT_LT(forces[3].z(), 0) << "z " << z;
+    model.setTimeStep(0.5 * model.criticalTimeStep(), 0);
+    model.step();
+    EXPECT_EQ(model.invertedNow(), 1u) << "z " << z;  // J <= 0
+    EXPECT_EQ(model.counts().farFromRest, 1u);
+    EXPECT_GT(model.displacement(3).z(), z - 1) << "z " << z;
+    EXPECT_TRUE(model.displacement(3).allFinite());
+  }
+}
+
+// Total energy of a free cube released from a smooth deformation, no damping:
+// at step n, the strain energy of u_n plus the kinetic energy of the central
+// velocity (u_(n+1) - u_(n-1)) / (2 dt), second-order accurate as the scheme.
+TEST(TledModelTest, WithoutDampingEnergyIsConservedWithinOnePercentOver10000Steps) {
+  const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(20));
+  const size_t n = mesh.nodeCount();
+  TledModel model = modelOf(mesh);
+  TledModel probe = modelOf(mesh);  // evaluates the strain energy of a past state
+  std::vector<Vec3> u(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& X = mesh.nodes[i];
+    u[i] = Vec3(0.15 * X.x() * std::sin(X.y() / 12), -0.1 * X.y(), 0.05 * X.z() * X.x() / 20);
+  }
+  model.setDisplacements(u, u);
+  const double dt = 0.5 * model.criticalTimeStep();
+  model.setTimeStep(dt, 0);
+  const double initial = model.strainEnergy();
+  ASSERT_GT(initial, 0);
+  std::vector<Vec3> before = u, now = u;
+  double worst = 0, largestKinetic = 0;
+  for (int step = 1; step <= 10000; ++step) {
+    model.step();
+    if (step % 10 == 0) {
+      double kinetic = 0;  // uJ
+      for (size_t i = 0; i < n; ++i)
+        kinetic += 0.5 * model.mass(int32_t(i)) * ((model.displacement(int32_t(i)) - before[i]) / (2 * dt)).squaredNorm();
+      probe.setDisplacements(now, now);
+      largestKinetic = std::max(largestKinetic, kinetic);
+      worst = std::max(worst, std::abs(probe.strainEnergy() + kinetic - initial) / initial);
+    }
+    before.swap(now);
+    for (size_t i = 0; i < n; ++i) now[i] = model.displacement(int32_t(i));
+  }
+  EXPECT_GT(largestKinetic, 0.5 * initial);  // it did oscillate
+  EXPECT_LT(worst, 0.01);
+}
+
+TEST(TledModelTest, TheCriticalTimeStepSeparatesStableFromDivergent) {
+  const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(20));
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<Vec3> u(mesh.nodeCount());
+  for (Vec3& v : u) v = 1e-3 * Vec3(unit(random), unit(random), unit(random));  // every mode excited
+  const auto largestAfter = [&](double factor) {
+    TledModel model = modelOf(mesh);
+    model.setDisplacements(u, u);
+    model.setTimeStep(factor * model.criticalTimeStep(), 0);
+    for (int step = 0; step < 3000; ++step) model.step();
+    double largest = 0;
+    for (size_t i = 0; i < u.size(); ++i) {
+      const double d = model.displacement(int32_t(i)).norm();
+      if (!(d <= largest)) largest = d;  // a NaN stays
+    }
+    return largest;
+  };
+  // At the bound: bounded. At 1.5 times it: diverges (to infinity, or NaN),
+  // so the bound is within a factor 1.5 of the mesh's true limit.
+  EXPECT_LT(largestAfter(1.0), 1e-2);
+  const double beyond = largestAfter(1.5);
+  EXPECT_FALSE(beyond < 1e3) << beyond;
+}
+
+TEST(TledModelTest, StepsAreDeterministic) {
+  const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
+  const auto run = [&] {
+    TledModel model = modelOf(mesh);
+    for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
+    model.setBodyAcceleration(Vec3(0, 0, -9810));
+    model.setExternalForce(50, Vec3(1, 2, -3));
+    model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
+    for (int step = 0; step < 500; ++step) model.step();
+    std::vector<Vec3> positions(mesh.nodeCount());
+    model.writePositions(positions);
+    return positions;
+  };
+  const auto a = run(), b = run();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(Vec3)), 0);
+}
+
+TEST(TledModelTest, LumpedMassesSumToTheBodysMass) {
+  const TetMesh mesh = makeBoxMesh({3, 4, 5}, Vec3::Zero(), Vec3(30, 20, 10));
+  const TledModel model = modelOf(mesh);
+  EXPECT_NEAR(model.totalMass(), kBrain.density * 30 * 20 * 10, 1e-15);
+}
+
+}  // namespace
+}  // namespace trephine::fem
