@@ -2,27 +2,35 @@
 // deformation gradient from the nodal displacements, the neo-Hookean stress
 // and the four internal nodal forces (NeoHookean.h gives the formulas).
 //
-// Elements are taken in chunks: the displacements of a chunk's nodes are
-// gathered into arrays, the arithmetic runs over those arrays in branch-free
-// loops the compiler vectorises (about 190 floating-point operations per
-// element), and the forces are scattered back to the nodes. J^(-1/3) comes
-// from a quadratic guess and four Newton steps, exact to rounding for J in
-// [0.6, 1.6]; the few elements deformed beyond that range take std::cbrt in a
-// scalar pass, so the library's transcendental function never runs for an
-// element near rest. The loop is compiled twice, for the baseline instruction
-// set and for AVX2 with FMA, and the faster one this processor runs is picked
-// once.
+// Elements are taken in chunks of 64: the displacements of a chunk's nodes
+// are gathered into arrays, the arithmetic runs over those arrays in
+// branch-free loops the compiler vectorises (about 250 floating-point
+// operations per element), and the forces are scattered back to the nodes.
+// J^(-1/3) comes from its cubic Taylor polynomial and three Newton steps,
+// exact to rounding for J in [0.65, 1.5]; the few elements deformed beyond
+// that take std::cbrt in a scalar pass, so the library's transcendental
+// function never runs for an element near rest. Everything is compiled for
+// the baseline instruction set and for AVX2 with FMA, where a node's (x, y,
+// z, 0) is one 256-bit load or store and four elements' nodes are transposed
+// in registers; the faster version this processor runs is picked when the
+// library loads.
 #include <algorithm>
 #include <cmath>
 
 #include "plugins/fem/TledModel.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define TREPHINE_TLED_AVX2 1
+#endif
 
 namespace trephine::fem {
 
 namespace {
 
 constexpr size_t kChunk = 64;  // elements per pass: the scratch below stays in L1 (about 30 KB)
-constexpr double kFastLow = 0.6, kFastHigh = 1.6;
+constexpr double kFastLow = 0.65, kFastHigh = 1.5;
+static_assert(kChunk % TledElements::kLanes == 0 && TledElements::kLanes % 4 == 0);
 
 struct ChunkScratch {
   // d[3 (a - 1) + i]: displacement of local node a less node 0's, axis i (mm).
@@ -30,131 +38,230 @@ struct ChunkScratch {
   alignas(64) double F[9][kChunk];  // row-major deformation gradient
   alignas(64) double J[kChunk];
   alignas(64) double I1[kChunk];
-  alignas(64) double y[kChunk];  // J^(-1/3), with J clamped below at kMinIsochoricJ
+  alignas(64) double y[kChunk];     // J^(-1/3), with J clamped below at kMinIsochoricJ
   alignas(64) double f[9][kChunk];  // forces on local nodes 1..3 (node 0 takes minus their sum), mN
 };
 
-[[gnu::always_inline]] inline ElementStepCounts forcesOfAllElements(const TledElements& el, const double* ux,
-                                                                   const double* uy, const double* uz, double* fx,
-                                                                   double* fy, double* fz) {
+// ---- gather and scatter, portable --------------------------------------------
+
+[[gnu::always_inline]] inline void gatherScalar(const TledElements& el, size_t base, size_t n, const double* u,
+                                                ChunkScratch& s) {
+  for (size_t e = 0; e < n; ++e) {
+    const double* u0 = u + kNodeStride * size_t(el.node[0][base + e]);
+    for (int a = 1; a < 4; ++a) {
+      const double* ua = u + kNodeStride * size_t(el.node[a][base + e]);
+      for (int i = 0; i < 3; ++i) s.d[3 * (a - 1) + i][e] = ua[i] - u0[i];
+    }
+  }
+}
+
+[[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base, size_t n,
+                                                 const ChunkScratch& s, double* f) {
+  for (size_t e = 0; e < n; ++e) {
+    double* f0 = f + kNodeStride * size_t(el.node[0][base + e]);
+    for (int a = 1; a < 4; ++a) {
+      double* fa = f + kNodeStride * size_t(el.node[a][base + e]);
+      for (int i = 0; i < 3; ++i) {
+        fa[i] += s.f[3 * (a - 1) + i][e];
+        f0[i] -= s.f[3 * (a - 1) + i][e];
+      }
+    }
+  }
+}
+
+// ---- the arithmetic, shared by both versions ---------------------------------
+
+// F = I + sum_a d_a grad_a^T, J, I1 and the fast J^(-1/3); then the exact root
+// where J is far from 1. Returns the counts of the chunk.
+[[gnu::always_inline]] inline ElementStepCounts strainOfChunk(const TledElements& el, size_t base, size_t n,
+                                                              ChunkScratch& s) {
+  const double* g[9];
+  for (int k = 0; k < 9; ++k) g[k] = el.grad[k].data() + base;
+  for (size_t e = 0; e < n; ++e) {
+    double F[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        F[3 * i + j] = (i == j ? 1.0 : 0.0) + s.d[i][e] * g[j][e] + s.d[3 + i][e] * g[3 + j][e] +
+                       s.d[6 + i][e] * g[6 + j][e];
+    const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                     F[2] * (F[3] * F[7] - F[4] * F[6]);
+    double I1 = 0;
+    for (int k = 0; k < 9; ++k) {
+      s.F[k][e] = F[k];
+      I1 += F[k] * F[k];
+    }
+    s.J[e] = J;
+    s.I1[e] = I1;
+    // Products by 1/3 and 1/81, not divisions: the compiler may not turn a
+    // division by 3 into a product itself (1/3 is not exact).
+    constexpr double kThird = 1.0 / 3.0;
+    const double x = J - 1;
+    double y = 1 + x * (-kThird + x * (2.0 / 9.0 - x * (14.0 / 81.0)));
+    // Newton on y^-3 = J: y (4 - J y^3) / 3, written so that its chain of
+    // dependent operations is three deep, not six.
+    for (int it = 0; it < 3; ++it) {
+      const double cubeTimesJ = (y * y) * (y * J);
+      y = (4 * kThird) * y - (kThird * y) * cubeTimesJ;
+    }
+    s.y[e] = y;
+  }
   ElementStepCounts counts;
-  ChunkScratch s;
-  for (size_t base = 0; base < el.padded; base += kChunk) {
-    const size_t n = std::min(kChunk, el.padded - base);
-    // Gather.
-    for (size_t e = 0; e < n; ++e) {
-      const int32_t n0 = el.node[0][base + e];
-      for (int a = 1; a < 4; ++a) {
-        const int32_t na = el.node[a][base + e];
-        s.d[3 * (a - 1) + 0][e] = ux[na] - ux[n0];
-        s.d[3 * (a - 1) + 1][e] = uy[na] - uy[n0];
-        s.d[3 * (a - 1) + 2][e] = uz[na] - uz[n0];
-      }
-    }
-    // F = I + sum_a d_a grad_a^T, J, I1 and the fast J^(-1/3).
-    const double* g[9];
-    for (int k = 0; k < 9; ++k) g[k] = el.grad[k].data() + base;
-    for (size_t e = 0; e < n; ++e) {
-      double F[9];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          F[3 * i + j] = (i == j ? 1.0 : 0.0) + s.d[i][e] * g[j][e] + s.d[3 + i][e] * g[3 + j][e] +
-                         s.d[6 + i][e] * g[6 + j][e];
-      const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                       F[2] * (F[3] * F[7] - F[4] * F[6]);
-      double I1 = 0;
-      for (int k = 0; k < 9; ++k) {
-        s.F[k][e] = F[k];
-        I1 += F[k] * F[k];
-      }
-      s.J[e] = J;
-      s.I1[e] = I1;
-      const double x = J - 1;
-      double y = 1 - x / 3 + 2 * x * x / 9;
-      for (int it = 0; it < 4; ++it) y = y * (4 - J * y * y * y) * (1.0 / 3.0);
-      s.y[e] = y;
-    }
-    // Elements far from rest: the exact root (scalar, rare).
-    for (size_t e = 0; e < n; ++e) {
-      const double J = s.J[e];
-      if (J >= kFastLow && J <= kFastHigh) continue;
-      ++counts.farFromRest;
-      if (!(J > 0)) ++counts.inverted;
-      s.y[e] = 1.0 / std::cbrt(std::max(J, kMinIsochoricJ));
-    }
-    // P = mu J^(-2/3) F + (kappa (J - 1) - mu I1 J^(-5/3) / 3) cof F; f_a = V P grad_a.
-    const double* volume = el.volume.data() + base;
-    const double* mu = el.mu.data() + base;
-    const double* kappa = el.kappa.data() + base;
-    for (size_t e = 0; e < n; ++e) {
-      double F[9];
-      for (int k = 0; k < 9; ++k) F[k] = s.F[k][e];
-      const double J = s.J[e];
-      const double Jiso = std::max(J, kMinIsochoricJ);
-      const double y2 = s.y[e] * s.y[e];  // J^(-2/3)
-      const double isochoric = mu[e] * y2;
-      const double onCofactor = kappa[e] * (J - 1) - isochoric * s.I1[e] / (3 * Jiso);
-      const double cof[9] = {F[4] * F[8] - F[5] * F[7], F[5] * F[6] - F[3] * F[8], F[3] * F[7] - F[4] * F[6],
-                             F[2] * F[7] - F[1] * F[8], F[0] * F[8] - F[2] * F[6], F[1] * F[6] - F[0] * F[7],
-                             F[1] * F[5] - F[2] * F[4], F[2] * F[3] - F[0] * F[5], F[0] * F[4] - F[1] * F[3]};
-      double VP[9];
-      for (int k = 0; k < 9; ++k) VP[k] = volume[e] * (isochoric * F[k] + onCofactor * cof[k]);
-      for (int a = 0; a < 3; ++a)
-        for (int i = 0; i < 3; ++i)
-          s.f[3 * a + i][e] =
-              VP[3 * i] * g[3 * a][e] + VP[3 * i + 1] * g[3 * a + 1][e] + VP[3 * i + 2] * g[3 * a + 2][e];
-    }
-    // Scatter.
-    for (size_t e = 0; e < n; ++e) {
-      const int32_t n0 = el.node[0][base + e];
-      double sx = 0, sy = 0, sz = 0;
-      for (int a = 1; a < 4; ++a) {
-        const int32_t na = el.node[a][base + e];
-        const double ax = s.f[3 * (a - 1)][e], ay = s.f[3 * (a - 1) + 1][e], az = s.f[3 * (a - 1) + 2][e];
-        fx[na] += ax;
-        fy[na] += ay;
-        fz[na] += az;
-        sx += ax;
-        sy += ay;
-        sz += az;
-      }
-      fx[n0] -= sx;
-      fy[n0] -= sy;
-      fz[n0] -= sz;
-    }
+  for (size_t e = 0; e < n; ++e) {
+    const double J = s.J[e];
+    if (J >= kFastLow && J <= kFastHigh) continue;
+    ++counts.farFromRest;
+    if (!(J > 0)) ++counts.inverted;
+    s.y[e] = 1.0 / std::cbrt(std::max(J, kMinIsochoricJ));
   }
   return counts;
 }
 
-ElementStepCounts forcesBaseline(const TledElements& el, const double* ux, const double* uy, const double* uz,
-                                 double* fx, double* fy, double* fz) {
-  return forcesOfAllElements(el, ux, uy, uz, fx, fy, fz);
+// P V = mu V J^(-2/3) F + (kappa V (J - 1) - mu V I1 J^(-5/3) / 3) cof F; f_a = P V grad_a.
+[[gnu::always_inline]] inline void forcesOfChunk(const TledElements& el, size_t base, size_t n, ChunkScratch& s) {
+  const double* g[9];
+  for (int k = 0; k < 9; ++k) g[k] = el.grad[k].data() + base;
+  const double* mu = el.muVolume.data() + base;  // the rest volume is in the moduli
+  const double* kappa = el.kappaVolume.data() + base;
+  for (size_t e = 0; e < n; ++e) {
+    double F[9];
+    for (int k = 0; k < 9; ++k) F[k] = s.F[k][e];
+    const double J = s.J[e];
+    const double y = s.y[e], y2 = y * y;  // J^(-1/3), J^(-2/3)
+    const double isochoric = mu[e] * y2;
+    // mu I1 J^(-5/3) / 3 with J^(-5/3) = y^5: no division (and no select,
+    // which would stop the vectoriser), the clamp of J already in y.
+    const double onCofactor = kappa[e] * (J - 1) - isochoric * (y2 * y) * s.I1[e] * (1.0 / 3.0);
+    const double cof[9] = {F[4] * F[8] - F[5] * F[7], F[5] * F[6] - F[3] * F[8], F[3] * F[7] - F[4] * F[6],
+                           F[2] * F[7] - F[1] * F[8], F[0] * F[8] - F[2] * F[6], F[1] * F[6] - F[0] * F[7],
+                           F[1] * F[5] - F[2] * F[4], F[2] * F[3] - F[0] * F[5], F[0] * F[4] - F[1] * F[3]};
+    double P[9];
+    for (int k = 0; k < 9; ++k) P[k] = isochoric * F[k] + onCofactor * cof[k];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i)
+        s.f[3 * a + i][e] = P[3 * i] * g[3 * a][e] + P[3 * i + 1] * g[3 * a + 1][e] + P[3 * i + 2] * g[3 * a + 2][e];
+  }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledElements& el, const double* ux,
-                                                                  const double* uy, const double* uz, double* fx,
-                                                                  double* fy, double* fz) {
-  return forcesOfAllElements(el, ux, uy, uz, fx, fy, fz);
+// ---- the two versions ----------------------------------------------------------
+
+ElementStepCounts forcesBaseline(const TledElements& el, const double* u, double* f) {
+  ElementStepCounts counts;
+  ChunkScratch s;
+  for (size_t base = 0; base < el.padded; base += kChunk) {
+    const size_t n = std::min(kChunk, el.padded - base);
+    gatherScalar(el, base, n, u, s);
+    const ElementStepCounts chunk = strainOfChunk(el, base, n, s);
+    counts.inverted += chunk.inverted;
+    counts.farFromRest += chunk.farFromRest;
+    forcesOfChunk(el, base, n, s);
+    scatterScalar(el, base, n, s, f);
+  }
+  return counts;
 }
+
+#ifdef TREPHINE_TLED_AVX2
+// Rows r0..r3 (one per element: x, y, z, 0) to columns (x of the four, y, z).
+__attribute__((target("avx2,fma"), always_inline)) inline void transposeToColumns(__m256d r0, __m256d r1, __m256d r2,
+                                                                                 __m256d r3, __m256d& x, __m256d& y,
+                                                                                 __m256d& z) {
+  const __m256d t0 = _mm256_unpacklo_pd(r0, r1);  // x0 x1 z0 z1
+  const __m256d t1 = _mm256_unpackhi_pd(r0, r1);  // y0 y1 0 0
+  const __m256d t2 = _mm256_unpacklo_pd(r2, r3);  // x2 x3 z2 z3
+  const __m256d t3 = _mm256_unpackhi_pd(r2, r3);  // y2 y3 0 0
+  x = _mm256_permute2f128_pd(t0, t2, 0x20);
+  y = _mm256_permute2f128_pd(t1, t3, 0x20);
+  z = _mm256_permute2f128_pd(t0, t2, 0x31);
+}
+
+// Columns (x of four elements, y, z) to rows (x, y, z, 0), one per element.
+__attribute__((target("avx2,fma"), always_inline)) inline void transposeToRows(__m256d x, __m256d y, __m256d z,
+                                                                              __m256d r[4]) {
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d t0 = _mm256_unpacklo_pd(x, y);     // x0 y0 x2 y2
+  const __m256d t1 = _mm256_unpackhi_pd(x, y);     // x1 y1 x3 y3
+  const __m256d t2 = _mm256_unpacklo_pd(z, zero);  // z0 0 z2 0
+  const __m256d t3 = _mm256_unpackhi_pd(z, zero);  // z1 0 z3 0
+  r[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+  r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+  r[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+  r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+
+__attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const TledElements& el, size_t base,
+                                                                         size_t n, const double* u, ChunkScratch& s) {
+  for (size_t e = 0; e < n; e += 4) {
+    __m256d node0[4];
+    for (int k = 0; k < 4; ++k) node0[k] = _mm256_loadu_pd(u + kNodeStride * size_t(el.node[0][base + e + k]));
+    for (int a = 1; a < 4; ++a) {
+      __m256d d[4];
+      for (int k = 0; k < 4; ++k)
+        d[k] = _mm256_sub_pd(_mm256_loadu_pd(u + kNodeStride * size_t(el.node[a][base + e + k])), node0[k]);
+      __m256d x, y, z;
+      transposeToColumns(d[0], d[1], d[2], d[3], x, y, z);
+      _mm256_store_pd(&s.d[3 * (a - 1)][e], x);
+      _mm256_store_pd(&s.d[3 * (a - 1) + 1][e], y);
+      _mm256_store_pd(&s.d[3 * (a - 1) + 2][e], z);
+    }
+  }
+}
+
+__attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const TledElements& el, size_t base,
+                                                                          size_t n, const ChunkScratch& s, double* f) {
+  for (size_t e = 0; e < n; e += 4) {
+    __m256d rows[3][4];  // per local node 1..3, per element
+    __m256d sum[4] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
+    for (int a = 0; a < 3; ++a) {
+      transposeToRows(_mm256_load_pd(&s.f[3 * a][e]), _mm256_load_pd(&s.f[3 * a + 1][e]),
+                      _mm256_load_pd(&s.f[3 * a + 2][e]), rows[a]);
+      for (int k = 0; k < 4; ++k) sum[k] = _mm256_add_pd(sum[k], rows[a][k]);
+    }
+    // One element after the other: elements of a chunk share nodes.
+    for (int k = 0; k < 4; ++k) {
+      double* f0 = f + kNodeStride * size_t(el.node[0][base + e + k]);
+      _mm256_storeu_pd(f0, _mm256_sub_pd(_mm256_loadu_pd(f0), sum[k]));
+      for (int a = 0; a < 3; ++a) {
+        double* fa = f + kNodeStride * size_t(el.node[a + 1][base + e + k]);
+        _mm256_storeu_pd(fa, _mm256_add_pd(_mm256_loadu_pd(fa), rows[a][k]));
+      }
+    }
+  }
+}
+
+__attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledElements& el, const double* u, double* f) {
+  ElementStepCounts counts;
+  ChunkScratch s;
+  for (size_t base = 0; base < el.padded; base += kChunk) {
+    const size_t n = std::min(kChunk, el.padded - base);  // a multiple of 4: elements are padded to kLanes
+    gatherAvx2(el, base, n, u, s);
+    const ElementStepCounts chunk = strainOfChunk(el, base, n, s);
+    counts.inverted += chunk.inverted;
+    counts.farFromRest += chunk.farFromRest;
+    forcesOfChunk(el, base, n, s);
+    scatterAvx2(el, base, n, s, f);
+  }
+  return counts;
+}
+
 #endif
 
-using ForcesFunction = ElementStepCounts (*)(const TledElements&, const double*, const double*, const double*,
-                                             double*, double*, double*);
+using ForcesFunction = ElementStepCounts (*)(const TledElements&, const double*, double*);
 
 ForcesFunction pickForces() {
-#if defined(__x86_64__) && defined(__GNUC__)
+#ifdef TREPHINE_TLED_AVX2
+  __builtin_cpu_init();  // this may run before libgcc's own initialiser
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return forcesAvx2;
 #endif
   return forcesBaseline;
 }
 
+// Picked when the library loads, not at the first call (a function-local
+// static would take a lock there).
+const ForcesFunction kForces = pickForces();
+
 }  // namespace
 
-ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* ux, const double* uy,
-                                           const double* uz, double* fx, double* fy, double* fz) {
-  static const ForcesFunction forces = pickForces();
-  return forces(elements, ux, uy, uz, fx, fy, fz);
+ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f) {
+  return kForces(elements, u, f);
 }
 
 }  // namespace trephine::fem

@@ -2,19 +2,46 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace trephine::fem {
 
 namespace {
 
-void checkMaterial(const ElementMaterial& m, size_t index) {
-  const auto where = [&] { return " (material " + std::to_string(index) + ")"; };
-  if (!(m.density > 0) || !std::isfinite(m.density)) throw std::invalid_argument("density must be > 0" + where());
+void checkMaterial(const ElementMaterial& m) {
+  if (!(m.density > 0) || !std::isfinite(m.density)) throw std::invalid_argument("density must be > 0");
   if (!(m.youngModulus > 0) || !std::isfinite(m.youngModulus))
-    throw std::invalid_argument("Young's modulus must be > 0" + where());
+    throw std::invalid_argument("Young's modulus must be > 0");
   if (!(m.poissonRatio > -1 && m.poissonRatio < 0.5))
-    throw std::invalid_argument("Poisson's ratio must be in (-1, 0.5)" + where());
+    throw std::invalid_argument("Poisson's ratio must be in (-1, 0.5)");
+}
+
+// Interleaves the low 21 bits of x, y, z: a Morton (Z-order) code.
+uint64_t spreadBits(uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+// Ranks of `points` along the Z-order curve over their box (ties by index).
+std::vector<int32_t> zOrder(const std::vector<Vec3>& points) {
+  Box3 box;
+  for (const Vec3& p : points) box.extend(p);
+  const Vec3 scale = Vec3::Constant(double((1 << 21) - 1)).cwiseQuotient((box.max() - box.min()).cwiseMax(1e-12));
+  std::vector<uint64_t> codes(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3 q = (points[i] - box.min()).cwiseProduct(scale);
+    codes[i] = spreadBits(uint64_t(q.x())) | spreadBits(uint64_t(q.y())) << 1 | spreadBits(uint64_t(q.z())) << 2;
+  }
+  std::vector<int32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return codes[a] < codes[b]; });
+  return order;  // order[k]: the k-th point along the curve
 }
 
 }  // namespace
@@ -25,27 +52,49 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
   if (materials.size() != 1 && materials.size() != tets.size())
     throw std::invalid_argument("one material for all elements or one per element (" +
                                 std::to_string(materials.size()) + " for " + std::to_string(tets.size()) + ")");
-  for (size_t i = 0; i < materials.size(); ++i) checkMaterial(materials[i], i);
+  for (const ElementMaterial& m : materials) checkMaterial(m);
   const size_t n = m_rest.size();
+  for (size_t e = 0; e < tets.size(); ++e)
+    for (int32_t node : tets[e])
+      if (node < 0 || size_t(node) >= n)
+        throw std::invalid_argument("element " + std::to_string(e) + " names node " + std::to_string(node) + " of " +
+                                    std::to_string(n));
+  // Internal orders along a space-filling curve: nodes by position, elements
+  // by centroid, so that the element loop meets its nodes in cache.
+  m_external = zOrder(m_rest);
+  m_internal.assign(n, 0);
+  for (size_t k = 0; k < n; ++k) m_internal[m_external[k]] = int32_t(k);
+  std::vector<Vec3> centroids(tets.size());
+  for (size_t e = 0; e < tets.size(); ++e)
+    centroids[e] = 0.25 * (m_rest[tets[e][0]] + m_rest[tets[e][1]] + m_rest[tets[e][2]] + m_rest[tets[e][3]]);
+  // Four stretches of the curve interleaved: the four elements the kernel
+  // takes together (and the next four) lie far apart and share no nodes, so
+  // the additions of their forces into the nodes do not wait for each other.
+  const std::vector<int32_t> curve = zOrder(centroids);
+  const size_t quarter = (tets.size() + 3) / 4;
+  std::vector<int32_t> elementOrder;
+  elementOrder.reserve(tets.size());
+  for (size_t q = 0; q < quarter; ++q)
+    for (size_t lane = 0; lane < 4; ++lane)
+      if (lane * quarter + q < tets.size()) elementOrder.push_back(curve[lane * quarter + q]);
+  m_elementInternal.assign(tets.size(), 0);
+  for (size_t k = 0; k < tets.size(); ++k) m_elementInternal[elementOrder[k]] = int32_t(k);
+
   TledElements& el = m_elements;
   el.count = tets.size();
   el.padded = (el.count + TledElements::kLanes - 1) / TledElements::kLanes * TledElements::kLanes;
   for (auto& v : el.node) v.assign(el.padded, 0);
   for (auto& v : el.grad) v.assign(el.padded, 0.0);
-  el.volume.assign(el.padded, 0.0);
-  el.mu.assign(el.padded, 0.0);
-  el.kappa.assign(el.padded, 0.0);
+  el.muVolume.assign(el.padded, 0.0);
+  el.kappaVolume.assign(el.padded, 0.0);
+  m_volume.assign(el.count, 0.0);
+  m_density.assign(el.count, 0.0);
+  m_length.assign(el.count, 0.0);
   m_mass.assign(n, 0.0);
-  m_length.reserve(el.count);
-  m_density.reserve(el.count);
-  for (size_t e = 0; e < el.count; ++e) {
+  for (size_t k = 0; k < el.count; ++k) {
+    const size_t e = size_t(elementOrder[k]);  // the mesh's index
     const tetra::TetIndices& t = tets[e];
-    for (int a = 0; a < 4; ++a) {
-      if (t[a] < 0 || size_t(t[a]) >= n)
-        throw std::invalid_argument("element " + std::to_string(e) + " names node " + std::to_string(t[a]) +
-                                    " of " + std::to_string(n));
-      el.node[a][e] = t[a];
-    }
+    for (int a = 0; a < 4; ++a) el.node[a][k] = m_internal[t[a]];
     const Vec3 &X0 = m_rest[t[0]], &X1 = m_rest[t[1]], &X2 = m_rest[t[2]], &X3 = m_rest[t[3]];
     Mat3 D;
     D.col(0) = X1 - X0;
@@ -58,13 +107,14 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
     // Barycentric coordinates of nodes 1..3 are D^-1 (X - X0): their gradients are the rows of D^-1.
     const Mat3 Dinv = D.inverse();
     for (int a = 0; a < 3; ++a)
-      for (int j = 0; j < 3; ++j) el.grad[3 * a + j][e] = Dinv(a, j);
+      for (int j = 0; j < 3; ++j) el.grad[3 * a + j][k] = Dinv(a, j);
     const ElementMaterial& material = materials.size() == 1 ? materials[0] : materials[e];
     const ElasticModuli moduli = ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio);
-    el.volume[e] = volume;
-    el.mu[e] = moduli.mu;
-    el.kappa[e] = moduli.kappa;
-    for (int a = 0; a < 4; ++a) m_mass[t[a]] += 0.25 * material.density * volume;
+    m_volume[k] = volume;
+    m_density[k] = material.density;
+    el.muVolume[k] = moduli.mu * volume;
+    el.kappaVolume[k] = moduli.kappa * volume;
+    for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += 0.25 * material.density * volume;
     // Characteristic length 1 / |grad N|, |grad N|^2 the sum over the four
     // nodes of |grad N_a|^2 = 1 / h_a^2 (h_a the height over node a): the
     // element's stiffest mode is at most (lambda + 2 mu) V |grad N|^2, so with
@@ -72,52 +122,84 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
     // 2 c |grad N|, and central differences are stable below 1 / (c |grad N|).
     // (Checked against the 12 x 12 eigenvalues of random elements: the bound is
     // reached.) The mesh's highest frequency is at most its elements' highest.
-    double gradientSquared = 0;
+    double gradientSquared = (Dinv.row(0) + Dinv.row(1) + Dinv.row(2)).squaredNorm();
     for (int a = 0; a < 3; ++a) gradientSquared += Dinv.row(a).squaredNorm();
-    gradientSquared += (Dinv.row(0) + Dinv.row(1) + Dinv.row(2)).squaredNorm();
-    m_length.push_back(1 / std::sqrt(gradientSquared));
-    m_density.push_back(material.density);
+    m_length[k] = 1 / std::sqrt(gradientSquared);
   }
   findCriticalStep();
-  for (int axis = 0; axis < 3; ++axis) {
-    m_u[axis].assign(n, 0.0);
-    m_uPrev[axis].assign(n, 0.0);
-    m_f[axis].assign(n, 0.0);
-    m_external[axis].assign(n, 0.0);
-    m_held[axis].assign(n, 0.0);
-    m_free[axis].assign(n, 1.0);
-    // A node no element holds has no mass: it stays where it is.
-    for (size_t i = 0; i < n; ++i)
-      if (m_mass[i] == 0) m_free[axis][i] = 0.0;
-  }
+  m_u.assign(kNodeStride * n, 0.0);
+  m_uPrev.assign(kNodeStride * n, 0.0);
+  m_f.assign(kNodeStride * n, 0.0);
   m_stepScale.assign(n, 0.0);
+  // A node no element holds has no mass: it stays where it is.
+  for (size_t k = 0; k < n; ++k)
+    if (m_mass[k] == 0)
+      for (size_t axis = 0; axis < 3; ++axis) m_held.push_back({kNodeStride * k + axis, 0.0});
+  m_externalForces.reserve(n);
+  m_externalSlot.assign(n, -1);
 }
 
 void TledModel::findCriticalStep() {
   m_criticalStep = INFINITY;
-  const TledElements& el = m_elements;
-  for (size_t e = 0; e < el.count; ++e) {
-    const double step = m_length[e] / ElasticModuli{el.mu[e], el.kappa[e]}.dilatationalWaveSpeed(m_density[e]);
+  for (size_t k = 0; k < m_elements.count; ++k) {
+    const ElasticModuli moduli{m_elements.muVolume[k] / m_volume[k], m_elements.kappaVolume[k] / m_volume[k]};
+    const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_density[k]);
     if (step < m_criticalStep) {
       m_criticalStep = step;
-      m_criticalElement = e;
+      m_criticalElement = k;
     }
   }
+  // Reported in the mesh's numbering.
+  for (size_t e = 0; e < m_elementInternal.size(); ++e)
+    if (size_t(m_elementInternal[e]) == m_criticalElement) {
+      m_criticalElement = e;
+      break;
+    }
+}
+
+size_t TledModel::elementsBelowStep(double dt) const {
+  size_t count = 0;
+  for (size_t k = 0; k < m_elements.count; ++k) {
+    const ElasticModuli moduli{m_elements.muVolume[k] / m_volume[k], m_elements.kappaVolume[k] / m_volume[k]};
+    if (m_length[k] / moduli.dilatationalWaveSpeed(m_density[k]) < dt) ++count;
+  }
+  return count;
 }
 
 void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementMaterial& material) {
-  checkMaterial(material, 0);
+  checkMaterial(material);
   const ElasticModuli moduli = ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio);
   TledElements& el = m_elements;
   for (int32_t e : elements) {
-    const double change = 0.25 * (material.density - m_density[e]) * el.volume[e];
-    for (int a = 0; a < 4; ++a) m_mass[el.node[a][e]] += change;
-    m_density[e] = material.density;
-    el.mu[e] = moduli.mu;
-    el.kappa[e] = moduli.kappa;
+    const size_t k = size_t(m_elementInternal[e]);
+    const double change = 0.25 * (material.density - m_density[k]) * m_volume[k];
+    for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += change;
+    m_density[k] = material.density;
+    el.muVolume[k] = moduli.mu * m_volume[k];
+    el.kappaVolume[k] = moduli.kappa * m_volume[k];
   }
   findCriticalStep();
   if (m_dt > 0) setTimeStep(m_dt, m_damping);
+}
+
+double TledModel::scaleMassForStep(double dt) {
+  // An element's step is L / c, c = sqrt(M / rho): raising its density by
+  // (dt / step)^2 brings its step to dt.
+  double added = 0;
+  const TledElements& el = m_elements;
+  for (size_t k = 0; k < el.count; ++k) {
+    const ElasticModuli moduli{el.muVolume[k] / m_volume[k], el.kappaVolume[k] / m_volume[k]};
+    const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_density[k]);
+    if (step >= dt) continue;
+    const double density = m_density[k] * (dt / step) * (dt / step);
+    const double change = 0.25 * (density - m_density[k]) * m_volume[k];
+    for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += change;
+    added += 4 * change;
+    m_density[k] = density;
+  }
+  findCriticalStep();
+  if (m_dt > 0) setTimeStep(m_dt, m_damping);
+  return added;
 }
 
 double TledModel::criticalTimeStep(double damping) const {
@@ -131,52 +213,74 @@ void TledModel::setTimeStep(double dt, double damping) {
   m_dt = dt;
   m_damping = damping;
   const double denominator = 1 + damping * dt / 2;
-  for (size_t i = 0; i < m_mass.size(); ++i)
-    m_stepScale[i] = m_mass[i] > 0 ? dt * dt / (m_mass[i] * denominator) : 0.0;
+  for (size_t k = 0; k < m_mass.size(); ++k) m_stepScale[k] = m_mass[k] > 0 ? dt * dt / (m_mass[k] * denominator) : 0.0;
 }
 
 void TledModel::fixNode(int32_t node, const Vec3& displacement, unsigned axes) {
-  for (int axis = 0; axis < 3; ++axis) {
+  const size_t base = kNodeStride * size_t(m_internal[node]);
+  for (size_t axis = 0; axis < 3; ++axis) {
     if (!(axes & (1u << axis))) continue;
-    m_free[axis][node] = 0.0;
-    m_held[axis][node] = displacement[axis];
-    m_u[axis][node] = m_uPrev[axis][node] = displacement[axis];
+    const size_t index = base + axis;
+    auto held = std::find_if(m_held.begin(), m_held.end(), [&](const HeldAxis& h) { return h.index == index; });
+    if (held == m_held.end()) {
+      m_held.push_back({index, displacement[axis]});
+    } else {
+      held->value = displacement[axis];
+    }
+    m_u[index] = m_uPrev[index] = displacement[axis];
   }
+}
+
+bool TledModel::isFixed(int32_t node, int axis) const {
+  const size_t index = kNodeStride * size_t(m_internal[node]) + size_t(axis);
+  return std::any_of(m_held.begin(), m_held.end(), [&](const HeldAxis& h) { return h.index == index; });
 }
 
 void TledModel::setExternalForce(int32_t node, const Vec3& force_mN) {
-  for (int axis = 0; axis < 3; ++axis) m_external[axis][node] = force_mN[axis];
+  const int32_t k = m_internal[node];
+  int32_t& slot = m_externalSlot[k];
+  if (slot < 0) {
+    slot = int32_t(m_externalForces.size());
+    m_externalForces.push_back({k, Vec3::Zero()});  // within the capacity reserved for every node
+  }
+  m_externalForces[slot].force = force_mN;
 }
 
 void TledModel::clearExternalForces() {
-  for (auto& f : m_external) std::fill(f.begin(), f.end(), 0.0);
+  for (const ExternalForce& f : m_externalForces) m_externalSlot[f.node] = -1;
+  m_externalForces.clear();
+}
+
+void TledModel::forcesInto(const std::vector<double>& u, std::vector<double>& f) const {
+  std::fill(f.begin(), f.end(), 0.0);
+  accumulateInternalForces(m_elements, u.data(), f.data());
 }
 
 void TledModel::step() {
-  for (auto& f : m_f) std::fill(f.begin(), f.end(), 0.0);
-  const ElementStepCounts counts = accumulateInternalForces(m_elements, m_u[0].data(), m_u[1].data(), m_u[2].data(),
-                                                            m_f[0].data(), m_f[1].data(), m_f[2].data());
+  std::fill(m_f.begin(), m_f.end(), 0.0);
+  const ElementStepCounts counts = accumulateInternalForces(m_elements, m_u.data(), m_f.data());
   m_invertedNow = counts.inverted;
   m_counts.inverted += counts.inverted;
   m_counts.farFromRest += counts.farFromRest;
+  for (const ExternalForce& e : m_externalForces)
+    for (size_t axis = 0; axis < 3; ++axis) m_f[kNodeStride * e.node + axis] -= e.force[axis];
   const double denominator = 1 + m_damping * m_dt / 2;
   const double now = 2 / denominator, before = (1 - m_damping * m_dt / 2) / denominator;
+  const double gravity[kNodeStride] = {m_dt * m_dt * m_bodyAcceleration.x() / denominator,
+                                       m_dt * m_dt * m_bodyAcceleration.y() / denominator,
+                                       m_dt * m_dt * m_bodyAcceleration.z() / denominator, 0.0};  // mm per step
   const size_t n = m_mass.size();
-  for (int axis = 0; axis < 3; ++axis) {
-    const double gravity = m_dt * m_dt * m_bodyAcceleration[axis] / denominator;  // mm per step
-    const double* u = m_u[axis].data();
-    const double* f = m_f[axis].data();
-    const double* external = m_external[axis].data();
-    const double* free = m_free[axis].data();
-    const double* held = m_held[axis].data();
-    const double* scale = m_stepScale.data();
-    double* next = m_uPrev[axis].data();  // u- is read and overwritten by u+ at the same index
-    for (size_t i = 0; i < n; ++i) {
-      const double moved = now * u[i] - before * next[i] + scale[i] * (external[i] - f[i]) + gravity;
-      next[i] = free[i] * moved + (1 - free[i]) * held[i];
+  const double* u = m_u.data();
+  const double* f = m_f.data();
+  const double* scale = m_stepScale.data();
+  double* next = m_uPrev.data();  // u- is read and overwritten by u+ at the same index
+  for (size_t k = 0; k < n; ++k)
+    for (size_t axis = 0; axis < kNodeStride; ++axis) {
+      const size_t i = kNodeStride * k + axis;
+      next[i] = now * u[i] - before * next[i] - scale[k] * f[i] + gravity[axis];
     }
-    std::swap(m_u[axis], m_uPrev[axis]);
-  }
+  for (const HeldAxis& h : m_held) next[h.index] = h.value;
+  std::swap(m_u, m_uPrev);
   ++m_steps;
 }
 
@@ -184,42 +288,56 @@ void TledModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> 
   if (u.size() != nodeCount() || uPrevious.size() != nodeCount())
     throw std::invalid_argument("one displacement per node");
   for (size_t i = 0; i < nodeCount(); ++i)
-    for (int axis = 0; axis < 3; ++axis) {
-      m_u[axis][i] = m_free[axis][i] != 0 ? u[i][axis] : m_held[axis][i];
-      m_uPrev[axis][i] = m_free[axis][i] != 0 ? uPrevious[i][axis] : m_held[axis][i];
+    for (size_t axis = 0; axis < 3; ++axis) {
+      const size_t index = kNodeStride * size_t(m_internal[i]) + axis;
+      m_u[index] = u[i][axis];
+      m_uPrev[index] = uPrevious[i][axis];
     }
+  for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
 }
 
 double TledModel::writePositions(std::span<Vec3> positions) const {
   double largestSquared = 0;
   for (size_t i = 0; i < m_rest.size(); ++i) {
-    const Vec3 u(m_u[0][i], m_u[1][i], m_u[2][i]);
+    const double* d = &m_u[kNodeStride * size_t(m_internal[i])];
+    const Vec3 u(d[0], d[1], d[2]);
     positions[i] = m_rest[i] + u;
     largestSquared = std::max(largestSquared, u.squaredNorm());
   }
   return std::sqrt(largestSquared);
 }
 
-double TledModel::totalMass() const {
-  double total = 0;
-  for (double m : m_mass) total += m;
-  return total;
-}
+double TledModel::totalMass() const { return std::accumulate(m_mass.begin(), m_mass.end(), 0.0); }
 
 void TledModel::internalForces(std::span<Vec3> forces) const {
-  std::vector<double> f[3];
-  for (auto& v : f) v.assign(nodeCount(), 0.0);
-  accumulateInternalForces(m_elements, m_u[0].data(), m_u[1].data(), m_u[2].data(), f[0].data(), f[1].data(),
-                           f[2].data());
-  for (size_t i = 0; i < nodeCount(); ++i) forces[i] = Vec3(f[0][i], f[1][i], f[2][i]);
+  forcesInto(m_u, m_f);
+  for (size_t i = 0; i < nodeCount(); ++i) {
+    const double* f = &m_f[kNodeStride * size_t(m_internal[i])];
+    forces[i] = Vec3(f[0], f[1], f[2]);
+  }
+}
+
+void TledModel::internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces) const {
+  std::vector<double> at(m_u.size(), 0.0);
+  for (size_t i = 0; i < nodeCount(); ++i)
+    for (size_t axis = 0; axis < 3; ++axis) at[kNodeStride * size_t(m_internal[i]) + axis] = u[i][axis];
+  forcesInto(at, m_f);
+  for (size_t i = 0; i < nodeCount(); ++i) {
+    const double* f = &m_f[kNodeStride * size_t(m_internal[i])];
+    forces[i] = Vec3(f[0], f[1], f[2]);
+  }
 }
 
 double TledModel::kineticEnergy() const {
   if (m_dt <= 0) return 0;
   double twice = 0;  // kg mm^2 / s^2
-  for (size_t i = 0; i < m_mass.size(); ++i) {
-    const Vec3 v(m_u[0][i] - m_uPrev[0][i], m_u[1][i] - m_uPrev[1][i], m_u[2][i] - m_uPrev[2][i]);
-    twice += m_mass[i] * v.squaredNorm();
+  for (size_t k = 0; k < m_mass.size(); ++k) {
+    double v2 = 0;
+    for (size_t axis = 0; axis < 3; ++axis) {
+      const double v = m_u[kNodeStride * k + axis] - m_uPrev[kNodeStride * k + axis];
+      v2 += v * v;
+    }
+    twice += m_mass[k] * v2;
   }
   return 0.5 * twice / (m_dt * m_dt);
 }
@@ -227,16 +345,16 @@ double TledModel::kineticEnergy() const {
 double TledModel::strainEnergy() const {
   const TledElements& el = m_elements;
   double energy = 0;
-  for (size_t e = 0; e < el.count; ++e) {
+  for (size_t k = 0; k < el.count; ++k) {
     Mat3 F = Mat3::Identity();
-    const int32_t n0 = el.node[0][e];
+    const double* u0 = &m_u[kNodeStride * size_t(el.node[0][k])];
     for (int a = 1; a < 4; ++a) {
-      const int32_t na = el.node[a][e];
-      const Vec3 d = displacement(na) - displacement(n0);
-      const Eigen::RowVector3d g(el.grad[3 * (a - 1)][e], el.grad[3 * (a - 1) + 1][e], el.grad[3 * (a - 1) + 2][e]);
+      const double* ua = &m_u[kNodeStride * size_t(el.node[a][k])];
+      const Vec3 d(ua[0] - u0[0], ua[1] - u0[1], ua[2] - u0[2]);
+      const Eigen::RowVector3d g(el.grad[3 * (a - 1)][k], el.grad[3 * (a - 1) + 1][k], el.grad[3 * (a - 1) + 2][k]);
       F += d * g;
     }
-    energy += el.volume[e] * neoHookeanEnergy(F, {el.mu[e], el.kappa[e]});
+    energy += neoHookeanEnergy(F, {el.muVolume[k], el.kappaVolume[k]});  // the volume is in the moduli
   }
   return energy;
 }

@@ -35,28 +35,35 @@ struct ElementMaterial {
 
 // Per-step figures of the element loop.
 struct ElementStepCounts {
-  uint64_t inverted = 0;  // elements with J <= 0 (their isochoric stress is taken at J = kMinIsochoricJ)
+  uint64_t inverted = 0;     // elements with J <= 0 (their isochoric stress is taken at J = kMinIsochoricJ)
   uint64_t farFromRest = 0;  // elements whose J^(-1/3) took the exact (slow) path
 };
 
-// The element arrays, structure of arrays, padded to a multiple of kLanes with
-// elements of zero volume on node 0 (they add nothing).
+// Node vectors are stored four doubles per node (x, y, z and a zero), so that
+// the element loop reaches a node's three coordinates in one cache line and
+// the update loop is plain vector arithmetic.
+inline constexpr size_t kNodeStride = 4;
+
+// The element arrays, structure of arrays, in the model's internal order (a
+// space-filling curve, so that neighbouring elements share nodes in cache),
+// padded to a multiple of kLanes with elements of zero volume on node 0.
 struct TledElements {
   static constexpr size_t kLanes = 8;
   size_t count = 0;   // real elements
   size_t padded = 0;  // count rounded up to kLanes
-  std::vector<int32_t> node[4];
+  std::vector<int32_t> node[4];  // internal node indices
   // Rest-shape derivatives of the shape functions of local nodes 1..3 (node 0's
   // are minus their sum), 1/mm: grad[3 * (a - 1) + j][e] = dN_a / dX_j.
   std::vector<double> grad[9];
-  std::vector<double> volume;  // rest volume, mm^3
-  std::vector<double> mu, kappa;  // kPa
+  // The moduli times the rest volume (kPa mm^3 = uJ): the stress is linear in
+  // them, and the force is the volume times the stress.
+  std::vector<double> muVolume, kappaVolume;
 };
 
 // Computes the internal nodal forces f_int (mN) of every element from the
-// displacements, adding them into fx, fy, fz. Defined in TledKernel.cpp.
-ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* ux, const double* uy,
-                                           const double* uz, double* fx, double* fy, double* fz);
+// displacements `u` (mm), adding them into `f`; both kNodeStride doubles per
+// internal node. Defined in TledKernel.cpp.
+ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f);
 
 // J below which the isochoric part of the stress is evaluated at this J
 // instead: it grows as J^(-5/3) and an element squeezed flat (or inverted)
@@ -70,7 +77,7 @@ class TledModel {
   // Precomputes the element matrices and the lumped masses. `materials` has
   // one entry per tetrahedron, or one for all. Throws std::invalid_argument
   // for an element of non-positive rest volume (its index), or a material out
-  // of range.
+  // of range. Node and element indices in this interface are the mesh's.
   TledModel(std::span<const Vec3> restNodes, std::span<const tetra::TetIndices> tets,
             std::span<const ElementMaterial> materials);
 
@@ -84,12 +91,19 @@ class TledModel {
   double criticalTimeStep() const { return m_criticalStep; }
   size_t criticalElement() const { return m_criticalElement; }
   // With mass-proportional damping a (1/s) the bound is lowered to
-  // dt_cr (sqrt(1 + xi^2) - xi), xi = a dt_cr / 2 at the highest frequency.
+  // dt_cr (sqrt(1 + xi^2) - xi), xi = a dt_cr / 4 at the highest frequency.
   double criticalTimeStep(double damping) const;
+  // Elements whose own step is below `dt` (s).
+  size_t elementsBelowStep(double dt) const;
 
   // Gives `elements` another material: their moduli, their share of the
-  // lumped masses and the critical time step follow. Call setTimeStep() after.
+  // lumped masses and the critical time step follow.
   void assignMaterial(std::span<const int32_t> elements, const ElementMaterial& material);
+  // Selective mass scaling: adds mass to the elements whose own critical step
+  // is below `dt` (s), each up to the density that makes it dt, so that the
+  // mesh is stable at dt. Returns the mass added (kg). The stiffness is
+  // unchanged; the dynamics of the smallest elements slow down.
+  double scaleMassForStep(double dt);
 
   // Time step (s) and mass-proportional damping (1/s).
   void setTimeStep(double dt, double damping);
@@ -101,9 +115,9 @@ class TledModel {
   // Holds `axes` (bit 0: x, 1: y, 2: z) of a node at its rest position plus
   // `displacement` (mm); the node's own forces no longer move those axes.
   void fixNode(int32_t node, const Vec3& displacement = Vec3::Zero(), unsigned axes = 7);
-  bool isFixed(int32_t node, int axis) const { return m_free[axis][node] == 0.0; }
+  bool isFixed(int32_t node, int axis) const;
 
-  // External force on a node (mN) for the next steps, until changed.
+  // External force on a node (mN) for the next steps, until changed or cleared.
   void setExternalForce(int32_t node, const Vec3& force_mN);
   void clearExternalForces();
 
@@ -112,22 +126,26 @@ class TledModel {
   uint64_t steps() const { return m_steps; }
 
   // State, mm.
-  Vec3 displacement(int32_t node) const { return {m_u[0][node], m_u[1][node], m_u[2][node]}; }
+  Vec3 displacement(int32_t node) const {
+    const double* u = &m_u[kNodeStride * m_internal[node]];
+    return {u[0], u[1], u[2]};
+  }
   Vec3 position(int32_t node) const { return m_rest[node] + displacement(node); }
   const std::vector<Vec3>& restNodes() const { return m_rest; }
   // Sets the displacement of every node now and one step ago (mm): a start
-  // with a velocity (u - uPrevious) / dt.
+  // with a velocity (u - uPrevious) / dt. Held axes keep their values.
   void setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious);
   // Writes rest + displacement into `positions` (nodeCount() entries); returns
-  // the largest displacement (mm).
+  // the largest displacement (mm). Allocation-free.
   double writePositions(std::span<Vec3> positions) const;
 
-  double mass(int32_t node) const { return m_mass[node]; }  // kg
+  double mass(int32_t node) const { return m_mass[m_internal[node]]; }  // kg
   double totalMass() const;
   const TledElements& elements() const { return m_elements; }
-  // The internal force on every node (mN) at the current displacements
-  // (tests, static solves); allocation-free into the caller's array.
+  // The internal force on every node (mN) at the current displacements, or at
+  // displacements `u` (tests, static solves).
   void internalForces(std::span<Vec3> forces) const;
+  void internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces) const;
 
   // Energies, uJ: kinetic from the velocity at the half step just taken,
   // strain from the neo-Hookean energy of every element (slow: reports and tests).
@@ -140,20 +158,32 @@ class TledModel {
   uint64_t invertedNow() const { return m_invertedNow; }
 
  private:
-  std::vector<Vec3> m_rest;
+  void findCriticalStep();
+  void forcesInto(const std::vector<double>& u, std::vector<double>& f) const;
+
+  std::vector<Vec3> m_rest;                        // mesh order
+  std::vector<int32_t> m_internal, m_external;     // node: mesh -> internal, internal -> mesh
+  std::vector<int32_t> m_elementInternal;          // element: mesh -> internal
   TledElements m_elements;
-  std::vector<double> m_density;           // per element, kg/mm^3
-  std::vector<double> m_length;            // per element, its characteristic length 1 / |grad N|, mm
-  std::vector<double> m_mass;              // kg, lumped (a quarter of each element's mass per node)
-  std::vector<double> m_u[3], m_uPrev[3];  // mm, now and one step ago
-  std::vector<double> m_f[3];              // mN: external forces, and the step's scratch
-  std::vector<double> m_external[3];       // mN
-  std::vector<double> m_free[3];           // 1: the axis moves; 0: held at m_held
-  std::vector<double> m_held[3];           // mm
-  std::vector<double> m_stepScale;         // dt^2 / (m (1 + a dt / 2)), mm / mN
+  std::vector<double> m_volume, m_density, m_length;  // per internal element: mm^3, kg/mm^3, 1 / |grad N| mm
+  std::vector<double> m_mass;                         // kg, lumped, per internal node
+  // kNodeStride doubles per internal node:
+  std::vector<double> m_u, m_uPrev;  // mm, now and one step ago
+  mutable std::vector<double> m_f;   // mN, the step's internal less external forces
+  std::vector<double> m_stepScale;   // dt^2 / (m (1 + a dt / 2)) per internal node, mm / mN
+  struct HeldAxis {
+    size_t index;  // into the node vectors
+    double value;  // mm
+  };
+  std::vector<HeldAxis> m_held;  // held axes, and every axis of a node without mass
+  struct ExternalForce {
+    int32_t node;  // internal
+    Vec3 force;    // mN
+  };
+  std::vector<ExternalForce> m_externalForces;  // reserved for every node
+  std::vector<int32_t> m_externalSlot;          // per internal node: its entry, or -1
   double m_dt = 0, m_damping = 0;
   Vec3 m_bodyAcceleration = Vec3::Zero();
-  void findCriticalStep();
   double m_criticalStep = 0;
   size_t m_criticalElement = 0;
   uint64_t m_steps = 0, m_invertedNow = 0;

@@ -153,59 +153,60 @@ struct Cantilever {
 // the internal forces along v at rest (the small-strain stiffness).
 double staticTipDeflection(const Cantilever& beam) {
   const TledModel model = modelOf(beam.mesh);
-  const TledElements& el = model.elements();
-  const size_t n = 3 * beam.mesh.nodeCount();
-  using Vector = std::vector<double>;  // x of every node, then y, then z
-  Vector plus(n), minus(n), forcePlus(n), forceMinus(n);
-  const auto free = [&](size_t k) { return !beam.clamped[k % beam.mesh.nodeCount()]; };
+  const size_t m = beam.mesh.nodeCount();
+  using Vector = std::vector<Vec3>;
+  Vector plus(m), minus(m), forcePlus(m), forceMinus(m);
   const auto stiffness = [&](const Vector& v, Vector& out) {
     double largest = 1e-300;
-    for (double x : v) largest = std::max(largest, std::abs(x));
+    for (const Vec3& x : v) largest = std::max(largest, x.cwiseAbs().maxCoeff());
     const double epsilon = 1e-6 / largest;  // mm of the largest entry
-    for (size_t k = 0; k < n; ++k) plus[k] = epsilon * v[k], minus[k] = -plus[k];
-    std::fill(forcePlus.begin(), forcePlus.end(), 0.0);
-    std::fill(forceMinus.begin(), forceMinus.end(), 0.0);
-    const size_t m = n / 3;
-    accumulateInternalForces(el, &plus[0], &plus[m], &plus[2 * m], &forcePlus[0], &forcePlus[m], &forcePlus[2 * m]);
-    accumulateInternalForces(el, &minus[0], &minus[m], &minus[2 * m], &forceMinus[0], &forceMinus[m],
-                             &forceMinus[2 * m]);
-    for (size_t k = 0; k < n; ++k) out[k] = free(k) ? (forcePlus[k] - forceMinus[k]) / (2 * epsilon) : 0.0;
+    for (size_t i = 0; i < m; ++i) plus[i] = epsilon * v[i], minus[i] = -plus[i];
+    model.internalForcesAt(plus, forcePlus);
+    model.internalForcesAt(minus, forceMinus);
+    for (size_t i = 0; i < m; ++i)
+      out[i] = beam.clamped[i] ? Vec3::Zero() : Vec3((forcePlus[i] - forceMinus[i]) / (2 * epsilon));
   };
-  // Jacobi: the diagonal of the linear-elastic element stiffness.
-  Vector diagonal(n, 0.0);
-  const size_t m = n / 3;
-  for (size_t e = 0; e < el.count; ++e) {
+  // Jacobi: the diagonal of the linear-elastic element stiffness, from the mesh.
+  const ElasticModuli moduli = ElasticModuli::fromYoung(kBrain.youngModulus, kBrain.poissonRatio);
+  Vector diagonal(m, Vec3::Zero());
+  for (const TetIndices& t : beam.mesh.tets) {
+    Mat3 D;
+    for (int a = 0; a < 3; ++a) D.col(a) = beam.mesh.nodes[t[a + 1]] - beam.mesh.nodes[t[0]];
+    const Mat3 G = D.inverse();
+    const double V = D.determinant() / 6;
     std::array<Vec3, 4> g;
-    for (int a = 0; a < 3; ++a) g[a + 1] = Vec3(el.grad[3 * a][e], el.grad[3 * a + 1][e], el.grad[3 * a + 2][e]);
+    for (int a = 0; a < 3; ++a) g[a + 1] = G.row(a).transpose();
     g[0] = -(g[1] + g[2] + g[3]);
-    const double lambda = el.kappa[e] - 2 * el.mu[e] / 3;
     for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i)
-        diagonal[i * m + el.node[a][e]] +=
-            el.volume[e] * ((lambda + el.mu[e]) * g[a][i] * g[a][i] + el.mu[e] * g[a].squaredNorm());
+      diagonal[t[a]] += V * ((moduli.lambda() + moduli.mu) * g[a].cwiseProduct(g[a]) +
+                             Vec3::Constant(moduli.mu * g[a].squaredNorm()));
   }
-  Vector x(n, 0.0), r(n, 0.0), z(n), p(n), Ap(n);
-  for (size_t i = 0; i < m; ++i) r[2 * m + i] = free(i) ? -model.mass(int32_t(i)) * Cantilever::g : 0.0;
   const auto dot = [](const Vector& a, const Vector& b) {
     double s = 0;
-    for (size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
+    for (size_t i = 0; i < a.size(); ++i) s += a[i].dot(b[i]);
     return s;
   };
+  Vector x(m, Vec3::Zero()), r(m), z(m), p(m), Ap(m);
+  for (size_t i = 0; i < m; ++i)
+    r[i] = beam.clamped[i] ? Vec3::Zero() : Vec3(0, 0, -model.mass(int32_t(i)) * Cantilever::g);
   const double bb = dot(r, r);
-  for (size_t k = 0; k < n; ++k) z[k] = free(k) ? r[k] / diagonal[k] : 0.0;
+  const auto precondition = [&] {
+    for (size_t i = 0; i < m; ++i) z[i] = r[i].cwiseQuotient(diagonal[i]);
+  };
+  precondition();
   p = z;
   double rz = dot(r, z);
   for (int iteration = 0; iteration < 5000 && dot(r, r) > 1e-20 * bb; ++iteration) {
     stiffness(p, Ap);
     const double alpha = rz / dot(p, Ap);
-    for (size_t k = 0; k < n; ++k) x[k] += alpha * p[k], r[k] -= alpha * Ap[k];
-    for (size_t k = 0; k < n; ++k) z[k] = free(k) ? r[k] / diagonal[k] : 0.0;
+    for (size_t i = 0; i < m; ++i) x[i] += alpha * p[i], r[i] -= alpha * Ap[i];
+    precondition();
     const double next = dot(r, z);
-    for (size_t k = 0; k < n; ++k) p[k] = z[k] + (next / rz) * p[k];
+    for (size_t i = 0; i < m; ++i) p[i] = z[i] + (next / rz) * p[i];
     rz = next;
   }
   EXPECT_LE(dot(r, r), 1e-20 * bb) << "conjugate gradients did not converge";
-  return beam.meanTip([&](size_t i) { return x[2 * m + i]; });
+  return beam.meanTip([&](size_t i) { return x[i].z(); });
 }
 
 TEST(TledModelTest, ACantileverUnderGravityConvergesToEulerBernoulli) {
