@@ -1,6 +1,7 @@
 #include "plugins/fem/FixedConstraint.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "framework/core/Lifecycle.h"
@@ -21,7 +22,9 @@ void FixedConstraint::init(InitContext& context) {
   if (d_indices.isSet()) {
     for (double index : d_indices.value()) {
       if (index != std::floor(index) || index >= double(n)) {
-        context.error(d_indices, "node " + std::to_string(index) + " is not a node index of a mesh of " +
+        std::ostringstream given;
+        given << index;
+        context.error(d_indices, "node " + given.str() + " is not a node index of a mesh of " +
                                      std::to_string(n) + " nodes (0 to " + std::to_string(n - 1) + ")");
         return;
       }

@@ -30,6 +30,7 @@ void TLEDForceField::init(InitContext& context) {
     return;
   }
   m_labels = mesh.labels;
+  scaleMass();
   if (auto error = checkTimeStep()) context.error(d_dt, *error);
 
   m_channel = &context.channels().publish<tetra::NodePositions>(*this, tetra::kNodePositionsChannel);
@@ -43,6 +44,12 @@ void TLEDForceField::init(InitContext& context) {
   m_forces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
 }
 
+void TLEDForceField::scaleMass() {
+  if (!d_massScaling.value()) return;
+  // Damping lowers the stable step by about a factor 1 - damping dt / 4: aim a little above dt.
+  m_massScaledElements = m_model->scaleMassForStep(d_dt.value() * (1 + d_damping.value() * d_dt.value()));
+}
+
 std::optional<std::string> TLEDForceField::checkTimeStep() const {
   const double critical = m_model->criticalTimeStep(d_damping.value());
   if (d_dt.value() <= critical || d_acceptUnstable.value()) return std::nullopt;
@@ -50,7 +57,8 @@ std::optional<std::string> TLEDForceField::checkTimeStep() const {
          " (element " + std::to_string(m_model->criticalElement()) +
          ": its characteristic length over the dilatational wave speed, with the damping): the explicit integration "
          "would diverge. Use dt <= " +
-         seconds(critical) + ", or set acceptUnstableTimeStep=\"true\"";
+         seconds(critical) + ", or massScaling=\"true\" (" + std::to_string(m_model->elementsBelowStep(d_dt.value())) +
+         " elements are below dt), or acceptUnstableTimeStep=\"true\"";
 }
 
 std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const ElementMaterial& material) {
@@ -60,6 +68,7 @@ std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const 
     if (m_labels[e] == label) elements.push_back(int32_t(e));
   if (elements.empty()) return "no element of " + l_mesh->path() + " has label " + std::to_string(label);
   m_model->assignMaterial(elements, material);
+  scaleMass();
   return checkTimeStep();
 }
 
@@ -112,6 +121,10 @@ void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
   if (!m_model) return;
   counters.push_back({"elements", double(m_model->elementCount())});
   counters.push_back({"critical_dt_s", m_model->criticalTimeStep(d_damping.value())});
+  if (d_massScaling.value()) {
+    counters.push_back({"mass_scaled_elements", double(m_massScaledElements)});
+    counters.push_back({"added_mass_fraction", m_model->addedMass() / (m_model->totalMass() - m_model->addedMass())});
+  }
   counters.push_back({"steps", double(m_model->steps())});
   counters.push_back({"most_substeps", double(m_mostSubsteps)});
   counters.push_back({"inverted_element_steps", double(m_model->counts().inverted)});

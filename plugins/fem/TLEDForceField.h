@@ -47,6 +47,8 @@ class TLEDForceField final : public Component {
  private:
   // Why dt is above the stable step, or nothing (or accepted).
   std::optional<std::string> checkTimeStep() const;
+  // With massScaling, scales the elements whose step is below dt (again after a material change).
+  void scaleMass();
 
   Link<tetra::TetraBrain> l_mesh{this, "mesh", {.help = "The tetrahedral mesh this deforms", .required = true}};
   Field<double> d_density{this,
@@ -90,6 +92,13 @@ class TLEDForceField final : public Component {
                                false,
                                {.help = "Run with a dt above the critical time step of the mesh (the simulation will "
                                         "diverge: for tests of what follows)"}};
+  Field<bool> d_massScaling{
+      this,
+      "massScaling",
+      false,
+      {.help = "Selective mass scaling: the elements whose own critical time step is below dt get the density that "
+               "makes it dt (the rest keep theirs), so that dt is stable on a mesh with a few small or flat "
+               "elements. The added mass is reported (added_mass_fraction)"}};
   RateField d_rate{this, 1000.0, "Rate of the FEM's group: each tick advances the model by one period"};
 
   std::unique_ptr<TledModel> m_model;
@@ -100,6 +109,7 @@ class TLEDForceField final : public Component {
   tetra::NodePositions m_frame;
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;
   uint64_t m_mostInverted = 0;
+  size_t m_massScaledElements = 0;
   double m_largestDisplacement = 0;  // mm
 };
 

@@ -89,6 +89,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
   el.kappaVolume.assign(el.padded, 0.0);
   m_volume.assign(el.count, 0.0);
   m_density.assign(el.count, 0.0);
+  m_materialDensity.assign(el.count, 0.0);
   m_length.assign(el.count, 0.0);
   m_mass.assign(n, 0.0);
   for (size_t k = 0; k < el.count; ++k) {
@@ -111,7 +112,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
     const ElementMaterial& material = materials.size() == 1 ? materials[0] : materials[e];
     const ElasticModuli moduli = ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio);
     m_volume[k] = volume;
-    m_density[k] = material.density;
+    m_density[k] = m_materialDensity[k] = material.density;
     el.muVolume[k] = moduli.mu * volume;
     el.kappaVolume[k] = moduli.kappa * volume;
     for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += 0.25 * material.density * volume;
@@ -174,7 +175,7 @@ void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementM
     const size_t k = size_t(m_elementInternal[e]);
     const double change = 0.25 * (material.density - m_density[k]) * m_volume[k];
     for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += change;
-    m_density[k] = material.density;
+    m_density[k] = m_materialDensity[k] = material.density;
     el.muVolume[k] = moduli.mu * m_volume[k];
     el.kappaVolume[k] = moduli.kappa * m_volume[k];
   }
@@ -182,23 +183,28 @@ void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementM
   if (m_dt > 0) setTimeStep(m_dt, m_damping);
 }
 
-double TledModel::scaleMassForStep(double dt) {
-  // An element's step is L / c, c = sqrt(M / rho): raising its density by
+size_t TledModel::scaleMassForStep(double dt) {
+  // An element's step is L / c, c = sqrt(M / rho): its density times
   // (dt / step)^2 brings its step to dt.
-  double added = 0;
+  size_t scaled = 0;
   const TledElements& el = m_elements;
   for (size_t k = 0; k < el.count; ++k) {
     const ElasticModuli moduli{el.muVolume[k] / m_volume[k], el.kappaVolume[k] / m_volume[k]};
-    const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_density[k]);
-    if (step >= dt) continue;
-    const double density = m_density[k] * (dt / step) * (dt / step);
+    const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_materialDensity[k]);
+    const double density = step < dt ? m_materialDensity[k] * (dt / step) * (dt / step) : m_materialDensity[k];
+    if (step < dt) ++scaled;
     const double change = 0.25 * (density - m_density[k]) * m_volume[k];
     for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += change;
-    added += 4 * change;
     m_density[k] = density;
   }
   findCriticalStep();
   if (m_dt > 0) setTimeStep(m_dt, m_damping);
+  return scaled;
+}
+
+double TledModel::addedMass() const {
+  double added = 0;
+  for (size_t k = 0; k < m_elements.count; ++k) added += (m_density[k] - m_materialDensity[k]) * m_volume[k];
   return added;
 }
 
@@ -298,13 +304,16 @@ void TledModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> 
 
 double TledModel::writePositions(std::span<Vec3> positions) const {
   double largestSquared = 0;
+  bool finite = true;
   for (size_t i = 0; i < m_rest.size(); ++i) {
     const double* d = &m_u[kNodeStride * size_t(m_internal[i])];
     const Vec3 u(d[0], d[1], d[2]);
     positions[i] = m_rest[i] + u;
-    largestSquared = std::max(largestSquared, u.squaredNorm());
+    const double squared = u.squaredNorm();
+    finite = finite && std::isfinite(squared) && positions[i].allFinite();  // std::max would drop a NaN
+    largestSquared = std::max(largestSquared, squared);
   }
-  return std::sqrt(largestSquared);
+  return finite ? std::sqrt(largestSquared) : INFINITY;
 }
 
 double TledModel::totalMass() const { return std::accumulate(m_mass.begin(), m_mass.end(), 0.0); }

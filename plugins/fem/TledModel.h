@@ -99,11 +99,14 @@ class TledModel {
   // Gives `elements` another material: their moduli, their share of the
   // lumped masses and the critical time step follow.
   void assignMaterial(std::span<const int32_t> elements, const ElementMaterial& material);
-  // Selective mass scaling: adds mass to the elements whose own critical step
-  // is below `dt` (s), each up to the density that makes it dt, so that the
-  // mesh is stable at dt. Returns the mass added (kg). The stiffness is
-  // unchanged; the dynamics of the smallest elements slow down.
-  double scaleMassForStep(double dt);
+  // Selective mass scaling: raises the density of the elements whose own
+  // critical step is below `dt` (s), each to the density that makes it dt, so
+  // that the mesh is stable at dt; returns how many. The stiffness is
+  // unchanged; the smallest elements respond more slowly. Starts from the
+  // materials' densities each time (after assignMaterial, call it again).
+  size_t scaleMassForStep(double dt);
+  // Mass added by the scaling, kg.
+  double addedMass() const;
 
   // Time step (s) and mass-proportional damping (1/s).
   void setTimeStep(double dt, double damping);
@@ -136,7 +139,8 @@ class TledModel {
   // with a velocity (u - uPrevious) / dt. Held axes keep their values.
   void setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious);
   // Writes rest + displacement into `positions` (nodeCount() entries); returns
-  // the largest displacement (mm). Allocation-free.
+  // the largest displacement (mm), infinite when any position is not finite.
+  // Allocation-free.
   double writePositions(std::span<Vec3> positions) const;
 
   double mass(int32_t node) const { return m_mass[m_internal[node]]; }  // kg
@@ -165,7 +169,8 @@ class TledModel {
   std::vector<int32_t> m_internal, m_external;     // node: mesh -> internal, internal -> mesh
   std::vector<int32_t> m_elementInternal;          // element: mesh -> internal
   TledElements m_elements;
-  std::vector<double> m_volume, m_density, m_length;  // per internal element: mm^3, kg/mm^3, 1 / |grad N| mm
+  // Per internal element: mm^3, kg/mm^3 (effective, and the material's), 1 / |grad N| mm.
+  std::vector<double> m_volume, m_density, m_materialDensity, m_length;
   std::vector<double> m_mass;                         // kg, lumped, per internal node
   // kNodeStride doubles per internal node:
   std::vector<double> m_u, m_uPrev;  // mm, now and one step ago

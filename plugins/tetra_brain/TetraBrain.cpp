@@ -9,6 +9,7 @@
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "plugins/tetra_brain/io/VtuWriter.h"
 
 namespace trephine::tetra {
 
@@ -16,6 +17,8 @@ void TetraBrain::init(InitContext& context) {
   // The collision back-end first: an unknown one is reported with any error of the mesh.
   m_backend = createBackendAt<TetBackend>(context, d_backend, kTypeName);
   checkNativeOnlyFields(context);
+  if (!d_saveDeformed.value().empty() && !isWritableTetMeshName(d_saveDeformed.value()))
+    context.error(d_saveDeformed, "expected a mesh file name ending in .vtu, .mesh or .mesh.gz");
   try {
     m_mesh = d_file.isScheme() ? makeTetPhantom(std::string(d_file.schemeBody())) : readTetMesh(d_file.path());
   } catch (const std::exception& e) {
@@ -233,6 +236,25 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
   m_nodeForceValue.t = t;
   m_nodeForces->publish(m_nodeForceValue);
+}
+
+void TetraBrain::declareOutputs(std::vector<OutputFile>& outputs) const {
+  if (!d_saveDeformed.value().empty()) outputs.push_back({d_saveDeformed.value(), &d_saveDeformed});
+}
+
+void TetraBrain::finish(FinishContext& context) {
+  if (d_saveDeformed.value().empty() || context.outputDirectory().empty() || !m_bound) return;
+  if (!context.claimOutput(*this, d_saveDeformed.value())) return;
+  refresh();  // the deformation's last shape, also when no tool asked for it during the run
+  TetMesh deformed;
+  deformed.nodes.assign(m_nodes, m_nodes + m_mesh.nodeCount());
+  deformed.tets = m_mesh.tets;
+  deformed.labels = m_mesh.labels;
+  try {
+    writeTetMeshFile(deformed, context.outputDirectory() / d_saveDeformed.value());
+  } catch (const std::exception& e) {
+    context.error(*this, e.what());
+  }
 }
 
 void TetraBrain::reportCounters(std::vector<Counter>& counters) const {

@@ -29,6 +29,8 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   void init(InitContext& context) override;
   void prepare(const RunPlan& plan) override;
   void reportCounters(std::vector<Counter>& counters) const override;
+  void declareOutputs(std::vector<OutputFile>& outputs) const override;
+  void finish(FinishContext& context) override;
 
   // SurfaceTarget
   Box3 bounds() const override { return m_bounds; }  // grown by the current displacement bound
@@ -150,6 +152,12 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
                          {.help = "Thesis searches on a deforming mesh: every frame, refresh the box of every "
                                   "tetrahedron, or only of those with a node the deformation moved. The grid search "
                                   "refreshes nothing (displacement margin)"}};
+  Field<std::string> d_saveDeformed{this,
+                                    "saveDeformed",
+                                    "",
+                                    {.help = "Write the mesh with its node positions at the end of the run to this "
+                                             "file in the run directory: .vtu (VTK XML), .mesh or .mesh.gz (Medit); "
+                                             "empty writes nothing"}};
   Field<double> d_contactDepth{this,
                                "contactDepth",
                                0.05,

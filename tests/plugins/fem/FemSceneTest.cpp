@@ -1,0 +1,222 @@
+// TLEDForceField, FixedConstraint, Gravity and LabelMaterial in scenes: the
+// component steps the model exactly as the model alone, nothing moves that
+// the scene does not move, bad settings are load errors at their fields, the
+// tool's force deforms the brain, and runs repeat byte for byte.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "framework/core/Diagnostics.h"
+#include "plugins/fem/TledModel.h"
+#include "plugins/tetra_brain/CubePhantom.h"
+#include "plugins/tetra_brain/TetPhantoms.h"
+#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine::fem {
+namespace {
+
+// The bar of the cantilever tests: 100 mm, 10 mm square, 2 cells across.
+std::string barScene(const std::string& extra, double acceleration = -10, const std::string& fem = R"(dt="0.1e-3")") {
+  return R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="fem"/>
+  <TetraBrain name="bar" file="phantom:bar?length=100&amp;width=10&amp;cells=2" saveDeformed="bar.vtu"/>
+  <TLEDForceField name="fem" mesh="@bar" damping="11" rate="1000" )" +
+         fem + R"(/>
+  <FixedConstraint name="clamp" fem="@fem" box="-1 -6 -6 0.001 6 6"/>
+  )" + (std::isnan(acceleration) ? std::string() :
+        R"(<Gravity name="gravity" fem="@fem" acceleration="0 0 )" + std::to_string(acceleration) + R"("/>)") +
+         extra + "\n</Node>";
+}
+
+std::unique_ptr<Simulation> runFor(const std::string& xml, double seconds, const std::filesystem::path& out) {
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = seconds;
+  auto simulation = test::loadScene(xml, d, options);
+  EXPECT_TRUE(simulation) << test::messages(d);
+  if (!simulation) return nullptr;
+  simulation->run();
+  std::vector<std::string> errors;
+  simulation->writeOutputs(out, &errors);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  return simulation;
+}
+
+TEST(FemSceneTest, TheComponentStepsTheModelExactlyAsTheModelAlone) {
+  test::TempDir out;
+  auto simulation = runFor(barScene(""), 0.3, out.path());
+  ASSERT_TRUE(simulation);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "steps"), 3000);
+  EXPECT_EQ(test::componentCounter(*simulation, "FixedConstraint", "fixed_nodes"), 9);
+  const tetra::TetMesh saved = tetra::readTetMesh(out / "bar.vtu");
+
+  // The same by hand: 3000 steps of 0.1 ms.
+  const tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  const ElementMaterial material{};
+  TledModel model(bar.nodes, bar.tets, std::span(&material, 1));
+  for (size_t i = 0; i < bar.nodeCount(); ++i)
+    if (bar.nodes[i].x() <= 0.001) model.fixNode(int32_t(i));
+  model.setBodyAcceleration(Vec3(0, 0, -10));
+  model.setTimeStep(0.1e-3, 11);
+  for (int step = 0; step < 3000; ++step) model.step();
+  ASSERT_EQ(saved.nodeCount(), bar.nodeCount());
+  double largest = 0;
+  for (size_t i = 0; i < bar.nodeCount(); ++i) {
+    EXPECT_EQ(saved.nodes[i], model.position(int32_t(i))) << "node " << i;
+    largest = std::max(largest, model.displacement(int32_t(i)).norm());
+  }
+  EXPECT_GT(largest, 0.1);  // it sagged
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "largest_displacement_mm"), largest);
+}
+
+TEST(FemSceneTest, WithoutGravityNothingMoves) {
+  test::TempDir out;
+  auto simulation = runFor(barScene("", NAN), 0.1, out.path());
+  ASSERT_TRUE(simulation);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "steps"), 1000);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "largest_displacement_mm"), 0.0);
+  const tetra::TetMesh saved = tetra::readTetMesh(out / "bar.vtu");
+  const tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  for (size_t i = 0; i < bar.nodeCount(); ++i) EXPECT_EQ(saved.nodes[i], bar.nodes[i]);
+}
+
+TEST(FemSceneTest, ATimeStepAboveTheCriticalOneIsALoadErrorGivingBoth) {
+  Diagnostics d;
+  EXPECT_FALSE(test::loadScene(barScene("", -10, R"(dt="1e-3")"), d));
+  const std::string m = test::messages(d);
+  // Where, what was asked and what the mesh allows.
+  EXPECT_NE(m.find("inline.xml:5:"), std::string::npos) << m;
+  EXPECT_NE(m.find("dt = 1 ms is above the critical time step of this mesh, 0.3"), std::string::npos) << m;
+  EXPECT_NE(m.find("massScaling=\"true\""), std::string::npos) << m;
+
+  // Accepted explicitly, it loads (and diverges: the positions stay finite, the divergence is counted).
+  test::TempDir out;
+  auto accepted = runFor(barScene("", -10, R"(dt="1e-3" acceptUnstableTimeStep="true")"), 0.5, out.path());
+  ASSERT_TRUE(accepted);
+  EXPECT_GT(test::componentCounter(*accepted, "TLEDForceField", "non_finite_ticks"), 0);
+  for (const Vec3& p : tetra::readTetMesh(out / "bar.vtu").nodes) EXPECT_TRUE(p.allFinite());
+}
+
+TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {
+  test::TempDir out;
+  auto simulation = runFor(barScene("", -10, R"(dt="0.5e-3" massScaling="true")"), 0.3, out.path());
+  ASSERT_TRUE(simulation);
+  // Each element whose L / c is below dt (aimed 1 + damping dt above it) gets
+  // its density raised by (dt / (L / c))^2, L = 1 / |grad N|.
+  const tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  const ElementMaterial material{};
+  const double c = ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio)
+                       .dilatationalWaveSpeed(material.density);
+  const double target = 0.5e-3 * (1 + 11 * 0.5e-3);
+  double mass = 0, added = 0;
+  for (const tetra::TetIndices& t : bar.tets) {
+    Mat3 D;
+    for (int a = 0; a < 3; ++a) D.col(a) = bar.nodes[t[a + 1]] - bar.nodes[t[0]];
+    const Mat3 G = D.inverse();
+    const double gradient = std::sqrt(G.squaredNorm() + (G.row(0) + G.row(1) + G.row(2)).squaredNorm());
+    const double step = 1 / (gradient * c), m = material.density * D.determinant() / 6;
+    mass += m;
+    if (step < target) added += m * ((target / step) * (target / step) - 1);
+  }
+  EXPECT_NEAR(test::componentCounter(*simulation, "TLEDForceField", "added_mass_fraction"), added / mass, 1e-9);
+  EXPECT_GT(added, 0.0);
+  EXPECT_GE(test::componentCounter(*simulation, "TLEDForceField", "critical_dt_s"), 0.5e-3);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "non_finite_ticks"), 0);
+}
+
+TEST(FemSceneTest, ConstraintsAndMaterialsRefuseWhatSelectsNothing) {
+  const std::string brain = R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="fem"/>
+  <TetraBrain name="bar" file="phantom:bar?length=100&amp;width=10&amp;cells=2"/>
+  <TLEDForceField name="fem" mesh="@bar" dt="0.1e-3"/>
+  )";
+  const std::pair<std::string, std::string> cases[] = {
+      {R"(<FixedConstraint fem="@fem"/>)", "give exactly one of indices, box or label (0 given)"},
+      {R"(<FixedConstraint fem="@fem" box="0 0 0 1 1 1" indices="3"/>)", "(2 given)"},
+      {R"(<FixedConstraint fem="@fem" box="200 0 0 300 1 1"/>)", "selects no node"},
+      {R"(<FixedConstraint fem="@fem" box="0 0 0 1 1"/>)", "expected six numbers"},
+      {R"(<FixedConstraint fem="@fem" indices="5000"/>)", "node 5000 is not a node index of a mesh of 189 nodes (0 to 188)"},
+      {R"(<FixedConstraint fem="@fem" label="5"/>)", "carries no tissue labels"},
+      {R"(<LabelMaterial fem="@fem" label="5" youngModulus="3"/>)", "carries no tissue labels"},
+      {R"(<Gravity fem="@fem" acceleration="0 0 nan"/>)", "acceleration"},
+  };
+  for (const auto& [element, expected] : cases) {
+    Diagnostics d;
+    EXPECT_FALSE(test::loadScene(brain + element + "\n</Node>", d)) << element;
+    EXPECT_NE(test::messages(d).find(expected), std::string::npos) << element << "\n" << test::messages(d);
+  }
+}
+
+// The tool presses into a deforming brain (Brain1 size, base held) and lifts.
+std::string pressScene(const std::string& femAttributes = "") {
+  return R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="fem"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file="phantom:brain?tets=3500" saveDeformed="brain_final.mesh"/>
+    <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" )" +
+         femAttributes + R"(/>
+    <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -45"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
+                    tipOffset="2.5" standoff="5" speed="20" depth="4" feedSpeed="8" rate="1000"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)";
+}
+
+TEST(FemSceneTest, TheToolsForceDeformsTheBrainWhichComesBackWhenReleased) {
+  test::TempDir out;
+  auto simulation = runFor(pressScene(), 2.5, out.path());
+  ASSERT_TRUE(simulation);
+  EXPECT_GT(test::componentCounter(*simulation, "TLEDForceField", "force_updates"), 100);
+  // Pressed 4 mm in with a 0.3 N/mm spring: the surface gives way by millimetres.
+  const double largest = test::componentCounter(*simulation, "TLEDForceField", "largest_displacement_mm");
+  EXPECT_GT(largest, 1.0);
+  EXPECT_LT(largest, 20.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "non_finite_ticks"), 0);
+  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 1000);
+  // Released at the end, it has come back (damping 50 /s: a time constant of 40 ms).
+  const tetra::TetMesh rest = tetra::readTetMesh(out / "brain_final.mesh");
+  double remaining = 0;
+  const tetra::TetMesh start = tetra::makeTetPhantom("brain?tets=3500");
+  for (size_t i = 0; i < start.nodeCount(); ++i) remaining = std::max(remaining, (rest.nodes[i] - start.nodes[i]).norm());
+  EXPECT_LT(remaining, 0.05 * largest) << remaining << " mm left of " << largest << " mm";
+}
+
+TEST(FemSceneTest, ARunRepeatsByteForByte) {
+  test::TempDir first, second;
+  ASSERT_TRUE(runFor(pressScene(), 1.2, first.path()));
+  ASSERT_TRUE(runFor(pressScene(), 1.2, second.path()));
+  for (const char* file : {"trace.csv", "brain_final.mesh"})
+    EXPECT_EQ(test::readFile(first / file), test::readFile(second / file)) << file;
+}
+
+TEST(FemSceneTest, ABrainWithoutAFemIsNeverDeformed) {
+  // No deformation component: the brain reports no deformation at all (the
+  // counters of a deforming brain are absent, not zero), with the FEM it does.
+  test::TempDir out;
+  std::string rigid = pressScene();
+  const size_t begin = rigid.find("<TLEDForceField"), end = rigid.find("<Node name=\"tool\">");
+  rigid.erase(begin, end - begin);
+  rigid.insert(begin, "</Node>\n  ");
+  rigid.replace(rigid.find("  <RequiredPlugin name=\"fem\"/>\n"), 31, "");
+  auto simulation = runFor(rigid, 0.5, out.path());
+  ASSERT_TRUE(simulation);
+  const Component* brain = simulation->scene().findComponent("/patient/brain");
+  ASSERT_NE(brain, nullptr);
+  std::vector<Counter> counters;
+  brain->reportCounters(counters);
+  for (const Counter& c : counters) EXPECT_NE(c.name, "deformation_frames");
+  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "contact_frames"), 0);
+}
+
+}  // namespace
+}  // namespace trephine::fem
