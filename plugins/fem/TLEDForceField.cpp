@@ -94,9 +94,17 @@ void TLEDForceField::tick(const TickContext& context) {
     }
     ++m_forceUpdates;
   }
-  // As many steps as fit: the model's time stays within one step of the end of this period.
+  // As many steps as fit: the model's time stays within one step of the end
+  // of this period. In real time, after a stall (a tick that came late), at
+  // most one step more than a period holds: the model falls behind the clock
+  // (counted) rather than take ever longer ticks to catch up.
   const double dt = m_model->timeStep();
-  const auto target = uint64_t(std::floor((context.t + context.dt) / dt + 1e-9));
+  uint64_t target = uint64_t(std::floor((context.t + context.dt) / dt + 1e-9)) - m_droppedSteps;
+  const uint64_t most = uint64_t(std::ceil(context.dt / dt - 1e-9)) + 1;
+  if (target > m_model->steps() + most) {
+    m_droppedSteps += target - (m_model->steps() + most);
+    target = m_model->steps() + most;
+  }
   uint64_t substeps = 0;
   while (m_model->steps() < target) {
     m_model->step();
@@ -106,9 +114,13 @@ void TLEDForceField::tick(const TickContext& context) {
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
   const double largest = m_model->writePositions(m_frame.positions);
   if (!std::isfinite(largest)) {
-    // Diverged (an accepted unstable step, or forces beyond reason): the
-    // collision keeps the last finite shape.
-    if (m_nonFinite++ == 0 && context.events) context.events->log(context.t, "fem_diverged", "non_finite", this);
+    // Diverged: an accepted unstable step, or a load the mesh cannot carry (a
+    // point force that pushes a node past its neighbours inverts elements,
+    // and explicit steps blow up there). The collision keeps the last finite
+    // shape; the model starts again from rest, and the event says when.
+    ++m_nonFinite;
+    if (context.events) context.events->log(context.t, "fem_diverged", "reset to rest", this);
+    m_model->resetToRest();
     return;
   }
   m_largestDisplacement = std::max(m_largestDisplacement, largest);
@@ -127,6 +139,7 @@ void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
   }
   counters.push_back({"steps", double(m_model->steps())});
   counters.push_back({"most_substeps", double(m_mostSubsteps)});
+  counters.push_back({"dropped_steps", double(m_droppedSteps)});  // behind the clock after stalls (real time)
   counters.push_back({"inverted_element_steps", double(m_model->counts().inverted)});
   counters.push_back({"most_inverted_elements", double(m_mostInverted)});
   counters.push_back({"far_from_rest_element_steps", double(m_model->counts().farFromRest)});

@@ -50,7 +50,10 @@ class TLEDForceField final : public Component {
   // With massScaling, scales the elements whose step is below dt (again after a material change).
   void scaleMass();
 
-  Link<tetra::TetraBrain> l_mesh{this, "mesh", {.help = "The tetrahedral mesh this deforms", .required = true}};
+  // Followed at init only: the ticks exchange positions and forces with the
+  // brain through channels, so the FEM may run in a rate group of its own.
+  Link<tetra::TetraBrain> l_mesh{
+      this, "mesh", {.help = "The tetrahedral mesh this deforms", .required = true, .initOnly = true}};
   Field<double> d_density{this,
                           "density",
                           1e-6,
@@ -108,7 +111,7 @@ class TLEDForceField final : public Component {
   Channel<tetra::NodePositions>* m_channel = nullptr;
   tetra::NodePositions m_frame;
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;
-  uint64_t m_mostInverted = 0;
+  uint64_t m_mostInverted = 0, m_droppedSteps = 0;
   size_t m_massScaledElements = 0;
   double m_largestDisplacement = 0;  // mm
 };

@@ -302,6 +302,12 @@ void TledModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> 
   for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
 }
 
+void TledModel::resetToRest() {
+  std::fill(m_u.begin(), m_u.end(), 0.0);
+  std::fill(m_uPrev.begin(), m_uPrev.end(), 0.0);
+  for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
+}
+
 double TledModel::writePositions(std::span<Vec3> positions) const {
   double largestSquared = 0;
   bool finite = true;

@@ -138,6 +138,9 @@ class TledModel {
   // Sets the displacement of every node now and one step ago (mm): a start
   // with a velocity (u - uPrevious) / dt. Held axes keep their values.
   void setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious);
+  // Back to rest, at rest (the held axes at their values); the external
+  // forces stay. Allocation-free.
+  void resetToRest();
   // Writes rest + displacement into `positions` (nodeCount() entries); returns
   // the largest displacement (mm), infinite when any position is not finite.
   // Allocation-free.

@@ -10,11 +10,31 @@ namespace trephine::haptics {
 void ForceFeedback::init(InitContext& context) {
   m_log = context.claimHapticLog(*this);
   // The summary judges force steps beyond what k and b explain from the device's motion.
-  if (m_log) m_log->setRenderingGains(d_stiffness.value(), d_damping.value());
+  // After a tool change the gains may change: the larger of each explains more, so the judge is not harsher.
+  if (m_log)
+    m_log->setRenderingGains(std::max(d_stiffness.value(), d_nextStiffness.value()),
+                             std::max(d_damping.value(), d_nextDamping.value()));
+  if ((d_nextStiffness.isSet() || d_nextDamping.isSet()) && !l_proxy->hasToolChange())
+    context.error(d_nextStiffness.isSet() ? static_cast<const BaseField&>(d_nextStiffness) : d_nextDamping,
+                  "has no effect: the proxy " + l_proxy->path() + " has no toolChange");
   m_samples = &context.channels().publish<Sample>(*this, kSampleChannel);
   // On a device with dynamics (a simulated hand), flag a rendering that cannot be passive.
   warnIfNotPassive(context, d_stiffness, d_stiffness.value(), d_damping.value(), rateHz(), l_proxy->tool().device());
+  if (d_nextStiffness.isSet() || d_nextDamping.isSet())
+    warnIfNotPassive(context, d_nextStiffness.isSet() ? static_cast<const BaseField&>(d_nextStiffness) : d_nextDamping,
+                     stiffnessAfterChange(), dampingAfterChange(), rateHz(), l_proxy->tool().device());
 }
+
+double ForceFeedback::stiffnessAfterChange() const {
+  return d_nextStiffness.value() >= 0 ? d_nextStiffness.value() : d_stiffness.value();
+}
+double ForceFeedback::dampingAfterChange() const {
+  return d_nextDamping.value() >= 0 ? d_nextDamping.value() : d_damping.value();
+}
+double ForceFeedback::stiffness() const {
+  return l_proxy->changedTools() ? stiffnessAfterChange() : d_stiffness.value();
+}
+double ForceFeedback::damping() const { return l_proxy->changedTools() ? dampingAfterChange() : d_damping.value(); }
 
 std::vector<std::string> ForceFeedback::sampleColumns() const {
   return {"device_x", "device_y", "device_z", "proxy_x",  "proxy_y",     "proxy_z",         "force_x", "force_y",
@@ -33,10 +53,11 @@ void ForceFeedback::tick(const TickContext& context) {
     // that pulling back would first have to undo, and the damping keeps acting
     // at the clamp (with the clamp alone it is masked there, so a saturated
     // contact loses its dissipation).
-    const double spring = std::min(d_stiffness.value() * s.penetration, d_maxForce.value());  // N
+    const double k = stiffness(), b = damping();
+    const double spring = std::min(k * s.penetration, d_maxForce.value());  // N
     const double normalSpeed = device.state().velocity.dot(s.normal);  // mm/s, negative when pressing in
-    const double magnitude = spring - d_damping.value() * normalSpeed;
-    if (magnitude > d_maxForce.value() || d_stiffness.value() * s.penetration > d_maxForce.value())
+    const double magnitude = spring - b * normalSpeed;
+    if (magnitude > d_maxForce.value() || k * s.penetration > d_maxForce.value())
       ++m_saturatedFrames;
     force = std::clamp(magnitude, 0.0, d_maxForce.value()) * s.normal;  // never pulls the hand in
   }

@@ -25,16 +25,33 @@ class ForceFeedback final : public Component, public SampleSource {
 
   void init(InitContext& context) override;
   void tick(const TickContext& context) override;
+  // The gains of this frame (the next ones once the proxy changed tools), N/mm and N s/mm.
+  double stiffness() const;
+  double damping() const;
   void reportCounters(std::vector<Counter>& counters) const override;
   std::vector<std::string> sampleColumns() const override;
 
   const Vec3& force() const { return m_force; }
 
  private:
+  double stiffnessAfterChange() const;
+  double dampingAfterChange() const;
+
   Link<GodObjectProxy> l_proxy{this, "proxy", {.help = "Proxy whose contact is rendered", .required = true}};
   Field<double> d_stiffness{this, "stiffness", 2.0, {.help = "Stiffness k", .unit = "N/mm", .min = 0.0}};
   Field<double> d_damping{
       this, "damping", 0.002, {.help = "Viscosity b along the contact normal", .unit = "N*s/mm", .min = 0.0}};
+  Field<double> d_nextStiffness{this,
+                                "nextStiffness",
+                                -1.0,
+                                {.help = "After the proxy's tool change: the stiffness for the next tool and target "
+                                         "(a soft brain after the bone); negative keeps stiffness",
+                                 .unit = "N/mm"}};
+  Field<double> d_nextDamping{this,
+                              "nextDamping",
+                              -1.0,
+                              {.help = "After the proxy's tool change: the damping; negative keeps damping",
+                               .unit = "N s/mm"}};
   Field<double> d_maxForce{
       this,
       "maxForce",

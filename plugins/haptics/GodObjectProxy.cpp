@@ -19,8 +19,24 @@ constexpr double kCatchUp = 0.02;
 }  // namespace
 
 void GodObjectProxy::init(InitContext& context) {
-  l_target->reserveShell(l_tool->shellPoints());
-  l_target->describeTool(l_tool->shellPoints(), l_tool->solid());
+  m_tool = &*l_tool;
+  m_target = &*l_target;
+  m_target->reserveShell(m_tool->shellPoints());
+  m_target->describeTool(m_tool->shellPoints(), m_tool->solid());
+  if (l_toolChange) {
+    if (!l_nextTool && !l_nextTarget)
+      context.error(l_toolChange, "a tool change needs nextTool, nextTarget or both (what changes)");
+    PointShellTool& nextTool = l_nextTool ? *l_nextTool : *l_tool;
+    ShellContactTarget& nextTarget = l_nextTarget ? *l_nextTarget : *l_target;
+    nextTarget.reserveShell(nextTool.shellPoints());
+    nextTarget.describeTool(nextTool.shellPoints(), nextTool.solid());
+    if (&nextTool.device() != &l_tool->device())
+      context.error(l_nextTool, "the next tool must follow the same device as the first (" +
+                                    l_tool->device().path() + ")");
+  } else {
+    if (l_nextTool) context.error(l_nextTool, "has no effect without a toolChange");
+    if (l_nextTarget) context.error(l_nextTarget, "has no effect without a toolChange");
+  }
   m_sweeps = !d_sweep.is("none");
   m_probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
             : d_sweep.is("spheres") ? SweepProbe::Spheres
@@ -29,18 +45,18 @@ void GodObjectProxy::init(InitContext& context) {
 
 int GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) {
   // Every frame, so that a deformable target knows when the contact ended.
-  l_target->applyContactForce(m_state.contact ? Vec3(-forceOnTool_N) : Vec3::Zero(), t);
+  m_target->applyContactForce(m_state.contact ? Vec3(-forceOnTool_N) : Vec3::Zero(), t);
   if (!m_state.contact) return 0;
   if (!m_state.cutting) return 0;
   CuttingLoad load;
   load.center_W = m_state.proxy;
-  load.radius = l_tool->leadingRadius();
+  load.radius = m_tool->leadingRadius();
   load.overlap = m_state.overlap;
   load.force_N = -forceOnTool_N;
   load.dt = 1.0 / d_rate.value();
   load.t = t;
-  load.burr = l_tool->cuttingBurr();
-  const int removed = l_target->cutUnderLoad(load);
+  load.burr = m_tool->cuttingBurr();
+  const int removed = m_target->cutUnderLoad(load);
   m_state.removed += removed;
   return removed;
 }
@@ -51,14 +67,27 @@ SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Qu
   query.to = to;
   query.orientation = orientation;
   query.probe = m_probe;
-  query.leadingRadius = l_tool->leadingRadius();
-  query.shell = l_tool->shellPoints();
-  return l_target->sweep(query);
+  query.leadingRadius = m_tool->leadingRadius();
+  query.shell = m_tool->shellPoints();
+  return m_target->sweep(query);
 }
 
-void GodObjectProxy::tick(const TickContext&) {
-  PointShellTool& tool = *l_tool;
-  ShellContactTarget& target = *l_target;
+void GodObjectProxy::changeTools(const TickContext& context) {
+  // The first target hears that the contact ended; the proxy starts again
+  // where the device is, with no plane and no history of the old contact.
+  m_target->applyContactForce(Vec3::Zero(), context.t);
+  if (l_nextTool) m_tool = &*l_nextTool;
+  if (l_nextTarget) m_target = &*l_nextTarget;
+  m_state = ProxyState{};
+  m_lastNormal = Vec3::Zero();
+  m_hadDevice = m_heldBack = m_hasPlane = m_hadPlane = m_started = false;
+  m_changedTools = true;
+}
+
+void GodObjectProxy::tick(const TickContext& context) {
+  if (l_toolChange && !m_changedTools && l_toolChange->changed()) changeTools(context);
+  PointShellTool& tool = *m_tool;
+  ShellContactTarget& target = *m_target;
   target.refresh();
   const DeviceState& device = tool.device().state();
   ProxyState s;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "framework/geometry/ShellContactTarget.h"
+#include "plugins/haptics/ToolChange.h"
 
 namespace trephine::haptics {
 
@@ -50,7 +51,10 @@ class GodObjectProxy final : public Component {
   void reportCounters(std::vector<Counter>& counters) const override;
 
   const ProxyState& state() const { return m_state; }
-  PointShellTool& tool() const { return *l_tool; }
+  // The tool and target of this frame (the next ones after a tool change).
+  PointShellTool& tool() const { return *m_tool; }
+  bool changedTools() const { return m_changedTools; }
+  bool hasToolChange() const { return bool(l_toolChange); }
   // The force rendered to the user this frame (N, on the tool); its opposite
   // goes to the target (a deformable one passes it on to its nodes) and, while
   // the drill runs, loads the burr against it (force-driven removal). Returns
@@ -59,6 +63,7 @@ class GodObjectProxy final : public Component {
 
  private:
   SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
+  void changeTools(const TickContext& context);
 
   Link<PointShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
   Link<ShellContactTarget> l_target{this, "target", {.help = "What the tool collides with", .required = true}};
@@ -82,7 +87,19 @@ class GodObjectProxy final : public Component {
                                     "button n is held (a foot pedal)",
                             .min = 0.0,
                             .max = 32.0}};
+  Link<ToolChange> l_toolChange{
+      this,
+      "toolChange",
+      {.help = "From this tool change on, the proxy moves nextTool against nextTarget (the procedure's next phase)"}};
+  Link<PointShellTool> l_nextTool{
+      this, "nextTool", {.help = "The tool after the change (the same device's); unset keeps the tool"}};
+  Link<ShellContactTarget> l_nextTarget{
+      this, "nextTarget", {.help = "What the tool collides with after the change; unset keeps the target"}};
   RateField d_rate{this, 1000.0, "Haptic rate"};
+
+  PointShellTool* m_tool = nullptr;        // l_tool, then l_nextTool
+  ShellContactTarget* m_target = nullptr;  // l_target, then l_nextTarget
+  bool m_changedTools = false;
 
   // d_sweep, read once at init: the probe, or none.
   SweepProbe m_probe = SweepProbe::Line;

@@ -1,6 +1,7 @@
 // Devices, tools and force rendering.
 #include "framework/core/Registry.h"
 #include "plugins/haptics/CapsuleTool.h"
+#include "plugins/haptics/ContactWarning.h"
 #include "plugins/haptics/ForceFeedback.h"
 #include "plugins/haptics/GodObjectProxy.h"
 #include "plugins/haptics/HandDevice.h"
@@ -9,6 +10,7 @@
 #include "plugins/haptics/ScriptedDevice.h"
 #include "plugins/haptics/SphereTool.h"
 #include "plugins/haptics/SpringForce.h"
+#include "plugins/haptics/ToolChange.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
   using namespace trephine::haptics;
@@ -24,5 +26,11 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<GodObjectProxy>("GodObjectProxy",
                                 "God-object proxy of a pointshell tool: sweep, detection, constraint-plane projection");
   registrar.add<ForceFeedback>("ForceFeedback", "Viscoelastic force F = k p n - b (v.n) n of a proxy contact");
+  registrar.add<ToolChange>("ToolChange",
+                            "The moment a procedure changes tools (a time or a device button): proxies move on to "
+                            "their next tool and target");
+  registrar.add<ContactWarning>("ContactWarning",
+                                "Logs a contact_warning event when a proxy's tool touches a target it must not "
+                                "(the burr reaching the brain), with no force");
   registrar.add<SpringForce>("SpringForce", "Penalty spring-damper force of a sphere tool against an implicit surface");
 }

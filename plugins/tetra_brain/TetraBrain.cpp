@@ -176,6 +176,7 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
     ++m_unreservedShellCalls;
     return {};
   }
+  ++m_queries;
   const bool wantSites = !m_nodeSlot.empty();
   const TetContact result = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, wantSites); });
   if (result.contact.points > 0) ++m_contactFrames;
@@ -187,12 +188,15 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
 
 std::optional<size_t> TetraBrain::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
   if (!m_bound) return std::nullopt;
+  ++m_queries;
   return askBackend(*this, d_backend, [&] { return m_backend->broadPhase(X_WT, shell); });
 }
 SweepResult TetraBrain::sweep(const SweepQuery& query) const {
+  ++m_queries;
   return m_bound ? askBackend(*this, d_backend, [&] { return m_backend->sweep(query); }) : SweepResult{};
 }
 bool TetraBrain::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const {
+  ++m_queries;
   return m_bound && askBackend(*this, d_backend, [&] { return m_backend->overlaps(X_WT, shell); });
 }
 std::optional<SurfaceHit> TetraBrain::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {
@@ -266,6 +270,7 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"unused_nodes", double(m_report.unusedNodes)});
   counters.push_back({"non_manifold_faces", double(m_report.nonManifoldFaces)});
   counters.push_back({"contact_frames", double(m_contactFrames)});
+  counters.push_back({"queries", double(m_queries)});  // contact, sweep, overlap and broad-phase queries of the run
   if (m_positions) {
     counters.push_back({"deformation_frames", double(m_deformationFrames)});
     counters.push_back({"largest_displacement_bound_mm", m_largestBound});

@@ -190,6 +190,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   std::vector<int32_t> m_nodeSlot;       // per node: its entry in m_nodeForceValue, or -1
   std::vector<ContactSite> m_lastSites;  // capacity reserved with the shells
   uint64_t m_contactFrames = 0, m_unreservedShellCalls = 0;
+  mutable uint64_t m_queries = 0;  // counted by the const queries too
 };
 
 }  // namespace trephine::tetra

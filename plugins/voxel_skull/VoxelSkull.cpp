@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "framework/core/BackendBinding.h"
@@ -12,6 +13,19 @@
 #include "plugins/voxel_skull/io/VolumeWriter.h"
 
 namespace trephine::voxel {
+
+namespace {
+// FNV-1a (64 bits) of the voxel codes, as 16 hexadecimal digits.
+std::string checksum(const DensityVolume& volume) {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(volume.codes());
+  for (size_t i = 0; i < volume.voxelCount() * sizeof(VoxelCode); ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ULL;
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+}  // namespace
+
 
 void VoxelSkull::init(InitContext& context) {
   // The collision back-end first: an unknown one is reported with any error of the volume.
@@ -83,6 +97,7 @@ void VoxelSkull::checkRemovalFields(InitContext& context) {
 
 void VoxelSkull::setVolume(DensityVolume volume) {
   m_volume = std::move(volume);
+  m_initialChecksum = checksum(m_volume);
   const bool smooth = d_surface.is("smooth");
   m_grid = SolidGrid::of(m_volume, d_isovalue.value(), smooth);
   m_grid.buildOccupancy();  // smooth surface: the cells the point test must interpolate in
@@ -162,6 +177,11 @@ void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
   if (m_backend) m_backend->reportCounters(counters);
 }
 
-void VoxelSkull::reportFacts(std::vector<Fact>& facts) const { facts.push_back({"backend", d_backend.value()}); }
+void VoxelSkull::reportFacts(std::vector<Fact>& facts) const {
+  facts.push_back({"backend", d_backend.value()});
+  // What the volume held when loaded and holds now: equal unless something drilled it.
+  facts.push_back({"volume_checksum_initial", m_initialChecksum});
+  facts.push_back({"volume_checksum_final", checksum(m_volume)});
+}
 
 }  // namespace trephine::voxel

@@ -189,6 +189,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
                                             "directory after the run; empty writes nothing"}};
 
   DensityVolume m_volume;
+  std::string m_initialChecksum;  // of the codes as loaded (volume_checksum_initial)
   SolidGrid m_grid;
   int32_t m_drillStep = 1;     // codes removed per frame (removal="thesis")
   bool m_forceRemoval = true;  // d_removal, read once at init
