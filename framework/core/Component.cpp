@@ -23,6 +23,14 @@ double Component::rateHz() const {
   return 0;
 }
 
+const std::string& Component::rateGroup() const {
+  static const std::string none;
+  for (const BaseField* field : fields()) {
+    if (const auto* rate = dynamic_cast<const RateField*>(field)) return rate->group();
+  }
+  return none;
+}
+
 void Component::init(InitContext&) {}
 void Component::prepare(const RunPlan&) {}
 void Component::tick(const TickContext&) {}

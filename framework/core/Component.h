@@ -62,6 +62,8 @@ class Component : public FieldOwner {
 
   // The component's tick rate in Hz, or 0 for a passive component (no `rate` field).
   double rateHz() const;
+  // The named rate group beside the rate (the `group` field), "" for the rate's own.
+  const std::string& rateGroup() const;
   bool isTicking() const { return rateHz() > 0; }
 
   // ---- life cycle, in this order --------------------------------------------

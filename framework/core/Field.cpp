@@ -163,7 +163,13 @@ std::string FieldTraits<std::vector<double>>::format(const std::vector<double>& 
 
 RateField::RateField(FieldOwner* owner, double defaultHz, std::string_view help)
     : Field<double>(owner, "rate", defaultHz,
-                    {.help = help, .unit = "Hz", .min = 0.0, .max = 1.0e6, .minExclusive = true}) {}
+                    {.help = help, .unit = "Hz", .min = 0.0, .max = 1.0e6, .minExclusive = true}),
+      m_group(owner,
+              "group",
+              "",
+              {.help = "Rate group: components of one rate and one group tick in one thread, in order; a name "
+                       "of its own runs this component apart (a FEM beside the haptic loop at the same rate). "
+                       "Empty: the rate's own group"}) {}
 
 // ---- EnumField --------------------------------------------------------------
 

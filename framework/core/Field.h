@@ -174,6 +174,12 @@ class RateField final : public Field<double> {
  public:
   RateField(FieldOwner* owner, double defaultHz, std::string_view help = "Tick rate of this component");
   std::string typeName() const override { return "rate"; }
+  // The component's rate group beside its rate (the `group` field, declared
+  // with the rate): components of one rate and one group share a thread.
+  const std::string& group() const { return m_group.value(); }
+
+ private:
+  Field<std::string> m_group;
 };
 
 // One of a fixed set of words.

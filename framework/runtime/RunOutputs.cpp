@@ -106,7 +106,9 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
 
   json.key("groups").beginObject();
   for (const RateGroup& g : scheduler.groups()) {
-    json.key(rateKey(g.rateHz)).beginObject();
+    // "1000", or "1000:fem" for a named group at that rate.
+    json.key(rateKey(g.rateHz) + (g.name.empty() ? "" : ":" + g.name)).beginObject();
+    if (!g.name.empty()) json.field("group", g.name);
     json.field("calls", static_cast<unsigned long long>(g.calls));
     json.key("time_us");
     writeTiming(json, g.stepHistogram);
@@ -219,7 +221,7 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     const TimingSummary s = g.stepHistogram.summary();
     out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(10) << g.calls
         << std::setprecision(2) << std::setw(9) << s.p50 << std::setw(9) << s.p99 << std::setw(9) << s.max
-        << std::setw(8) << g.deadlineMisses << "\n";
+        << std::setw(8) << g.deadlineMisses << (g.name.empty() ? "" : "  group " + g.name) << "\n";
   }
   if (simulation.plan().realtime) {
     out << "realtime  rate_hz  calls/s  wake_late_p50_us  p99_us  max_us  skipped  SCHED_FIFO\n";
@@ -227,7 +229,8 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
       const TimingSummary late = g.wakeLateness.summary();
       out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9) << g.callsPerSecond()
           << std::setprecision(3) << std::setw(18) << late.p50 << std::setw(8) << late.p99 << std::setw(8) << late.max
-          << std::setw(9) << g.skippedTicks << std::setw(12) << (g.realtimePriority ? "yes" : "no") << "\n";
+          << std::setw(9) << g.skippedTicks << std::setw(12) << (g.realtimePriority ? "yes" : "no")
+          << (g.name.empty() ? "" : "  group " + g.name) << "\n";
     }
   }
   if (simulation.hapticLogOwner()) {

@@ -56,14 +56,15 @@ bool tryRealtimePriority(int priority) {
 
 Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& plan, EventLog* events)
     : m_plan(plan), m_events(events) {
-  std::map<double, size_t, std::greater<>> byRate;  // highest rate first
+  std::map<std::pair<double, std::string>, size_t> byRate;
   for (Component* c : components) {
     const double rate = c->rateHz();
     if (rate <= 0) continue;
-    auto [it, inserted] = byRate.emplace(rate, m_groups.size());
+    auto [it, inserted] = byRate.emplace(std::make_pair(rate, c->rateGroup()), m_groups.size());
     if (inserted) {
       RateGroup g;
       g.rateHz = rate;
+      g.name = c->rateGroup();
       g.periodS = 1.0 / rate;
       g.plannedCalls = plan.callsAt(rate);
       m_groups.push_back(std::move(g));
@@ -72,8 +73,10 @@ Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& p
     member.component = c;
     m_groups[it->second].members.push_back(std::move(member));
   }
-  std::sort(m_groups.begin(), m_groups.end(),
-            [](const RateGroup& a, const RateGroup& b) { return a.rateHz > b.rateHz; });
+  // Highest rate first; at one rate the rate's own group, then the named ones by name (virtual time's tie order).
+  std::sort(m_groups.begin(), m_groups.end(), [](const RateGroup& a, const RateGroup& b) {
+    return a.rateHz != b.rateHz ? a.rateHz > b.rateHz : a.name < b.name;
+  });
   // Indexed by tick; a tick skipped in real time stays NaN and is left out of timings.csv.
   for (RateGroup& g : m_groups)
     for (GroupMember& m : g.members) m.callUs.assign(g.plannedCalls, std::numeric_limits<float>::quiet_NaN());
@@ -81,7 +84,7 @@ Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& p
 
 const RateGroup* Scheduler::group(double rateHz) const {
   for (const RateGroup& g : m_groups)
-    if (g.rateHz == rateHz) return &g;
+    if (g.rateHz == rateHz && g.name.empty()) return &g;
   return nullptr;
 }
 

@@ -36,6 +36,7 @@ struct GroupMember {
 
 struct RateGroup {
   double rateHz = 0;
+  std::string name;  // "" for the rate's own group, else the components' `group`
   double periodS = 0;
   uint64_t plannedCalls = 0;
   std::vector<GroupMember> members;  // document order
@@ -66,6 +67,7 @@ class Scheduler {
   void run(const std::atomic<bool>& stop);
 
   const std::vector<RateGroup>& groups() const { return m_groups; }
+  // The rate's own group (not a named one), or null.
   const RateGroup* group(double rateHz) const;
   double simulatedTime() const { return m_simulatedTime; }  // s
   bool completed() const { return m_completed; }

@@ -44,6 +44,10 @@ std::vector<Component*> initialisationOrder(const std::vector<Component*>& compo
 // A ticking component reads what it reaches through links (passing through
 // passive components). Reaching a ticking component of another rate would read
 // another thread's state in real time, so it is refused: such data goes through channels.
+std::string groupText(const Component& c) {
+  return formatDouble(c.rateHz()) + " Hz" + (c.rateGroup().empty() ? "" : ", group '" + c.rateGroup() + "'");
+}
+
 void checkRateGroupLinks(const std::vector<Component*>& components, Diagnostics& diagnostics) {
   for (const Component* reader : components) {
     if (!reader->isTicking()) continue;
@@ -56,13 +60,12 @@ void checkRateGroupLinks(const std::vector<Component*>& components, Diagnostics&
         if (!seen.insert(target).second) continue;
         const BaseLink* via = first ? first : link;
         if (target->isTicking()) {
-          if (target->rateHz() != reader->rateHz())
+          if (target->rateHz() != reader->rateHz() || target->rateGroup() != reader->rateGroup())
             diagnostics.error(via->location(),
-                              reader->typeName() + " '" + reader->name() + "' (" + formatDouble(reader->rateHz()) +
-                                  " Hz) reads " + target->typeName() + " '" + target->path() + "' (" +
-                                  formatDouble(target->rateHz()) +
-                                  " Hz) through its links; components of different rates exchange data only through "
-                                  "channels, so give them the same rate");
+                              reader->typeName() + " '" + reader->name() + "' (" + groupText(*reader) + ") reads " +
+                                  target->typeName() + " '" + target->path() + "' (" + groupText(*target) +
+                                  ") through its links; components of different rate groups exchange data only "
+                                  "through channels, so give them the same rate and group");
           continue;  // a ticking target's own links are checked from it
         }
         follow(target, via);
