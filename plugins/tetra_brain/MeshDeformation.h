@@ -15,6 +15,8 @@ namespace trephine::tetra {
 
 inline constexpr const char* kNodePositionsChannel = "node_positions";
 inline constexpr const char* kNodeForcesChannel = "node_forces";
+// A TetGridRebuild publishes the grids it builds on the deformed shape here.
+inline constexpr const char* kGridsChannelName = "grids";
 
 struct NodePositions {
   uint64_t step = 0;             // the producer's tick count; 0 before the first

@@ -21,9 +21,7 @@ void NativeTetBackend::bind(const TetData& data) {
 void NativeTetBackend::buildAccelerations() {
   const TetMesh& mesh = *m_mesh;
   const size_t n = mesh.tetCount();
-  m_restBoxes.resize(n);
   m_degenerate.assign(n, 0);
-  m_restBounds.setEmpty();
   double edges = 0, volumes = 0;
   for (const TetIndices& k : mesh.tets)
     volumes += std::abs(signedVolume(mesh.nodes[k[0]], mesh.nodes[k[1]], mesh.nodes[k[2]], mesh.nodes[k[3]]));
@@ -31,10 +29,6 @@ void NativeTetBackend::buildAccelerations() {
   const double volumeTolerance = 1e-6 * volumes / double(n);
   for (size_t t = 0; t < n; ++t) {
     const TetIndices& k = mesh.tets[t];
-    Box3 box;
-    for (int32_t i : k) box.extend(mesh.nodes[i]);
-    m_restBoxes[t] = box;
-    m_restBounds.extend(box);
     edges += (mesh.nodes[k[0]] - mesh.nodes[k[1]]).norm() + (mesh.nodes[k[2]] - mesh.nodes[k[3]]).norm();
     const double v = signedVolume(mesh.nodes[k[0]], mesh.nodes[k[1]], mesh.nodes[k[2]], mesh.nodes[k[3]]);
     m_degenerate[t] = !(std::abs(v) > volumeTolerance);
@@ -49,24 +43,13 @@ void NativeTetBackend::buildAccelerations() {
                                                 : 0.25 * m_averageEdge;
   // Half the average edge by default: on the Brain3 phantom it halves the
   // haptic step of the full edge (fewer candidate tets per cell) at 8x the cells.
-  const double cell = m_options.cellSize > 0 ? m_options.cellSize : 0.5 * m_averageEdge;
-  m_tetBoxes = m_restBoxes;
-  m_bounds = m_restBounds;
+  m_cellSize = m_options.cellSize > 0 ? m_options.cellSize : 0.5 * m_averageEdge;
   // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
-  const Vec3 grow = Vec3::Constant(m_margin);
-  auto grown = [&](Box3 box) { return Box3(box.min() - grow, box.max() + grow); };
-  std::vector<Box3> boxes(n);
-  for (size_t t = 0; t < n; ++t) boxes[t] = grown(m_restBoxes[t]);
-  m_tetGrid.build(grown(m_restBounds), cell, boxes);
+  buildTetGrids(mesh, *m_topology, mesh.nodes, m_margin, m_cellSize, m_restGrids);
+  m_grids = &m_restGrids;
+  m_tetBoxes = m_restGrids.boxes;
+  m_bounds = m_restGrids.bounds;
   const auto& faces = m_topology->boundaryFaces();
-  boxes.clear();
-  boxes.reserve(faces.size());
-  for (const BoundaryFace& f : faces) {
-    Box3 box;
-    for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) box.extend(mesh.nodes[i]);
-    boxes.push_back(grown(box));
-  }
-  m_faceGrid.build(grown(m_restBounds), m_tetGrid.cellSide(), boxes);
   m_tetVisits.resize(n);
   m_faceVisits.resize(faces.size());
   // Node -> boundary faces, compressed rows.
@@ -101,13 +84,22 @@ Box3 NativeTetBackend::currentBox(int32_t tet) const {
   return box;
 }
 
+void NativeTetBackend::adoptGrids(const TetGridSet& grids) {
+  // Built elsewhere for this mesh and these settings (a TetGridRebuild).
+  if (grids.reference.size() != m_mesh->nodeCount() || grids.margin != m_margin) return;
+  m_grids = &grids;
+  ++m_adoptedGrids;
+}
+
 void NativeTetBackend::moveNodes(const NodeFrame& frame) {
   m_nodes = frame.nodes.data();
-  m_displacementBound = frame.displacementBound;
+  // The bound the queries need is from the grids' reference: the frame's own
+  // (from rest) while the grids are the rest ones, else measured here.
+  m_displacementBound = m_grids == &m_restGrids ? frame.displacementBound : driftFromReference(*m_grids, frame.nodes);
   m_queryGrowth = std::max(0.0, m_displacementBound - m_margin);
   if (m_queryGrowth > 0) ++m_framesBeyondMargin;
   const Vec3 grow = Vec3::Constant(m_displacementBound);
-  m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);
+  m_bounds = Box3(m_grids->bounds.min() - grow, m_grids->bounds.max() + grow);
   if (m_options.search != Search::kGrid)
     refreshBoxes(frame.movedNodes, m_options.refreshEveryBox || frame.allMoved || m_nodeTetStart.empty());
 }
@@ -153,15 +145,16 @@ void NativeTetBackend::reserveShell(std::span<const ShellPoint> shell) {
 
 void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"average_edge_mm", m_averageEdge});
-  counters.push_back({"cell_size_mm", m_tetGrid.cellSide()});
-  counters.push_back({"grid_cells", double(m_tetGrid.cellCount())});
+  counters.push_back({"cell_size_mm", m_grids->tetGrid.cellSide()});
+  counters.push_back({"grid_cells", double(m_grids->tetGrid.cellCount())});
   // Memory of the tetrahedron grid: 4 bytes per entry and per cell.
-  counters.push_back({"grid_entries", double(m_tetGrid.entryCount())});
+  counters.push_back({"grid_entries", double(m_grids->tetGrid.entryCount())});
   counters.push_back({"max_colliding_tetrahedra", double(m_maxCollidingTets)});
   counters.push_back({"deep_fallbacks", double(m_deepFallbacks)});
   if (m_options.search != Search::kGrid) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
   if (m_options.deformable) {
     counters.push_back({"displacement_margin_mm", m_margin});
+    counters.push_back({"adopted_grids", double(m_adoptedGrids)});
     counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
     if (m_options.search != Search::kGrid) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
   }

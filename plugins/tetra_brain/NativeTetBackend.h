@@ -23,6 +23,7 @@
 
 #include "plugins/tetra_brain/ShellLocator.h"
 #include "plugins/tetra_brain/TetBackend.h"
+#include "plugins/tetra_brain/TetGridSet.h"
 #include "plugins/tetra_brain/UniformGrid.h"
 #include "plugins/tetra_brain/VisitStamps.h"
 
@@ -40,6 +41,13 @@ class NativeTetBackend final : public TetBackend {
   void reserveShell(std::span<const ShellPoint> shell) override;
   size_t siteCapacity() const override { return m_hits.size(); }
   void moveNodes(const NodeFrame& frame) override;
+  // Grids built on a deformed shape (TetGridRebuild): used from now on, with
+  // the displacement bound measured from their reference. Ignored when they
+  // are not this mesh's (another node count or margin). Allocation-free.
+  void adoptGrids(const TetGridSet& grids) override;
+  bool adoptsGrids() const override { return true; }
+  double cellSize() const { return m_cellSize; }                  // mm
+  const TetGridSet& currentGrids() const { return *m_grids; }
   TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;
   size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override {
     return findHits(X_WT, shell).size();
@@ -89,11 +97,13 @@ class NativeTetBackend final : public TetBackend {
   const TetTopology* m_topology = nullptr;
   TetQueryOptions m_options;
   const Vec3* m_nodes = nullptr;          // current node positions: the rest nodes, or the deformation's latest
-  Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
-  std::vector<Box3> m_restBoxes;          // per tet, at rest (the grids are built from them, grown by the margin)
+  Box3 m_bounds;                          // the grids' reference bounds grown by the displacement bound
+  TetGridSet m_restGrids;                 // built on the rest shape at bind()
+  const TetGridSet* m_grids = &m_restGrids;  // in use: the rest ones or adopted ones (read in place)
+  double m_cellSize = 0;                  // mm
+  uint64_t m_adoptedGrids = 0;
   std::vector<Box3> m_tetBoxes;           // per tet, current: maintained only for the thesis's scans
   std::vector<uint8_t> m_degenerate;      // 1: zero-volume tetrahedron, never contains a point
-  UniformGrid m_tetGrid, m_faceGrid;      // tetrahedra and boundary faces by cell
   std::vector<uint32_t> m_nodeFaceStart;  // node -> boundary faces holding it (compressed rows)
   std::vector<int32_t> m_nodeFaces;
   double m_averageEdge = 0;  // mm

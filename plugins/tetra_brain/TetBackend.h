@@ -11,6 +11,7 @@
 
 #include "framework/core/CollisionBackend.h"
 #include "framework/geometry/ShellContactTarget.h"
+#include "plugins/tetra_brain/TetGridSet.h"
 #include "plugins/tetra_brain/TetMesh.h"
 #include "plugins/tetra_brain/TetTopology.h"
 
@@ -79,6 +80,12 @@ class TetBackend : public CollisionBackend {
   // A deforming mesh's nodes for this frame, before any query of the frame.
   // The span stays valid until the next call.
   virtual void moveNodes(const NodeFrame& frame) = 0;
+  // Acceleration structures built on a deformed shape off the haptic thread
+  // (TetGridRebuild), before the frame's moveNodes(); read in place until the
+  // next call. Back-ends that refit their own trees ignore them.
+  virtual void adoptGrids(const TetGridSet& grids) { (void)grids; }
+  // Whether adoptGrids() is used (TetGridRebuild refuses a back-end that ignores it).
+  virtual bool adoptsGrids() const { return false; }
   virtual TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) = 0;
   // The broad phase of collide() alone, for timing it apart (studies): the
   // candidates the narrow phase would examine (native: the shell points in

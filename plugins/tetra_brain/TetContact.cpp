@@ -39,13 +39,13 @@ double NativeTetBackend::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& 
 
 double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   // Rings of cells around p, nearest first, until no closer face can remain.
-  const Vec3 g = (p - m_faceGrid.origin()) / m_faceGrid.cellSide();
-  const auto& dims = m_faceGrid.dims();
+  const Vec3 g = (p - m_grids->faceGrid.origin()) / m_grids->faceGrid.cellSide();
+  const auto& dims = m_grids->faceGrid.dims();
   // Faces sit in the cells of their rest boxes grown by the margin: a face may
   // be up to the excess of the displacement bound farther than its cells say,
   // and a point outside the grid is that much farther from every cell.
-  const Vec3 lo = m_faceGrid.origin();
-  const Vec3 hi = lo + m_faceGrid.cellSide() * Vec3(dims[0], dims[1], dims[2]);
+  const Vec3 lo = m_grids->faceGrid.origin();
+  const Vec3 hi = lo + m_grids->faceGrid.cellSide() * Vec3(dims[0], dims[1], dims[2]);
   const double outside = (lo - p).cwiseMax(p - hi).cwiseMax(0.0).maxCoeff();
   const double slack = m_queryGrowth + outside;
   const int32_t ci = std::clamp(int32_t(std::floor(g.x())), 0, dims[0] - 1);
@@ -57,13 +57,13 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   const auto& faces = m_topology->boundaryFaces();
   m_faceVisits.begin();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
-    if ((ring - 1) * m_faceGrid.cellSide() - slack > best) break;
+    if ((ring - 1) * m_grids->faceGrid.cellSide() - slack > best) break;
     for (int32_t k = ck - ring; k <= ck + ring; ++k)
       for (int32_t j = cj - ring; j <= cj + ring; ++j)
         for (int32_t i = ci - ring; i <= ci + ring; ++i) {
           if (std::max({std::abs(i - ci), std::abs(j - cj), std::abs(k - ck)}) != ring) continue;  // shell only
           if (i < 0 || j < 0 || k < 0 || i >= dims[0] || j >= dims[1] || k >= dims[2]) continue;
-          for (int32_t f : m_faceGrid.items(m_faceGrid.cellIndex(i, j, k))) {
+          for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
             if (!m_faceVisits.firstVisit(f)) continue;
             const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
             const Vec3 q = closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]);

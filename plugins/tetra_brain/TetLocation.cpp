@@ -22,26 +22,26 @@ int32_t NativeTetBackend::locate(const Vec3& p) const {
   // A tet holding p now had its rest box within the displacement bound of p.
   const double slack = m_displacementBound;
   auto nearBox = [&](int32_t tet) {
-    const Box3& box = m_restBoxes[tet];
+    const Box3& box = m_grids->boxes[tet];
     return !((p.array() < box.min().array() - slack).any() || (p.array() > box.max().array() + slack).any());
   };
   if (m_queryGrowth == 0) {
-    const int64_t cell = m_tetGrid.cellOf(p);
+    const int64_t cell = m_grids->tetGrid.cellOf(p);
     if (cell < 0) return -1;
-    for (int32_t tet : m_tetGrid.items(cell))
+    for (int32_t tet : m_grids->tetGrid.items(cell))
       if (nearBox(tet) && inside(tet, p)) return tet;  // cells list tets in increasing order: the lowest index wins
     return -1;
   }
   // Nodes moved farther than the grid's margin: every cell within the excess.
   const Vec3 e = Vec3::Constant(m_queryGrowth);
   std::array<int32_t, 3> lo, hi;
-  if (!m_tetGrid.cellRange(Box3(p - e, p + e), lo, hi)) return -1;
+  if (!m_grids->tetGrid.cellRange(Box3(p - e, p + e), lo, hi)) return -1;
   int32_t found = -1;
   m_tetVisits.begin();
   for (int32_t k = lo[2]; k <= hi[2]; ++k)
     for (int32_t j = lo[1]; j <= hi[1]; ++j)
       for (int32_t i = lo[0]; i <= hi[0]; ++i)
-        for (int32_t tet : m_tetGrid.items(m_tetGrid.cellIndex(i, j, k))) {
+        for (int32_t tet : m_grids->tetGrid.items(m_grids->tetGrid.cellIndex(i, j, k))) {
           if (found >= 0 && tet >= found) break;
           if (m_tetVisits.firstVisit(tet) && nearBox(tet) && inside(tet, p)) found = tet;
         }
@@ -62,12 +62,12 @@ bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int3
     return any;
   }
   std::fill(tets.begin(), tets.begin() + points.size(), -1);
-  m_locator.group(m_tetGrid, points);
+  m_locator.group(m_grids->tetGrid, points);
   const Vec3 slack = Vec3::Constant(m_displacementBound);
   m_locator.forEachCell([&](int64_t cell, const Box3& pointsBox, int32_t first) {
     if (any && stopAtFirst) return;
-    for (int32_t tet : m_tetGrid.items(cell)) {  // increasing: the first tet found for a point is the lowest
-      const Vec3 lo = m_restBoxes[tet].min() - slack, hi = m_restBoxes[tet].max() + slack;
+    for (int32_t tet : m_grids->tetGrid.items(cell)) {  // increasing: the first tet found for a point is the lowest
+      const Vec3 lo = m_grids->boxes[tet].min() - slack, hi = m_grids->boxes[tet].max() + slack;
       if ((pointsBox.max().array() < lo.array()).any() || (pointsBox.min().array() > hi.array()).any()) continue;
       for (int32_t i = first; i >= 0; i = m_locator.nextPoint(i)) {
         if (tets[i] >= 0) continue;

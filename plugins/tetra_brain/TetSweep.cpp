@@ -40,7 +40,7 @@ double NativeTetBackend::firstEntry(const Vec3& a, const Vec3& b, bool skipIniti
   box.extend(b);
   box = Box3(box.min() - Vec3::Constant(m_queryGrowth), box.max() + Vec3::Constant(m_queryGrowth));
   std::array<int32_t, 3> lo, hi;
-  if (!m_faceGrid.cellRange(box, lo, hi)) return 2.0;
+  if (!m_grids->faceGrid.cellRange(box, lo, hi)) return 2.0;
   const auto& faces = m_topology->boundaryFaces();
   const Vec3 direction = b - a;
   double first = 2.0;
@@ -48,7 +48,7 @@ double NativeTetBackend::firstEntry(const Vec3& a, const Vec3& b, bool skipIniti
   for (int32_t k = lo[2]; k <= hi[2]; ++k)
     for (int32_t j = lo[1]; j <= hi[1]; ++j)
       for (int32_t i = lo[0]; i <= hi[0]; ++i)
-        for (int32_t f : m_faceGrid.items(m_faceGrid.cellIndex(i, j, k))) {
+        for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
           if (!m_faceVisits.firstVisit(f)) continue;
           const Vec3 n = faceNormal(faces[f]);
           if (direction.dot(n) >= 0) continue;  // leaving, or grazing

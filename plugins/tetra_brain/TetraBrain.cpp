@@ -100,7 +100,14 @@ void TetraBrain::reserveNodeForces(size_t entries) {
 std::optional<std::string> TetraBrain::followDeformation(const Component& deformer, ChannelHub& channels) {
   if (m_positions) return std::string("another component already deforms ") + path();
   m_positions = channels.subscribe<NodePositions>(deformer, kNodePositionsChannel);
+  m_deformer = &deformer;
   if (m_bound) bindBackend();  // the grids are grown by the displacement margin
+  return std::nullopt;
+}
+
+std::optional<std::string> TetraBrain::followGridRebuild(const Component& rebuilder, ChannelHub& channels) {
+  if (m_grids) return std::string("another component already rebuilds the grids of ") + path();
+  m_grids = channels.subscribe<TetGridSet>(rebuilder, kGridsChannelName);
   return std::nullopt;
 }
 
@@ -130,21 +137,29 @@ void TetraBrain::bindBackend() {
 }
 
 void TetraBrain::refresh() {
-  if (!m_bound || !m_positions || !m_positions->fetch()) return;
+  if (!m_bound || !m_positions) return;
+  // New grids (built off this thread) are read in place: adopting them is a pointer.
+  const bool newGrids = m_grids && m_grids->fetch();
+  if (newGrids) askBackend(*this, d_backend, [&] { m_backend->adoptGrids(m_grids->read()); });
+  const bool newShape = m_positions->fetch();
+  if (!newShape && !(newGrids && m_deformationFrames > 0)) return;
   const NodePositions& frame = m_positions->read();
   if (frame.positions.size() != m_mesh.nodeCount()) {
     // Not this mesh's nodes (a faulty deformation). The slot of the last good
     // shape went back to the writer with this fetch, so the rest shape it is.
-    ++m_rejectedFrames;
+    if (newShape) ++m_rejectedFrames;
     m_nodes = m_mesh.nodes.data();
     m_bounds = m_restBounds;
     askBackend(*this, d_backend, [&] { m_backend->moveNodes({m_mesh.nodes, 0.0, {}, true}); });
     return;
   }
-  const bool skipped = frame.step != m_lastStep + 1;  // a step in between was not seen: its moves are unknown
-  m_lastStep = frame.step;
+  // A step in between was not seen (its moves are unknown), or only the grids are new: all moved.
+  const bool skipped = !newShape || frame.step != m_lastStep + 1;
+  if (newShape) {
+    m_lastStep = frame.step;
+    ++m_deformationFrames;
+  }
   m_nodes = frame.positions.data();
-  ++m_deformationFrames;
   m_largestBound = std::max(m_largestBound, frame.displacementBound);
   const Vec3 grow = Vec3::Constant(frame.displacementBound);
   m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);

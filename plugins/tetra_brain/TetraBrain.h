@@ -57,6 +57,11 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   // another component already deforms this mesh.
   std::optional<std::string> followDeformation(const Component& deformer, ChannelHub& channels);
   bool isDeformable() const { return m_positions.has_value(); }
+  // The component that deforms this mesh (followDeformation), or null.
+  const Component* deformer() const { return m_deformer; }
+  // Called by a TetGridRebuild in its init(): from then on the grids it
+  // publishes on its "grids" channel are adopted at the start of a frame.
+  std::optional<std::string> followGridRebuild(const Component& rebuilder, ChannelHub& channels);
 
   // Replaces the mesh (tests and tools): validates, reorients and binds the
   // back-end to it (the native one when init() chose none, nor setBackend()).
@@ -179,6 +184,8 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
 
   // Deformation (followDeformation).
   std::optional<ChannelReader<NodePositions>> m_positions;
+  const Component* m_deformer = nullptr;
+  std::optional<ChannelReader<TetGridSet>> m_grids;  // from a TetGridRebuild
   uint64_t m_lastStep = 0;
   double m_largestBound = 0;  // mm
   uint64_t m_deformationFrames = 0, m_rejectedFrames = 0;

@@ -4,6 +4,7 @@
 #include "framework/core/Registry.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/ScriptedDeformation.h"
+#include "plugins/tetra_brain/TetGridRebuild.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 #include "plugins/tetra_brain/io/MeditWriter.h"
@@ -17,6 +18,10 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
       "faces");
   registrar.add<trephine::tetra::ScriptedDeformation>(
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
+  registrar.add<trephine::tetra::TetGridRebuild>(
+      "TetGridRebuild",
+      "Builds the native back-end's grids again on the deformed shape, off the haptic thread, when the nodes drift "
+      "beyond a fraction of the displacement margin");
   registrar.addPhantomWriter({.kind = "tetrahedral mesh",
                               .suffixes = {".mesh", ".mesh.gz"},
                               .plugin = {},

@@ -1,6 +1,7 @@
 // A deforming brain in real time: the deformation runs in its own rate group
 // (its own thread) and the haptic group reads the node positions it publishes
-// through the channel. Run under ThreadSanitizer in CI (label "threaded"): a
+// through the channel; the grids rebuilt on the deformed shape come from a
+// third. Run under ThreadSanitizer in CI (label "threaded"): a
 // haptic frame reading a slot the deformation is writing would be reported.
 #include <gtest/gtest.h>
 
@@ -19,7 +20,9 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
   <RequiredPlugin name="haptics"/>
   <Node name="patient">
     <TetraBrain name="brain" file="phantom:cube?cells=13"/>
-    <ScriptedDeformation name="wave" mesh="@brain" amplitude="1" center="5 5 100" period="0.25" rate="250"/>
+    <ScriptedDeformation name="wave" mesh="@brain" amplitude="12" wavelength="150" center="5 5 100" period="0.5"
+                         rate="250"/>
+    <TetGridRebuild name="grids" mesh="@brain" rate="100"/>
   </Node>
   <Node name="tool">
     <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
@@ -31,7 +34,7 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
 </Node>)",
                                     d, options);
   ASSERT_TRUE(simulation) << test::messages(d);
-  ASSERT_EQ(simulation->scheduler().groups().size(), 2u) << "a haptic thread and a deformation thread";
+  ASSERT_EQ(simulation->scheduler().groups().size(), 3u) << "haptic, deformation and grid threads";
   simulation->run();
   EXPECT_TRUE(simulation->complete()) << simulation->incompleteReason();
   const HapticStats s = simulation->hapticLog().stats();
@@ -40,6 +43,9 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
   // The brain took new shapes from the other thread (about 250 of them; fewer
   // if the machine stalls).
   EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 100.0);
+  // And grids built on the deformed shape in a third thread, adopted by the haptic one.
+  EXPECT_GT(test::componentCounter(*simulation, "TetGridRebuild", "rebuilds"), 3.0);
+  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "adopted_grids"), 3.0);
 }
 
 }  // namespace
