@@ -164,7 +164,7 @@ std::string pressScene(const std::string& femAttributes = "") {
   </Node>
   <Node name="tool">
     <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
-                    tipOffset="2.5" standoff="5" speed="20" depth="4" feedSpeed="8" rate="1000"/>
+                    tipOffset="2.5" standoff="5" speed="20" depth="4" feedSpeed="16" rate="1000"/>
     <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
     <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
     <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
@@ -174,15 +174,16 @@ std::string pressScene(const std::string& femAttributes = "") {
 
 TEST(FemSceneTest, TheToolsForceDeformsTheBrainWhichComesBackWhenReleased) {
   test::TempDir out;
-  auto simulation = runFor(pressScene(), 2.5, out.path());
+  auto simulation = runFor(pressScene(), 1.4, out.path());
   ASSERT_TRUE(simulation);
-  EXPECT_GT(test::componentCounter(*simulation, "TLEDForceField", "force_updates"), 100);
-  // Pressed 4 mm in with a 0.3 N/mm spring: the surface gives way by millimetres.
+  EXPECT_GT(test::componentCounter(*simulation, "TLEDForceField", "force_updates"), 50);
+  // Pressed 4 mm in with a 0.3 N/mm spring: the surface gives way by a millimetre or more.
   const double largest = test::componentCounter(*simulation, "TLEDForceField", "largest_displacement_mm");
   EXPECT_GT(largest, 1.0);
   EXPECT_LT(largest, 20.0);
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "non_finite_ticks"), 0);
-  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 1000);
+  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 500);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "inverted_element_steps"), 0);
   // Released at the end, it has come back (damping 50 /s: a time constant of 40 ms).
   const tetra::TetMesh rest = tetra::readTetMesh(out / "brain_final.mesh");
   double remaining = 0;
@@ -193,8 +194,8 @@ TEST(FemSceneTest, TheToolsForceDeformsTheBrainWhichComesBackWhenReleased) {
 
 TEST(FemSceneTest, ARunRepeatsByteForByte) {
   test::TempDir first, second;
-  ASSERT_TRUE(runFor(pressScene(), 1.2, first.path()));
-  ASSERT_TRUE(runFor(pressScene(), 1.2, second.path()));
+  ASSERT_TRUE(runFor(pressScene(), 0.7, first.path()));
+  ASSERT_TRUE(runFor(pressScene(), 0.7, second.path()));
   for (const char* file : {"trace.csv", "brain_final.mesh"})
     EXPECT_EQ(test::readFile(first / file), test::readFile(second / file)) << file;
 }
