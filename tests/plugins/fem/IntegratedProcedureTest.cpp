@@ -26,7 +26,7 @@ std::string procedure(const Options& o = {}) {
   <RequiredPlugin name="haptics"/>
   <RequiredPlugin name="fem"/>
   <Node name="patient">
-    <VoxelSkull name="skull" file="phantom:wall?voxel=0.5&amp;thickness=3&amp;size=40" isovalue="400" drill=")") +
+    <VoxelSkull name="skull" file="phantom:wall?voxel=1&amp;thickness=3&amp;size=40" isovalue="400" drill=")") +
          (o.drill ? "true" : "false") + R"("/>
     <TetraBrain name="brain" file="phantom:cube?cells=4&amp;size=20" translation="0 0 -14"/>
     <TLEDForceField name="fem" mesh="@brain" dt="0.2e-3" rate="500"/>

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <random>
@@ -149,22 +150,22 @@ struct Cantilever {
 };
 
 // The static deflection from the kernel's own forces: K u = m g solved by
-// conjugate gradients (Jacobi preconditioned), K v the central difference of
+// conjugate gradients (Jacobi preconditioned), K v the difference quotient of
 // the internal forces along v at rest (the small-strain stiffness).
 double staticTipDeflection(const Cantilever& beam) {
   const TledModel model = modelOf(beam.mesh);
   const size_t m = beam.mesh.nodeCount();
   using Vector = std::vector<Vec3>;
-  Vector plus(m), minus(m), forcePlus(m), forceMinus(m);
+  Vector plus(m), forcePlus(m);
+  // The forces at rest are zero, so one evaluation gives the derivative (to
+  // a relative 1e-6 at a displacement of 1e-6 mm).
   const auto stiffness = [&](const Vector& v, Vector& out) {
     double largest = 1e-300;
     for (const Vec3& x : v) largest = std::max(largest, x.cwiseAbs().maxCoeff());
     const double epsilon = 1e-6 / largest;  // mm of the largest entry
-    for (size_t i = 0; i < m; ++i) plus[i] = epsilon * v[i], minus[i] = -plus[i];
+    for (size_t i = 0; i < m; ++i) plus[i] = epsilon * v[i];
     model.internalForcesAt(plus, forcePlus);
-    model.internalForcesAt(minus, forceMinus);
-    for (size_t i = 0; i < m; ++i)
-      out[i] = beam.clamped[i] ? Vec3::Zero() : Vec3((forcePlus[i] - forceMinus[i]) / (2 * epsilon));
+    for (size_t i = 0; i < m; ++i) out[i] = beam.clamped[i] ? Vec3::Zero() : Vec3(forcePlus[i] / epsilon);
   };
   // Jacobi: the diagonal of the linear-elastic element stiffness, from the mesh.
   const ElasticModuli moduli = ElasticModuli::fromYoung(kBrain.youngModulus, kBrain.poissonRatio);
@@ -196,7 +197,8 @@ double staticTipDeflection(const Cantilever& beam) {
   precondition();
   p = z;
   double rz = dot(r, z);
-  for (int iteration = 0; iteration < 5000 && dot(r, r) > 1e-20 * bb; ++iteration) {
+  // To a residual 1e-7 of the load: the deflection to about as much, far below the 5% asked.
+  for (int iteration = 0; iteration < 5000 && dot(r, r) > 1e-14 * bb; ++iteration) {
     stiffness(p, Ap);
     const double alpha = rz / dot(p, Ap);
     for (size_t i = 0; i < m; ++i) x[i] += alpha * p[i], r[i] -= alpha * Ap[i];
@@ -205,22 +207,23 @@ double staticTipDeflection(const Cantilever& beam) {
     for (size_t i = 0; i < m; ++i) p[i] = z[i] + (next / rz) * p[i];
     rz = next;
   }
-  EXPECT_LE(dot(r, r), 1e-20 * bb) << "conjugate gradients did not converge";
+  EXPECT_LE(dot(r, r), 1e-14 * bb) << "conjugate gradients did not converge";
   return beam.meanTip([&](size_t i) { return x[i].z(); });
 }
 
 TEST(TledModelTest, ACantileverUnderGravityConvergesToEulerBernoulli) {
   // Linear tetrahedra are stiff in bending: the error falls with the square
-  // of the element size (here 32%, 11% and 3% with 2, 4 and 8 cells across).
+  // of the element size (here 32%, 11% and 4% with 2, 4 and 7 cells across).
   const double exact = Cantilever::eulerBernoulli();
   double previousError = INFINITY;
-  for (int cells : {2, 4, 8}) {
+  for (int cells : {2, 4, 7}) {
     const double tip = staticTipDeflection(Cantilever(cells));
     const double error = std::abs(tip / exact - 1);
+    std::printf("%d cells across: tip %.4f mm, Euler-Bernoulli %.4f mm, error %.1f%%\n", cells, tip, exact, 100 * error);
     EXPECT_LT(error, previousError) << cells << " cells across";
     previousError = error;
   }
-  EXPECT_LT(previousError, 0.05) << "8 cells across";
+  EXPECT_LT(previousError, 0.05) << "7 cells across";
 }
 
 TEST(TledModelTest, TheDampedCantileverSettlesOnItsStaticDeflection) {

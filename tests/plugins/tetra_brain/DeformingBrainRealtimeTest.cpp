@@ -20,9 +20,9 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
   <RequiredPlugin name="haptics"/>
   <Node name="patient">
     <TetraBrain name="brain" file="phantom:cube?cells=13"/>
-    <ScriptedDeformation name="wave" mesh="@brain" amplitude="12" wavelength="150" center="5 5 100" period="0.5"
+    <ScriptedDeformation name="wave" mesh="@brain" amplitude="6" wavelength="150" center="5 5 100" period="0.5"
                          rate="250"/>
-    <TetGridRebuild name="grids" mesh="@brain" rate="100"/>
+    <TetGridRebuild name="grids" mesh="@brain" threshold="0.25" rate="100"/>
   </Node>
   <Node name="tool">
     <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
@@ -44,8 +44,44 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
   // if the machine stalls).
   EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 100.0);
   // And grids built on the deformed shape in a third thread, adopted by the haptic one.
-  EXPECT_GT(test::componentCounter(*simulation, "TetGridRebuild", "rebuilds"), 3.0);
-  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "adopted_grids"), 3.0);
+  EXPECT_GE(test::componentCounter(*simulation, "TetGridRebuild", "rebuilds"), 2.0);
+  EXPECT_GE(test::componentCounter(*simulation, "TetraBrain", "adopted_grids"), 2.0);
+}
+
+TEST(DeformingBrainRealtimeTest, TheFemRunsInAThreadOfItsOwnBesideTheHapticLoop) {
+  // The FEM at the haptic rate but in its own group (group="fem"): two
+  // threads at 1 kHz exchanging node positions and node forces through channels.
+  SimulationOptions options;
+  options.realtime = true;
+  options.duration = 1.0;  // s
+  Diagnostics d;
+  auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="fem"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file="phantom:brain?tets=1200"/>
+    <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" group="fem"/>
+    <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -45"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
+                    tipOffset="2.5" standoff="3" speed="20" depth="4" feedSpeed="16" rate="1000"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)",
+                                    d, options);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  ASSERT_EQ(simulation->scheduler().groups().size(), 2u) << "the haptic thread and the FEM's";
+  simulation->run();
+  EXPECT_TRUE(simulation->complete()) << simulation->incompleteReason();
+  EXPECT_EQ(simulation->hapticLog().stats().nanFrames, 0u);
+  EXPECT_GT(simulation->hapticLog().stats().contactFrames, 50u);
+  EXPECT_GT(test::componentCounter(*simulation, "TLEDForceField", "force_updates"), 20.0);
+  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 100.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "non_finite_ticks"), 0.0);
 }
 
 }  // namespace

@@ -11,15 +11,15 @@
 namespace trephine {
 namespace {
 
-// A 200 mm cube (15 mm cells, a margin of about 4.8 mm) through which a wave
-// of 12 mm runs while a probe pokes it.
+// A 200 mm cube (25 mm cells, a margin of about 7.8 mm) through which a wave
+// of 20 mm runs while a probe pokes it.
 std::string wavingCube(bool rebuild) {
   return std::string(R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
   <RequiredPlugin name="haptics"/>
   <Node name="patient">
-    <TetraBrain name="brain" file="phantom:cube?cells=13"/>
-    <ScriptedDeformation name="wave" mesh="@brain" amplitude="12" wavelength="150" center="5 5 100" period="2"
+    <TetraBrain name="brain" file="phantom:cube?cells=8"/>
+    <ScriptedDeformation name="wave" mesh="@brain" amplitude="20" wavelength="250" center="5 5 100" period="2"
                          rate="250"/>
     )") + (rebuild ? R"(<TetGridRebuild name="grids" mesh="@brain" rate="100"/>)" : "") + R"(
   </Node>
@@ -36,7 +36,7 @@ std::string wavingCube(bool rebuild) {
 std::unique_ptr<Simulation> runInto(const std::string& xml, const std::filesystem::path& out) {
   Diagnostics d;
   SimulationOptions options;
-  options.duration = 1.5;
+  options.duration = 1.0;
   auto simulation = test::loadScene(xml, d, options);
   EXPECT_TRUE(simulation) << test::messages(d);
   if (!simulation) return nullptr;
@@ -50,13 +50,13 @@ TEST(GridRebuildTest, RebuiltGridsChangeTheCostNotTheAnswers) {
   auto rebuilt = runInto(wavingCube(true), withRebuild.path());
   auto rest = runInto(wavingCube(false), without.path());
   ASSERT_TRUE(rebuilt && rest);
-  EXPECT_GT(test::componentCounter(*rest, "TetraBrain", "contact_frames"), 100);
+  EXPECT_GT(test::componentCounter(*rest, "TetraBrain", "contact_frames"), 20);
   EXPECT_EQ(test::readFile(withRebuild / "trace.csv"), test::readFile(without / "trace.csv"));
   const double rebuilds = test::componentCounter(*rebuilt, "TetGridRebuild", "rebuilds");
   EXPECT_GT(rebuilds, 3);
   EXPECT_GT(test::componentCounter(*rebuilt, "TetraBrain", "adopted_grids"), 3);
   EXPECT_LE(test::componentCounter(*rebuilt, "TetraBrain", "adopted_grids"), rebuilds);
-  // Without: a quarter of the frames beyond the 4.8 mm margin; with: a handful (between a drift and its rebuild).
+  // Without: many frames beyond the margin; with: a handful (between a drift and its rebuild).
   const double beyondRest = test::componentCounter(*rest, "TetraBrain", "frames_beyond_margin");
   const double beyondRebuilt = test::componentCounter(*rebuilt, "TetraBrain", "frames_beyond_margin");
   EXPECT_GT(beyondRest, 200);
