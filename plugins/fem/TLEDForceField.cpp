@@ -40,6 +40,9 @@ void TLEDForceField::init(InitContext& context) {
   }
   m_frame.positions = mesh.nodes;
   m_frame.allMoved = true;
+  Box3 box;
+  for (const Vec3& p : mesh.nodes) box.extend(p);
+  m_meshSize = box.diagonal().norm();
   m_channel->reserve(m_frame);  // slots as large as a frame: publishing never allocates
   m_forces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
 }
@@ -113,7 +116,9 @@ void TLEDForceField::tick(const TickContext& context) {
   }
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
   const double largest = m_model->writePositions(m_frame.positions);
-  if (!std::isfinite(largest)) {
+  // A node farther from rest than the mesh is large has diverged as surely
+  // as a NaN (and would widen every collision query by as much).
+  if (!(largest <= m_meshSize)) {
     // Diverged: an accepted unstable step, or a load the mesh cannot carry (a
     // point force that pushes a node past its neighbours inverts elements,
     // and explicit steps blow up there). The collision keeps the last finite

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 #include "framework/core/BackendBinding.h"
@@ -15,11 +16,20 @@
 namespace trephine::voxel {
 
 namespace {
-// FNV-1a (64 bits) of the voxel codes, as 16 hexadecimal digits.
+// FNV-1a (64 bits) over the voxel codes taken 64 bits at a time (a
+// fingerprint, not a standard digest: eight times fewer steps than bytewise),
+// as 16 hexadecimal digits.
 std::string checksum(const DensityVolume& volume) {
   uint64_t hash = 0xcbf29ce484222325ULL;
   const auto* bytes = reinterpret_cast<const unsigned char*>(volume.codes());
-  for (size_t i = 0; i < volume.voxelCount() * sizeof(VoxelCode); ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ULL;
+  const size_t size = volume.voxelCount() * sizeof(VoxelCode);
+  size_t i = 0;
+  for (; i + 8 <= size; i += 8) {
+    uint64_t word;
+    std::memcpy(&word, bytes + i, 8);
+    hash = (hash ^ word) * 0x100000001b3ULL;
+  }
+  for (; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ULL;
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
   return text;
