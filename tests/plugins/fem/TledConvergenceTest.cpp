@@ -12,6 +12,7 @@
 
 #include "plugins/fem/TledModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
+#include "tests/plugins/fem/FemTestSupport.h"
 
 namespace trephine::fem {
 namespace {
@@ -20,11 +21,8 @@ using tetra::makeBoxMesh;
 using tetra::TetIndices;
 using tetra::TetMesh;
 
-constexpr ElementMaterial kBrain{1e-6, 30.0, 0.3};  // Table 6.1
-
-TledModel modelOf(const TetMesh& mesh, const ElementMaterial& material = kBrain) {
-  return TledModel(mesh.nodes, mesh.tets, std::span(&material, 1));
-}
+using test::kBrain;
+using test::modelOf;
 
 // A cantilever along x (length 100 mm, square section 10 mm) clamped at
 // x = 0 under its own weight, at a small acceleration so that the strain stays

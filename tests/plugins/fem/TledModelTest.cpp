@@ -10,6 +10,7 @@
 
 #include "plugins/fem/TledModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
+#include "tests/plugins/fem/FemTestSupport.h"
 
 namespace trephine::fem {
 namespace {
@@ -18,11 +19,8 @@ using tetra::makeBoxMesh;
 using tetra::TetIndices;
 using tetra::TetMesh;
 
-constexpr ElementMaterial kBrain{1e-6, 30.0, 0.3};  // Table 6.1
-
-TledModel modelOf(const TetMesh& mesh, const ElementMaterial& material = kBrain) {
-  return TledModel(mesh.nodes, mesh.tets, std::span(&material, 1));
-}
+using test::kBrain;
+using test::modelOf;
 
 // The reference: the scalar formulas of NeoHookean.h on one element.
 std::array<Vec3, 4> referenceForces(const std::array<Vec3, 4>& X, const std::array<Vec3, 4>& x,
