@@ -10,6 +10,7 @@
 #include "plugins/fem/TledModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
+#include "plugins/tetra_brain/io/MeditWriter.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
 
@@ -148,6 +149,44 @@ TEST(FemSceneTest, ConstraintsAndMaterialsRefuseWhatSelectsNothing) {
     EXPECT_FALSE(test::loadScene(brain + element + "\n</Node>", d)) << element;
     EXPECT_NE(test::messages(d).find(expected), std::string::npos) << element << "\n" << test::messages(d);
   }
+}
+
+TEST(FemSceneTest, ALabelsMaterialGoesToItsElementsOnly) {
+  // A bar of two tissues: label 1 for x < 50 mm, label 2 beyond. Label 2 ten
+  // times stiffer: its waves are sqrt(10) times faster, so the critical step
+  // (set by the same element shapes on both sides) falls by sqrt(10).
+  tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  for (const tetra::TetIndices& t : bar.tets) {
+    const double x = 0.25 * (bar.nodes[t[0]].x() + bar.nodes[t[1]].x() + bar.nodes[t[2]].x() + bar.nodes[t[3]].x());
+    bar.labels.push_back(x < 50 ? 1 : 2);
+  }
+  test::TempDir dir;
+  tetra::writeMeditMesh(bar, dir / "bar.mesh");
+  const auto scene = [&](const std::string& material) {
+    return dir.write("scene.xml", R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="fem"/>
+  <TetraBrain name="bar" file="bar.mesh"/>
+  <TLEDForceField name="fem" mesh="@bar" dt="0.05e-3" damping="0" rate="1000"/>
+  )" + material + "\n</Node>");
+  };
+  const auto critical = [&](const std::string& material) {
+    Diagnostics d;
+    SimulationOptions options;
+    options.duration = 0.001;
+    auto simulation = Simulation::fromFile(scene(material), options, d);
+    EXPECT_TRUE(simulation) << test::messages(d);
+    return simulation ? test::componentCounter(*simulation, "TLEDForceField", "critical_dt_s") : NAN;
+  };
+  const double plain = critical("");
+  EXPECT_NEAR(critical(R"(<LabelMaterial fem="@fem" label="2" youngModulus="300"/>)") * std::sqrt(10.0), plain,
+              1e-12 * plain);
+  // Softer on its side: the other side's elements still set the step.
+  EXPECT_DOUBLE_EQ(critical(R"(<LabelMaterial fem="@fem" label="1" youngModulus="3"/>)"), plain);
+  // A label no element has is an error at the label.
+  Diagnostics d;
+  EXPECT_FALSE(Simulation::fromFile(scene(R"(<LabelMaterial fem="@fem" label="7"/>)"), {}, d));
+  EXPECT_NE(test::messages(d).find("no element of /bar has label 7"), std::string::npos) << test::messages(d);
 }
 
 // The tool presses into a deforming brain (a coarse phantom of 1,200 tetrahedra, base held) and lifts.
