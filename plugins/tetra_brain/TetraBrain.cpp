@@ -114,6 +114,53 @@ std::optional<std::string> TetraBrain::followGridRebuild(const Component& rebuil
 void TetraBrain::prepare(const RunPlan&) {
   m_nodeSlot.assign(m_mesh.nodeCount(), -1);  // only read when a component takes the node forces
   if (!m_nodeForces || m_nodeForces->readerCount() == 0) m_nodeSlot.clear();
+  if (!m_nodeSlot.empty() && d_forceSpread.value() > 0) buildForceSpread();
+}
+
+void TetraBrain::buildForceSpread() {
+  // Boundary nodes sorted by x: each node's neighbours within R are found in
+  // an x window. Weights (1 - (d / R)^2)^2, normalised per node, so each
+  // share keeps its sum; a node with no boundary node within R keeps its own.
+  const double R = d_forceSpread.value();
+  std::vector<int32_t> boundary;
+  std::vector<char> onBoundary(m_mesh.nodeCount(), 0);
+  for (const BoundaryFace& f : m_topology.boundaryFaces())
+    for (int32_t n : faceNodes(m_mesh.tets[f.tet], f.face)) onBoundary[n] = 1;
+  for (size_t n = 0; n < onBoundary.size(); ++n)
+    if (onBoundary[n]) boundary.push_back(int32_t(n));
+  std::sort(boundary.begin(), boundary.end(),
+            [&](int32_t a, int32_t b) { return m_mesh.nodes[a].x() < m_mesh.nodes[b].x(); });
+  m_spreadStart.assign(1, 0);
+  m_spreadNodes.clear();
+  m_spreadWeights.clear();
+  size_t widest = 1;
+  for (size_t n = 0; n < m_mesh.nodeCount(); ++n) {
+    const Vec3& p = m_mesh.nodes[n];
+    const size_t rowStart = m_spreadNodes.size();
+    double total = 0;
+    auto it = std::lower_bound(boundary.begin(), boundary.end(), p.x() - R,
+                               [&](int32_t b, double x) { return m_mesh.nodes[b].x() < x; });
+    for (; it != boundary.end() && m_mesh.nodes[*it].x() <= p.x() + R; ++it) {
+      const double d2 = (m_mesh.nodes[*it] - p).squaredNorm() / (R * R);
+      if (d2 >= 1) continue;
+      const double w = (1 - d2) * (1 - d2);
+      m_spreadNodes.push_back(*it);
+      m_spreadWeights.push_back(w);
+      total += w;
+    }
+    if (total == 0) {
+      m_spreadNodes.push_back(int32_t(n));
+      m_spreadWeights.push_back(1.0);
+      total = 1;
+    }
+    for (size_t k = rowStart; k < m_spreadNodes.size(); ++k) m_spreadWeights[k] /= total;
+    widest = std::max(widest, m_spreadNodes.size() - rowStart);
+    m_spreadStart.push_back(uint32_t(m_spreadNodes.size()));
+  }
+  // The spread forces touch at most every node, or each pressed node's row.
+  const size_t entries = std::min(m_mesh.nodeCount(), m_nodeForceValue.forces.capacity() * widest);
+  m_spreadValue.forces.reserve(entries);
+  reserveNodeForces(std::max(entries, m_nodeForceValue.forces.capacity()));
 }
 
 void TetraBrain::setMesh(TetMesh mesh) {
@@ -254,7 +301,28 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   forces.resize(count);
   for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
   m_nodeForceValue.t = t;
-  m_nodeForces->publish(m_nodeForceValue);
+  if (m_spreadStart.empty()) {
+    m_nodeForces->publish(m_nodeForceValue);
+    return;
+  }
+  // forceSpread: each node's force shared among its boundary neighbours.
+  std::vector<NodeForce>& spread = m_spreadValue.forces;
+  spread.resize(spread.capacity());  // reserved in prepare(): no allocation
+  uint32_t used = 0;
+  for (const NodeForce& f : forces)
+    for (uint32_t e = m_spreadStart[f.node]; e < m_spreadStart[f.node + 1]; ++e) {
+      int32_t& slot = m_nodeSlot[m_spreadNodes[e]];
+      if (slot < 0) {
+        if (used == spread.size()) continue;  // cannot happen: the capacity covers every node touched
+        slot = int32_t(used++);
+        spread[slot] = {m_spreadNodes[e], Vec3::Zero()};
+      }
+      spread[slot].force += m_spreadWeights[e] * f.force;
+    }
+  spread.resize(used);
+  for (const NodeForce& f : spread) m_nodeSlot[f.node] = -1;
+  m_spreadValue.t = t;
+  m_nodeForces->publish(m_spreadValue);
 }
 
 void TetraBrain::declareOutputs(std::vector<OutputFile>& outputs) const {

@@ -85,6 +85,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   void bindBackend();
   void checkNativeOnlyFields(InitContext& context);
   void reserveNodeForces(size_t entries);
+  void buildForceSpread();
 
   FilePathField d_file{this,
                        "file",
@@ -157,6 +158,16 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
                          {.help = "Thesis searches on a deforming mesh: every frame, refresh the box of every "
                                   "tetrahedron, or only of those with a node the deformation moved. The grid search "
                                   "refreshes nothing (displacement margin)"}};
+  Field<double> d_forceSpread{
+      this,
+      "forceSpread",
+      0.0,
+      {.help = "Share the tool's force on the mesh among the boundary nodes within this distance (rest shape) "
+               "of the nodes it presses, with smooth weights, instead of those nodes alone. Under a small tool a "
+               "coarse soft mesh otherwise carries the force on a few nodes, which invert their elements near 1 N. "
+               "0: the nodes of the contact's tetrahedra (the thesis)",
+       .unit = "mm",
+       .min = 0.0}};
   Field<std::string> d_saveDeformed{this,
                                     "saveDeformed",
                                     "",
@@ -196,6 +207,12 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   NodeForces m_nodeForceValue;
   std::vector<int32_t> m_nodeSlot;       // per node: its entry in m_nodeForceValue, or -1
   std::vector<ContactSite> m_lastSites;  // capacity reserved with the shells
+  // forceSpread: per node, the boundary nodes that share a force on it and
+  // their weights (compressed rows, built in prepare()); the spread forces.
+  std::vector<uint32_t> m_spreadStart;
+  std::vector<int32_t> m_spreadNodes;
+  std::vector<double> m_spreadWeights;
+  NodeForces m_spreadValue;
   uint64_t m_contactFrames = 0, m_unreservedShellCalls = 0;
   mutable uint64_t m_queries = 0;  // counted by the const queries too
 };

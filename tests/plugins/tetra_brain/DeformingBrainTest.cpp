@@ -113,6 +113,46 @@ TEST(DeformingBrainTest, PositionsOfAnotherSizeAreIgnoredAndCounted) {
   EXPECT_EQ(test::counter(following.brain, "rejected_position_frames"), 1.0);
 }
 
+TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
+  // forceSpread: the same force shared among the boundary nodes within 20 mm
+  // of the pressed ones (the cube's cells are 9 mm), its sum kept, its centre
+  // where the pressed nodes' was (the top face is flat and evenly meshed).
+  const auto publish = [](double spread, std::vector<NodeForce>& out, Vec3& centre) {
+    ChannelHub hub;
+    TetraBrain brain;
+    if (spread > 0) ASSERT_TRUE(brain.findField("forceSpread")->assign(std::to_string(spread), {}, {}) == std::nullopt);
+    cubeBrain(brain, 22);
+    brain.connectChannels(hub);
+    ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
+    const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
+    brain.reserveShell(shell);
+    brain.prepare(RunPlan{});
+    ASSERT_GT(brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false).points, 10);
+    brain.applyContactForce(Vec3(0, 0, -0.3), 1.0);
+    ASSERT_TRUE(reader.fetch());
+    out = reader.read().forces;
+    centre = Vec3::Zero();
+    for (const NodeForce& f : out) centre += (f.force.z() / -0.3) * brain.node(f.node);
+  };
+  std::vector<NodeForce> pressed, spread;
+  Vec3 pressedCentre, spreadCentre;
+  publish(0, pressed, pressedCentre);
+  publish(20, spread, spreadCentre);
+  ASSERT_FALSE(spread.empty());
+  Vec3 sum = Vec3::Zero();
+  double largest = 0;
+  for (const NodeForce& f : spread) {
+    sum += f.force;
+    largest = std::max(largest, f.force.norm());
+  }
+  EXPECT_NEAR((sum - Vec3(0, 0, -0.3)).norm(), 0.0, 1e-12);
+  EXPECT_GT(spread.size(), 3 * pressed.size());
+  double pressedLargest = 0;
+  for (const NodeForce& f : pressed) pressedLargest = std::max(pressedLargest, f.force.norm());
+  EXPECT_LT(largest, 0.5 * pressedLargest) << "no node carries most of the force";
+  EXPECT_LT((spreadCentre - pressedCentre).head<2>().norm(), 3.0) << "mm, on a 9 mm mesh";
+}
+
 TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   ChannelHub hub;
   TetraBrain brain;
