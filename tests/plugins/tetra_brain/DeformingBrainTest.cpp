@@ -120,7 +120,9 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
   const auto publish = [](double spread, std::vector<NodeForce>& out, Vec3& centre) {
     ChannelHub hub;
     TetraBrain brain;
-    if (spread > 0) ASSERT_TRUE(brain.findField("forceSpread")->assign(std::to_string(spread), {}, {}) == std::nullopt);
+    if (spread > 0) {
+      ASSERT_TRUE(brain.findField("forceSpread")->assign(std::to_string(spread), {}, {}) == std::nullopt);
+    }
     cubeBrain(brain, 22);
     brain.connectChannels(hub);
     ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
