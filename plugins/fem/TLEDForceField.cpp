@@ -77,26 +77,51 @@ std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const 
 
 void TLEDForceField::prepare(const RunPlan&) {
   m_model->setTimeStep(d_dt.value(), d_damping.value());
-  m_pushedNodes.reserve(m_model->nodeCount());
+  const size_t n = m_model->nodeCount();
+  m_target.assign(n, Vec3::Zero());
+  m_applied.assign(n, Vec3::Zero());
+  m_applying.assign(n, 0);
+  m_targetNodes.reserve(n);
+  m_appliedNodes.reserve(n);
 }
 
 void TLEDForceField::tick(const TickContext& context) {
   ++m_ticks;
   if (m_forces->fetch()) {
-    // The tool's latest reaction replaces the previous one.
-    for (int32_t node : m_pushedNodes) m_model->setExternalForce(node, Vec3::Zero());
-    m_pushedNodes.clear();
+    // The tool's latest reaction replaces the previous one as the target.
+    for (int32_t node : m_targetNodes) m_target[node] = Vec3::Zero();
+    m_targetNodes.clear();
     const tetra::NodeForces& latest = m_forces->read();
     for (const tetra::NodeForce& f : latest.forces) {
       if (f.node < 0 || size_t(f.node) >= m_model->nodeCount() || !f.force.allFinite()) {
         ++m_droppedForces;
         continue;
       }
-      m_model->setExternalForce(f.node, kNewtonsToModelForce * f.force);
-      if (m_pushedNodes.size() < m_pushedNodes.capacity()) m_pushedNodes.push_back(f.node);
+      m_target[f.node] = kNewtonsToModelForce * f.force;
+      if (m_targetNodes.size() < m_targetNodes.capacity()) m_targetNodes.push_back(f.node);
+      if (!m_applying[f.node]) {
+        m_applying[f.node] = 1;
+        m_appliedNodes.push_back(f.node);  // capacity: every node
+      }
     }
     ++m_forceUpdates;
   }
+  // The applied force follows the target with the time constant forceSmoothing
+  // (at once when 0); a node whose force has died away leaves the list.
+  const double follow = d_forceSmoothing.value() > 0 ? 1 - std::exp(-context.dt / d_forceSmoothing.value()) : 1.0;
+  size_t kept = 0;
+  for (int32_t node : m_appliedNodes) {
+    m_applied[node] += follow * (m_target[node] - m_applied[node]);
+    const bool done = m_target[node].isZero(0.0) && m_applied[node].norm() < 1e-9;  // mN
+    if (done) m_applied[node] = Vec3::Zero();
+    m_model->setExternalForce(node, m_applied[node]);
+    if (done) {
+      m_applying[node] = 0;
+    } else {
+      m_appliedNodes[kept++] = node;
+    }
+  }
+  m_appliedNodes.resize(kept);
   // As many steps as fit: the model's time stays within one step of the end
   // of this period. In real time, after a stall (a tick that came late), at
   // most one step more than a period holds: the model falls behind the clock

@@ -95,6 +95,16 @@ class TLEDForceField final : public Component {
                                false,
                                {.help = "Run with a dt above the critical time step of the mesh (the simulation will "
                                         "diverge: for tests of what follows)"}};
+  Field<double> d_forceSmoothing{
+      this,
+      "forceSmoothing",
+      0.0,
+      {.help = "Time constant with which the tool's force on the nodes follows the latest from the haptic loop "
+               "(0: at once). The haptic spring and a soft brain answer each other a frame late; where the brain's "
+               "local stiffness is near the spring's, they chatter at half the frame rate, and a few milliseconds "
+               "of smoothing stops it",
+       .unit = "s",
+       .min = 0.0}};
   Field<bool> d_massScaling{
       this,
       "massScaling",
@@ -107,7 +117,11 @@ class TLEDForceField final : public Component {
   std::unique_ptr<TledModel> m_model;
   std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
   std::optional<ChannelReader<tetra::NodeForces>> m_forces;
-  std::vector<int32_t> m_pushedNodes;  // nodes given a tool force by the last fetched value
+  // The tool's forces (mN) per node: the last fetched (target) and those
+  // applied, which follow it with the time constant forceSmoothing.
+  std::vector<Vec3> m_target, m_applied;
+  std::vector<char> m_applying;                    // 1: the node is in m_appliedNodes
+  std::vector<int32_t> m_targetNodes, m_appliedNodes;
   Channel<tetra::NodePositions>* m_channel = nullptr;
   tetra::NodePositions m_frame;
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;
