@@ -195,9 +195,15 @@ TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
     for (size_t j = i + 1; j < forces.forces.size(); ++j) EXPECT_NE(forces.forces[i].node, forces.forces[j].node);
 }
 
-TEST(DeformingBrainTest, PublishingNodeForcesEveryFrameAllocatesNothing) {
+class PublishingNodeForces : public ::testing::TestWithParam<double> {};
+
+// Also with the forces shared among the nodes around (forceSpread, mm).
+TEST_P(PublishingNodeForces, EveryFrameAllocatesNothing) {
   ChannelHub hub;
   TetraBrain brain;
+  if (GetParam() > 0) {
+    ASSERT_TRUE(brain.findField("forceSpread")->assign(std::to_string(GetParam()), {}, {}) == std::nullopt);
+  }
   cubeBrain(brain, 22);
   brain.connectChannels(hub);
   ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
@@ -220,6 +226,7 @@ TEST(DeformingBrainTest, PublishingNodeForcesEveryFrameAllocatesNothing) {
   EXPECT_GT(published, 100u);
   EXPECT_GT(largest, 20u) << "deep contacts touch many nodes";
 }
+INSTANTIATE_TEST_SUITE_P(DeformingBrainTest, PublishingNodeForces, ::testing::Values(0.0, 20.0));
 
 std::string deformingScene(const std::string& brain, const std::string& deformation) {
   return R"(<Node name="root">
