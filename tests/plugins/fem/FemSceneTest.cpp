@@ -13,10 +13,14 @@
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/io/MeditWriter.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "tests/plugins/fem/FemScenes.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine::fem {
 namespace {
+
+using scenes::pressScene;
+using scenes::runFor;
 
 // The bar of the cantilever tests: 100 mm, 10 mm square, 2 cells across.
 std::string barScene(const std::string& extra, double acceleration = -10, const std::string& fem = R"(dt="0.1e-3")") {
@@ -30,20 +34,6 @@ std::string barScene(const std::string& extra, double acceleration = -10, const 
   )" + (std::isnan(acceleration) ? std::string() :
         R"(<Gravity name="gravity" fem="@fem" acceleration="0 0 )" + std::to_string(acceleration) + R"("/>)") +
          extra + "\n</Node>";
-}
-
-std::unique_ptr<Simulation> runFor(const std::string& xml, double seconds, const std::filesystem::path& out) {
-  Diagnostics d;
-  SimulationOptions options;
-  options.duration = seconds;
-  auto simulation = test::loadScene(xml, d, options);
-  EXPECT_TRUE(simulation) << test::messages(d);
-  if (!simulation) return nullptr;
-  simulation->run();
-  std::vector<std::string> errors;
-  simulation->writeOutputs(out, &errors);
-  EXPECT_TRUE(errors.empty()) << errors.front();
-  return simulation;
 }
 
 TEST(FemSceneTest, TheComponentStepsTheModelExactlyAsTheModelAlone) {
@@ -188,28 +178,6 @@ TEST(FemSceneTest, ALabelsMaterialGoesToItsElementsOnly) {
   Diagnostics d;
   EXPECT_FALSE(Simulation::fromFile(scene(R"(<LabelMaterial fem="@fem" label="7"/>)"), {}, d));
   EXPECT_NE(test::messages(d).find("no element of /bar has label 7"), std::string::npos) << test::messages(d);
-}
-
-// The tool presses into a deforming brain (a coarse phantom of 1,200 tetrahedra, base held) and lifts.
-std::string pressScene(const std::string& femAttributes = "") {
-  return R"(<Node name="root">
-  <RequiredPlugin name="tetra_brain"/>
-  <RequiredPlugin name="haptics"/>
-  <RequiredPlugin name="fem"/>
-  <Node name="patient">
-    <TetraBrain name="brain" file="phantom:brain?tets=1200" saveDeformed="brain_final.mesh"/>
-    <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" )" +
-         femAttributes + R"(/>
-    <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -45"/>
-  </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
-                    tipOffset="2.5" standoff="5" speed="20" depth="4" feedSpeed="16" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
-</Node>)";
 }
 
 TEST(FemSceneTest, TheToolsForceDeformsTheBrainWhichComesBackWhenReleased) {

@@ -1,0 +1,51 @@
+#pragma once
+// Scenes the FEM's scene tests share: a probe pressing a deforming brain,
+// and running a scene for a while into a directory.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "framework/core/Diagnostics.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine::fem::scenes {
+
+inline std::unique_ptr<Simulation> runFor(const std::string& xml, double seconds, const std::filesystem::path& out) {
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = seconds;
+  auto simulation = trephine::test::loadScene(xml, d, options);
+  EXPECT_TRUE(simulation) << trephine::test::messages(d);
+  if (!simulation) return nullptr;
+  simulation->run();
+  std::vector<std::string> errors;
+  simulation->writeOutputs(out, &errors);
+  EXPECT_TRUE(errors.empty()) << errors.front();
+  return simulation;
+}
+
+// The tool presses into a deforming brain (a coarse phantom of 1,200 tetrahedra, base held) and lifts.
+inline std::string pressScene(const std::string& femAttributes = "") {
+  return R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="fem"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file="phantom:brain?tets=1200" saveDeformed="brain_final.mesh"/>
+    <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" )" +
+         femAttributes + R"(/>
+    <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -45"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
+                    tipOffset="2.5" standoff="5" speed="20" depth="4" feedSpeed="16" rate="1000"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)";
+}
+
+}  // namespace trephine::fem::scenes
