@@ -8,11 +8,12 @@
 // the thesis's Algorithm 2, the normals of the colliding tetrahedra's boundary
 // faces are averaged and the deepest point below them gives the penetration.
 //
-// On a deforming mesh the grids stay those of the rest shape, with every box
-// grown by a displacement margin, and each frame reads the current node
-// positions. While the deformation's displacement bound stays within the
-// margin nothing is refreshed; beyond it the queries widen by the excess, so
-// the results stay exact and only the cost grows. The thesis's scans instead
+// On a deforming mesh the grids are those of a reference shape (the rest
+// shape, or a deformed one a TetGridRebuild built off the haptic thread and
+// adoptGrids() took), with every box grown by a displacement margin, and each
+// frame reads the current node positions. While the nodes stay within the
+// margin of the reference nothing is refreshed; beyond it the queries widen
+// by the excess, so the results stay exact and only the cost grows. The thesis's scans instead
 // refresh tetrahedron boxes every frame (all of them, or those of the moved
 // nodes).
 //
