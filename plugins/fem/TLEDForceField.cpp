@@ -140,7 +140,8 @@ void TLEDForceField::tick(const TickContext& context) {
     ++substeps;
   }
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
-  const double largest = m_model->writePositions(m_frame.positions);
+  const TledModel::WrittenShape shape = m_model->writePositions(m_frame.positions);
+  const double largest = shape.largestDisplacement;
   // A node farther from rest than the mesh is large has diverged as surely
   // as a NaN (and would widen every collision query by as much).
   if (!(largest <= m_meshSize)) {
@@ -151,10 +152,13 @@ void TLEDForceField::tick(const TickContext& context) {
     ++m_nonFinite;
     if (context.events) context.events->log(context.t, "fem_diverged", "reset to rest", this);
     m_model->resetToRest();
+    m_movesKnown = false;  // the shape held is not the one last published
     return;
   }
   m_largestDisplacement = std::max(m_largestDisplacement, largest);
   m_frame.displacementBound = largest;
+  m_frame.largestMove = m_movesKnown ? shape.largestMove : INFINITY;
+  m_movesKnown = true;
   ++m_frame.step;
   m_channel->publish(m_frame);
 }

@@ -124,6 +124,7 @@ class TLEDForceField final : public Component {
   std::vector<int32_t> m_targetNodes, m_appliedNodes;
   Channel<tetra::NodePositions>* m_channel = nullptr;
   tetra::NodePositions m_frame;
+  bool m_movesKnown = true;  // m_frame.positions holds the shape last published
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;
   uint64_t m_mostInverted = 0, m_droppedSteps = 0;
   size_t m_massScaledElements = 0;

@@ -308,18 +308,22 @@ void TledModel::resetToRest() {
   for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
 }
 
-double TledModel::writePositions(std::span<Vec3> positions) const {
-  double largestSquared = 0;
+TledModel::WrittenShape TledModel::writePositions(std::span<Vec3> positions) const {
+  double largestSquared = 0, largestMoveSquared = 0;
   bool finite = true;
   for (size_t i = 0; i < m_rest.size(); ++i) {
     const double* d = &m_u[kNodeStride * size_t(m_internal[i])];
     const Vec3 u(d[0], d[1], d[2]);
-    positions[i] = m_rest[i] + u;
-    const double squared = u.squaredNorm();
-    finite = finite && std::isfinite(squared) && positions[i].allFinite();  // std::max would drop a NaN
+    const Vec3 p = m_rest[i] + u;
+    const double squared = u.squaredNorm(), moveSquared = (p - positions[i]).squaredNorm();
+    positions[i] = p;
+    // std::max would drop a NaN. The shape before may be a diverged one: then the move is unknown.
+    finite = finite && std::isfinite(squared) && p.allFinite();
     largestSquared = std::max(largestSquared, squared);
+    largestMoveSquared = std::isfinite(moveSquared) ? std::max(largestMoveSquared, moveSquared) : INFINITY;
   }
-  return finite ? std::sqrt(largestSquared) : INFINITY;
+  if (!finite) return {INFINITY, INFINITY};
+  return {std::sqrt(largestSquared), std::sqrt(largestMoveSquared)};
 }
 
 double TledModel::totalMass() const { return std::accumulate(m_mass.begin(), m_mass.end(), 0.0); }

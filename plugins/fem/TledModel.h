@@ -141,10 +141,15 @@ class TledModel {
   // Back to rest, at rest (the held axes at their values); the external
   // forces stay. Allocation-free.
   void resetToRest();
-  // Writes rest + displacement into `positions` (nodeCount() entries); returns
-  // the largest displacement (mm), infinite when any position is not finite.
-  // Allocation-free.
-  double writePositions(std::span<Vec3> positions) const;
+  // Writes rest + displacement into `positions` (nodeCount() entries, holding
+  // the shape written before); returns the largest displacement from rest and
+  // the largest move from the shape before (mm), both infinite when any
+  // position is not finite. Allocation-free.
+  struct WrittenShape {
+    double largestDisplacement = 0;  // mm, from rest
+    double largestMove = 0;          // mm, from what `positions` held
+  };
+  WrittenShape writePositions(std::span<Vec3> positions) const;
 
   double mass(int32_t node) const { return m_mass[m_internal[node]]; }  // kg
   double totalMass() const;

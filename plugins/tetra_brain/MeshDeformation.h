@@ -6,6 +6,7 @@
 //  - the TetraBrain publishes NodeForces on its "node_forces" channel: the
 //    reaction of the tool's force on the mesh nodes, computed only when a
 //    component reads it.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct NodePositions {
   uint64_t step = 0;             // the producer's tick count; 0 before the first
   std::vector<Vec3> positions;   // mm, world, one per mesh node
   double displacementBound = 0;  // mm, no node is farther than this from its rest position
+  // mm, no node moved farther than this since the producer's previous step
+  // (step - 1); infinite when unknown. Lets a reader that follows every step
+  // bound the drift from an earlier shape without visiting every node.
+  double largestMove = INFINITY;
   // Nodes moved since the producer's previous step (`allMoved`: every node),
   // for the thesis's refresh of only the moved tetrahedra's boxes.
   bool allMoved = true;

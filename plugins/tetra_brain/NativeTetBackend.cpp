@@ -15,6 +15,7 @@ void NativeTetBackend::bind(const TetData& data) {
   m_options = data.options;
   m_nodes = m_mesh->nodes.data();
   m_displacementBound = m_queryGrowth = 0;
+  m_drift.forget();
   buildAccelerations();
 }
 
@@ -88,6 +89,7 @@ void NativeTetBackend::adoptGrids(const TetGridSet& grids) {
   // Built elsewhere for this mesh and these settings (a TetGridRebuild).
   if (grids.reference.size() != m_mesh->nodeCount() || grids.margin != m_margin) return;
   m_grids = &grids;
+  m_drift.forget();
   ++m_adoptedGrids;
 }
 
@@ -95,7 +97,10 @@ void NativeTetBackend::moveNodes(const NodeFrame& frame) {
   m_nodes = frame.nodes.data();
   // The bound the queries need is from the grids' reference: the frame's own
   // (from rest) while the grids are the rest ones, else measured here.
-  m_displacementBound = m_grids == &m_restGrids ? frame.displacementBound : driftFromReference(*m_grids, frame.nodes);
+  // A loose bound between measurements costs little: it only admits more
+  // tets to the test against their current box (locatePoints).
+  m_displacementBound = m_grids == &m_restGrids ? frame.displacementBound
+                                                : m_drift.update(*m_grids, frame.nodes, frame.largestMove, m_margin);
   m_queryGrowth = std::max(0.0, m_displacementBound - m_margin);
   if (m_queryGrowth > 0) ++m_framesBeyondMargin;
   const Vec3 grow = Vec3::Constant(m_displacementBound);
@@ -155,6 +160,7 @@ void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
   if (m_options.deformable) {
     counters.push_back({"displacement_margin_mm", m_margin});
     counters.push_back({"adopted_grids", double(m_adoptedGrids)});
+    counters.push_back({"drift_measurements", double(m_drift.fullMeasurements())});  // frames that visited every node
     counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
     if (m_options.search != Search::kGrid) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
   }

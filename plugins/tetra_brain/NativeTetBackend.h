@@ -24,6 +24,7 @@
 
 #include "plugins/tetra_brain/ShellLocator.h"
 #include "plugins/tetra_brain/TetBackend.h"
+#include "plugins/tetra_brain/DriftBound.h"
 #include "plugins/tetra_brain/TetGridSet.h"
 #include "plugins/tetra_brain/UniformGrid.h"
 #include "plugins/tetra_brain/VisitStamps.h"
@@ -117,6 +118,7 @@ class NativeTetBackend final : public TetBackend {
   std::vector<int32_t> m_nodeTets;
   std::vector<uint8_t> m_tetMarked;
   uint64_t m_framesBeyondMargin = 0, m_refreshedBoxes = 0;
+  DriftBound m_drift;  // from adopted grids' reference shape
 
   // Per-query working memory, sized by reserveShell().
   std::vector<TetHit> m_hits;

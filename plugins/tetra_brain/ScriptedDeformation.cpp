@@ -1,5 +1,6 @@
 #include "plugins/tetra_brain/ScriptedDeformation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -50,14 +51,20 @@ void ScriptedDeformation::tick(const TickContext& context) {
   const double A = d_amplitude.value();
   const double omega = 2 * std::numbers::pi / d_period.value();  // rad/s
   const Vec3 d = m_unitDirection;
+  // The largest move since the frame before, for readers that bound a drift frame to frame.
+  double largestMove = 0;
+  auto place = [&](size_t i, const Vec3& p) {
+    largestMove = std::max(largestMove, (p - m_frame.positions[i]).norm());
+    m_frame.positions[i] = p;
+  };
   if (m_wave) {
     const double phase = omega * context.t;
-    for (size_t i = 0; i < m_rest.size(); ++i)
-      m_frame.positions[i] = m_rest[i] + (A * std::sin(m_profile[i] - phase)) * d;
+    for (size_t i = 0; i < m_rest.size(); ++i) place(i, m_rest[i] + (A * std::sin(m_profile[i] - phase)) * d);
   } else {
     const double s = A * std::sin(omega * context.t);
-    for (int32_t i : m_frame.movedNodes) m_frame.positions[i] = m_rest[i] + (s * m_profile[i]) * d;
+    for (int32_t i : m_frame.movedNodes) place(size_t(i), m_rest[i] + (s * m_profile[i]) * d);
   }
+  m_frame.largestMove = largestMove;
   ++m_frame.step;
   m_channel->publish(m_frame);
 }

@@ -45,6 +45,7 @@ struct NodeFrame {
   double displacementBound = 0;         // mm, no node is farther from its rest position
   std::span<const int32_t> movedNodes;  // nodes moved since the previous frame, unless allMoved
   bool allMoved = true;                 // or a frame in between was not seen
+  double largestMove = INFINITY;        // mm, no node moved farther since the previous frame; infinite when unknown
 };
 
 // Where a contact presses on the mesh: up to four nodes with weights summing

@@ -35,10 +35,20 @@ void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<c
 }
 
 double driftFromReference(const TetGridSet& set, std::span<const Vec3> positions) {
-  double largest = 0;
-  const size_t n = std::min(set.reference.size(), positions.size());
-  for (size_t i = 0; i < n; ++i) largest = std::max(largest, (positions[i] - set.reference[i]).squaredNorm());
-  return std::sqrt(largest);
+  return driftFromReference(set, positions, 0);
+}
+
+double driftFromReference(const TetGridSet& set, std::span<const Vec3> positions, size_t first) {
+  // Four running maxima: one would chain every node through the latency of a max.
+  double largest[4] = {0, 0, 0, 0};
+  const size_t n = first < set.reference.size() ? std::min(set.reference.size() - first, positions.size()) : 0;
+  const Vec3* reference = set.reference.data() + first;
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (size_t k = 0; k < 4; ++k)
+      largest[k] = std::max(largest[k], (positions[i + k] - reference[i + k]).squaredNorm());
+  for (; i < n; ++i) largest[0] = std::max(largest[0], (positions[i] - reference[i]).squaredNorm());
+  return std::sqrt(std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3])));
 }
 
 }  // namespace trephine::tetra

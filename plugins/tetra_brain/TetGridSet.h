@@ -30,5 +30,7 @@ void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<c
 
 // The largest distance of a node from its position in `set.reference` (mm).
 double driftFromReference(const TetGridSet& set, std::span<const Vec3> positions);
+// The same for the nodes first, first + 1, ... (`positions` holds those nodes only).
+double driftFromReference(const TetGridSet& set, std::span<const Vec3> positions, size_t first);
 
 }  // namespace trephine::tetra

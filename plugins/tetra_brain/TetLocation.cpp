@@ -23,7 +23,8 @@ int32_t NativeTetBackend::locate(const Vec3& p) const {
   const double slack = m_displacementBound;
   auto nearBox = [&](int32_t tet) {
     const Box3& box = m_grids->boxes[tet];
-    return !((p.array() < box.min().array() - slack).any() || (p.array() > box.max().array() + slack).any());
+    if ((p.array() < box.min().array() - slack).any() || (p.array() > box.max().array() + slack).any()) return false;
+    return slack == 0 || currentBox(tet).contains(p);  // tight once nodes moved (see locatePoints)
   };
   if (m_queryGrowth == 0) {
     const int64_t cell = m_grids->tetGrid.cellOf(p);
@@ -64,11 +65,21 @@ bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int3
   std::fill(tets.begin(), tets.begin() + points.size(), -1);
   m_locator.group(m_grids->tetGrid, points);
   const Vec3 slack = Vec3::Constant(m_displacementBound);
+  const bool moved = m_displacementBound > 0;
   m_locator.forEachCell([&](int64_t cell, const Box3& pointsBox, int32_t first) {
     if (any && stopAtFirst) return;
     for (int32_t tet : m_grids->tetGrid.items(cell)) {  // increasing: the first tet found for a point is the lowest
-      const Vec3 lo = m_grids->boxes[tet].min() - slack, hi = m_grids->boxes[tet].max() + slack;
+      Vec3 lo = m_grids->boxes[tet].min() - slack, hi = m_grids->boxes[tet].max() + slack;
       if ((pointsBox.max().array() < lo.array()).any() || (pointsBox.min().array() > hi.array()).any()) continue;
+      if (moved) {
+        // The grids' box grown by the drift may hold the points, the tet's
+        // box now (four node reads) is tight: most points end here, not in
+        // the four volumes of inside().
+        const Box3 now = currentBox(tet);
+        lo = now.min();
+        hi = now.max();
+        if ((pointsBox.max().array() < lo.array()).any() || (pointsBox.min().array() > hi.array()).any()) continue;
+      }
       for (int32_t i = first; i >= 0; i = m_locator.nextPoint(i)) {
         if (tets[i] >= 0) continue;
         const Vec3& p = points[i];

@@ -211,7 +211,8 @@ void TetraBrain::refresh() {
   const Vec3 grow = Vec3::Constant(frame.displacementBound);
   m_bounds = Box3(m_restBounds.min() - grow, m_restBounds.max() + grow);
   askBackend(*this, d_backend, [&] {
-    m_backend->moveNodes({frame.positions, frame.displacementBound, frame.movedNodes, frame.allMoved || skipped});
+    m_backend->moveNodes({frame.positions, frame.displacementBound, frame.movedNodes, frame.allMoved || skipped,
+                          skipped ? INFINITY : frame.largestMove});
   });
 }
 
@@ -306,20 +307,20 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     return;
   }
   // forceSpread: each node's force shared among its boundary neighbours.
+  // Appended within the capacity reserved in prepare(): no allocation, and
+  // only the entries in use are written.
   std::vector<NodeForce>& spread = m_spreadValue.forces;
-  spread.resize(spread.capacity());  // reserved in prepare(): no allocation
-  uint32_t used = 0;
+  spread.clear();
   for (const NodeForce& f : forces)
     for (uint32_t e = m_spreadStart[f.node]; e < m_spreadStart[f.node + 1]; ++e) {
       int32_t& slot = m_nodeSlot[m_spreadNodes[e]];
       if (slot < 0) {
-        if (used == spread.size()) continue;  // cannot happen: the capacity covers every node touched
-        slot = int32_t(used++);
-        spread[slot] = {m_spreadNodes[e], Vec3::Zero()};
+        if (spread.size() == spread.capacity()) continue;  // cannot happen: the capacity covers every node touched
+        slot = int32_t(spread.size());
+        spread.push_back({m_spreadNodes[e], Vec3::Zero()});
       }
       spread[slot].force += m_spreadWeights[e] * f.force;
     }
-  spread.resize(used);
   for (const NodeForce& f : spread) m_nodeSlot[f.node] = -1;
   m_spreadValue.t = t;
   m_nodeForces->publish(m_spreadValue);

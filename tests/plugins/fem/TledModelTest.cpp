@@ -242,6 +242,34 @@ TEST(TledModelTest, StepsAreDeterministic) {
   for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(Vec3)), 0);
 }
 
+TEST(TledModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) {
+  // Checked against the positions written, node by node.
+  const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
+  TledModel model = modelOf(mesh);
+  for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
+  model.setBodyAcceleration(Vec3(0, 0, -9810));
+  model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
+  std::vector<Vec3> positions = mesh.nodes, before;
+  for (int frame = 0; frame < 20; ++frame) {
+    for (int step = 0; step < 3; ++step) model.step();
+    before = positions;
+    const TledModel::WrittenShape shape = model.writePositions(positions);
+    double displacement = 0, move = 0;
+    for (size_t i = 0; i < positions.size(); ++i) {
+      displacement = std::max(displacement, (positions[i] - mesh.nodes[i]).norm());
+      move = std::max(move, (positions[i] - before[i]).norm());
+    }
+    EXPECT_NEAR(shape.largestDisplacement, displacement, 1e-12);
+    EXPECT_NEAR(shape.largestMove, move, 1e-12);
+  }
+  EXPECT_GT(model.writePositions(positions).largestDisplacement, 0.0);  // it did move
+  // Over a shape that is not finite (a diverged one) the move is unknown, the displacement is not.
+  positions[7] = Vec3::Constant(NAN);
+  const TledModel::WrittenShape shape = model.writePositions(positions);
+  EXPECT_TRUE(std::isfinite(shape.largestDisplacement));
+  EXPECT_EQ(shape.largestMove, INFINITY);
+}
+
 TEST(TledModelTest, LumpedMassesSumToTheBodysMass) {
   const TetMesh mesh = makeBoxMesh({3, 4, 5}, Vec3::Zero(), Vec3(30, 20, 10));
   const TledModel model = modelOf(mesh);
