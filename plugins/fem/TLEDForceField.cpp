@@ -30,6 +30,7 @@ void TLEDForceField::init(InitContext& context) {
     return;
   }
   m_labels = mesh.labels;
+  m_model->setElementPrecision(d_precision.is("single") ? ElementPrecision::kSingle : ElementPrecision::kDouble);
   scaleMass();
   if (auto error = checkTimeStep()) context.error(d_dt, *error);
 

@@ -9,13 +9,18 @@
 // J^(-1/3) comes from its cubic Taylor polynomial and three Newton steps,
 // exact to rounding for J in [0.65, 1.5]; the few elements deformed beyond
 // that take std::cbrt in a scalar pass, so the library's transcendental
-// function never runs for an element near rest. Everything is compiled for
+// function never runs for an element near rest. The arithmetic runs in
+// double or, when the model asks for it, in single precision (the thesis's GPU
+// code ran in single precision): twice the lanes and half the element bytes;
+// the node vectors, their differences and the sums into the nodes stay in
+// double either way. Everything is compiled for
 // the baseline instruction set and for AVX2 with FMA, where a node's (x, y,
 // z, 0) is one 256-bit load or store and four elements' nodes are transposed
 // in registers; the faster version this processor runs is picked when the
 // library loads.
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "plugins/fem/TledModel.h"
 
@@ -32,38 +37,62 @@ constexpr size_t kChunk = 64;  // elements per pass: the scratch below stays in 
 constexpr double kFastLow = 0.65, kFastHigh = 1.5;
 static_assert(kChunk % TledElements::kLanes == 0 && TledElements::kLanes % 4 == 0);
 
+// T: the precision of the element arithmetic (double or float).
+template <typename T>
 struct ChunkScratch {
   // d[3 (a - 1) + i]: displacement of local node a less node 0's, axis i (mm).
-  alignas(64) double d[9][kChunk];
-  alignas(64) double F[9][kChunk];  // row-major deformation gradient
-  alignas(64) double J[kChunk];
-  alignas(64) double I1[kChunk];
-  alignas(64) double y[kChunk];     // J^(-1/3), with J clamped below at kMinIsochoricJ
-  alignas(64) double f[9][kChunk];  // forces on local nodes 1..3 (node 0 takes minus their sum), mN
+  alignas(64) T d[9][kChunk];
+  alignas(64) T F[9][kChunk];  // row-major deformation gradient
+  alignas(64) T J[kChunk];
+  alignas(64) T I1[kChunk];
+  alignas(64) T y[kChunk];     // J^(-1/3), with J clamped below at kMinIsochoricJ
+  alignas(64) T f[9][kChunk];  // forces on local nodes 1..3 (node 0 takes minus their sum), mN
+};
+
+// The element arrays in the arithmetic's precision.
+template <typename T>
+struct ElementArrays {
+  const T* grad[9];
+  const T* muVolume;
+  const T* kappaVolume;
+  explicit ElementArrays(const TledElements& el) {
+    if constexpr (std::is_same_v<T, double>) {
+      for (int k = 0; k < 9; ++k) grad[k] = el.grad[k].data();
+      muVolume = el.muVolume.data();
+      kappaVolume = el.kappaVolume.data();
+    } else {
+      for (int k = 0; k < 9; ++k) grad[k] = el.single.grad[k].data();
+      muVolume = el.single.muVolume.data();
+      kappaVolume = el.single.kappaVolume.data();
+    }
+  }
 };
 
 // ---- gather and scatter, portable --------------------------------------------
 
+template <typename T>
 [[gnu::always_inline]] inline void gatherScalar(const TledElements& el, size_t base, size_t n, const double* u,
-                                                ChunkScratch& s) {
+                                                ChunkScratch<T>& s) {
   for (size_t e = 0; e < n; ++e) {
     const double* u0 = u + kNodeStride * size_t(el.node[0][base + e]);
     for (int a = 1; a < 4; ++a) {
       const double* ua = u + kNodeStride * size_t(el.node[a][base + e]);
-      for (int i = 0; i < 3; ++i) s.d[3 * (a - 1) + i][e] = ua[i] - u0[i];
+      for (int i = 0; i < 3; ++i) s.d[3 * (a - 1) + i][e] = T(ua[i] - u0[i]);
     }
   }
 }
 
+template <typename T>
 [[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base, size_t n,
-                                                 const ChunkScratch& s, double* f) {
+                                                 const ChunkScratch<T>& s, double* f) {
   for (size_t e = 0; e < n; ++e) {
     double* f0 = f + kNodeStride * size_t(el.node[0][base + e]);
     for (int a = 1; a < 4; ++a) {
       double* fa = f + kNodeStride * size_t(el.node[a][base + e]);
       for (int i = 0; i < 3; ++i) {
-        fa[i] += s.f[3 * (a - 1) + i][e];
-        f0[i] -= s.f[3 * (a - 1) + i][e];
+        const double force = s.f[3 * (a - 1) + i][e];
+        fa[i] += force;
+        f0[i] -= force;
       }
     }
   }
@@ -73,19 +102,20 @@ struct ChunkScratch {
 
 // F = I + sum_a d_a grad_a^T, J, I1 and the fast J^(-1/3); then the exact root
 // where J is far from 1. Returns the counts of the chunk.
-[[gnu::always_inline]] inline ElementStepCounts strainOfChunk(const TledElements& el, size_t base, size_t n,
-                                                              ChunkScratch& s) {
-  const double* g[9];
-  for (int k = 0; k < 9; ++k) g[k] = el.grad[k].data() + base;
+template <typename T>
+[[gnu::always_inline]] inline ElementStepCounts strainOfChunk(const ElementArrays<T>& el, size_t base, size_t n,
+                                                              ChunkScratch<T>& s) {
+  const T* g[9];
+  for (int k = 0; k < 9; ++k) g[k] = el.grad[k] + base;
   for (size_t e = 0; e < n; ++e) {
-    double F[9];
+    T F[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        F[3 * i + j] = (i == j ? 1.0 : 0.0) + s.d[i][e] * g[j][e] + s.d[3 + i][e] * g[3 + j][e] +
+        F[3 * i + j] = (i == j ? T(1) : T(0)) + s.d[i][e] * g[j][e] + s.d[3 + i][e] * g[3 + j][e] +
                        s.d[6 + i][e] * g[6 + j][e];
-    const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                     F[2] * (F[3] * F[7] - F[4] * F[6]);
-    double I1 = 0;
+    const T J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                F[2] * (F[3] * F[7] - F[4] * F[6]);
+    T I1 = 0;
     for (int k = 0; k < 9; ++k) {
       s.F[k][e] = F[k];
       I1 += F[k] * F[k];
@@ -94,47 +124,49 @@ struct ChunkScratch {
     s.I1[e] = I1;
     // Products by 1/3 and 1/81, not divisions: the compiler may not turn a
     // division by 3 into a product itself (1/3 is not exact).
-    constexpr double kThird = 1.0 / 3.0;
-    const double x = J - 1;
-    double y = 1 + x * (-kThird + x * (2.0 / 9.0 - x * (14.0 / 81.0)));
+    constexpr T kThird = T(1.0 / 3.0);
+    const T x = J - 1;
+    T y = 1 + x * (-kThird + x * (T(2.0 / 9.0) - x * T(14.0 / 81.0)));
     // Newton on y^-3 = J: y (4 - J y^3) / 3, written so that its chain of
     // dependent operations is three deep, not six.
     for (int it = 0; it < 3; ++it) {
-      const double cubeTimesJ = (y * y) * (y * J);
+      const T cubeTimesJ = (y * y) * (y * J);
       y = (4 * kThird) * y - (kThird * y) * cubeTimesJ;
     }
     s.y[e] = y;
   }
   ElementStepCounts counts;
   for (size_t e = 0; e < n; ++e) {
-    const double J = s.J[e];
-    if (J >= kFastLow && J <= kFastHigh) continue;
+    const T J = s.J[e];
+    if (J >= T(kFastLow) && J <= T(kFastHigh)) continue;
     ++counts.farFromRest;
     if (!(J > 0)) ++counts.inverted;
-    s.y[e] = 1.0 / std::cbrt(std::max(J, kMinIsochoricJ));
+    s.y[e] = T(1) / std::cbrt(std::max(J, T(kMinIsochoricJ)));
   }
   return counts;
 }
 
 // P V = mu V J^(-2/3) F + (kappa V (J - 1) - mu V I1 J^(-5/3) / 3) cof F; f_a = P V grad_a.
-[[gnu::always_inline]] inline void forcesOfChunk(const TledElements& el, size_t base, size_t n, ChunkScratch& s) {
-  const double* g[9];
-  for (int k = 0; k < 9; ++k) g[k] = el.grad[k].data() + base;
-  const double* mu = el.muVolume.data() + base;  // the rest volume is in the moduli
-  const double* kappa = el.kappaVolume.data() + base;
+template <typename T>
+[[gnu::always_inline]] inline void forcesOfChunk(const ElementArrays<T>& el, size_t base, size_t n,
+                                                 ChunkScratch<T>& s) {
+  const T* g[9];
+  for (int k = 0; k < 9; ++k) g[k] = el.grad[k] + base;
+  const T* mu = el.muVolume + base;  // the rest volume is in the moduli
+  const T* kappa = el.kappaVolume + base;
   for (size_t e = 0; e < n; ++e) {
-    double F[9];
+    T F[9];
     for (int k = 0; k < 9; ++k) F[k] = s.F[k][e];
-    const double J = s.J[e];
-    const double y = s.y[e], y2 = y * y;  // J^(-1/3), J^(-2/3)
-    const double isochoric = mu[e] * y2;
+    const T J = s.J[e];
+    const T y = s.y[e], y2 = y * y;  // J^(-1/3), J^(-2/3)
+    const T isochoric = mu[e] * y2;
     // mu I1 J^(-5/3) / 3 with J^(-5/3) = y^5: no division (and no select,
     // which would stop the vectoriser), the clamp of J already in y.
-    const double onCofactor = kappa[e] * (J - 1) - isochoric * (y2 * y) * s.I1[e] * (1.0 / 3.0);
-    const double cof[9] = {F[4] * F[8] - F[5] * F[7], F[5] * F[6] - F[3] * F[8], F[3] * F[7] - F[4] * F[6],
-                           F[2] * F[7] - F[1] * F[8], F[0] * F[8] - F[2] * F[6], F[1] * F[6] - F[0] * F[7],
-                           F[1] * F[5] - F[2] * F[4], F[2] * F[3] - F[0] * F[5], F[0] * F[4] - F[1] * F[3]};
-    double P[9];
+    const T onCofactor = kappa[e] * (J - 1) - isochoric * (y2 * y) * s.I1[e] * T(1.0 / 3.0);
+    const T cof[9] = {F[4] * F[8] - F[5] * F[7], F[5] * F[6] - F[3] * F[8], F[3] * F[7] - F[4] * F[6],
+                      F[2] * F[7] - F[1] * F[8], F[0] * F[8] - F[2] * F[6], F[1] * F[6] - F[0] * F[7],
+                      F[1] * F[5] - F[2] * F[4], F[2] * F[3] - F[0] * F[5], F[0] * F[4] - F[1] * F[3]};
+    T P[9];
     for (int k = 0; k < 9; ++k) P[k] = isochoric * F[k] + onCofactor * cof[k];
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 3; ++i)
@@ -144,16 +176,18 @@ struct ChunkScratch {
 
 // ---- the two versions ----------------------------------------------------------
 
+template <typename T>
 ElementStepCounts forcesBaseline(const TledElements& el, const double* u, double* f) {
   ElementStepCounts counts;
-  ChunkScratch s;
+  ChunkScratch<T> s;
+  const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
     const size_t n = std::min(kChunk, el.padded - base);
     gatherScalar(el, base, n, u, s);
-    const ElementStepCounts chunk = strainOfChunk(el, base, n, s);
+    const ElementStepCounts chunk = strainOfChunk(arrays, base, n, s);
     counts.inverted += chunk.inverted;
     counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(el, base, n, s);
+    forcesOfChunk(arrays, base, n, s);
     scatterScalar(el, base, n, s, f);
   }
   return counts;
@@ -187,8 +221,24 @@ __attribute__((target("avx2,fma"), always_inline)) inline void transposeToRows(_
   r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
 }
 
+// Columns of four elements into the scratch, in its precision.
+__attribute__((target("avx2,fma"), always_inline)) inline void storeColumn(double* to, __m256d v) {
+  _mm256_store_pd(to, v);
+}
+__attribute__((target("avx2,fma"), always_inline)) inline void storeColumn(float* to, __m256d v) {
+  _mm_store_ps(to, _mm256_cvtpd_ps(v));
+}
+__attribute__((target("avx2,fma"), always_inline)) inline __m256d loadColumn(const double* from) {
+  return _mm256_load_pd(from);
+}
+__attribute__((target("avx2,fma"), always_inline)) inline __m256d loadColumn(const float* from) {
+  return _mm256_cvtps_pd(_mm_load_ps(from));
+}
+
+template <typename T>
 __attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const TledElements& el, size_t base,
-                                                                         size_t n, const double* u, ChunkScratch& s) {
+                                                                         size_t n, const double* u,
+                                                                         ChunkScratch<T>& s) {
   for (size_t e = 0; e < n; e += 4) {
     __m256d node0[4];
     for (int k = 0; k < 4; ++k) node0[k] = _mm256_loadu_pd(u + kNodeStride * size_t(el.node[0][base + e + k]));
@@ -198,21 +248,23 @@ __attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const 
         d[k] = _mm256_sub_pd(_mm256_loadu_pd(u + kNodeStride * size_t(el.node[a][base + e + k])), node0[k]);
       __m256d x, y, z;
       transposeToColumns(d[0], d[1], d[2], d[3], x, y, z);
-      _mm256_store_pd(&s.d[3 * (a - 1)][e], x);
-      _mm256_store_pd(&s.d[3 * (a - 1) + 1][e], y);
-      _mm256_store_pd(&s.d[3 * (a - 1) + 2][e], z);
+      storeColumn(&s.d[3 * (a - 1)][e], x);
+      storeColumn(&s.d[3 * (a - 1) + 1][e], y);
+      storeColumn(&s.d[3 * (a - 1) + 2][e], z);
     }
   }
 }
 
+template <typename T>
 __attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const TledElements& el, size_t base,
-                                                                          size_t n, const ChunkScratch& s, double* f) {
+                                                                          size_t n, const ChunkScratch<T>& s,
+                                                                          double* f) {
   for (size_t e = 0; e < n; e += 4) {
     __m256d rows[3][4];  // per local node 1..3, per element
     __m256d sum[4] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
     for (int a = 0; a < 3; ++a) {
-      transposeToRows(_mm256_load_pd(&s.f[3 * a][e]), _mm256_load_pd(&s.f[3 * a + 1][e]),
-                      _mm256_load_pd(&s.f[3 * a + 2][e]), rows[a]);
+      transposeToRows(loadColumn(&s.f[3 * a][e]), loadColumn(&s.f[3 * a + 1][e]), loadColumn(&s.f[3 * a + 2][e]),
+                      rows[a]);
       for (int k = 0; k < 4; ++k) sum[k] = _mm256_add_pd(sum[k], rows[a][k]);
     }
     // One element after the other: elements of a chunk share nodes.
@@ -227,16 +279,18 @@ __attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const
   }
 }
 
+template <typename T>
 __attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledElements& el, const double* u, double* f) {
   ElementStepCounts counts;
-  ChunkScratch s;
+  ChunkScratch<T> s;
+  const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
     const size_t n = std::min(kChunk, el.padded - base);  // a multiple of 4: elements are padded to kLanes
     gatherAvx2(el, base, n, u, s);
-    const ElementStepCounts chunk = strainOfChunk(el, base, n, s);
+    const ElementStepCounts chunk = strainOfChunk(arrays, base, n, s);
     counts.inverted += chunk.inverted;
     counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(el, base, n, s);
+    forcesOfChunk(arrays, base, n, s);
     scatterAvx2(el, base, n, s, f);
   }
   return counts;
@@ -245,23 +299,28 @@ __attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledEleme
 #endif
 
 using ForcesFunction = ElementStepCounts (*)(const TledElements&, const double*, double*);
+struct ForcesFunctions {
+  ForcesFunction inDouble, inSingle;
+};
 
-ForcesFunction pickForces() {
+ForcesFunctions pickForces() {
 #ifdef TREPHINE_TLED_AVX2
   __builtin_cpu_init();  // this may run before libgcc's own initialiser
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return forcesAvx2;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    return {forcesAvx2<double>, forcesAvx2<float>};
 #endif
-  return forcesBaseline;
+  return {forcesBaseline<double>, forcesBaseline<float>};
 }
 
 // Picked when the library loads, not at the first call (a function-local
 // static would take a lock there).
-const ForcesFunction kForces = pickForces();
+const ForcesFunctions kForces = pickForces();
 
 }  // namespace
 
 ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f) {
-  return kForces(elements, u, f);
+  return elements.precision == ElementPrecision::kSingle ? kForces.inSingle(elements, u, f)
+                                                         : kForces.inDouble(elements, u, f);
 }
 
 }  // namespace trephine::fem

@@ -179,8 +179,29 @@ void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementM
     el.muVolume[k] = moduli.mu * m_volume[k];
     el.kappaVolume[k] = moduli.kappa * m_volume[k];
   }
+  copyToSingle();
   findCriticalStep();
   if (m_dt > 0) setTimeStep(m_dt, m_damping);
+}
+
+void TledModel::setElementPrecision(ElementPrecision precision) {
+  m_elements.precision = precision;
+  copyToSingle();
+}
+
+void TledModel::copyToSingle() {
+  TledElements& el = m_elements;
+  auto copy = [&](const std::vector<double>& from, std::vector<float>& to) {
+    if (el.precision == ElementPrecision::kSingle) {
+      to.assign(from.begin(), from.end());
+    } else {
+      to.clear();
+      to.shrink_to_fit();
+    }
+  };
+  for (int k = 0; k < 9; ++k) copy(el.grad[k], el.single.grad[k]);
+  copy(el.muVolume, el.single.muVolume);
+  copy(el.kappaVolume, el.single.kappaVolume);
 }
 
 size_t TledModel::scaleMassForStep(double dt) {

@@ -44,6 +44,11 @@ struct ElementStepCounts {
 // the update loop is plain vector arithmetic.
 inline constexpr size_t kNodeStride = 4;
 
+// The precision of the element loop's arithmetic. Single: twice the vector
+// lanes and half the bytes per element, forces to about 1e-7 of the stress
+// (the node vectors stay in double).
+enum class ElementPrecision { kDouble, kSingle };
+
 // The element arrays, structure of arrays, in the model's internal order (a
 // space-filling curve, so that neighbouring elements share nodes in cache),
 // padded to a multiple of kLanes with elements of zero volume on node 0.
@@ -58,7 +63,14 @@ struct TledElements {
   // The moduli times the rest volume (kPa mm^3 = uJ): the stress is linear in
   // them, and the force is the volume times the stress.
   std::vector<double> muVolume, kappaVolume;
+  // The same in single precision, filled only for ElementPrecision::kSingle.
+  ElementPrecision precision = ElementPrecision::kDouble;
+  struct Single {
+    std::vector<float> grad[9];
+    std::vector<float> muVolume, kappaVolume;
+  } single;
 };
+
 
 // Computes the internal nodal forces f_int (mN) of every element from the
 // displacements `u` (mm), adding them into `f`; both kNodeStride doubles per
@@ -107,6 +119,10 @@ class TledModel {
   size_t scaleMassForStep(double dt);
   // Mass added by the scaling, kg.
   double addedMass() const;
+
+  // The element loop's arithmetic (double by default). Allocates: at setup.
+  void setElementPrecision(ElementPrecision precision);
+  ElementPrecision elementPrecision() const { return m_elements.precision; }
 
   // Time step (s) and mass-proportional damping (1/s).
   void setTimeStep(double dt, double damping);
@@ -171,6 +187,7 @@ class TledModel {
 
  private:
   void findCriticalStep();
+  void copyToSingle();  // the element arrays, when the loop runs in single precision
   void forcesInto(const std::vector<double>& u, std::vector<double>& f) const;
 
   std::vector<Vec3> m_rest;                        // mesh order

@@ -3,9 +3,10 @@
 // run: STREAM's triad (memory bandwidth of one core) and a chain of fused
 // multiply-adds (peak double-precision flops of one core).
 //
-// BM_TledStep/<mesh>: one iteration is one time step (element loop and
+// BM_TledStep/<mesh>/<precision>: one iteration is one time step (element loop and
 // central-difference update) of the FEM with the thesis's material (Table
-// 6.1), at rest plus a pressed dent so that the stresses are not zero.
+// 6.1), at rest plus a pressed dent so that the stresses are not zero; the
+// element loop in double (precision 0) or single precision (1).
 // Counters: steps_per_s, ns_per_element_step, GB_per_s (the bytes a step
 // must move: element arrays, node arrays), GFLOP_per_s (264 flops per
 // element), critical_dt_us and the real-time factor at the thesis's 0.33 ms
@@ -15,6 +16,7 @@
 
 #include <cstdlib>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "plugins/fem/TledModel.h"
@@ -64,16 +66,18 @@ Model& modelFor(int index) {
 
 void BM_TledStep(benchmark::State& state) {
   fem::TledModel& model = *modelFor(int(state.range(0))).model;
+  const bool single = state.range(1) == 1;
+  model.setElementPrecision(single ? fem::ElementPrecision::kSingle : fem::ElementPrecision::kDouble);
   const double critical = model.criticalTimeStep(50);
   model.setTimeStep(std::min(kThesisStep, 0.9 * critical), 50);
   for (auto _ : state) model.step();
   const double elements = double(model.elementCount()), nodes = double(model.nodeCount());
   const double steps = double(state.iterations());
-  // Bytes per step: per element 4 indices, 9 gradients, volume and moduli
-  // (112 B); per node the update reads u, u-, f, f_ext, free, held, scale
-  // and writes u+ on three axes, and the element loop reads u and writes f
-  // (about 220 B).
-  const double bytes = 112 * elements + 220 * nodes;
+  // Bytes per step: per element 4 indices, 9 gradients and 2 moduli (88 B
+  // in double, 60 B in single); per node the update reads u, u-, f, f_ext,
+  // free, held, scale and writes u+ on three axes, and the element loop
+  // reads u and writes f (about 220 B).
+  const double bytes = (single ? 60 : 88) * elements + 220 * nodes;
   state.counters["elements"] = elements;
   state.counters["steps_per_s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
   state.counters["ns_per_element_step"] =
@@ -85,7 +89,7 @@ void BM_TledStep(benchmark::State& state) {
   state.counters["dt_us"] = model.timeStep() * 1e6;
   // Simulated seconds per wall second at that step.
   state.counters["realtime_factor"] = benchmark::Counter(steps * model.timeStep(), benchmark::Counter::kIsRate);
-  state.SetLabel(kMeshes[state.range(0)].name);
+  state.SetLabel(std::string(kMeshes[state.range(0)].name) + (single ? " single" : " double"));
 }
 
 // STREAM triad a = b + s c on 3 x 80 MB, one core.
@@ -140,7 +144,8 @@ void registerSteps() {
   const bool smoke = std::getenv("TREPHINE_BENCH_TLED_SMOKE") != nullptr;
   for (int i = 0; i < int(std::size(kMeshes)); ++i) {
     if (smoke && i > 0) break;
-    benchmark::RegisterBenchmark("BM_TledStep", BM_TledStep)->Arg(i)->Unit(benchmark::kMicrosecond);
+    for (int precision : {0, 1})
+      benchmark::RegisterBenchmark("BM_TledStep", BM_TledStep)->Args({i, precision})->Unit(benchmark::kMicrosecond);
   }
 }
 
