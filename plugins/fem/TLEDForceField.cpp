@@ -183,6 +183,7 @@ void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"dropped_forces", double(m_droppedForces)});
   counters.push_back({"non_finite_ticks", double(m_nonFinite)});
   counters.push_back({"published_steps", double(m_frame.step)});
+  counters.push_back({"resting_steps", double(m_model->restingSteps())});  // at rest, no load: not computed
 }
 
 }  // namespace trephine::fem

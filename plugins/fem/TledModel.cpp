@@ -283,7 +283,28 @@ void TledModel::forcesInto(const std::vector<double>& u, std::vector<double>& f)
   accumulateInternalForces(m_elements, u.data(), f.data());
 }
 
+bool TledModel::loaded() const {
+  if (!m_bodyAcceleration.isZero(0.0)) return true;
+  for (const ExternalForce& e : m_externalForces)
+    if (!e.force.isZero(0.0)) return true;
+  for (const HeldAxis& h : m_held)
+    if (h.value != 0) return true;
+  return false;
+}
+
 void TledModel::step() {
+  // At rest with nothing to move it, the step's answer is rest: it is not
+  // computed (the element loop would return forces of rounding size, 1e-16
+  // of the moduli). A brain nobody touches costs nothing.
+  if (m_resting) {
+    if (!loaded()) {
+      ++m_steps;
+      ++m_restingSteps;
+      m_invertedNow = 0;
+      return;
+    }
+    m_resting = false;
+  }
   std::fill(m_f.begin(), m_f.end(), 0.0);
   const ElementStepCounts counts = accumulateInternalForces(m_elements, m_u.data(), m_f.data());
   m_invertedNow = counts.inverted;
@@ -321,12 +342,14 @@ void TledModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> 
       m_uPrev[index] = uPrevious[i][axis];
     }
   for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
+  m_resting = false;
 }
 
 void TledModel::resetToRest() {
   std::fill(m_u.begin(), m_u.end(), 0.0);
   std::fill(m_uPrev.begin(), m_uPrev.end(), 0.0);
   for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
+  m_resting = true;
 }
 
 TledModel::WrittenShape TledModel::writePositions(std::span<Vec3> positions) const {

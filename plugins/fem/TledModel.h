@@ -140,9 +140,13 @@ class TledModel {
   void setExternalForce(int32_t node, const Vec3& force_mN);
   void clearExternalForces();
 
-  // Advances one time step. Allocation-free.
+  // Advances one time step. Allocation-free. A model at rest (as built, or
+  // after resetToRest()) with no load (no external force, no body
+  // acceleration, every held axis at zero) stays at rest without computing
+  // anything until a load appears.
   void step();
   uint64_t steps() const { return m_steps; }
+  uint64_t restingSteps() const { return m_restingSteps; }  // of steps(): at rest, not computed
 
   // State, mm.
   Vec3 displacement(int32_t node) const {
@@ -188,6 +192,7 @@ class TledModel {
  private:
   void findCriticalStep();
   void copyToSingle();  // the element arrays, when the loop runs in single precision
+  bool loaded() const;  // a force, an acceleration or a held displacement would move it from rest
   void forcesInto(const std::vector<double>& u, std::vector<double>& f) const;
 
   std::vector<Vec3> m_rest;                        // mesh order
@@ -216,7 +221,8 @@ class TledModel {
   Vec3 m_bodyAcceleration = Vec3::Zero();
   double m_criticalStep = 0;
   size_t m_criticalElement = 0;
-  uint64_t m_steps = 0, m_invertedNow = 0;
+  uint64_t m_steps = 0, m_invertedNow = 0, m_restingSteps = 0;
+  bool m_resting = true;  // exactly at rest: u = u- = 0
   ElementStepCounts m_counts;
 };
 

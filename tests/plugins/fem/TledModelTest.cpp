@@ -317,6 +317,49 @@ TEST(TledModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) 
   EXPECT_EQ(shape.largestMove, INFINITY);
 }
 
+TEST(TledModelTest, AtRestWithoutLoadNothingIsComputedAndTheAnswerIsTheComputedOne) {
+  const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
+  TledModel model = modelOf(mesh);
+  for (int32_t i = 0; i < 4; ++i) model.fixNode(i);  // held at zero: no load
+  model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
+  for (int step = 0; step < 100; ++step) model.step();
+  EXPECT_EQ(model.steps(), 100u);
+  EXPECT_EQ(model.restingSteps(), 100u);
+  for (size_t i = 0; i < mesh.nodeCount(); ++i) EXPECT_EQ(model.displacement(int32_t(i)), Vec3::Zero());
+  // The same 100 steps computed (a state set by hand is not known to be rest):
+  // rest to rounding, which is what the skipped steps answered.
+  TledModel computed = modelOf(mesh);
+  for (int32_t i = 0; i < 4; ++i) computed.fixNode(i);
+  computed.setTimeStep(0.8 * computed.criticalTimeStep(), 50);
+  const std::vector<Vec3> zero(mesh.nodeCount(), Vec3::Zero());
+  computed.setDisplacements(zero, zero);
+  for (int step = 0; step < 100; ++step) computed.step();
+  EXPECT_EQ(computed.restingSteps(), 0u);
+  for (size_t i = 0; i < mesh.nodeCount(); ++i) EXPECT_LT(computed.displacement(int32_t(i)).norm(), 1e-12);
+  // A load ends the rest at the next step; back at rest with the load still on, it goes on computing.
+  model.setExternalForce(50, Vec3(0, 0, -10));
+  model.step();
+  EXPECT_EQ(model.restingSteps(), 100u);
+  EXPECT_LT(model.displacement(50).z(), 0.0);
+  model.resetToRest();
+  model.step();
+  EXPECT_EQ(model.restingSteps(), 100u);
+  // Without it, at rest again: nothing computed.
+  model.clearExternalForces();
+  model.resetToRest();
+  model.step();
+  EXPECT_EQ(model.restingSteps(), 101u);
+  // Gravity and a held displacement are loads too.
+  model.setBodyAcceleration(Vec3(0, 0, -9810));
+  model.step();
+  EXPECT_EQ(model.restingSteps(), 101u);
+  model.setBodyAcceleration(Vec3::Zero());
+  model.resetToRest();
+  model.fixNode(60, Vec3(0.1, 0, 0));
+  model.step();
+  EXPECT_EQ(model.restingSteps(), 101u);
+}
+
 TEST(TledModelTest, LumpedMassesSumToTheBodysMass) {
   const TetMesh mesh = makeBoxMesh({3, 4, 5}, Vec3::Zero(), Vec3(30, 20, 10));
   const TledModel model = modelOf(mesh);
