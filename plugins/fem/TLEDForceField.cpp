@@ -111,18 +111,25 @@ void TLEDForceField::tick(const TickContext& context) {
   // (at once when 0); a node whose force has died away leaves the list.
   const double follow = d_forceSmoothing.value() > 0 ? 1 - std::exp(-context.dt / d_forceSmoothing.value()) : 1.0;
   size_t kept = 0;
+  double total = 0;  // mN, of the applied forces' magnitudes
   for (int32_t node : m_appliedNodes) {
     m_applied[node] += follow * (m_target[node] - m_applied[node]);
     const bool done = m_target[node].isZero(0.0) && m_applied[node].norm() < 1e-9;  // mN
     if (done) m_applied[node] = Vec3::Zero();
     m_model->setExternalForce(node, m_applied[node]);
+    total += m_applied[node].norm();
     if (done) {
       m_applying[node] = 0;
+      m_model->setNodeDamping(node, 0);
     } else {
       m_appliedNodes[kept++] = node;
     }
   }
   m_appliedNodes.resize(kept);
+  // contactDamping (N s/m is the model's kg/s), shared as the force is.
+  if (d_contactDamping.value() > 0)
+    for (int32_t node : m_appliedNodes)
+      m_model->setNodeDamping(node, total > 0 ? d_contactDamping.value() * m_applied[node].norm() / total : 0.0);
   // As many steps as fit: the model's time stays within one step of the end
   // of this period. In real time, after a stall (a tick that came late), at
   // most one step more than a period holds: the model falls behind the clock
@@ -141,6 +148,9 @@ void TLEDForceField::tick(const TickContext& context) {
     ++substeps;
   }
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
+  // At rest and published so: the brain already has this shape (the rest
+  // shape before the first frame).
+  if (m_model->resting() && m_publishedRest) return;
   const TledModel::WrittenShape shape = m_model->writePositions(m_frame.positions);
   const double largest = shape.largestDisplacement;
   // A node farther from rest than the mesh is large has diverged as surely
@@ -154,6 +164,7 @@ void TLEDForceField::tick(const TickContext& context) {
     if (context.events) context.events->log(context.t, "fem_diverged", "reset to rest", this);
     m_model->resetToRest();
     m_movesKnown = false;  // the shape held is not the one last published
+    m_publishedRest = false;
     return;
   }
   m_largestDisplacement = std::max(m_largestDisplacement, largest);
@@ -162,6 +173,7 @@ void TLEDForceField::tick(const TickContext& context) {
   m_movesKnown = true;
   ++m_frame.step;
   m_channel->publish(m_frame);
+  m_publishedRest = m_model->resting();
 }
 
 void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {

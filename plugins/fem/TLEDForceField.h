@@ -105,6 +105,15 @@ class TLEDForceField final : public Component {
                "of smoothing stops it",
        .unit = "s",
        .min = 0.0}};
+  Field<double> d_contactDamping{
+      this,
+      "contactDamping",
+      0.0,
+      {.help = "Viscous damping of the brain where the tool presses, shared among the pressed nodes as the force "
+               "is. The haptic spring acts on the brain a frame or two late, and a spring k acting T late feeds "
+               "the surface like a negative damping of about k T; this returns it (0.3 N/mm and 1.5 ms: 0.45)",
+       .unit = "N s/m",
+       .min = 0.0}};
   EnumField d_precision{this,
                         "precision",
                         {"double", "single"},
@@ -132,6 +141,7 @@ class TLEDForceField final : public Component {
   Channel<tetra::NodePositions>* m_channel = nullptr;
   tetra::NodePositions m_frame;
   bool m_movesKnown = true;  // m_frame.positions holds the shape last published
+  bool m_publishedRest = true;  // the brain's shape is the rest shape (nothing published yet, or rest)
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;
   uint64_t m_mostInverted = 0, m_droppedSteps = 0;
   size_t m_massScaledElements = 0;

@@ -138,6 +138,8 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
       for (size_t axis = 0; axis < 3; ++axis) m_held.push_back({kNodeStride * k + axis, 0.0});
   m_externalForces.reserve(n);
   m_externalSlot.assign(n, -1);
+  m_nodeDamping.reserve(n);
+  m_dampingSlot.assign(n, -1);
 }
 
 void TledModel::findCriticalStep() {
@@ -273,6 +275,24 @@ void TledModel::setExternalForce(int32_t node, const Vec3& force_mN) {
   m_externalForces[slot].force = force_mN;
 }
 
+void TledModel::setNodeDamping(int32_t node, double damping) {
+  const int32_t k = m_internal[node];
+  int32_t& slot = m_dampingSlot[k];
+  if (damping > 0) {
+    if (slot < 0) {
+      slot = int32_t(m_nodeDamping.size());
+      m_nodeDamping.push_back({k, 0.0, {}});  // within the capacity reserved for every node
+    }
+    m_nodeDamping[slot].damping = damping;
+  } else if (slot >= 0) {
+    // The last entry takes the removed one's place.
+    m_nodeDamping[slot] = m_nodeDamping.back();
+    m_dampingSlot[m_nodeDamping[slot].node] = slot;
+    m_nodeDamping.pop_back();
+    slot = -1;
+  }
+}
+
 void TledModel::clearExternalForces() {
   for (const ExternalForce& f : m_externalForces) m_externalSlot[f.node] = -1;
   m_externalForces.clear();
@@ -322,11 +342,25 @@ void TledModel::step() {
   const double* f = m_f.data();
   const double* scale = m_stepScale.data();
   double* next = m_uPrev.data();  // u- is read and overwritten by u+ at the same index
+  for (NodeDamping& d : m_nodeDamping)
+    std::copy_n(next + kNodeStride * size_t(d.node), kNodeStride, d.before);
   for (size_t k = 0; k < n; ++k)
     for (size_t axis = 0; axis < kNodeStride; ++axis) {
       const size_t i = kNodeStride * k + axis;
       next[i] = now * u[i] - before * next[i] - scale[k] * f[i] + gravity[axis];
     }
+  // The damped nodes again, with their own damping added to the mass-proportional one.
+  for (const NodeDamping& d : m_nodeDamping) {
+    const double mass = m_mass[d.node];
+    if (!(mass > 0)) continue;
+    const double half = (m_damping + d.damping / mass) * m_dt / 2;
+    for (size_t axis = 0; axis < 3; ++axis) {
+      const size_t i = kNodeStride * size_t(d.node) + axis;
+      next[i] = (2 * u[i] - (1 - half) * d.before[axis] - m_dt * m_dt / mass * f[i] +
+                 m_dt * m_dt * m_bodyAcceleration[axis]) /
+                (1 + half);
+    }
+  }
   for (const HeldAxis& h : m_held) next[h.index] = h.value;
   std::swap(m_u, m_uPrev);
   ++m_steps;

@@ -139,6 +139,12 @@ class TledModel {
   // External force on a node (mN) for the next steps, until changed or cleared.
   void setExternalForce(int32_t node, const Vec3& force_mN);
   void clearExternalForces();
+  // Viscous damping on one node (kg/s, that is mN s/mm or N s/m) on top of
+  // the mass-proportional damping, for the next steps until changed; 0
+  // removes it. Central in velocity like the mass-proportional damping, so
+  // stable at any value. Allocation-free.
+  void setNodeDamping(int32_t node, double damping);
+  size_t dampedNodes() const { return m_nodeDamping.size(); }
 
   // Advances one time step. Allocation-free. A model at rest (as built, or
   // after resetToRest()) with no load (no external force, no body
@@ -147,6 +153,7 @@ class TledModel {
   void step();
   uint64_t steps() const { return m_steps; }
   uint64_t restingSteps() const { return m_restingSteps; }  // of steps(): at rest, not computed
+  bool resting() const { return m_resting; }  // exactly at rest, and the last step found no load
 
   // State, mm.
   Vec3 displacement(int32_t node) const {
@@ -217,6 +224,13 @@ class TledModel {
   };
   std::vector<ExternalForce> m_externalForces;  // reserved for every node
   std::vector<int32_t> m_externalSlot;          // per internal node: its entry, or -1
+  struct NodeDamping {
+    int32_t node;            // internal
+    double damping;          // kg/s
+    double before[kNodeStride];  // mm, u- during a step
+  };
+  std::vector<NodeDamping> m_nodeDamping;  // reserved for every node
+  std::vector<int32_t> m_dampingSlot;      // per internal node: its entry, or -1
   double m_dt = 0, m_damping = 0;
   Vec3 m_bodyAcceleration = Vec3::Zero();
   double m_criticalStep = 0;
