@@ -108,9 +108,10 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
     EXPECT_GT(number(row, "step_p50_us"), 0);
     EXPECT_GT(number(row, "query_p50_us"), 0);
     // The broad phase timed apart (the native one: the shell points in
-    // bone), a part of the whole query.
+    // bone). Its time is not compared with the whole query's here: two
+    // medians of a few microseconds swap under a loaded machine (the
+    // benchmarks compare times, within one run).
     EXPECT_GT(number(row, "broad_p50_us"), 0);
-    EXPECT_LT(number(row, "broad_p50_us"), number(row, "query_p50_us"));
     EXPECT_GT(number(row, "candidates_p50"), 0);
     for (const char* file : {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv"})
       EXPECT_TRUE(std::filesystem::exists(dir / "study/settings" / ("00" + row.at("setting")) / file)) << file;
