@@ -71,7 +71,6 @@ struct TledElements {
   } single;
 };
 
-
 // Computes the internal nodal forces f_int (mN) of every element from the
 // displacements `u` (mm), adding them into `f`; both kNodeStride doubles per
 // internal node. Defined in TledKernel.cpp.
