@@ -17,6 +17,7 @@ namespace {
 struct Options {
   bool warning = true;
   bool drill = true;
+  std::string changeEvent;  // ToolChange on this event's kind instead of at 4.2 s
 };
 
 std::string procedure(const Options& o = {}) {
@@ -38,7 +39,8 @@ std::string procedure(const Options& o = {}) {
                                4.5 0 0 8   5.2 0 0 -3.5   5.6 0 0 -3.5   6 0 0 8"/>
     <PointshellTool name="burr" radius="2.5" angleStep="15" device="@device"/>
     <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <ToolChange name="change" time="4.2" rate="1000"/>
+    <ToolChange name="change" )" +
+         (o.changeEvent.empty() ? std::string(R"(time="4.2")") : "event=\"" + o.changeEvent + "\"") + R"( rate="1000"/>
     <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull" sweep="cylinder" drillButton="1"
                     toolChange="@change" nextTool="@probe" nextTarget="@/patient/brain" rate="1000"/>
     )" + (o.warning ? R"(<ContactWarning name="warning" proxy="@proxy" target="@/patient/brain" until="@change" rate="1000"/>)"
@@ -115,6 +117,20 @@ TEST(IntegratedProcedureTest, AfterTheToolChangeTheProbeDeformsTheBrainWithForce
   EXPECT_LT(largest, 1.0);
 }
 
+TEST(IntegratedProcedureTest, AnEventChangesToolsInTheFrameAfterItIsLogged) {
+  // The burr breaking through the plate: the skull logs it during the
+  // proxy's tick, the ToolChange (earlier in the group) reads it a frame later.
+  auto simulation = run(procedure({.changeEvent = "breakthrough"}), 4.1);
+  ASSERT_TRUE(simulation);
+  const auto breakthroughs = eventsOf(*simulation, "breakthrough");
+  const auto changes = eventsOf(*simulation, "tool_change");
+  ASSERT_EQ(breakthroughs.size(), 1u);
+  ASSERT_EQ(changes.size(), 1u);
+  EXPECT_STREQ(changes[0].detail, "event");
+  EXPECT_NEAR(changes[0].t, breakthroughs[0].t + 0.001, 1e-9);
+  EXPECT_LT(changes[0].t, 4.2);  // not the time of the other scenes
+}
+
 TEST(IntegratedProcedureTest, WithoutTheWarningNothingQueriesTheBrainBeforeTheChange) {
   auto without = run(procedure({.warning = false}), 4.1);
   auto with = run(procedure(), 4.1);
@@ -156,8 +172,9 @@ TEST(IntegratedProcedureTest, ToolChangeSettingsAreChecked) {
     return xml;
   };
   const std::pair<std::string, std::string> cases[] = {
-      {swap(R"(time="4.2")", ""), "give exactly one of button (with device) or time"},
+      {swap(R"(time="4.2")", ""), "give exactly one of button (with device), time or event"},
       {swap(R"(time="4.2")", R"(time="4.2" button="1" device="@device")"), "give exactly one of"},
+      {swap(R"(time="4.2")", R"(time="4.2" event="breakthrough")"), "give exactly one of"},
       {swap(R"(time="4.2")", R"(button="1")"), "a button needs the device"},
       {swap(R"( nextTool="@probe" nextTarget="@/patient/brain")", ""), "needs nextTool, nextTarget or both"},
       {swap(R"(toolChange="@change" )", ""), "has no effect without a toolChange"},
