@@ -73,6 +73,8 @@ class NativeTetBackend final : public TetBackend {
   bool locatePoints(std::span<const Vec3> points, std::span<int32_t> tets, bool stopAtFirst) const;
   // Depth of p below the nearest boundary face (mm, > 0 inside) and that face's outward normal.
   double depthBelowSurface(const Vec3& p, Vec3& normal) const;
+  // True when a boundary face (current shape) comes within `radius` (mm) of p.
+  bool surfaceWithin(const Vec3& p, double radius) const;
   // Distance of p to the nearest boundary face around the nodes of `tet`, or infinity when none.
   double depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const;
   double displacementMargin() const { return m_margin; }  // mm

@@ -190,10 +190,16 @@ bool NativeTetBackend::overlaps(const Pose& X_WT, std::span<const ShellPoint> sh
   const double inset = 10 * m_options.contactDepth;
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   if (shell.size() > m_insetPoints.size()) return false;  // not a reserved shell
+  double reach = 0;  // mm, of the inset points from the centre
   for (size_t i = 0; i < shell.size(); ++i) {
     const double pull = std::min(inset, shell[i].position.norm());
     m_insetPoints[i] = R * (shell[i].position + pull * shell[i].inwardNormal) + X_WT.position;
+    reach = std::max(reach, (m_insetPoints[i] - X_WT.position).squaredNorm());
   }
+  // The centre is outside: if no boundary face comes within the inset
+  // points' reach of it, the ball holding them is outside as a whole (the
+  // usual case of a tool resting on the surface), and none is tested.
+  if (!surfaceWithin(X_WT.position, std::sqrt(reach) + 1e-9)) return false;
   return locatePoints({m_insetPoints.data(), shell.size()}, m_insetTets, true);
 }
 

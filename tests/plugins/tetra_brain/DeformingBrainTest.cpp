@@ -55,6 +55,39 @@ void expectSameContact(const ShellContact& a, const ShellContact& b, const std::
   EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9) << where;
 }
 
+// The visible-overlap check (the proxy's pop-through proof) skips locating
+// the inset points when no boundary face comes within their reach of an
+// outside centre: it must answer as locating each of them would.
+TEST(DeformingBrainTest, TheOverlapCheckAnswersAsLocatingEveryInsetPoint) {
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
+  FollowingBrain following(22);
+  following.brain.reserveShell(shell);
+  const NativeTetBackend& native = shapes::native(following.brain);
+  const double margin = native.displacementMargin();
+  const double inset = 10 * following.brain.contactDepth();
+  const std::vector<Vec3> rest = following.brain.mesh().nodes;
+  int overlapping = 0, clear = 0;
+  for (const double amplitude : {0.0, 0.5 * margin, 2.5 * margin}) {
+    following.moveTo(waved(rest, amplitude, 1.0), amplitude);
+    for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(97.9, 3, 0), Vec3(100.5, 100.5, 0)}) {
+      const double top = 100 + amplitude * std::sin(2 * std::numbers::pi * xy.norm() / 120.0 - 1.0);
+      for (double press = -1.0; press <= 3.0; press += 0.05) {
+        const Pose pose{xy + Vec3(0, 0, top + 2.5 - press), Quat::Identity()};
+        bool expected = native.locate(pose.position) >= 0;
+        for (const ShellPoint& p : shell) {
+          const double pull = std::min(inset, p.position.norm());
+          expected = expected || native.locate(pose.position + p.position + pull * p.inwardNormal) >= 0;
+        }
+        EXPECT_EQ(following.brain.overlaps(pose, shell), expected)
+            << "amplitude " << amplitude << " at " << xy.transpose() << " press " << press;
+        (expected ? overlapping : clear) += 1;
+      }
+    }
+  }
+  EXPECT_GT(overlapping, 100);  // both answers were asked for, near the surface
+  EXPECT_GT(clear, 100);
+}
+
 TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
   const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
   FollowingBrain following(22);  // 9 mm cells, average edge about 11 mm: auto margin about 2.8 mm
