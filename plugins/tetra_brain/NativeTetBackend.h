@@ -20,11 +20,12 @@
 // Files: NativeTetBackend.cpp (grids, deformation, counters), TetLocation.cpp
 // (which tetrahedron holds a point, the scans, overlap), TetContact.cpp
 // (normal and penetration), TetSweep.cpp (sweeps and ray casts).
+#include <array>
 #include <vector>
 
+#include "plugins/tetra_brain/DriftBound.h"
 #include "plugins/tetra_brain/ShellLocator.h"
 #include "plugins/tetra_brain/TetBackend.h"
-#include "plugins/tetra_brain/DriftBound.h"
 #include "plugins/tetra_brain/TetGridSet.h"
 #include "plugins/tetra_brain/UniformGrid.h"
 #include "plugins/tetra_brain/VisitStamps.h"
@@ -85,6 +86,20 @@ class NativeTetBackend final : public TetBackend {
   void buildAccelerations();
   void refreshBoxes(std::span<const int32_t> movedNodes, bool all);
   Box3 currentBox(int32_t tet) const;
+  // Calls visit(face) once for each boundary face listed in the face grid's
+  // cells that `box` overlaps, until visit returns true; returns whether it did.
+  template <class Visit>
+  bool anyFaceInCells(const Box3& box, Visit&& visit) const {
+    std::array<int32_t, 3> lo, hi;
+    if (!m_grids->faceGrid.cellRange(box, lo, hi)) return false;
+    m_faceVisits.begin();
+    for (int32_t k = lo[2]; k <= hi[2]; ++k)
+      for (int32_t j = lo[1]; j <= hi[1]; ++j)
+        for (int32_t i = lo[0]; i <= hi[0]; ++i)
+          for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k)))
+            if (m_faceVisits.firstVisit(f) && visit(f)) return true;
+    return false;
+  }
   // Barycentric coordinates of p in a tet (current nodes).
   std::array<double, 4> barycentric(int32_t tet, const Vec3& p) const;
   bool inside(int32_t tet, const Vec3& p) const;

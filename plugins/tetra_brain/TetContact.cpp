@@ -83,23 +83,14 @@ bool NativeTetBackend::surfaceWithin(const Vec3& p, double radius) const {
   // the displacement bound of p; the cells hold the boxes grown by the
   // margin, so the cells within radius plus the excess hold it.
   const Vec3 reach = Vec3::Constant(radius + m_queryGrowth);
-  std::array<int32_t, 3> lo, hi;
-  if (!m_grids->faceGrid.cellRange(Box3(p - reach, p + reach), lo, hi)) return false;
   const auto& faces = m_topology->boundaryFaces();
   const Box3 ball(p - Vec3::Constant(radius), p + Vec3::Constant(radius));
-  m_faceVisits.begin();
-  for (int32_t k = lo[2]; k <= hi[2]; ++k)
-    for (int32_t j = lo[1]; j <= hi[1]; ++j)
-      for (int32_t i = lo[0]; i <= hi[0]; ++i)
-        for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
-          if (!m_faceVisits.firstVisit(f)) continue;
-          const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
-          const Vec3 &a = m_nodes[n[0]], &b = m_nodes[n[1]], &c = m_nodes[n[2]];
-          const Box3 face(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
-          if (!face.intersects(ball)) continue;
-          if ((closestOnTriangle(p, a, b, c) - p).squaredNorm() <= radius * radius) return true;
-        }
-  return false;
+  return anyFaceInCells(Box3(p - reach, p + reach), [&](int32_t f) {
+    const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
+    const Vec3 &a = m_nodes[n[0]], &b = m_nodes[n[1]], &c = m_nodes[n[2]];
+    const Box3 face(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
+    return face.intersects(ball) && (closestOnTriangle(p, a, b, c) - p).squaredNorm() <= radius * radius;
+  });
 }
 
 TetContact NativeTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) {

@@ -39,23 +39,17 @@ double NativeTetBackend::firstEntry(const Vec3& a, const Vec3& b, bool skipIniti
   box.extend(a);
   box.extend(b);
   box = Box3(box.min() - Vec3::Constant(m_queryGrowth), box.max() + Vec3::Constant(m_queryGrowth));
-  std::array<int32_t, 3> lo, hi;
-  if (!m_grids->faceGrid.cellRange(box, lo, hi)) return 2.0;
   const auto& faces = m_topology->boundaryFaces();
   const Vec3 direction = b - a;
   double first = 2.0;
-  m_faceVisits.begin();
-  for (int32_t k = lo[2]; k <= hi[2]; ++k)
-    for (int32_t j = lo[1]; j <= hi[1]; ++j)
-      for (int32_t i = lo[0]; i <= hi[0]; ++i)
-        for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
-          if (!m_faceVisits.firstVisit(f)) continue;
-          const Vec3 n = faceNormal(faces[f]);
-          if (direction.dot(n) >= 0) continue;  // leaving, or grazing
-          const auto v = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
-          const double t = segmentTriangle(a, b, m_nodes[v[0]], m_nodes[v[1]], m_nodes[v[2]]);
-          if (t < first && !(startsInside && t == 0)) first = t;
-        }
+  anyFaceInCells(box, [&](int32_t f) {
+    const Vec3 n = faceNormal(faces[f]);
+    if (direction.dot(n) >= 0) return false;  // leaving, or grazing
+    const auto v = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
+    const double t = segmentTriangle(a, b, m_nodes[v[0]], m_nodes[v[1]], m_nodes[v[2]]);
+    if (t < first && !(startsInside && t == 0)) first = t;
+    return false;  // every face: the first entry is the smallest t
+  });
   return first;
 }
 
