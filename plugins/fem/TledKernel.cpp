@@ -2,10 +2,11 @@
 // deformation gradient from the nodal displacements, the neo-Hookean stress
 // and the four internal nodal forces (NeoHookean.h gives the formulas).
 //
-// Elements are taken in chunks of 64: the displacements of a chunk's nodes
-// are gathered into arrays, the arithmetic runs over those arrays in
-// branch-free loops the compiler vectorises (about 250 floating-point
-// operations per element), and the forces are scattered back to the nodes.
+// Elements are taken in chunks of 64 (the model pads them to whole chunks):
+// the displacements of a chunk's nodes are gathered into arrays, the
+// arithmetic runs over those arrays in branch-free loops the compiler
+// vectorises (about 250 floating-point operations per element), and the
+// forces are scattered back to the nodes.
 // J^(-1/3) comes from its cubic Taylor polynomial and three Newton steps,
 // exact to rounding for J in [0.65, 1.5]; the few elements deformed beyond
 // that take std::cbrt in a scalar pass, so the library's transcendental
@@ -13,11 +14,10 @@
 // double or, when the model asks for it, in single precision (the thesis's GPU
 // code ran in single precision): twice the lanes and half the element bytes;
 // the node vectors, their differences and the sums into the nodes stay in
-// double either way. Everything is compiled for
-// the baseline instruction set and for AVX2 with FMA, where a node's (x, y,
-// z, 0) is one 256-bit load or store and four elements' nodes are transposed
-// in registers; the faster version this processor runs is picked when the
-// library loads.
+// double either way. Compiled three times: for the baseline instruction set,
+// for AVX2 with FMA (a node's (x, y, z, 0) is one 256-bit load or store, and
+// four elements' nodes are transposed in registers) and with the arithmetic
+// on AVX-512 vectors; the model runs the best one the processor has.
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -35,7 +35,7 @@ namespace {
 
 constexpr size_t kChunk = 64;  // elements per pass: the scratch below stays in L1 (about 30 KB)
 constexpr double kFastLow = 0.65, kFastHigh = 1.5;
-static_assert(kChunk % TledElements::kLanes == 0 && TledElements::kLanes % 4 == 0);
+static_assert(kChunk == TledElements::kLanes && kChunk % 16 == 0);  // whole chunks, whole vectors
 
 // T: the precision of the element arithmetic (double or float).
 template <typename T>
@@ -71,9 +71,9 @@ struct ElementArrays {
 // ---- gather and scatter, portable --------------------------------------------
 
 template <typename T>
-[[gnu::always_inline]] inline void gatherScalar(const TledElements& el, size_t base, size_t n, const double* u,
+[[gnu::always_inline]] inline void gatherScalar(const TledElements& el, size_t base, const double* u,
                                                 ChunkScratch<T>& s) {
-  for (size_t e = 0; e < n; ++e) {
+  for (size_t e = 0; e < kChunk; ++e) {
     const double* u0 = u + kNodeStride * size_t(el.node[0][base + e]);
     for (int a = 1; a < 4; ++a) {
       const double* ua = u + kNodeStride * size_t(el.node[a][base + e]);
@@ -83,9 +83,9 @@ template <typename T>
 }
 
 template <typename T>
-[[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base, size_t n,
+[[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base,
                                                  const ChunkScratch<T>& s, double* f) {
-  for (size_t e = 0; e < n; ++e) {
+  for (size_t e = 0; e < kChunk; ++e) {
     double* f0 = f + kNodeStride * size_t(el.node[0][base + e]);
     for (int a = 1; a < 4; ++a) {
       double* fa = f + kNodeStride * size_t(el.node[a][base + e]);
@@ -103,11 +103,11 @@ template <typename T>
 // F = I + sum_a d_a grad_a^T, J, I1 and the fast J^(-1/3); then the exact root
 // where J is far from 1. Returns the counts of the chunk.
 template <typename T>
-[[gnu::always_inline]] inline ElementStepCounts strainOfChunk(const ElementArrays<T>& el, size_t base, size_t n,
+[[gnu::always_inline]] inline ElementStepCounts strainOfChunk(const ElementArrays<T>& el, size_t base,
                                                               ChunkScratch<T>& s) {
   const T* g[9];
   for (int k = 0; k < 9; ++k) g[k] = el.grad[k] + base;
-  for (size_t e = 0; e < n; ++e) {
+  for (size_t e = 0; e < kChunk; ++e) {
     T F[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -136,7 +136,7 @@ template <typename T>
     s.y[e] = y;
   }
   ElementStepCounts counts;
-  for (size_t e = 0; e < n; ++e) {
+  for (size_t e = 0; e < kChunk; ++e) {
     const T J = s.J[e];
     if (J >= T(kFastLow) && J <= T(kFastHigh)) continue;
     ++counts.farFromRest;
@@ -148,13 +148,13 @@ template <typename T>
 
 // P V = mu V J^(-2/3) F + (kappa V (J - 1) - mu V I1 J^(-5/3) / 3) cof F; f_a = P V grad_a.
 template <typename T>
-[[gnu::always_inline]] inline void forcesOfChunk(const ElementArrays<T>& el, size_t base, size_t n,
+[[gnu::always_inline]] inline void forcesOfChunk(const ElementArrays<T>& el, size_t base,
                                                  ChunkScratch<T>& s) {
   const T* g[9];
   for (int k = 0; k < 9; ++k) g[k] = el.grad[k] + base;
   const T* mu = el.muVolume + base;  // the rest volume is in the moduli
   const T* kappa = el.kappaVolume + base;
-  for (size_t e = 0; e < n; ++e) {
+  for (size_t e = 0; e < kChunk; ++e) {
     T F[9];
     for (int k = 0; k < 9; ++k) F[k] = s.F[k][e];
     const T J = s.J[e];
@@ -182,13 +182,12 @@ ElementStepCounts forcesBaseline(const TledElements& el, const double* u, double
   ChunkScratch<T> s;
   const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
-    const size_t n = std::min(kChunk, el.padded - base);
-    gatherScalar(el, base, n, u, s);
-    const ElementStepCounts chunk = strainOfChunk(arrays, base, n, s);
+    gatherScalar(el, base, u, s);
+    const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
     counts.inverted += chunk.inverted;
     counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(arrays, base, n, s);
-    scatterScalar(el, base, n, s, f);
+    forcesOfChunk(arrays, base, s);
+    scatterScalar(el, base, s, f);
   }
   return counts;
 }
@@ -237,9 +236,9 @@ __attribute__((target("avx2,fma"), always_inline)) inline __m256d loadColumn(con
 
 template <typename T>
 __attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const TledElements& el, size_t base,
-                                                                         size_t n, const double* u,
+                                                                         const double* u,
                                                                          ChunkScratch<T>& s) {
-  for (size_t e = 0; e < n; e += 4) {
+  for (size_t e = 0; e < kChunk; e += 4) {
     __m256d node0[4];
     for (int k = 0; k < 4; ++k) node0[k] = _mm256_loadu_pd(u + kNodeStride * size_t(el.node[0][base + e + k]));
     for (int a = 1; a < 4; ++a) {
@@ -257,9 +256,9 @@ __attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const 
 
 template <typename T>
 __attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const TledElements& el, size_t base,
-                                                                          size_t n, const ChunkScratch<T>& s,
+                                                                          const ChunkScratch<T>& s,
                                                                           double* f) {
-  for (size_t e = 0; e < n; e += 4) {
+  for (size_t e = 0; e < kChunk; e += 4) {
     __m256d rows[3][4];  // per local node 1..3, per element
     __m256d sum[4] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
     for (int a = 0; a < 3; ++a) {
@@ -285,13 +284,31 @@ __attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledEleme
   ChunkScratch<T> s;
   const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
-    const size_t n = std::min(kChunk, el.padded - base);  // a multiple of 4: elements are padded to kLanes
-    gatherAvx2(el, base, n, u, s);
-    const ElementStepCounts chunk = strainOfChunk(arrays, base, n, s);
+    gatherAvx2(el, base, u, s);
+    const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
     counts.inverted += chunk.inverted;
     counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(arrays, base, n, s);
-    scatterAvx2(el, base, n, s, f);
+    forcesOfChunk(arrays, base, s);
+    scatterAvx2(el, base, s, f);
+  }
+  return counts;
+}
+
+// The same loop with the arithmetic on 512-bit vectors (16 floats or 8
+// doubles); the gather and the scatter as in AVX2.
+template <typename T>
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) ElementStepCounts
+forcesAvx512(const TledElements& el, const double* u, double* f) {
+  ElementStepCounts counts;
+  ChunkScratch<T> s;
+  const ElementArrays<T> arrays(el);
+  for (size_t base = 0; base < el.padded; base += kChunk) {
+    gatherAvx2(el, base, u, s);
+    const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
+    counts.inverted += chunk.inverted;
+    counts.farFromRest += chunk.farFromRest;
+    forcesOfChunk(arrays, base, s);
+    scatterAvx2(el, base, s, f);
   }
   return counts;
 }
@@ -299,28 +316,62 @@ __attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledEleme
 #endif
 
 using ForcesFunction = ElementStepCounts (*)(const TledElements&, const double*, double*);
-struct ForcesFunctions {
-  ForcesFunction inDouble, inSingle;
-};
 
-ForcesFunctions pickForces() {
+bool processorHas(ElementLoopIsa isa) {
 #ifdef TREPHINE_TLED_AVX2
   __builtin_cpu_init();  // this may run before libgcc's own initialiser
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
-    return {forcesAvx2<double>, forcesAvx2<float>};
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  switch (isa) {
+    case ElementLoopIsa::kPortable:
+      return true;
+    case ElementLoopIsa::kAvx2:
+      return avx2;
+    case ElementLoopIsa::kAvx512:
+      return avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+             __builtin_cpu_supports("avx512dq");
+  }
+  return false;
+#else
+  return isa == ElementLoopIsa::kPortable;
 #endif
-  return {forcesBaseline<double>, forcesBaseline<float>};
 }
 
-// Picked when the library loads, not at the first call (a function-local
-// static would take a lock there).
-const ForcesFunctions kForces = pickForces();
+template <typename T>
+ForcesFunction forcesFor(ElementLoopIsa isa) {
+#ifdef TREPHINE_TLED_AVX2
+  if (isa == ElementLoopIsa::kAvx512) return forcesAvx512<T>;
+  if (isa == ElementLoopIsa::kAvx2) return forcesAvx2<T>;
+#endif
+  (void)isa;
+  return forcesBaseline<T>;
+}
 
 }  // namespace
 
-ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f) {
-  return elements.precision == ElementPrecision::kSingle ? kForces.inSingle(elements, u, f)
-                                                         : kForces.inDouble(elements, u, f);
+bool elementLoopAvailable(ElementLoopIsa isa) { return processorHas(isa); }
+
+ElementLoopIsa bestElementLoopIsa() {
+  for (ElementLoopIsa isa : {ElementLoopIsa::kAvx512, ElementLoopIsa::kAvx2})
+    if (processorHas(isa)) return isa;
+  return ElementLoopIsa::kPortable;
+}
+
+const char* elementLoopName(ElementLoopIsa isa) {
+  switch (isa) {
+    case ElementLoopIsa::kPortable:
+      return "portable";
+    case ElementLoopIsa::kAvx2:
+      return "AVX2";
+    case ElementLoopIsa::kAvx512:
+      return "AVX-512";
+  }
+  return "?";
+}
+
+ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f,
+                                           ElementLoopIsa isa) {
+  return elements.precision == ElementPrecision::kSingle ? forcesFor<float>(isa)(elements, u, f)
+                                                         : forcesFor<double>(isa)(elements, u, f);
 }
 
 }  // namespace trephine::fem

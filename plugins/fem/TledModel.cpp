@@ -300,7 +300,14 @@ void TledModel::clearExternalForces() {
 
 void TledModel::forcesInto(const std::vector<double>& u, std::vector<double>& f) const {
   std::fill(f.begin(), f.end(), 0.0);
-  accumulateInternalForces(m_elements, u.data(), f.data());
+  accumulateInternalForces(m_elements, u.data(), f.data(), m_isa);
+}
+
+void TledModel::setElementLoopIsa(ElementLoopIsa isa) {
+  if (!elementLoopAvailable(isa))
+    throw std::invalid_argument(std::string("this processor cannot run the element loop's ") + elementLoopName(isa) +
+                                " version");
+  m_isa = isa;
 }
 
 bool TledModel::loaded() const {
@@ -326,7 +333,7 @@ void TledModel::step() {
     m_resting = false;
   }
   std::fill(m_f.begin(), m_f.end(), 0.0);
-  const ElementStepCounts counts = accumulateInternalForces(m_elements, m_u.data(), m_f.data());
+  const ElementStepCounts counts = accumulateInternalForces(m_elements, m_u.data(), m_f.data(), m_isa);
   m_invertedNow = counts.inverted;
   m_counts.inverted += counts.inverted;
   m_counts.farFromRest += counts.farFromRest;

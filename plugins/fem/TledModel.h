@@ -49,11 +49,18 @@ inline constexpr size_t kNodeStride = 4;
 // (the node vectors stay in double).
 enum class ElementPrecision { kDouble, kSingle };
 
+// The instruction sets the element loop is compiled for. The best one this
+// processor has is used; tests run the others against it.
+enum class ElementLoopIsa { kPortable, kAvx2, kAvx512 };
+bool elementLoopAvailable(ElementLoopIsa isa);
+ElementLoopIsa bestElementLoopIsa();
+const char* elementLoopName(ElementLoopIsa isa);
+
 // The element arrays, structure of arrays, in the model's internal order (a
 // space-filling curve, so that neighbouring elements share nodes in cache),
 // padded to a multiple of kLanes with elements of zero volume on node 0.
 struct TledElements {
-  static constexpr size_t kLanes = 8;
+  static constexpr size_t kLanes = 64;  // the element loop's chunk: every chunk is whole
   size_t count = 0;   // real elements
   size_t padded = 0;  // count rounded up to kLanes
   std::vector<int32_t> node[4];  // internal node indices
@@ -73,8 +80,9 @@ struct TledElements {
 
 // Computes the internal nodal forces f_int (mN) of every element from the
 // displacements `u` (mm), adding them into `f`; both kNodeStride doubles per
-// internal node. Defined in TledKernel.cpp.
-ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f);
+// internal node. `isa` must be available. Defined in TledKernel.cpp.
+ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f,
+                                           ElementLoopIsa isa);
 
 // J below which the isochoric part of the stress is evaluated at this J
 // instead: it grows as J^(-5/3) and an element squeezed flat (or inverted)
@@ -122,6 +130,10 @@ class TledModel {
   // The element loop's arithmetic (double by default). Allocates: at setup.
   void setElementPrecision(ElementPrecision precision);
   ElementPrecision elementPrecision() const { return m_elements.precision; }
+  // The instruction set of the element loop (the best available by default);
+  // throws std::invalid_argument for one this processor lacks.
+  void setElementLoopIsa(ElementLoopIsa isa);
+  ElementLoopIsa elementLoopIsa() const { return m_isa; }
 
   // Time step (s) and mass-proportional damping (1/s).
   void setTimeStep(double dt, double damping);
@@ -211,6 +223,7 @@ class TledModel {
   // kNodeStride doubles per internal node:
   std::vector<double> m_u, m_uPrev;  // mm, now and one step ago
   mutable std::vector<double> m_f;   // mN, the step's internal less external forces
+  ElementLoopIsa m_isa = bestElementLoopIsa();
   std::vector<double> m_stepScale;   // dt^2 / (m (1 + a dt / 2)) per internal node, mm / mN
   struct HeldAxis {
     size_t index;  // into the node vectors

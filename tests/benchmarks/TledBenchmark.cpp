@@ -3,10 +3,11 @@
 // run: STREAM's triad (memory bandwidth of one core) and a chain of fused
 // multiply-adds (peak double-precision flops of one core).
 //
-// BM_TledStep/<mesh>/<precision>: one iteration is one time step (element loop and
-// central-difference update) of the FEM with the thesis's material (Table
-// 6.1), at rest plus a pressed dent so that the stresses are not zero; the
-// element loop in double (precision 0) or single precision (1).
+// BM_TledStep/<mesh>/<precision>/<isa>: one iteration is one time step
+// (element loop and central-difference update) of the FEM with the thesis's
+// material (Table 6.1), at rest plus a pressed dent so that the stresses are
+// not zero; the element loop in double (precision 0) or single precision (1),
+// compiled for AVX2 (isa 1) or AVX-512 (2), each where the processor has it.
 // Counters: steps_per_s, ns_per_element_step, GB_per_s (the bytes a step
 // must move: element arrays, node arrays), GFLOP_per_s (264 flops per
 // element), critical_dt_us and the real-time factor at the thesis's 0.33 ms
@@ -67,7 +68,9 @@ Model& modelFor(int index) {
 void BM_TledStep(benchmark::State& state) {
   fem::TledModel& model = *modelFor(int(state.range(0))).model;
   const bool single = state.range(1) == 1;
+  const auto isa = fem::ElementLoopIsa(state.range(2));
   model.setElementPrecision(single ? fem::ElementPrecision::kSingle : fem::ElementPrecision::kDouble);
+  model.setElementLoopIsa(isa);
   const double critical = model.criticalTimeStep(50);
   model.setTimeStep(std::min(kThesisStep, 0.9 * critical), 50);
   for (auto _ : state) model.step();
@@ -89,7 +92,8 @@ void BM_TledStep(benchmark::State& state) {
   state.counters["dt_us"] = model.timeStep() * 1e6;
   // Simulated seconds per wall second at that step.
   state.counters["realtime_factor"] = benchmark::Counter(steps * model.timeStep(), benchmark::Counter::kIsRate);
-  state.SetLabel(std::string(kMeshes[state.range(0)].name) + (single ? " single" : " double"));
+  state.SetLabel(std::string(kMeshes[state.range(0)].name) + (single ? " single " : " double ") +
+                 fem::elementLoopName(isa));
 }
 
 // STREAM triad a = b + s c on 3 x 80 MB, one core.
@@ -145,7 +149,11 @@ void registerSteps() {
   for (int i = 0; i < int(std::size(kMeshes)); ++i) {
     if (smoke && i > 0) break;
     for (int precision : {0, 1})
-      benchmark::RegisterBenchmark("BM_TledStep", BM_TledStep)->Args({i, precision})->Unit(benchmark::kMicrosecond);
+      for (fem::ElementLoopIsa isa : {fem::ElementLoopIsa::kAvx2, fem::ElementLoopIsa::kAvx512})
+        if (fem::elementLoopAvailable(isa))
+          benchmark::RegisterBenchmark("BM_TledStep", BM_TledStep)
+              ->Args({i, precision, int(isa)})
+              ->Unit(benchmark::kMicrosecond);
   }
 }
 

@@ -47,7 +47,7 @@ std::array<Vec3, 4> referenceForces(const std::array<Vec3, 4>& X, const std::arr
 // to a chosen J (near rest: the fast root; far from it: the exact one),
 // against the scalar formulas; `tolerance` from the reference forces' scale
 // and the element's stress terms (below).
-void expectKernelForcesMatchTheFormulas(ElementPrecision precision, double relativeToForces,
+void expectKernelForcesMatchTheFormulas(ElementPrecision precision, ElementLoopIsa isa, double relativeToForces,
                                         double relativeToTerms) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1, 1);
@@ -63,6 +63,7 @@ void expectKernelForcesMatchTheFormulas(ElementPrecision precision, double relat
       const TetMesh mesh{{X.begin(), X.end()}, {TetIndices{0, 1, 2, 3}}, {}};
       TledModel model = modelOf(mesh);
       model.setElementPrecision(precision);
+      model.setElementLoopIsa(isa);
       std::vector<Vec3> u(4), forces(4);
       for (int a = 0; a < 4; ++a) u[a] = x[a] - X[a];
       model.setDisplacements(u, u);
@@ -83,20 +84,69 @@ void expectKernelForcesMatchTheFormulas(ElementPrecision precision, double relat
                                 (J * F.inverse()).norm());
       for (int a = 0; a < 4; ++a)
         EXPECT_LT((forces[a] - expected[a]).norm(), relativeToForces * std::max(scale, 1.0) + relativeToTerms * terms)
-            << "J " << targetJ << " node " << a << ": " << forces[a].transpose() << " vs "
+            << elementLoopName(isa) << ", J " << targetJ << " node " << a << ": " << forces[a].transpose() << " vs "
             << expected[a].transpose();
     }
   }
 }
 
+// The element loop's versions this processor can run (the portable one at least).
+std::vector<ElementLoopIsa> availableIsas() {
+  std::vector<ElementLoopIsa> isas;
+  for (ElementLoopIsa isa : {ElementLoopIsa::kPortable, ElementLoopIsa::kAvx2, ElementLoopIsa::kAvx512})
+    if (elementLoopAvailable(isa)) isas.push_back(isa);
+  return isas;
+}
+
 TEST(TledModelTest, KernelForcesMatchTheScalarNeoHookeanFormulas) {
-  expectKernelForcesMatchTheFormulas(ElementPrecision::kDouble, 1e-12, 0);
+  for (ElementLoopIsa isa : availableIsas()) expectKernelForcesMatchTheFormulas(ElementPrecision::kDouble, isa, 1e-12, 0);
 }
 
 TEST(TledModelTest, InSinglePrecisionKernelForcesMatchTheFormulasToFloatRounding) {
   // A float carries 6e-8 relative; the worst case here loses 3 to 8 units of
   // it (measured: 2e-7 fails, 5e-7 holds); 1e-6 is 16 units.
-  expectKernelForcesMatchTheFormulas(ElementPrecision::kSingle, 0, 1e-6);
+  for (ElementLoopIsa isa : availableIsas()) expectKernelForcesMatchTheFormulas(ElementPrecision::kSingle, isa, 0, 1e-6);
+}
+
+// On a mesh, where elements share nodes and several chunks run: every
+// version's node forces against the portable version's, at a random
+// deformation. The versions differ in the order of additions only.
+TEST(TledModelTest, EveryInstructionSetGivesThePortableNodeForcesOnAMesh) {
+  const TetMesh mesh = makeBoxMesh({7, 6, 5}, Vec3::Zero(), Vec3(20, 16, 12));  // over 1,000 elements: many chunks
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<Vec3> u(mesh.nodeCount());
+  for (Vec3& d : u) d = Vec3(unit(random), unit(random), unit(random)) * 0.4 + Vec3(5, -3, 2);
+  for (ElementPrecision precision : {ElementPrecision::kDouble, ElementPrecision::kSingle}) {
+    std::vector<Vec3> expected(mesh.nodeCount()), forces(mesh.nodeCount());
+    TledModel model = modelOf(mesh);
+    model.setElementPrecision(precision);
+    model.setElementLoopIsa(ElementLoopIsa::kPortable);
+    model.setDisplacements(u, u);
+    model.internalForces(expected);
+    double scale = 0;
+    for (const Vec3& f : expected) scale = std::max(scale, f.norm());
+    ASSERT_GT(scale, 1.0);  // mN: a real deformation
+    const double tolerance = precision == ElementPrecision::kDouble ? 1e-12 : 1e-5;
+    for (ElementLoopIsa isa : availableIsas()) {
+      model.setElementLoopIsa(isa);
+      model.internalForces(forces);
+      double worst = 0;
+      for (size_t i = 0; i < forces.size(); ++i) worst = std::max(worst, (forces[i] - expected[i]).norm());
+      EXPECT_LT(worst, tolerance * scale) << elementLoopName(isa) << (precision == ElementPrecision::kDouble ? " double" : " single");
+    }
+  }
+}
+
+TEST(TledModelTest, AnInstructionSetTheProcessorLacksIsRefused) {
+  TledModel model = modelOf(makeBoxMesh({1, 1, 1}, Vec3::Zero(), Vec3::Constant(1)));
+  EXPECT_EQ(model.elementLoopIsa(), bestElementLoopIsa());
+  for (ElementLoopIsa isa : {ElementLoopIsa::kPortable, ElementLoopIsa::kAvx2, ElementLoopIsa::kAvx512}) {
+    if (elementLoopAvailable(isa))
+      EXPECT_NO_THROW(model.setElementLoopIsa(isa));
+    else
+      EXPECT_THROW(model.setElementLoopIsa(isa), std::invalid_argument);
+  }
 }
 
 // Uniaxial stretch lambda along x with free lateral faces: F = diag(lambda,
