@@ -74,9 +74,9 @@ template <typename T>
 [[gnu::always_inline]] inline void gatherScalar(const TledElements& el, size_t base, const double* u,
                                                 ChunkScratch<T>& s) {
   for (size_t e = 0; e < kChunk; ++e) {
-    const double* u0 = u + kNodeStride * size_t(el.node[0][base + e]);
+    const double* u0 = u + size_t(el.nodeOffset[0][base + e]);
     for (int a = 1; a < 4; ++a) {
-      const double* ua = u + kNodeStride * size_t(el.node[a][base + e]);
+      const double* ua = u + size_t(el.nodeOffset[a][base + e]);
       for (int i = 0; i < 3; ++i) s.d[3 * (a - 1) + i][e] = T(ua[i] - u0[i]);
     }
   }
@@ -86,9 +86,9 @@ template <typename T>
 [[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base,
                                                  const ChunkScratch<T>& s, double* f) {
   for (size_t e = 0; e < kChunk; ++e) {
-    double* f0 = f + kNodeStride * size_t(el.node[0][base + e]);
+    double* f0 = f + size_t(el.nodeOffset[0][base + e]);
     for (int a = 1; a < 4; ++a) {
-      double* fa = f + kNodeStride * size_t(el.node[a][base + e]);
+      double* fa = f + size_t(el.nodeOffset[a][base + e]);
       for (int i = 0; i < 3; ++i) {
         const double force = s.f[3 * (a - 1) + i][e];
         fa[i] += force;
@@ -240,11 +240,11 @@ __attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const 
                                                                          ChunkScratch<T>& s) {
   for (size_t e = 0; e < kChunk; e += 4) {
     __m256d node0[4];
-    for (int k = 0; k < 4; ++k) node0[k] = _mm256_loadu_pd(u + kNodeStride * size_t(el.node[0][base + e + k]));
+    for (int k = 0; k < 4; ++k) node0[k] = _mm256_loadu_pd(u + size_t(el.nodeOffset[0][base + e + k]));
     for (int a = 1; a < 4; ++a) {
       __m256d d[4];
       for (int k = 0; k < 4; ++k)
-        d[k] = _mm256_sub_pd(_mm256_loadu_pd(u + kNodeStride * size_t(el.node[a][base + e + k])), node0[k]);
+        d[k] = _mm256_sub_pd(_mm256_loadu_pd(u + size_t(el.nodeOffset[a][base + e + k])), node0[k]);
       __m256d x, y, z;
       transposeToColumns(d[0], d[1], d[2], d[3], x, y, z);
       storeColumn(&s.d[3 * (a - 1)][e], x);
@@ -268,10 +268,10 @@ __attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const
     }
     // One element after the other: elements of a chunk share nodes.
     for (int k = 0; k < 4; ++k) {
-      double* f0 = f + kNodeStride * size_t(el.node[0][base + e + k]);
+      double* f0 = f + size_t(el.nodeOffset[0][base + e + k]);
       _mm256_storeu_pd(f0, _mm256_sub_pd(_mm256_loadu_pd(f0), sum[k]));
       for (int a = 0; a < 3; ++a) {
-        double* fa = f + kNodeStride * size_t(el.node[a + 1][base + e + k]);
+        double* fa = f + size_t(el.nodeOffset[a + 1][base + e + k]);
         _mm256_storeu_pd(fa, _mm256_add_pd(_mm256_loadu_pd(fa), rows[a][k]));
       }
     }

@@ -1,6 +1,7 @@
 #include "plugins/fem/TledModel.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -54,6 +55,9 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
                                 std::to_string(materials.size()) + " for " + std::to_string(tets.size()) + ")");
   for (const ElementMaterial& m : materials) checkMaterial(m);
   const size_t n = m_rest.size();
+  if (n > size_t(INT32_MAX) / kNodeStride)
+    throw std::invalid_argument(std::to_string(n) + " nodes: the element loop's 32-bit offsets reach " +
+                                std::to_string(size_t(INT32_MAX) / kNodeStride));
   for (size_t e = 0; e < tets.size(); ++e)
     for (int32_t node : tets[e])
       if (node < 0 || size_t(node) >= n)
@@ -83,7 +87,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
   TledElements& el = m_elements;
   el.count = tets.size();
   el.padded = (el.count + TledElements::kLanes - 1) / TledElements::kLanes * TledElements::kLanes;
-  for (auto& v : el.node) v.assign(el.padded, 0);
+  for (auto& v : el.nodeOffset) v.assign(el.padded, 0);
   for (auto& v : el.grad) v.assign(el.padded, 0.0);
   el.muVolume.assign(el.padded, 0.0);
   el.kappaVolume.assign(el.padded, 0.0);
@@ -95,7 +99,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
   for (size_t k = 0; k < el.count; ++k) {
     const size_t e = size_t(elementOrder[k]);  // the mesh's index
     const tetra::TetIndices& t = tets[e];
-    for (int a = 0; a < 4; ++a) el.node[a][k] = m_internal[t[a]];
+    for (int a = 0; a < 4; ++a) el.nodeOffset[a][k] = int32_t(kNodeStride) * m_internal[t[a]];
     const Vec3 &X0 = m_rest[t[0]], &X1 = m_rest[t[1]], &X2 = m_rest[t[2]], &X3 = m_rest[t[3]];
     Mat3 D;
     D.col(0) = X1 - X0;
@@ -115,7 +119,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
     m_density[k] = m_materialDensity[k] = material.density;
     el.muVolume[k] = moduli.mu * volume;
     el.kappaVolume[k] = moduli.kappa * volume;
-    for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += 0.25 * material.density * volume;
+    for (int a = 0; a < 4; ++a) m_mass[size_t(el.nodeOffset[a][k]) / kNodeStride] += 0.25 * material.density * volume;
     // Characteristic length 1 / |grad N|, |grad N|^2 the sum over the four
     // nodes of |grad N_a|^2 = 1 / h_a^2 (h_a the height over node a): the
     // element's stiffest mode is at most (lambda + 2 mu) V |grad N|^2, so with
@@ -176,7 +180,7 @@ void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementM
   for (int32_t e : elements) {
     const size_t k = size_t(m_elementInternal[e]);
     const double change = 0.25 * (material.density - m_density[k]) * m_volume[k];
-    for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += change;
+    for (int a = 0; a < 4; ++a) m_mass[size_t(el.nodeOffset[a][k]) / kNodeStride] += change;
     m_density[k] = m_materialDensity[k] = material.density;
     el.muVolume[k] = moduli.mu * m_volume[k];
     el.kappaVolume[k] = moduli.kappa * m_volume[k];
@@ -217,7 +221,7 @@ size_t TledModel::scaleMassForStep(double dt) {
     const double density = step < dt ? m_materialDensity[k] * (dt / step) * (dt / step) : m_materialDensity[k];
     if (step < dt) ++scaled;
     const double change = 0.25 * (density - m_density[k]) * m_volume[k];
-    for (int a = 0; a < 4; ++a) m_mass[el.node[a][k]] += change;
+    for (int a = 0; a < 4; ++a) m_mass[size_t(el.nodeOffset[a][k]) / kNodeStride] += change;
     m_density[k] = density;
   }
   findCriticalStep();
@@ -451,9 +455,9 @@ double TledModel::strainEnergy() const {
   double energy = 0;
   for (size_t k = 0; k < el.count; ++k) {
     Mat3 F = Mat3::Identity();
-    const double* u0 = &m_u[kNodeStride * size_t(el.node[0][k])];
+    const double* u0 = &m_u[size_t(el.nodeOffset[0][k])];
     for (int a = 1; a < 4; ++a) {
-      const double* ua = &m_u[kNodeStride * size_t(el.node[a][k])];
+      const double* ua = &m_u[size_t(el.nodeOffset[a][k])];
       const Vec3 d(ua[0] - u0[0], ua[1] - u0[1], ua[2] - u0[2]);
       const Eigen::RowVector3d g(el.grad[3 * (a - 1)][k], el.grad[3 * (a - 1) + 1][k], el.grad[3 * (a - 1) + 2][k]);
       F += d * g;

@@ -63,7 +63,10 @@ struct TledElements {
   static constexpr size_t kLanes = 64;  // the element loop's chunk: every chunk is whole
   size_t count = 0;   // real elements
   size_t padded = 0;  // count rounded up to kLanes
-  std::vector<int32_t> node[4];  // internal node indices
+  // Where the element's nodes are in the node vectors: kNodeStride times
+  // their internal indices (a scaled index the element loop's addressing
+  // takes as it is).
+  std::vector<int32_t> nodeOffset[4];
   // Rest-shape derivatives of the shape functions of local nodes 1..3 (node 0's
   // are minus their sum), 1/mm: grad[3 * (a - 1) + j][e] = dN_a / dX_j.
   std::vector<double> grad[9];
