@@ -82,6 +82,7 @@ void BM_TledStep(benchmark::State& state) {
   // reads u and writes f (about 220 B).
   const double bytes = (single ? 60 : 88) * elements + 220 * nodes;
   state.counters["elements"] = elements;
+  state.counters["nodes"] = nodes;
   state.counters["steps_per_s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
   state.counters["ns_per_element_step"] =
       benchmark::Counter(steps * elements * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
