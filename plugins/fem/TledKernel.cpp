@@ -25,7 +25,14 @@
 #include "plugins/fem/TledModel.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
+// GCC 12's AVX-512 intrinsics pass a deliberately undefined merge operand,
+// which -Wmaybe-uninitialized reports wherever they are inlined (GCC bug
+// 105593); the reports point into the header, so silencing them there is enough.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
+#pragma GCC diagnostic pop
 #define TREPHINE_TLED_AVX2 1
 #endif
 
@@ -68,6 +75,13 @@ struct ElementArrays {
   }
 };
 
+// The scatter takes a chunk's groups of four elements in this order: 0, 4,
+// 8, 12, 1, 5, ... Neighbouring groups share nodes, and the addition into a
+// node waits for the previous addition's store; groups four apart rarely
+// share one. (Measured on the brain phantoms: the step 7 to 10% faster than
+// in order.)
+constexpr size_t scatterGroup(size_t g) { return (g * 4) % (kChunk / 4) + (g * 4) / (kChunk / 4); }
+
 // ---- gather and scatter, portable --------------------------------------------
 
 template <typename T>
@@ -85,7 +99,8 @@ template <typename T>
 template <typename T>
 [[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base,
                                                  const ChunkScratch<T>& s, double* f) {
-  for (size_t e = 0; e < kChunk; ++e) {
+  for (size_t i = 0; i < kChunk; ++i) {
+    const size_t e = 4 * scatterGroup(i / 4) + i % 4;
     double* f0 = f + size_t(el.nodeOffset[0][base + e]);
     for (int a = 1; a < 4; ++a) {
       double* fa = f + size_t(el.nodeOffset[a][base + e]);
@@ -258,7 +273,8 @@ template <typename T>
 __attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const TledElements& el, size_t base,
                                                                           const ChunkScratch<T>& s,
                                                                           double* f) {
-  for (size_t e = 0; e < kChunk; e += 4) {
+  for (size_t g = 0; g < kChunk / 4; ++g) {
+    const size_t e = 4 * scatterGroup(g);
     __m256d rows[3][4];  // per local node 1..3, per element
     __m256d sum[4] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
     for (int a = 0; a < 3; ++a) {
@@ -294,8 +310,51 @@ __attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledEleme
   return counts;
 }
 
-// The same loop with the arithmetic on 512-bit vectors (16 floats or 8
-// doubles); the gather and the scatter as in AVX2.
+// Two nodes' (x, y, z, 0), one per 256-bit half.
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inline __m512d loadNodePair(
+    const double* u, int32_t first, int32_t second) {
+  return _mm512_insertf64x4(_mm512_broadcast_f64x4(_mm256_loadu_pd(u + first)), _mm256_loadu_pd(u + second), 1);
+}
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inline void storeColumn8(double* to,
+                                                                                                    __m512d v) {
+  _mm512_store_pd(to, v);
+}
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inline void storeColumn8(float* to,
+                                                                                                    __m512d v) {
+  _mm256_store_ps(to, _mm512_cvtpd_ps(v));
+}
+
+// The gather eight elements at a time: node pairs in 512-bit registers, and
+// the columns from two unpacks and three two-source permutes (the AVX2 gather
+// needs seven shuffles for four elements).
+template <typename T>
+__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inline void gatherAvx512(
+    const TledElements& el, size_t base, const double* u, ChunkScratch<T>& s) {
+  const int32_t* offset[4];
+  for (int a = 0; a < 4; ++a) offset[a] = el.nodeOffset[a].data() + base;
+  // Element order within the unpacked pairs: lanes (0, 2 | 1, 3) of each 128-bit half.
+  const __m512i even = _mm512_setr_epi64(0, 4, 1, 5, 8, 12, 9, 13);
+  const __m512i odd = _mm512_setr_epi64(2, 6, 3, 7, 10, 14, 11, 15);
+  for (size_t e = 0; e < kChunk; e += 8) {
+    __m512d node0[4];
+    for (int p = 0; p < 4; ++p) node0[p] = loadNodePair(u, offset[0][e + 2 * p], offset[0][e + 2 * p + 1]);
+    for (int a = 1; a < 4; ++a) {
+      __m512d d[4];
+      for (int p = 0; p < 4; ++p)
+        d[p] = _mm512_sub_pd(loadNodePair(u, offset[a][e + 2 * p], offset[a][e + 2 * p + 1]), node0[p]);
+      const __m512d t0 = _mm512_unpacklo_pd(d[0], d[1]);  // x0 x2 | z0 z2 | x1 x3 | z1 z3
+      const __m512d t1 = _mm512_unpackhi_pd(d[0], d[1]);  // y0 y2 | 0 0 | y1 y3 | 0 0
+      const __m512d t2 = _mm512_unpacklo_pd(d[2], d[3]);  // the same for elements 4..7
+      const __m512d t3 = _mm512_unpackhi_pd(d[2], d[3]);
+      storeColumn8(&s.d[3 * (a - 1)][e], _mm512_permutex2var_pd(t0, even, t2));
+      storeColumn8(&s.d[3 * (a - 1) + 1][e], _mm512_permutex2var_pd(t1, even, t3));
+      storeColumn8(&s.d[3 * (a - 1) + 2][e], _mm512_permutex2var_pd(t0, odd, t2));
+    }
+  }
+}
+
+// The same loop with the gather and the arithmetic on 512-bit vectors (16
+// floats or 8 doubles); the scatter as in AVX2.
 template <typename T>
 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) ElementStepCounts
 forcesAvx512(const TledElements& el, const double* u, double* f) {
@@ -303,7 +362,7 @@ forcesAvx512(const TledElements& el, const double* u, double* f) {
   ChunkScratch<T> s;
   const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
-    gatherAvx2(el, base, u, s);
+    gatherAvx512(el, base, u, s);
     const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
     counts.inverted += chunk.inverted;
     counts.farFromRest += chunk.farFromRest;
