@@ -99,9 +99,20 @@ void NativeTetBackend::moveNodes(const NodeFrame& frame) {
   // (from rest) while the grids are the rest ones, else measured here.
   // A loose bound between measurements costs little: it only admits more
   // tets to the test against their current box (locatePoints).
-  m_displacementBound = m_grids == &m_restGrids ? frame.displacementBound
-                                                : m_drift.update(*m_grids, frame.nodes, frame.largestMove, m_margin);
-  m_queryGrowth = std::max(0.0, m_displacementBound - m_margin);
+  const double bound = m_grids == &m_restGrids ? frame.displacementBound
+                                               : m_drift.update(*m_grids, frame.nodes, frame.largestMove, m_margin);
+  // Queries widen by the drift beyond the margin, and each cell of widening
+  // multiplies their cost (two cells: 125 times the cells to scan). Drift
+  // that far is a shape the rebuilt grids could not follow: a diverging FEM
+  // moves nodes by as much as the mesh is large before it is reset, and exact
+  // queries then took seconds a frame. The widening is held to
+  // kMostWideningCells; a tetrahedron whose nodes moved farther may then be
+  // missed, and the frame is counted.
+  const double widening = std::max(0.0, bound - m_margin);
+  const double mostWidening = kMostWideningCells * m_grids->tetGrid.cellSide();
+  if (widening > mostWidening) ++m_framesWideningCapped;
+  m_queryGrowth = std::min(widening, mostWidening);
+  m_displacementBound = m_margin + m_queryGrowth < bound ? m_margin + m_queryGrowth : bound;
   if (m_queryGrowth > 0) ++m_framesBeyondMargin;
   const Vec3 grow = Vec3::Constant(m_displacementBound);
   m_bounds = Box3(m_grids->bounds.min() - grow, m_grids->bounds.max() + grow);
@@ -162,6 +173,8 @@ void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
     counters.push_back({"adopted_grids", double(m_adoptedGrids)});
     counters.push_back({"drift_measurements", double(m_drift.fullMeasurements())});  // frames that visited every node
     counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
+    // Drift so far beyond the margin that the queries were widened by kMostWideningCells only.
+    counters.push_back({"frames_widening_capped", double(m_framesWideningCapped)});
     if (m_options.search != Search::kGrid) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
   }
 }

@@ -79,6 +79,7 @@ class NativeTetBackend final : public TetBackend {
   // Distance of p to the nearest boundary face around the nodes of `tet`, or infinity when none.
   double depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const;
   double displacementMargin() const { return m_margin; }  // mm
+  double queryWidening() const { return m_queryGrowth; }  // mm, this frame's, at most kMostWideningCells cells
   double averageEdge() const { return m_averageEdge; }    // mm
 
  private:
@@ -130,7 +131,10 @@ class NativeTetBackend final : public TetBackend {
   // Deformation.
   double m_margin = 0;                   // mm, by which the grids' boxes are grown
   double m_displacementBound = 0;        // mm, the latest frame's bound
-  double m_queryGrowth = 0;              // mm, max(0, bound - margin): how far queries widen
+  double m_queryGrowth = 0;              // mm, max(0, bound - margin) up to the cap: how far queries widen
+  // The most the queries widen, in grid cells (one: at most 27 times the cells of an unwidened query).
+  static constexpr double kMostWideningCells = 1.0;
+  uint64_t m_framesWideningCapped = 0;
   std::vector<uint32_t> m_nodeTetStart;  // node -> tets (compressed rows), for boxRefresh="moved"
   std::vector<int32_t> m_nodeTets;
   std::vector<uint8_t> m_tetMarked;

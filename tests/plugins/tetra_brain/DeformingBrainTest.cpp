@@ -136,6 +136,35 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
       << "the three frames of the larger amplitude widened the queries";
 }
 
+// A diverging FEM publishes nodes as far from rest as the mesh is large
+// before it is reset. Widening every query by that scanned the whole grid for
+// each point (seconds a frame); the widening is capped at a cell, counted,
+// and where nothing moved the answers stay those of the shape itself.
+TEST(DeformingBrainTest, AShapeFarBeyondTheGridsWidensTheQueriesByOneCellAtMost) {
+  const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
+  FollowingBrain following(22);
+  following.brain.reserveShell(shell);
+  const NativeTetBackend& native = shapes::native(following.brain);
+  std::vector<Vec3> flung = following.brain.mesh().nodes;
+  for (Vec3& p : flung)
+    if (p.x() < -80) p.x() -= 150;  // the far side of the cube, thrown 150 mm further out
+  following.moveTo(flung, 150.0);
+  const double cell = test::counter(following.brain, "cell_size_mm");
+  EXPECT_EQ(test::counter(following.brain, "frames_widening_capped"), 1.0);
+  EXPECT_DOUBLE_EQ(native.queryWidening(), cell);
+  TetraBrain rest;
+  cubeBrain(rest, 22);
+  rest.reserveShell(shell);
+  for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(60, 55, 0)})
+    for (const double press : {-0.5, 1.3, 3.0}) {
+      const Pose pose{xy + Vec3(0, 0, 100 + 2.5 - press), Quat::Identity()};
+      const std::string where = "at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " +
+                                std::to_string(press);
+      expectSameContact(following.brain.collide(pose, shell, false), rest.collide(pose, shell, false), where);
+      EXPECT_EQ(following.brain.overlaps(pose, shell), rest.overlaps(pose, shell)) << where;
+    }
+}
+
 TEST(DeformingBrainTest, PositionsOfAnotherSizeAreIgnoredAndCounted) {
   FollowingBrain following(7);
   const std::vector<Vec3> rest = following.brain.mesh().nodes;
