@@ -1,6 +1,5 @@
 #include "tools/trephine/StudyCommand.h"
 
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +14,7 @@
 #include <thread>
 
 #include "framework/core/Strings.h"
+#include "tools/trephine/PlotScript.h"
 #include "tools/trephine/RunCommand.h"
 #include "tools/trephine/StudyReport.h"
 #include "tools/trephine/StudySetting.h"
@@ -130,19 +130,6 @@ std::vector<std::string> workerArguments(const StudyRequest& request, int index)
   return args;
 }
 
-// Starts `args` (args[0] is the program; searched in PATH when `searchPath`);
-// returns its pid, or -1.
-pid_t spawn(const std::vector<std::string>& args, bool searchPath, int* error = nullptr) {
-  std::vector<char*> argv;
-  for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int failed = searchPath ? posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ)
-                                : posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
-  if (failed && error) *error = failed;
-  return failed ? -1 : pid;
-}
-
 // A worker that ended without saying why (killed, crashed, not started)
 // leaves error.txt, so that nobody waits for its setting.
 void recordAbnormalEnd(const StudyRequest& request, int index, const std::string& why) {
@@ -222,30 +209,11 @@ void waitFor(const std::function<bool()>& ready) {
   while (!ready()) std::this_thread::sleep_for(std::chrono::milliseconds(200));
 }
 
-std::filesystem::path plotScript() {
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  for (const std::filesystem::path& candidate : {exe.parent_path().parent_path() / "share/trephine/plot_study.py",
-                                                 std::filesystem::path(TREPHINE_SOURCE_DIR) / "tools/plot_study.py"})
-    if (std::filesystem::exists(candidate)) return candidate;
-  return {};
-}
-
 // pareto.png from study.csv by tools/plot_study.py (matplotlib); a study
 // without it still has its csv and table.
 void drawPareto(const std::filesystem::path& out) {
-  const std::filesystem::path script = plotScript();
-  const std::string command = "python3 " + (script.empty() ? std::string("tools/plot_study.py") : script.string()) +
-                              " " + (out / "study.csv").string();
-  int status = -1;
-  if (!script.empty()) {
-    const pid_t pid = spawn({"python3", script.string(), (out / "study.csv").string()}, true);
-    if (pid > 0) waitpid(pid, &status, 0);
-  }
-  if (status == 0)
+  if (runPlotScript("plot_study.py", {(out / "study.csv").string()}, "pareto.png"))
     std::cout << "pareto    " << (out / "pareto.png").string() << "\n";
-  else
-    std::cerr << "trephine: pareto.png not drawn (needs python3-matplotlib); draw it with: " << command << "\n";
 }
 
 }  // namespace

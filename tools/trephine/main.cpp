@@ -2,6 +2,7 @@
 #include <iostream>
 #include <string>
 
+#include "tools/trephine/CellSizeCommand.h"
 #include "tools/trephine/CommandLine.h"
 #include "tools/trephine/PhantomCommand.h"
 #include "tools/trephine/Reference.h"
@@ -46,6 +47,17 @@ usage:
       zlib-compressed unless --raw. .mesh/.mesh.gz: a tetrahedral mesh as
       Medit (gzipped for .gz), e.g. cube?cells=22 or brain?tets=22000.
       Run without arguments for the list of phantoms.
+  trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]
+                        [--frames N] [--rounds N]
+      The grid cell size for collision between two copies of a tetrahedral
+      mesh (a file, or phantom:SPEC): delta_a, the minimiser of the thesis's
+      cost model (p_nc 0.99 and r_t 5 unless given; --calibrate measures r_t
+      here), and delta_trad, the average edge length. --experiment measures
+      the optimum: two copies with 1% of tetrahedra colliding, timed at 25
+      cell sizes, a polynomial fit; prints delta_opt, the optimal zone (within
+      10% of the least time) and each prediction's error (Eq. 5.9), and
+      writes cellsize.csv, cellsize.json and cellsize.png to DIR (default
+      runs/cellsize-<mesh name>). --json prints one JSON object.
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
@@ -84,6 +96,10 @@ int main(int argc, char** argv) {
                             "--poses", "--setting"},
                            {}, arguments);
     if (!error) return studyCommand(arguments);
+  } else if (command == "cellsize") {
+    error = parseArguments(argc, argv, {"--pnc", "--rt", "--out", "--frames", "--rounds"},
+                           {"--calibrate", "--json", "--experiment"}, arguments);
+    if (!error) return cellSizeCommand(arguments);
   } else if (command == "validate") {
     error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {"--strict"}, arguments);
     if (!error) return validateCommand(arguments);

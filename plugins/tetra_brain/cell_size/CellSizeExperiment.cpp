@@ -1,0 +1,191 @@
+#include "plugins/tetra_brain/cell_size/CellSizeExperiment.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace trephine::tetra {
+
+namespace {
+
+constexpr double kFrameTime = 1e-3;  // s, the response's step
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The second copy: the mesh turned by 10 degrees about a skew axis through
+// its centre. Copies face to face with no turn meet a whole layer at once on
+// a mesh with flat faces (a cube's), and no offset gives 1%.
+TetMesh turnedCopy(const TetMesh& mesh) {
+  TetMesh copy = mesh;
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : mesh.nodes) centre += p;
+  centre /= double(mesh.nodes.size());
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(10 * 3.14159265358979323846 / 180, Vec3(0.3, 0.5, 0.8).normalized()).toRotationMatrix();
+  for (Vec3& p : copy.nodes) p = centre + turn * (p - centre);
+  return copy;
+}
+
+// The fraction of the first copy's tetrahedra holding a particle of the
+// second, shifted by `offset` along x.
+double collidingFractionAt(const TetMesh& mesh, const TetMesh& second, double offset, double cellSize) {
+  TetPairScene scene(mesh, second, Vec3(offset, 0, 0));
+  const PairCounts counts = scene.detect(cellSize);
+  return double(counts.collidingTets) / double(mesh.tetCount());
+}
+
+// Bisection on the offset: the fraction falls as the copies part.
+double placeSecondCopy(const TetMesh& mesh, const TetMesh& second, double target, double cellSize,
+                       double& reached) {
+  Box3 bounds;
+  for (const Vec3& p : mesh.nodes) bounds.extend(p);
+  for (const Vec3& p : second.nodes) bounds.extend(p);
+  double overlapping = 0, apart = bounds.sizes().x();  // offsets
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (overlapping + apart);
+    (collidingFractionAt(mesh, second, mid, cellSize) > target ? overlapping : apart) = mid;
+  }
+  reached = collidingFractionAt(mesh, second, overlapping, cellSize);
+  if (!(reached >= 0.5 * target && reached <= 2 * target))
+    throw std::invalid_argument("no offset of the second copy makes " + std::to_string(100 * target) +
+                                "% of the tetrahedra collide (reached " + std::to_string(100 * reached) + "%)");
+  return overlapping;
+}
+
+// Least squares polynomial of degree `degree` in x (scaled to [-1, 1]).
+struct Polynomial {
+  Eigen::VectorXd c;
+  double centre = 0, halfWidth = 1;
+  double operator()(double x) const {
+    const double u = (x - centre) / halfWidth;
+    double y = 0;
+    for (Eigen::Index k = c.size() - 1; k >= 0; --k) y = y * u + c[k];
+    return y;
+  }
+};
+
+Polynomial fit(const std::vector<double>& x, const std::vector<double>& y, int degree) {
+  Polynomial p;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  p.centre = 0.5 * (*lo + *hi);
+  p.halfWidth = std::max(1e-300, 0.5 * (*hi - *lo));
+  const int terms = std::min<int>(degree + 1, int(x.size()));
+  Eigen::MatrixXd A(x.size(), terms);
+  Eigen::VectorXd b(x.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double u = (x[i] - p.centre) / p.halfWidth;
+    double power = 1;
+    for (int k = 0; k < terms; ++k, power *= u) A(Eigen::Index(i), k) = power;
+    b[Eigen::Index(i)] = y[i];
+  }
+  p.c = A.colPivHouseholderQr().solve(b);
+  return p;
+}
+
+}  // namespace
+
+double cellSizeError(double optimal, double zoneLow, double zoneHigh, double delta) {
+  // In cells per unit length n = 1 / delta, as the thesis's tables (voxels
+  // per axis of its scene): a small cell is a large n.
+  const double nOpt = 1 / optimal, n = 1 / delta;
+  if (n == nOpt) return 0;
+  // n below the optimum (a larger cell): against the zone's larger cell.
+  if (n < nOpt) return (nOpt - n) / (nOpt - 1 / zoneHigh);
+  return (n - nOpt) / (1 / zoneLow - nOpt);
+}
+
+CellSizeExperimentResult runCellSizeExperiment(const TetMesh& mesh, const CellSizeInputs& inputs,
+                                               const CellSizeExperimentOptions& options) {
+  CellSizeExperimentResult result;
+  const TetMesh second = turnedCopy(mesh);
+  const double offset =
+      placeSecondCopy(mesh, second, options.collidingFraction, inputs.averageEdge, result.collidingFraction);
+  result.offset = Vec3(offset, 0, 0);
+
+  std::vector<double> sizes = options.cellSizes;
+  if (sizes.empty()) {
+    const double nLow = 1 / (4 * inputs.averageEdge), nHigh = 1 / (0.4 * inputs.averageEdge);
+    for (int i = 0; i < 25; ++i) sizes.push_back(1 / (nLow + (nHigh - nLow) * i / 24.0));
+  }
+  std::vector<std::vector<double>> times(sizes.size());
+  result.samples.resize(sizes.size());
+  // Rounds interleaved: each cell size meets the machine in each of its states.
+  for (int round = 0; round < options.rounds; ++round)
+    for (size_t s = 0; s < sizes.size(); ++s) {
+      // The same motion at every cell size: the detection is exact, so the
+      // contacts, the response and the path are the same.
+      TetPairScene scene(mesh, second, result.offset);
+      // Towards the first copy by a hundredth of an edge a frame; the
+      // response holds it.
+      scene.setVelocityOfB(Vec3(-0.01 * inputs.averageEdge / kFrameTime, 0, 0));
+      for (int frame = 0; frame < options.frames; ++frame) {
+        const auto start = std::chrono::steady_clock::now();
+        const PairCounts counts = scene.detect(sizes[s]);
+        const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+        times[s].push_back(us);
+        if (round == 0 && frame == 0) result.samples[s].perFrame = counts;
+        scene.step(sizes[s], kFrameTime);  // the response (its own detection is not timed)
+      }
+    }
+  std::vector<double> n, t;
+  for (size_t s = 0; s < sizes.size(); ++s) {
+    CellSizeSample& sample = result.samples[s];
+    sample.cellSize = sizes[s];
+    sample.timeUs = median(times[s]);
+    ParticleGrid grid;  // its size, for the calibration
+    Box3 bounds;
+    for (const Vec3& p : mesh.nodes) bounds.extend(p);
+    for (const Vec3& p : second.nodes) bounds.extend(p + result.offset);
+    grid.build({}, bounds, sizes[s]);
+    sample.cells = grid.cellCount();
+    n.push_back(1 / sizes[s]);
+    t.push_back(sample.timeUs);
+  }
+  const Polynomial curve = fit(n, t, options.fitDegree);
+  for (CellSizeSample& sample : result.samples) sample.fittedUs = curve(1 / sample.cellSize);
+  // The minimiser and the zone, on a fine sampling of the swept range of n.
+  const auto [nMin, nMax] = std::minmax_element(n.begin(), n.end());
+  constexpr int kFine = 4000;
+  std::vector<double> fineN(kFine + 1), fineT(kFine + 1);
+  size_t best = 0;
+  for (int i = 0; i <= kFine; ++i) {
+    fineN[i] = *nMin + (*nMax - *nMin) * i / kFine;
+    fineT[i] = curve(fineN[i]);
+    if (fineT[i] < fineT[best]) best = size_t(i);
+  }
+  result.optimal = 1 / fineN[best];
+  const double limit = fineT[best] * (1 + options.zoneTolerance);
+  size_t low = best, high = best;
+  while (low > 0 && fineT[low - 1] <= limit) --low;
+  while (high < size_t(kFine) && fineT[high + 1] <= limit) ++high;
+  result.zoneLow = 1 / fineN[high];  // the smaller cell: the larger n
+  result.zoneHigh = 1 / fineN[low];
+
+  // p_nc at the model's delta_a.
+  {
+    TetPairScene scene(mesh, second, result.offset);
+    const PairCounts counts = scene.detect(optimalCellSize(inputs, {}));
+    result.measuredCollisionFree = 1 - double(counts.tetsWithParticles) / double(mesh.tetCount());
+  }
+  // r_t: time = a cellVisits + b boxTests + c cells + d.
+  Eigen::MatrixXd A(result.samples.size(), 4);
+  Eigen::VectorXd b(result.samples.size());
+  for (size_t s = 0; s < result.samples.size(); ++s) {
+    const CellSizeSample& sample = result.samples[s];
+    A.row(Eigen::Index(s)) << double(sample.perFrame.cellVisits), double(sample.perFrame.boxTests),
+        double(sample.cells), 1.0;
+    b[Eigen::Index(s)] = sample.timeUs;
+  }
+  const Eigen::VectorXd k = A.colPivHouseholderQr().solve(b);
+  result.calibratedTimeRatio = k[0] > 0 ? k[1] / k[0] : 0;
+  return result;
+}
+
+}  // namespace trephine::tetra

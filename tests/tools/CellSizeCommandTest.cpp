@@ -1,0 +1,65 @@
+// `trephine cellsize`: the prediction as text and JSON, the experiment's
+// outputs, and clear errors for bad arguments and meshes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+using test::runProgram;
+
+// The number after "key": in a one-line JSON object.
+double jsonNumber(const std::string& json, const std::string& key) {
+  const size_t at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return NAN;
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+TEST(CellSizeCommandTest, JsonGivesTheModelsCellAndTheAverageEdge) {
+  std::string out;
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=6", "--json"}, &out), 0) << out;
+  // The cube phantom: 200 mm, 6 cells, each split into five tetrahedra.
+  EXPECT_EQ(jsonNumber(out, "tetrahedra"), 1080.0) << out;
+  const double a = jsonNumber(out, "delta_a"), trad = jsonNumber(out, "delta_trad");
+  EXPECT_GT(a, trad) << "the model's cell is larger than the average edge (about 1.5 times): " << out;
+  EXPECT_LT(a, 2 * trad) << out;
+  // Another p_nc moves the cell: fewer collisions, larger cells.
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=6", "--json", "--pnc", "0.999"}, &out), 0) << out;
+  EXPECT_GT(jsonNumber(out, "delta_a"), a);
+}
+
+TEST(CellSizeCommandTest, TheExperimentWritesItsTableAndReportsTheZone) {
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=6", "--experiment", "--json", "--frames", "2", "--rounds",
+                        "1", "--out", dir.path().string()},
+                       &out),
+            0)
+      << out;
+  const double optimal = jsonNumber(out, "delta_opt");
+  EXPECT_GT(optimal, 0.0) << out;
+  EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_a"))) << out;
+  EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_trad"))) << out;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "cellsize.json"));
+  const std::string csv = test::readFile(dir.path() / "cellsize.csv");
+  EXPECT_TRUE(csv.starts_with("cell_size_mm,cells_per_mm,time_us,fitted_us,")) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 26) << "a header and 25 cell sizes";
+}
+
+TEST(CellSizeCommandTest, BadArgumentsAndMeshesAreClearErrors) {
+  std::string out;
+  EXPECT_EQ(runProgram({"cellsize"}, &out), 2);
+  EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--pnc", "1.5"}, &out), 2);
+  EXPECT_NE(out.find("--pnc is a probability"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--rt", "x"}, &out), 2);
+  EXPECT_NE(out.find("--rt takes a number, not 'x'"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--rt", "4", "--calibrate"}, &out), 2);
+  EXPECT_EQ(runProgram({"cellsize", "/nonexistent/brain.mesh"}, &out), 1);
+  EXPECT_NE(out.find("/nonexistent/brain.mesh"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace trephine

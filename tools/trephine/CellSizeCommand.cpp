@@ -1,0 +1,186 @@
+#include "tools/trephine/CellSizeCommand.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "framework/core/Strings.h"
+#include "plugins/tetra_brain/TetPhantoms.h"
+#include "plugins/tetra_brain/cell_size/CellSizeExperiment.h"
+#include "plugins/tetra_brain/cell_size/CellSizeModel.h"
+#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "tools/trephine/PlotScript.h"
+
+namespace trephine::cli {
+
+namespace {
+
+constexpr const char* kUsageLine =
+    "usage: trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]\n"
+    "                              [--frames N] [--rounds N]\n"
+    "  MESH: a tetrahedral mesh file (.mesh, .vtu, .vtk, .msh, .node/.ele) or phantom:SPEC\n";
+
+// A number option, or the error that names it.
+std::optional<double> numberOption(const Arguments& a, const std::string& name, double fallback, std::string& error) {
+  const auto text = a.get(name);
+  if (!text) return fallback;
+  double value = 0;
+  const auto r = std::from_chars(text->data(), text->data() + text->size(), value);
+  if (r.ec != std::errc() || r.ptr != text->data() + text->size() || !std::isfinite(value)) {
+    error = name + " takes a number, not '" + *text + "'";
+    return std::nullopt;
+  }
+  return value;
+}
+
+tetra::TetMesh loadMesh(const std::string& name) {
+  constexpr std::string_view kPhantom = "phantom:";
+  if (name.rfind(kPhantom, 0) == 0) return tetra::makeTetPhantom(name.substr(kPhantom.size()));
+  return tetra::readTetMesh(name);
+}
+
+std::string number(double v) { return formatDouble(v); }
+
+}  // namespace
+
+int cellSizeCommand(const Arguments& a) {
+  std::string error;
+  const auto pnc = numberOption(a, "--pnc", 0.99, error);
+  const auto rt = numberOption(a, "--rt", 5.0, error);
+  const auto frames = numberOption(a, "--frames", 10, error);
+  const auto rounds = numberOption(a, "--rounds", 3, error);
+  if (error.empty() && a.positional.size() != 1) error = "one mesh expected";
+  if (error.empty() && a.has("--rt") && a.has("--calibrate")) error = "--rt and --calibrate exclude each other";
+  if (error.empty() && !(*pnc > 0 && *pnc < 1)) error = "--pnc is a probability in (0, 1)";
+  if (error.empty() && !(*rt > 0)) error = "--rt is a positive time ratio";
+  if (error.empty() && (!(*frames >= 1) || !(*rounds >= 1))) error = "--frames and --rounds take counts of at least 1";
+  if (!error.empty()) {
+    std::cerr << "trephine cellsize: " << error << "\n" << kUsageLine;
+    return kUsage;
+  }
+  const std::string meshName = a.positional[0];
+  tetra::TetMesh mesh;
+  tetra::CellSizeInputs inputs;
+  try {
+    mesh = loadMesh(meshName);
+    inputs = tetra::measureCellSizeInputs(mesh);
+  } catch (const std::exception& e) {
+    std::cerr << "trephine cellsize: " << meshName << ": " << e.what() << "\n";
+    return kSceneError;
+  }
+  tetra::CostParameters parameters{*pnc, *rt};
+  const bool experiment = a.has("--experiment"), calibrate = a.has("--calibrate");
+  std::optional<tetra::CellSizeExperimentResult> measured;
+  if (experiment || calibrate) {
+    tetra::CellSizeExperimentOptions options;
+    options.frames = int(*frames);
+    options.rounds = int(*rounds);
+    try {
+      measured = tetra::runCellSizeExperiment(mesh, inputs, options);
+    } catch (const std::exception& e) {
+      std::cerr << "trephine cellsize: " << meshName << ": " << e.what() << "\n";
+      return kRuntimeFailure;
+    }
+    if (calibrate) parameters.testTimeRatio = measured->calibratedTimeRatio;
+  }
+  const double deltaA = tetra::optimalCellSize(inputs, parameters);
+  const double deltaTrad = inputs.averageEdge;
+  // The model with both constants measured (p_nc at delta_a, r_t from the sweep).
+  std::optional<double> deltaMeasured;
+  if (measured && measured->calibratedTimeRatio > 0 && measured->measuredCollisionFree > 0 &&
+      measured->measuredCollisionFree < 1)
+    deltaMeasured = tetra::optimalCellSize(inputs, {measured->measuredCollisionFree, measured->calibratedTimeRatio});
+
+  std::filesystem::path out;
+  if (experiment) {
+    out = a.get("--out") ? std::filesystem::path(*a.get("--out"))
+                         : std::filesystem::path("runs") / ("cellsize-" + std::filesystem::path(meshName).stem().string());
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    std::ofstream csv(out / "cellsize.csv");
+    csv << "cell_size_mm,cells_per_mm,time_us,fitted_us,cell_visits,box_tests,barycentric_tests,contacts,grid_cells\n";
+    for (const tetra::CellSizeSample& s : measured->samples)
+      csv << number(s.cellSize) << "," << number(1 / s.cellSize) << "," << number(s.timeUs) << ","
+          << number(s.fittedUs) << "," << s.perFrame.cellVisits << "," << s.perFrame.boxTests << ","
+          << s.perFrame.barycentricTests << "," << s.perFrame.contacts << "," << s.cells << "\n";
+    if (!csv) {
+      std::cerr << "trephine cellsize: cannot write " << (out / "cellsize.csv").string() << "\n";
+      return kRuntimeFailure;
+    }
+  }
+
+  std::ostringstream json;
+  json << "{\"mesh\": \"" << meshName << "\", \"tetrahedra\": " << inputs.tetrahedra
+       << ", \"nodes\": " << mesh.nodeCount() << ", \"delta_a\": " << number(deltaA)
+       << ", \"delta_trad\": " << number(deltaTrad) << ", \"inputs\": {\"mean_longest_edge\": "
+       << number(inputs.longestEdge) << ", \"largest_edge\": " << number(inputs.largestEdge)
+       << ", \"mean_facet_area\": " << number(inputs.facetArea) << ", \"facets\": " << inputs.facets
+       << ", \"average_edge\": " << number(inputs.averageEdge) << ", \"edges\": " << inputs.edges
+       << "}, \"pnc\": " << number(parameters.collisionFreeProbability)
+       << ", \"rt\": " << number(parameters.testTimeRatio);
+  if (measured) {
+    const tetra::CellSizeExperimentResult& m = *measured;
+    json << ", \"calibrated_rt\": " << number(m.calibratedTimeRatio)
+         << ", \"measured_pnc\": " << number(m.measuredCollisionFree);
+    if (deltaMeasured) json << ", \"delta_measured_constants\": " << number(*deltaMeasured);
+    if (experiment) {
+      json << ", \"delta_opt\": " << number(m.optimal) << ", \"zone\": [" << number(m.zoneLow) << ", "
+           << number(m.zoneHigh) << "], \"epsilon_a\": "
+           << number(tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaA))
+           << ", \"epsilon_trad\": " << number(tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaTrad));
+      if (deltaMeasured)
+        json << ", \"epsilon_measured_constants\": "
+             << number(tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, *deltaMeasured));
+      json << ", \"colliding_fraction\": " << number(m.collidingFraction) << ", \"offset_mm\": "
+           << number(m.offset.x()) << ", \"zone_tolerance\": 0.1";
+    }
+  }
+  json << "}\n";
+  bool drawn = false;
+  if (experiment) {
+    std::ofstream(out / "cellsize.json") << json.str();
+    drawn = runPlotScript("plot_cellsize.py", {(out / "cellsize.csv").string()}, "cellsize.png");
+  }
+
+  if (a.has("--json")) {
+    std::cout << json.str();
+  } else {
+    std::cout << std::setprecision(4);
+    std::cout << "mesh        " << meshName << " (" << inputs.tetrahedra << " tetrahedra, " << mesh.nodeCount()
+              << " nodes)\n"
+              << "inputs      mean longest edge " << inputs.longestEdge << " mm (largest " << inputs.largestEdge
+              << "), mean facet area " << inputs.facetArea << " mm^2 (" << inputs.facets << " facets), average edge "
+              << inputs.averageEdge << " mm (" << inputs.edges << " edges)\n"
+              << "model       p_nc " << parameters.collisionFreeProbability << ", r_t " << parameters.testTimeRatio
+              << (calibrate ? " (calibrated on this machine)" : "") << "\n"
+              << "delta_a     " << deltaA << " mm (minimises the cost model)\n"
+              << "delta_trad  " << deltaTrad << " mm (average edge length)\n";
+    if (measured) {
+      const tetra::CellSizeExperimentResult& m = *measured;
+      std::cout << "measured    r_t " << m.calibratedTimeRatio << ", p_nc " << m.measuredCollisionFree
+                << " (at delta_a)";
+      if (deltaMeasured) std::cout << ": delta " << *deltaMeasured << " mm";
+      std::cout << "\n";
+    }
+    if (experiment) {
+      const tetra::CellSizeExperimentResult& m = *measured;
+      std::cout << "experiment  two copies " << m.offset.x() << " mm apart, " << 100 * m.collidingFraction
+                << "% of tetrahedra colliding; " << m.samples.size() << " cell sizes\n"
+                << "delta_opt   " << m.optimal << " mm, optimal zone " << m.zoneLow << " to " << m.zoneHigh
+                << " mm (fitted time within 10% of the minimum)\n"
+                << "epsilon     delta_a " << tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaA)
+                << ", delta_trad " << tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaTrad)
+                << " (at most 1: inside the zone)\n"
+                << "outputs     " << out.string() << "/ (cellsize.csv, cellsize.json";
+      std::cout << (drawn ? ", cellsize.png)\n" : ")\n");
+    }
+  }
+  return kOk;
+}
+
+}  // namespace trephine::cli
