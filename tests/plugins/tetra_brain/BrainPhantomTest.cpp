@@ -8,11 +8,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "plugins/tetra_brain/BrainPhantom.h"
+#include "plugins/tetra_brain/ImplicitMesher.h"
 
 namespace trephine::tetra {
 namespace {
@@ -140,6 +142,37 @@ TEST(BrainPhantom, RefusesTargetsOutsideTheRange) {
   // The lower bound itself is meshed (tetrahedra of about 15,000 mm^3 each).
   const TetMesh coarsest = makeBrainPhantom(100);
   EXPECT_GT(coarsest.tetCount(), 50u);
+}
+
+}  // namespace
+}  // namespace trephine::tetra
+
+namespace trephine::tetra {
+namespace {
+
+// The same mesher on another solid: a ball of 10 mm at the thesis's count
+// scale (Table 5.1 meshes run through `phantom:sphere`).
+TEST(SpherePhantom, HitsTheCountAndFillsTheBall) {
+  const double radius = 10;
+  ImplicitSolid solid{[&](const Vec3& p) { return p.norm() - radius; },
+                      Vec3::Zero(),
+                      1.2 * radius,
+                      4.2 * 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3),
+                      4.3 * 4.0 * std::numbers::pi * radius * radius,
+                      0.0};
+  const TetMesh mesh = meshImplicitSolid(solid, 8000);
+  EXPECT_NEAR(double(mesh.tetCount()), 8000.0, 0.03 * 8000) << mesh.tetCount();
+  double volume = 0;
+  for (const TetIndices& t : mesh.tets) {
+    const double v = signedVolume(mesh.nodes[t[0]], mesh.nodes[t[1]], mesh.nodes[t[2]], mesh.nodes[t[3]]);
+    EXPECT_GT(v, 0.0);
+    volume += v;
+  }
+  // Inscribed facets cut a little off the ball: within 2% of its volume.
+  const double ball = 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3);
+  EXPECT_LT(volume, ball);
+  EXPECT_GT(volume, 0.98 * ball);
+  for (const Vec3& p : mesh.nodes) EXPECT_LE(p.norm(), radius * (1 + 1e-6));
 }
 
 }  // namespace
