@@ -150,4 +150,11 @@ TetMesh meshImplicitSolid(const ImplicitSolid& solid, int targetTets) {
   return toTetMesh(best);
 }
 
+TetMesh meshImplicitSolidAtSize(const ImplicitSolid& solid, double size) {
+  if (!(size > 0) || !std::isfinite(size)) throw std::invalid_argument("the cell size must be a positive number of mm");
+  Complex complex = refine(solid, size);
+  removeSlivers(solid, complex);
+  return toTetMesh(complex);
+}
+
 }  // namespace trephine::tetra

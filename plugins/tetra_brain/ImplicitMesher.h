@@ -30,5 +30,9 @@ struct ImplicitSolid {
 
 // Throws std::invalid_argument when targetTets is outside [100, 2000000].
 TetMesh meshImplicitSolid(const ImplicitSolid& solid, int targetTets);
+// One refinement with cells and surface facets of circumradius at most
+// `size` (mm), then the slivers' removal. Throws std::invalid_argument for a
+// size that is not positive.
+TetMesh meshImplicitSolidAtSize(const ImplicitSolid& solid, double size);
 
 }  // namespace trephine::tetra

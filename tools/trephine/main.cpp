@@ -4,6 +4,7 @@
 
 #include "tools/trephine/CellSizeCommand.h"
 #include "tools/trephine/CommandLine.h"
+#include "tools/trephine/MeshCommand.h"
 #include "tools/trephine/PhantomCommand.h"
 #include "tools/trephine/Reference.h"
 #include "tools/trephine/RunCommand.h"
@@ -47,6 +48,13 @@ usage:
       zlib-compressed unless --raw. .mesh/.mesh.gz: a tetrahedral mesh as
       Medit (gzipped for .gz), e.g. cube?cells=22 or brain?tets=22000.
       Run without arguments for the list of phantoms.
+  trephine mesh SURFACE --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--tets N | --size S]
+      Mesh a closed surface (.off, .obj, .stl, .ply) or phantom:sphere?radius=R
+      into tetrahedra with CGAL Mesh_3, at about N tetrahedra (within 3% from
+      a few thousand up) or at cells of circumradius S mm. Seeded: the same
+      input gives the same mesh. The inside is the surface's winding number,
+      so a surface that passes through itself is meshed as the union of its
+      parts.
   trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]
                         [--frames N] [--rounds N]
       The grid cell size for collision between two copies of a tetrahedral
@@ -96,6 +104,9 @@ int main(int argc, char** argv) {
                             "--poses", "--setting"},
                            {}, arguments);
     if (!error) return studyCommand(arguments);
+  } else if (command == "mesh") {
+    error = parseArguments(argc, argv, {"--out", "--tets", "--size"}, {}, arguments);
+    if (!error) return meshCommand(arguments);
   } else if (command == "cellsize") {
     error = parseArguments(argc, argv, {"--pnc", "--rt", "--out", "--frames", "--rounds"},
                            {"--calibrate", "--json", "--experiment"}, arguments);
