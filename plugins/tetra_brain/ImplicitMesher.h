@@ -12,6 +12,7 @@
 // project is in ImplicitMesher.cpp: each translation unit that includes
 // Mesh_3 takes about half a minute to compile.
 #include <functional>
+#include <numbers>
 
 #include "plugins/tetra_brain/TetMesh.h"
 
@@ -27,6 +28,18 @@ struct ImplicitSolid {
   double volumeTerm = 1, surfaceTerm = 0;
   double leastFacetDistance = 0;  // mm: surface facets lie within max(this, size / 10) of the surface
 };
+
+// A ball of `radius` (mm) at the origin. The count's first guess: about 4.2
+// times the volume and 4.3 times the area over the cell size's cube and
+// square, as measured on the brain phantom.
+inline ImplicitSolid ballSolid(double radius) {
+  return {[radius](const Vec3& p) { return p.norm() - radius; },
+          Vec3::Zero(),
+          1.2 * radius,
+          4.2 * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius,
+          4.3 * 4.0 * std::numbers::pi * radius * radius,
+          0.0};
+}
 
 // Throws std::invalid_argument when targetTets is outside [100, 2000000].
 TetMesh meshImplicitSolid(const ImplicitSolid& solid, int targetTets);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <stdexcept>
 
 #include "framework/core/SourceSpec.h"
@@ -56,12 +55,8 @@ TetPhantomDefinition defineTetPhantom(const std::string& specification) {
     const SourceSpec k(name, query, {{"tets", 41937}, {"radius", 50}});
     const int tets = k.wholeNumber("tets", 100, 2000000);
     const double r = k.positive("radius");
-    const auto distance = [r](const Vec3& p) { return p.norm() - r; };
-    // The count's first guess: about 4.2 times the volume and 4.3 times the
-    // area over the cell size's cube and square (as the brain phantom's).
-    const ImplicitSolid solid{distance, Vec3::Zero(), 1.2 * r, 4.2 * 4.0 / 3.0 * std::numbers::pi * r * r * r,
-                              4.3 * 4.0 * std::numbers::pi * r * r, 0.0};
-    return {[=] { return meshImplicitSolid(solid, tets); }, distance};
+    const ImplicitSolid solid = ballSolid(r);
+    return {[=] { return meshImplicitSolid(solid, tets); }, solid.distance};
   }
   throw std::invalid_argument("unknown phantom '" + name + "' (cube, bar, brain, sphere)");
 }

@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
-#include <numbers>
 
 #include "framework/core/SourceSpec.h"
 #include "plugins/tetra_brain/ImplicitMesher.h"
@@ -32,12 +31,7 @@ Solid solidOf(const std::string& name) {
     if (kind != "sphere") throw std::invalid_argument("the mesh command's phantom is sphere?radius=R, not '" + kind + "'");
     const SourceSpec spec(kind, query, {{"radius", 50}});
     const double r = spec.positive("radius");
-    tetra::ImplicitSolid s{[r](const Vec3& p) { return p.norm() - r; },
-                           Vec3::Zero(),
-                           1.2 * r,
-                           4.2 * 4.0 / 3.0 * std::numbers::pi * r * r * r,
-                           4.3 * 4.0 * std::numbers::pi * r * r,
-                           0.0};
+    const tetra::ImplicitSolid s = tetra::ballSolid(r);
     return {s, "a ball of radius " + std::to_string(r) + " mm"};
   }
   tetra::SurfaceSolid surface(tetra::readSurface(name));

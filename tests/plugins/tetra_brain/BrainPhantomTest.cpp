@@ -154,12 +154,7 @@ namespace {
 // scale (Table 5.1 meshes run through `phantom:sphere`).
 TEST(SpherePhantom, HitsTheCountAndFillsTheBall) {
   const double radius = 10;
-  ImplicitSolid solid{[&](const Vec3& p) { return p.norm() - radius; },
-                      Vec3::Zero(),
-                      1.2 * radius,
-                      4.2 * 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3),
-                      4.3 * 4.0 * std::numbers::pi * radius * radius,
-                      0.0};
+  const ImplicitSolid solid = ballSolid(radius);
   const TetMesh mesh = meshImplicitSolid(solid, 8000);
   EXPECT_NEAR(double(mesh.tetCount()), 8000.0, 0.03 * 8000) << mesh.tetCount();
   double volume = 0;
