@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "framework/core/Strings.h"
+#include "framework/runtime/JsonWriter.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/cell_size/CellSizeExperiment.h"
 #include "plugins/tetra_brain/cell_size/CellSizeModel.h"
@@ -115,32 +116,34 @@ int cellSizeCommand(const Arguments& a) {
   }
 
   std::ostringstream json;
-  json << "{\"mesh\": \"" << meshName << "\", \"tetrahedra\": " << inputs.tetrahedra
-       << ", \"nodes\": " << mesh.nodeCount() << ", \"delta_a\": " << number(deltaA)
-       << ", \"delta_trad\": " << number(deltaTrad) << ", \"inputs\": {\"mean_longest_edge\": "
-       << number(inputs.longestEdge) << ", \"largest_edge\": " << number(inputs.largestEdge)
-       << ", \"mean_facet_area\": " << number(inputs.facetArea) << ", \"facets\": " << inputs.facets
-       << ", \"average_edge\": " << number(inputs.averageEdge) << ", \"edges\": " << inputs.edges
-       << "}, \"pnc\": " << number(parameters.collisionFreeProbability)
-       << ", \"rt\": " << number(parameters.testTimeRatio);
-  if (measured) {
-    const tetra::CellSizeExperimentResult& m = *measured;
-    json << ", \"calibrated_rt\": " << number(m.calibratedTimeRatio)
-         << ", \"measured_pnc\": " << number(m.measuredCollisionFree);
-    if (deltaMeasured) json << ", \"delta_measured_constants\": " << number(*deltaMeasured);
-    if (experiment) {
-      json << ", \"delta_opt\": " << number(m.optimal) << ", \"zone\": [" << number(m.zoneLow) << ", "
-           << number(m.zoneHigh) << "], \"epsilon_a\": "
-           << number(tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaA))
-           << ", \"epsilon_trad\": " << number(tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaTrad));
-      if (deltaMeasured)
-        json << ", \"epsilon_measured_constants\": "
-             << number(tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, *deltaMeasured));
-      json << ", \"colliding_fraction\": " << number(m.collidingFraction) << ", \"offset_mm\": "
-           << number(m.offset.x()) << ", \"zone_tolerance\": 0.1";
+  {
+    JsonWriter w(json);
+    w.beginObject();
+    w.field("mesh", meshName).field("tetrahedra", inputs.tetrahedra).field("nodes", mesh.nodeCount());
+    w.field("delta_a", deltaA).field("delta_trad", deltaTrad);
+    w.key("inputs").beginObject();
+    w.field("mean_longest_edge", inputs.longestEdge).field("largest_edge", inputs.largestEdge);
+    w.field("mean_facet_area", inputs.facetArea).field("facets", inputs.facets);
+    w.field("average_edge", inputs.averageEdge).field("edges", inputs.edges);
+    w.endObject();
+    w.field("pnc", parameters.collisionFreeProbability).field("rt", parameters.testTimeRatio);
+    if (measured) {
+      const tetra::CellSizeExperimentResult& m = *measured;
+      w.field("calibrated_rt", m.calibratedTimeRatio).field("measured_pnc", m.measuredCollisionFree);
+      if (deltaMeasured) w.field("delta_measured_constants", *deltaMeasured);
+      if (experiment) {
+        w.field("delta_opt", m.optimal);
+        w.key("zone").beginArray().value(m.zoneLow).value(m.zoneHigh).endArray();
+        w.field("epsilon_a", tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaA));
+        w.field("epsilon_trad", tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, deltaTrad));
+        if (deltaMeasured)
+          w.field("epsilon_measured_constants", tetra::cellSizeError(m.optimal, m.zoneLow, m.zoneHigh, *deltaMeasured));
+        w.field("colliding_fraction", m.collidingFraction).field("offset_mm", m.offset.x());
+        w.field("zone_tolerance", 0.1);
+      }
     }
+    w.endObject();
   }
-  json << "}\n";
   bool drawn = false;
   if (experiment) {
     std::ofstream(out / "cellsize.json") << json.str();
