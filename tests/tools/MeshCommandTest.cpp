@@ -33,6 +33,18 @@ TEST(MeshCommandTest, ASurfaceAndABallMeshToTheCountAsked) {
   EXPECT_LT(tetra::readTetMesh(dir / "coarse.mesh").tetCount(), 3000u) << out;
 }
 
+TEST(MeshCommandTest, TheSameSurfaceGivesTheSameFile) {
+  test::TempDir dir;
+  dir.write("tet.off", kTetrahedron);
+  std::string out;
+  for (const char* name : {"a.mesh", "b.mesh"})
+    ASSERT_EQ(runProgram({"mesh", (dir / "tet.off").string(), "--tets", "1500", "--out", (dir / name).string()}, &out), 0)
+        << out;
+  const std::string a = test::readFile(dir / "a.mesh");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, test::readFile(dir / "b.mesh")) << "seeded: byte-identical";
+}
+
 TEST(MeshCommandTest, BadArgumentsAndSurfacesAreClearErrors) {
   test::TempDir dir;
   dir.write("tet.off", kTetrahedron);
