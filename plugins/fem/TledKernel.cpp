@@ -189,7 +189,17 @@ template <typename T>
   }
 }
 
-// ---- the two versions ----------------------------------------------------------
+// The arithmetic of a gathered chunk, the same in every version; adds the chunk's counts.
+template <typename T>
+[[gnu::always_inline]] inline void forcesOfGatheredChunk(const ElementArrays<T>& arrays, size_t base,
+                                                         ChunkScratch<T>& s, ElementStepCounts& counts) {
+  const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
+  counts.inverted += chunk.inverted;
+  counts.farFromRest += chunk.farFromRest;
+  forcesOfChunk(arrays, base, s);
+}
+
+// ---- the versions: baseline, AVX2, AVX-512 ---------------------------------------
 
 template <typename T>
 ElementStepCounts forcesBaseline(const TledElements& el, const double* u, double* f) {
@@ -198,10 +208,7 @@ ElementStepCounts forcesBaseline(const TledElements& el, const double* u, double
   const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
     gatherScalar(el, base, u, s);
-    const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
-    counts.inverted += chunk.inverted;
-    counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(arrays, base, s);
+    forcesOfGatheredChunk(arrays, base, s, counts);
     scatterScalar(el, base, s, f);
   }
   return counts;
@@ -301,10 +308,7 @@ __attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledEleme
   const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
     gatherAvx2(el, base, u, s);
-    const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
-    counts.inverted += chunk.inverted;
-    counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(arrays, base, s);
+    forcesOfGatheredChunk(arrays, base, s, counts);
     scatterAvx2(el, base, s, f);
   }
   return counts;
@@ -363,10 +367,7 @@ forcesAvx512(const TledElements& el, const double* u, double* f) {
   const ElementArrays<T> arrays(el);
   for (size_t base = 0; base < el.padded; base += kChunk) {
     gatherAvx512(el, base, u, s);
-    const ElementStepCounts chunk = strainOfChunk(arrays, base, s);
-    counts.inverted += chunk.inverted;
-    counts.farFromRest += chunk.farFromRest;
-    forcesOfChunk(arrays, base, s);
+    forcesOfGatheredChunk(arrays, base, s, counts);
     scatterAvx2(el, base, s, f);
   }
   return counts;

@@ -57,6 +57,8 @@ TEST(CellSizeCommandTest, BadArgumentsAndMeshesAreClearErrors) {
   EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--rt", "x"}, &out), 2);
   EXPECT_NE(out.find("--rt takes a number, not 'x'"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--rt", "4", "--calibrate"}, &out), 2);
+  EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--experiment", "--frames", "2.5"}, &out), 2);
+  EXPECT_NE(out.find("take whole counts"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"cellsize", "/nonexistent/brain.mesh"}, &out), 1);
   EXPECT_NE(out.find("/nonexistent/brain.mesh"), std::string::npos) << out;
 }

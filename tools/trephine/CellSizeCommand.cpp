@@ -59,7 +59,9 @@ int cellSizeCommand(const Arguments& a) {
   if (error.empty() && a.has("--rt") && a.has("--calibrate")) error = "--rt and --calibrate exclude each other";
   if (error.empty() && !(*pnc > 0 && *pnc < 1)) error = "--pnc is a probability in (0, 1)";
   if (error.empty() && !(*rt > 0)) error = "--rt is a positive time ratio";
-  if (error.empty() && (!(*frames >= 1) || !(*rounds >= 1))) error = "--frames and --rounds take counts of at least 1";
+  if (error.empty() && (!(*frames >= 1 && *frames <= 1000 && *frames == std::floor(*frames)) ||
+                         !(*rounds >= 1 && *rounds <= 100 && *rounds == std::floor(*rounds))))
+    error = "--frames (1 to 1000) and --rounds (1 to 100) take whole counts";
   if (!error.empty()) {
     std::cerr << "trephine cellsize: " << error << "\n" << kUsageLine;
     return kUsage;

@@ -91,7 +91,11 @@ TriangleSurface readObj(std::string_view text, const std::filesystem::path& file
         const std::string_view token = tokens[k].substr(0, tokens[k].find('/'));
         const auto index = parseInteger(token);
         if (!index || *index == 0) cursor.fail("expected a vertex number in the face, found " + quoteForMessage(tokens[k]));
-        corners.push_back(*index > 0 ? *index - 1 : int64_t(s.vertices.size()) + *index);
+        const int64_t read = int64_t(s.vertices.size());
+        if (*index > read || *index < -read)
+          cursor.fail("the face names vertex " + std::to_string(*index) + " but " + std::to_string(read) +
+                      " vertices are read so far");
+        corners.push_back(*index > 0 ? *index - 1 : read + *index);
       }
       addPolygon(s, corners, cursor, "the face");
     }

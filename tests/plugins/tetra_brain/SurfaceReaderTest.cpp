@@ -149,6 +149,8 @@ TEST(SurfaceReaderTest, BadFilesAreErrorsThatSayWhereAndWhat) {
   EXPECT_NE(m.find("index.off:6: face 0 names vertex 7 of 3"), std::string::npos) << m;
   m = errorOf(dir, "two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
   EXPECT_NE(m.find("two.obj:3: the face has 2 corners; expected 3 or more"), std::string::npos) << m;
+  m = errorOf(dir, "ahead.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+  EXPECT_NE(m.find("ahead.obj:4: the face names vertex 4 but 3 vertices are read so far"), std::string::npos) << m;
   m = errorOf(dir, "nan.obj", "v 0 0 nan\n");
   EXPECT_NE(m.find("nan.obj:1:"), std::string::npos) << m;
   std::string stl = binaryStl();
