@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "framework/core/Component.h"
+#include "plugins/tetra_brain/cell_size/ToolQueryCost.h"
 
 namespace trephine::tetra {
 
@@ -16,6 +17,7 @@ void NativeTetBackend::bind(const TetData& data) {
   m_nodes = m_mesh->nodes.data();
   m_displacementBound = m_queryGrowth = 0;
   m_drift.forget();
+  m_locateWork = {};
   buildAccelerations();
 }
 
@@ -42,14 +44,17 @@ void NativeTetBackend::buildAccelerations() {
   m_margin = !m_options.deformable              ? 0.0
              : m_options.displacementMargin > 0 ? m_options.displacementMargin
                                                 : 0.25 * m_averageEdge;
-  // Half the average edge by default: on the Brain3 phantom it halves the
-  // haptic step of the full edge (fewer candidate tets per cell) at 8x the cells.
-  m_cellSize = m_options.cellSize > 0 ? m_options.cellSize : 0.5 * m_averageEdge;
-  // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
-  buildTetGrids(mesh, *m_topology, mesh.nodes, m_margin, m_cellSize, m_restGrids);
-  m_grids = &m_restGrids;
-  m_tetBoxes = m_restGrids.boxes;
-  m_bounds = m_restGrids.bounds;
+  // The tool-cost rule starts at half an edge until the tools' shells are
+  // known (reserveShell); a query before that is answered on these grids.
+  using Rule = TetQueryOptions::CellSizeRule;
+  m_modelShells.clear();
+  m_modelShellKeys.clear();
+  m_cellSize = m_options.cellSize > 0                     ? m_options.cellSize
+               : m_options.cellSizeRule == Rule::kEdge ? m_averageEdge
+                                                       : 0.5 * m_averageEdge;
+  if (m_options.cellSize <= 0 && m_options.cellSizeRule == Rule::kToolCost)
+    m_boxMoments = measureBoxMoments(mesh, m_margin);
+  buildRestGrids();
   const auto& faces = m_topology->boundaryFaces();
   m_tetVisits.resize(n);
   m_faceVisits.resize(faces.size());
@@ -79,6 +84,29 @@ void NativeTetBackend::buildAccelerations() {
   }
 }
 
+void NativeTetBackend::buildRestGrids() {
+  // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
+  buildTetGrids(*m_mesh, *m_topology, m_mesh->nodes, m_margin, m_cellSize, m_restGrids);
+  m_grids = &m_restGrids;
+  m_tetBoxes = m_restGrids.boxes;
+  m_bounds = m_restGrids.bounds;
+}
+
+void NativeTetBackend::fitCellSizeToShell(std::span<const ShellPoint> shell) {
+  // A shell counts once however many components reserve it (a proxy and a
+  // contact warning share their tool's).
+  const std::pair<const void*, size_t> key{shell.data(), shell.size()};
+  if (shell.empty() || std::find(m_modelShellKeys.begin(), m_modelShellKeys.end(), key) != m_modelShellKeys.end())
+    return;
+  m_modelShellKeys.push_back(key);
+  std::vector<Vec3>& points = m_modelShells.emplace_back();
+  for (const ShellPoint& p : shell) points.push_back(p.position);
+  const double cell = optimalToolCellSize(m_boxMoments, m_modelShells, m_averageEdge);
+  if (!(cell > 0) || std::abs(cell - m_cellSize) <= 1e-9 * cell) return;
+  m_cellSize = cell;
+  buildRestGrids();
+}
+
 Box3 NativeTetBackend::currentBox(int32_t tet) const {
   Box3 box;
   for (int32_t i : m_mesh->tets[tet]) box.extend(m_nodes[i]);
@@ -106,10 +134,13 @@ void NativeTetBackend::moveNodes(const NodeFrame& frame) {
   // that far is a shape the rebuilt grids could not follow: a diverging FEM
   // moves nodes by as much as the mesh is large before it is reset, and exact
   // queries then took seconds a frame. The widening is held to
-  // kMostWideningCells; a tetrahedron whose nodes moved farther may then be
-  // missed, and the frame is counted.
+  // kMostWideningCells cells of half an average edge (or the grid's cell,
+  // when larger); a tetrahedron whose nodes moved farther may then be
+  // missed, and the frame is counted. The cap is a distance, not a count of
+  // the grid's cells: a smaller cell (cellSizeRule="tool-cost") must not
+  // make the queries inexact sooner, it makes widened frames dearer.
   const double widening = std::max(0.0, bound - m_margin);
-  const double mostWidening = kMostWideningCells * m_grids->tetGrid.cellSide();
+  const double mostWidening = kMostWideningCells * std::max(m_grids->tetGrid.cellSide(), 0.5 * m_averageEdge);
   if (widening > mostWidening) ++m_framesWideningCapped;
   m_queryGrowth = std::min(widening, mostWidening);
   m_displacementBound = m_margin + m_queryGrowth < bound ? m_margin + m_queryGrowth : bound;
@@ -145,6 +176,9 @@ void NativeTetBackend::refreshBoxes(std::span<const int32_t> movedNodes, bool al
 }
 
 void NativeTetBackend::reserveShell(std::span<const ShellPoint> shell) {
+  // Initialisation: the grids may be rebuilt for the cell the shells call for.
+  if (m_options.cellSize <= 0 && m_options.cellSizeRule == TetQueryOptions::CellSizeRule::kToolCost)
+    fitCellSizeToShell(shell);
   m_candidates.resize(1 + 4 + 12);  // a tet, its 4 neighbours, their 12 others
   if (m_hits.size() < shell.size()) {
     m_hits.resize(shell.size());
@@ -167,13 +201,21 @@ void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"grid_entries", double(m_grids->tetGrid.entryCount())});
   counters.push_back({"max_colliding_tetrahedra", double(m_maxCollidingTets)});
   counters.push_back({"deep_fallbacks", double(m_deepFallbacks)});
+  if (m_options.search == Search::kGrid && m_locateWork.queries > 0) {
+    // Per shell query, on average: the terms of the tool query's cost model.
+    const double q = double(m_locateWork.queries);
+    counters.push_back({"locate_cells_per_query", double(m_locateWork.cells) / q});
+    counters.push_back({"locate_listed_per_query", double(m_locateWork.listed) / q});
+    counters.push_back({"locate_overlapping_per_query", double(m_locateWork.overlapping) / q});
+    counters.push_back({"locate_point_tests_per_query", double(m_locateWork.pointTests) / q});
+  }
   if (m_options.search != Search::kGrid) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
   if (m_options.deformable) {
     counters.push_back({"displacement_margin_mm", m_margin});
     counters.push_back({"adopted_grids", double(m_adoptedGrids)});
     counters.push_back({"drift_measurements", double(m_drift.fullMeasurements())});  // frames that visited every node
     counters.push_back({"frames_beyond_margin", double(m_framesBeyondMargin)});
-    // Drift so far beyond the margin that the queries were widened by kMostWideningCells only.
+    // Drift so far beyond the margin that the queries were widened by the cap only.
     counters.push_back({"frames_widening_capped", double(m_framesWideningCapped)});
     if (m_options.search != Search::kGrid) counters.push_back({"refreshed_boxes", double(m_refreshedBoxes)});
   }

@@ -29,6 +29,7 @@
 #include "plugins/tetra_brain/TetGridSet.h"
 #include "plugins/tetra_brain/UniformGrid.h"
 #include "plugins/tetra_brain/VisitStamps.h"
+#include "plugins/tetra_brain/cell_size/ToolQueryCost.h"
 
 namespace trephine::tetra {
 
@@ -49,7 +50,8 @@ class NativeTetBackend final : public TetBackend {
   // are not this mesh's (another node count or margin). Allocation-free.
   void adoptGrids(const TetGridSet& grids) override;
   bool adoptsGrids() const override { return true; }
-  double cellSize() const { return m_cellSize; }                  // mm
+  // mm; with cellSizeRule="tool-cost", final once the tools reserved their shells (initialisation)
+  double cellSize() const { return m_cellSize; }
   const TetGridSet& currentGrids() const { return *m_grids; }
   TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;
   size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override {
@@ -79,12 +81,28 @@ class NativeTetBackend final : public TetBackend {
   // Distance of p to the nearest boundary face around the nodes of `tet`, or infinity when none.
   double depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& normal) const;
   double displacementMargin() const { return m_margin; }  // mm
-  double queryWidening() const { return m_queryGrowth; }  // mm, this frame's, at most kMostWideningCells cells
+  double queryWidening() const { return m_queryGrowth; }  // mm, this frame's, at most mostQueryWidening()
+  double mostQueryWidening() const { return kMostWideningCells * std::max(m_grids->tetGrid.cellSide(), 0.5 * m_averageEdge); }
   double averageEdge() const { return m_averageEdge; }    // mm
+  // The work of the grid's shell queries (locatePoints, cell by cell) since
+  // bind(): what the tool query's cost model (cell_size/ToolQueryCost.h) predicts.
+  struct LocateWork {
+    uint64_t queries = 0;
+    uint64_t cells = 0;        // occupied cells visited
+    uint64_t listed = 0;       // tetrahedra those cells list
+    uint64_t overlapping = 0;  // of those, whose (grown) box overlaps the box of the cell's points
+    uint64_t pointTests = 0;   // point against such a box
+    uint64_t insideTests = 0;  // point in the box, against the tetrahedron itself
+  };
+  const LocateWork& locateWork() const { return m_locateWork; }
 
  private:
   using Search = TetQueryOptions::Search;
   void buildAccelerations();
+  void buildRestGrids();
+  // cellSizeRule="tool-cost": the cell that minimises the queries of every
+  // shell reserved so far; the grids are rebuilt when it changes.
+  void fitCellSizeToShell(std::span<const ShellPoint> shell);
   void refreshBoxes(std::span<const int32_t> movedNodes, bool all);
   Box3 currentBox(int32_t tet) const;
   // Calls visit(face) once for each boundary face listed in the face grid's
@@ -121,6 +139,9 @@ class NativeTetBackend final : public TetBackend {
   TetGridSet m_restGrids;                 // built on the rest shape at bind()
   const TetGridSet* m_grids = &m_restGrids;  // in use: the rest ones or adopted ones (read in place)
   double m_cellSize = 0;                  // mm
+  TetBoxMoments m_boxMoments;             // the tool query's cost model's view of the mesh
+  std::vector<std::vector<Vec3>> m_modelShells;  // tool frame, mm: the shells the cell is fitted to
+  std::vector<std::pair<const void*, size_t>> m_modelShellKeys;
   uint64_t m_adoptedGrids = 0;
   std::vector<Box3> m_tetBoxes;           // per tet, current: maintained only for the thesis's scans
   std::vector<uint8_t> m_degenerate;      // 1: zero-volume tetrahedron, never contains a point
@@ -132,7 +153,7 @@ class NativeTetBackend final : public TetBackend {
   double m_margin = 0;                   // mm, by which the grids' boxes are grown
   double m_displacementBound = 0;        // mm, the latest frame's bound
   double m_queryGrowth = 0;              // mm, max(0, bound - margin) up to the cap: how far queries widen
-  // The most the queries widen, in grid cells (one: at most 27 times the cells of an unwidened query).
+  // The most the queries widen, in cells of half an average edge or the grid's, the larger.
   static constexpr double kMostWideningCells = 1.0;
   uint64_t m_framesWideningCapped = 0;
   std::vector<uint32_t> m_nodeTetStart;  // node -> tets (compressed rows), for boxRefresh="moved"
@@ -158,6 +179,7 @@ class NativeTetBackend final : public TetBackend {
   // tetrahedron: the one state kept between queries, as the thesis's method is.
   int32_t m_lastFirstTet = 0;
   uint64_t m_scannedTets = 0;
+  mutable LocateWork m_locateWork;
   uint64_t m_maxCollidingTets = 0, m_deepFallbacks = 0;
 };
 

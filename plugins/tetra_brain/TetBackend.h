@@ -25,7 +25,11 @@ struct TetQueryOptions {
   Search search = Search::kGrid;
   bool algorithm2 = false;        // penetration="algorithm2", else the nearest face
   bool refreshEveryBox = true;    // boxRefresh="all" (the thesis's scans on a deforming mesh)
-  double cellSize = 0;            // mm, 0: half the average edge
+  // When cellSize is 0: the tool query's cost model for the shells the tools
+  // reserve (cell_size/ToolQueryCost.h), half the average edge, or the edge.
+  enum class CellSizeRule { kToolCost, kHalfEdge, kEdge };
+  double cellSize = 0;            // mm, 0: from cellSizeRule
+  CellSizeRule cellSizeRule = CellSizeRule::kToolCost;
   double displacementMargin = 0;  // mm, 0: a quarter of the average edge
   double contactDepth = 0.05;     // mm, how far a swept proxy sits in the surface
   bool deformable = false;        // a deformation component moves the nodes

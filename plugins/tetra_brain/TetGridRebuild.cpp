@@ -24,7 +24,7 @@ void TetGridRebuild::init(InitContext& context) {
   }
   m_mesh = &brain.mesh();
   m_topology = &brain.topology();
-  m_cellSize = native->cellSize();
+  m_native = native;
   m_margin = native->displacementMargin();
   if (!(m_margin > 0)) {
     context.error(l_mesh, "the grids of " + brain.path() + " have no displacement margin to rebuild within");
@@ -44,7 +44,9 @@ void TetGridRebuild::tick(const TickContext&) {
   if (drift <= d_threshold.value() * m_margin) return;
   // This group's own thread: building allocates, which the haptic loop never does.
   const auto start = std::chrono::steady_clock::now();
-  buildTetGrids(*m_mesh, *m_topology, frame.positions, m_margin, m_cellSize, m_set);
+  // The back-end's cell, final once initialisation ended (the tools' shells
+  // may change it after this component's init).
+  buildTetGrids(*m_mesh, *m_topology, frame.positions, m_margin, m_native->cellSize(), m_set);
   ++m_set.version;
   m_channel->publish(m_set);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -23,6 +23,8 @@
 
 namespace trephine::tetra {
 
+class NativeTetBackend;
+
 class TetGridRebuild final : public Component {
  public:
   static constexpr std::string_view kTypeName = "TetGridRebuild";
@@ -51,7 +53,8 @@ class TetGridRebuild final : public Component {
   std::optional<ChannelReader<NodePositions>> m_positions;
   Channel<TetGridSet>* m_channel = nullptr;
   TetGridSet m_set;  // the grids last published (their reference is the shape the brain uses)
-  double m_cellSize = 0, m_margin = 0;
+  const NativeTetBackend* m_native = nullptr;
+  double m_margin = 0;
   uint64_t m_rebuilds = 0;
   double m_longestBuildMs = 0, m_largestDrift = 0;
 };

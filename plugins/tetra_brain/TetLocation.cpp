@@ -66,11 +66,17 @@ bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int3
   m_locator.group(m_grids->tetGrid, points);
   const Vec3 slack = Vec3::Constant(m_displacementBound);
   const bool moved = m_displacementBound > 0;
+  LocateWork& work = m_locateWork;
+  ++work.queries;
   m_locator.forEachCell([&](int64_t cell, const Box3& pointsBox, int32_t first) {
     if (any && stopAtFirst) return;
-    for (int32_t tet : m_grids->tetGrid.items(cell)) {  // increasing: the first tet found for a point is the lowest
+    const auto listed = m_grids->tetGrid.items(cell);
+    ++work.cells;
+    work.listed += listed.size();
+    for (int32_t tet : listed) {  // increasing: the first tet found for a point is the lowest
       Vec3 lo = m_grids->boxes[tet].min() - slack, hi = m_grids->boxes[tet].max() + slack;
       if ((pointsBox.max().array() < lo.array()).any() || (pointsBox.min().array() > hi.array()).any()) continue;
+      ++work.overlapping;
       if (moved) {
         // The grids' box grown by the drift may hold the points, the tet's
         // box now (four node reads) is tight: most points end here, not in
@@ -83,7 +89,10 @@ bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int3
       for (int32_t i = first; i >= 0; i = m_locator.nextPoint(i)) {
         if (tets[i] >= 0) continue;
         const Vec3& p = points[i];
-        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any() || !inside(tet, p)) continue;
+        ++work.pointTests;
+        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
+        ++work.insideTests;
+        if (!inside(tet, p)) continue;
         tets[i] = tet;
         any = true;
         if (stopAtFirst) return;

@@ -44,6 +44,8 @@ void TetraBrain::init(InitContext& context) {
     return;
   }
   connectChannels(context.channels());
+  if (d_cellSize.isSet() && d_cellSizeRule.isSet())
+    context.error(d_cellSizeRule, "has no effect when cellSize is given (it picks the cell size when cellSize is not)");
   if (d_boxRefresh.isSet() && d_search.is("grid"))
     context.error(d_boxRefresh,
                   "boxRefresh applies to the thesis's searches (search=\"first-tetrahedron\" or "
@@ -54,7 +56,8 @@ void TetraBrain::checkNativeOnlyFields(InitContext& context) {
   // The thesis's options shape the native back-end's grids and searches; a
   // mesh back-end would silently ignore them: refuse them.
   if (d_backend.value() == "native") return;
-  const BaseField* nativeFields[] = {&d_cellSize, &d_search, &d_penetration, &d_displacementMargin, &d_boxRefresh};
+  const BaseField* nativeFields[] = {&d_cellSize,           &d_cellSizeRule, &d_search,
+                                     &d_penetration,        &d_displacementMargin, &d_boxRefresh};
   for (const BaseField* field : nativeFields)
     if (field->isSet())
       context.error(*field, "applies to backend=\"native\" only (backend=\"" + d_backend.value() + "\" ignores it)");
@@ -68,6 +71,9 @@ TetQueryOptions TetraBrain::queryOptions() const {
   options.algorithm2 = d_penetration.is("algorithm2");
   options.refreshEveryBox = d_boxRefresh.is("all");
   options.cellSize = d_cellSize.value();
+  options.cellSizeRule = d_cellSizeRule.is("tool-cost")   ? TetQueryOptions::CellSizeRule::kToolCost
+                         : d_cellSizeRule.is("half-edge") ? TetQueryOptions::CellSizeRule::kHalfEdge
+                                                          : TetQueryOptions::CellSizeRule::kEdge;
   options.displacementMargin = d_displacementMargin.value();
   options.contactDepth = d_contactDepth.value();
   options.deformable = m_positions.has_value();

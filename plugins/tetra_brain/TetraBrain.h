@@ -120,9 +120,18 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   Field<double> d_cellSize{this,
                            "cellSize",
                            0.0,
-                           {.help = "Side of the uniform grid's cells; 0 uses half the mesh's average edge length",
+                           {.help = "Side of the uniform grid's cells; 0 picks it by cellSizeRule",
                             .unit = "mm",
                             .min = 0.0}};
+  EnumField d_cellSizeRule{
+      this,
+      "cellSizeRule",
+      {"tool-cost", "half-edge", "edge"},
+      "tool-cost",
+      {.help = "The cell side when cellSize is not given. tool-cost: the minimiser of the tool query's cost model "
+               "for the pointshells of the tools that touch this mesh (the cells their points occupy, the "
+               "tetrahedra each cell lists, the point tests; `trephine cellsize MESH --tool R` prints it). "
+               "half-edge: half the average edge length. edge: the average edge length (Teschner et al.)"}};
   EnumField d_search{this,
                      "search",
                      {"grid", "first-tetrahedron", "previous-contact"},

@@ -63,5 +63,39 @@ TEST(CellSizeCommandTest, BadArgumentsAndMeshesAreClearErrors) {
   EXPECT_NE(out.find("/nonexistent/brain.mesh"), std::string::npos) << out;
 }
 
+// --tool: the tool query's cell, which TetraBrain takes by default.
+TEST(CellSizeCommandTest, AToolGetsTheToolQuerysCellAndItsExperiment) {
+  test::TempDir dir;
+  std::string out;
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=20", "--tool", "2.5", "--json"}, &out), 0) << out;
+  const double tool = jsonNumber(out, "delta_tool"), edge = jsonNumber(out, "delta_trad");
+  EXPECT_EQ(jsonNumber(out, "shell_points"), 266.0) << "the 15 degree angle-step shell: " << out;
+  EXPECT_DOUBLE_EQ(jsonNumber(out, "delta_half_edge"), 0.5 * edge) << out;
+  // 12 mm edges against a 2.5 mm tool: cells near the tool's size, below
+  // half an edge, and no smaller than the quarter edge the search stops at.
+  EXPECT_GE(tool, 0.25 * edge - 1e-9) << out;
+  EXPECT_LT(tool, 0.4 * edge) << out;
+  // A tool twice as large, the same point count: its points are twice as far
+  // apart, and the cell grows with them.
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=20", "--tool", "5", "--json"}, &out), 0) << out;
+  const double five = jsonNumber(out, "delta_tool");
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=20", "--tool", "10", "--json"}, &out), 0) << out;
+  EXPECT_GT(jsonNumber(out, "delta_tool"), 1.2 * five) << out;
+  ASSERT_EQ(runProgram({"cellsize", "phantom:cube?cells=6", "--tool", "2.5", "--experiment", "--json", "--poses",
+                        "20", "--rounds", "1", "--out", dir.path().string()},
+                       &out),
+            0)
+      << out;
+  EXPECT_GT(jsonNumber(out, "delta_opt"), 0.0) << out;
+  EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_tool"))) << out;
+  const std::string csv = test::readFile(dir.path() / "tool_cellsize.csv");
+  EXPECT_TRUE(csv.starts_with("cell_size_mm,time_ns,fitted_ns,cells,listed,")) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 18) << "a header and 17 cell sizes";
+  EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--tool", "-1"}, &out), 2);
+  EXPECT_NE(out.find("--tool is the tool's radius"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"cellsize", "phantom:cube?cells=3", "--tool", "2", "--rt", "4"}, &out), 2);
+  EXPECT_NE(out.find("belong to the two-mesh model"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace trephine

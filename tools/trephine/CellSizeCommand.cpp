@@ -1,6 +1,5 @@
 #include "tools/trephine/CellSizeCommand.h"
 
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,11 +10,11 @@
 
 #include "framework/core/Strings.h"
 #include "framework/runtime/JsonWriter.h"
-#include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/cell_size/CellSizeExperiment.h"
 #include "plugins/tetra_brain/cell_size/CellSizeModel.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "tools/trephine/CommandValues.h"
 #include "tools/trephine/PlotScript.h"
+#include "tools/trephine/ToolCellSizeCommand.h"
 
 namespace trephine::cli {
 
@@ -26,30 +25,12 @@ constexpr const char* kUsageLine =
     "                              [--frames N] [--rounds N]\n"
     "  MESH: a tetrahedral mesh file (.mesh, .vtu, .vtk, .msh, .node/.ele) or phantom:SPEC\n";
 
-// A number option, or the error that names it.
-std::optional<double> numberOption(const Arguments& a, const std::string& name, double fallback, std::string& error) {
-  const auto text = a.get(name);
-  if (!text) return fallback;
-  double value = 0;
-  const auto r = std::from_chars(text->data(), text->data() + text->size(), value);
-  if (r.ec != std::errc() || r.ptr != text->data() + text->size() || !std::isfinite(value)) {
-    error = name + " takes a number, not '" + *text + "'";
-    return std::nullopt;
-  }
-  return value;
-}
-
-tetra::TetMesh loadMesh(const std::string& name) {
-  constexpr std::string_view kPhantom = "phantom:";
-  if (name.rfind(kPhantom, 0) == 0) return tetra::makeTetPhantom(name.substr(kPhantom.size()));
-  return tetra::readTetMesh(name);
-}
-
 std::string number(double v) { return formatDouble(v); }
 
 }  // namespace
 
 int cellSizeCommand(const Arguments& a) {
+  if (a.has("--tool")) return toolCellSizeCommand(a);
   std::string error;
   const auto pnc = numberOption(a, "--pnc", 0.99, error);
   const auto rt = numberOption(a, "--rt", 5.0, error);
@@ -70,7 +51,7 @@ int cellSizeCommand(const Arguments& a) {
   tetra::TetMesh mesh;
   tetra::CellSizeInputs inputs;
   try {
-    mesh = loadMesh(meshName);
+    mesh = loadTetMesh(meshName);
     inputs = tetra::measureCellSizeInputs(mesh);
   } catch (const std::exception& e) {
     std::cerr << "trephine cellsize: " << meshName << ": " << e.what() << "\n";

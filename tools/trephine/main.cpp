@@ -66,6 +66,16 @@ usage:
       10% of the least time) and each prediction's error (Eq. 5.9), and
       writes cellsize.csv, cellsize.json and cellsize.png to DIR (default
       runs/cellsize-<mesh name>). --json prints one JSON object.
+  trephine cellsize MESH --tool RADIUS [--tool-step DEG] [--deforming] [--calibrate] [--json]
+                        [--experiment] [--depth D] [--out DIR] [--rounds N] [--poses N]
+      The cell size of TetraBrain's grid for a spherical tool's pointshell
+      (the angle-step shell, 15 degrees unless given): delta_tool, the
+      minimiser of the tool query's cost model (TetraBrain's default), half
+      the average edge and the average edge. --experiment times the query at
+      17 cell sizes on strokes D mm into the surface (0.05: where a god-object
+      proxy holds the tool), fits a polynomial in log(delta), and writes tool_cellsize.csv, .json and .png; --calibrate
+      fits the model's weights to those times. --deforming: the grids of a
+      deforming mesh (boxes grown by the displacement margin).
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
@@ -108,8 +118,8 @@ int main(int argc, char** argv) {
     error = parseArguments(argc, argv, {"--out", "--tets", "--size"}, {}, arguments);
     if (!error) return meshCommand(arguments);
   } else if (command == "cellsize") {
-    error = parseArguments(argc, argv, {"--pnc", "--rt", "--out", "--frames", "--rounds"},
-                           {"--calibrate", "--json", "--experiment"}, arguments);
+    error = parseArguments(argc, argv, {"--pnc", "--rt", "--out", "--frames", "--rounds", "--tool", "--tool-step", "--poses", "--depth"},
+                           {"--calibrate", "--json", "--experiment", "--deforming"}, arguments);
     if (!error) return cellSizeCommand(arguments);
   } else if (command == "validate") {
     error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {"--strict"}, arguments);

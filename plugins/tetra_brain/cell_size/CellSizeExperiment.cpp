@@ -1,5 +1,7 @@
 #include "plugins/tetra_brain/cell_size/CellSizeExperiment.h"
 
+#include "plugins/tetra_brain/cell_size/CurveMinimum.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -57,36 +59,6 @@ double placeSecondCopy(const TetMesh& mesh, const TetMesh& second, double target
     throw std::invalid_argument("no offset of the second copy makes " + std::to_string(100 * target) +
                                 "% of the tetrahedra collide (reached " + std::to_string(100 * reached) + "%)");
   return overlapping;
-}
-
-// Least squares polynomial of degree `degree` in x (scaled to [-1, 1]).
-struct Polynomial {
-  Eigen::VectorXd c;
-  double centre = 0, halfWidth = 1;
-  double operator()(double x) const {
-    const double u = (x - centre) / halfWidth;
-    double y = 0;
-    for (Eigen::Index k = c.size() - 1; k >= 0; --k) y = y * u + c[k];
-    return y;
-  }
-};
-
-Polynomial fit(const std::vector<double>& x, const std::vector<double>& y, int degree) {
-  Polynomial p;
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  p.centre = 0.5 * (*lo + *hi);
-  p.halfWidth = std::max(1e-300, 0.5 * (*hi - *lo));
-  const int terms = std::min<int>(degree + 1, int(x.size()));
-  Eigen::MatrixXd A(x.size(), terms);
-  Eigen::VectorXd b(x.size());
-  for (size_t i = 0; i < x.size(); ++i) {
-    const double u = (x[i] - p.centre) / p.halfWidth;
-    double power = 1;
-    for (int k = 0; k < terms; ++k, power *= u) A(Eigen::Index(i), k) = power;
-    b[Eigen::Index(i)] = y[i];
-  }
-  p.c = A.colPivHouseholderQr().solve(b);
-  return p;
 }
 
 }  // namespace
@@ -148,25 +120,11 @@ CellSizeExperimentResult runCellSizeExperiment(const TetMesh& mesh, const CellSi
     n.push_back(1 / sizes[s]);
     t.push_back(sample.timeUs);
   }
-  const Polynomial curve = fit(n, t, options.fitDegree);
-  for (CellSizeSample& sample : result.samples) sample.fittedUs = curve(1 / sample.cellSize);
-  // The minimiser and the zone, on a fine sampling of the swept range of n.
-  const auto [nMin, nMax] = std::minmax_element(n.begin(), n.end());
-  constexpr int kFine = 4000;
-  std::vector<double> fineN(kFine + 1), fineT(kFine + 1);
-  size_t best = 0;
-  for (int i = 0; i <= kFine; ++i) {
-    fineN[i] = *nMin + (*nMax - *nMin) * i / kFine;
-    fineT[i] = curve(fineN[i]);
-    if (fineT[i] < fineT[best]) best = size_t(i);
-  }
-  result.optimal = 1 / fineN[best];
-  const double limit = fineT[best] * (1 + options.zoneTolerance);
-  size_t low = best, high = best;
-  while (low > 0 && fineT[low - 1] <= limit) --low;
-  while (high < size_t(kFine) && fineT[high + 1] <= limit) ++high;
-  result.zoneLow = 1 / fineN[high];  // the smaller cell: the larger n
-  result.zoneHigh = 1 / fineN[low];
+  const CurveMinimum curve = fitCurveMinimum(n, t, options.fitDegree, options.zoneTolerance);
+  for (size_t s = 0; s < sizes.size(); ++s) result.samples[s].fittedUs = curve.fitted[s];
+  result.optimal = 1 / curve.best;
+  result.zoneLow = 1 / curve.high;  // the smaller cell: the larger n
+  result.zoneHigh = 1 / curve.low;
 
   // p_nc at the model's delta_a.
   {
