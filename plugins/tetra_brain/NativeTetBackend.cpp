@@ -101,7 +101,8 @@ void NativeTetBackend::fitCellSizeToShell(std::span<const ShellPoint> shell) {
   m_modelShellKeys.push_back(key);
   std::vector<Vec3>& points = m_modelShells.emplace_back();
   for (const ShellPoint& p : shell) points.push_back(p.position);
-  const double cell = optimalToolCellSize(m_boxMoments, m_modelShells, m_averageEdge);
+  const double cell = optimalToolCellSize(m_boxMoments, m_modelShells, m_averageEdge,
+                                         m_options.deformable ? kDeformingToolQueryWeights : kRigidToolQueryWeights);
   if (!(cell > 0) || std::abs(cell - m_cellSize) <= 1e-9 * cell) return;
   m_cellSize = cell;
   buildRestGrids();

@@ -72,7 +72,10 @@ int toolCellSizeCommand(const Arguments& a) {
   const double averageEdge = backend.averageEdge(), margin = backend.displacementMargin();
   const tetra::TetBoxMoments moments = tetra::measureBoxMoments(mesh, margin);
   const std::vector<std::vector<Vec3>> shells{shell};
-  const double deltaTool = tetra::optimalToolCellSize(moments, shells, averageEdge);
+  // TetraBrain's weights for this kind of mesh.
+  const tetra::ToolQueryWeights weights =
+      deforming ? tetra::kDeformingToolQueryWeights : tetra::kRigidToolQueryWeights;
+  const double deltaTool = tetra::optimalToolCellSize(moments, shells, averageEdge, weights);
 
   std::optional<tetra::ToolQueryExperimentResult> measured;
   std::optional<double> deltaCalibrated;
@@ -82,9 +85,14 @@ int toolCellSizeCommand(const Arguments& a) {
     options.poses = int(*poses);
     options.deforming = deforming;
     options.depth = *depth;
-    measured = tetra::runToolQueryExperiment(mesh, shell, options);
+    try {
+      measured = tetra::runToolQueryExperiment(mesh, shell, options);
+    } catch (const std::exception& e) {
+      std::cerr << "trephine cellsize: " << meshName << ": " << e.what() << "\n";
+      return kRuntimeFailure;
+    }
     const tetra::ToolQueryWeights& w = measured->calibrated;
-    if (w.cell >= 0 && w.overlapping >= 0 && w.pointTest > 0)
+    if (w.cell + w.listed + w.overlapping > 0 && w.pointTest + w.overlapping + w.listed > 0)
       deltaCalibrated = tetra::optimalToolCellSize(moments, shells, averageEdge, w);
   }
   const double deltaHalfEdge = 0.5 * averageEdge;
@@ -122,8 +130,8 @@ int toolCellSizeCommand(const Arguments& a) {
     if (measured) {
       const tetra::ToolQueryExperimentResult& m = *measured;
       w.key("calibrated_weights").beginObject();
-      w.field("cell", m.calibrated.cell).field("overlapping", m.calibrated.overlapping);
-      w.field("point_test", m.calibrated.pointTest).endObject();
+      w.field("cell_ns", m.calibrated.cell).field("listed_ns", m.calibrated.listed);
+      w.field("overlapping_ns", m.calibrated.overlapping).field("point_test_ns", m.calibrated.pointTest).endObject();
       if (deltaCalibrated) w.field("delta_tool_calibrated", *deltaCalibrated);
       if (experiment) {
         w.field("delta_opt", m.optimal);
@@ -157,8 +165,8 @@ int toolCellSizeCommand(const Arguments& a) {
             << "delta_trad       " << averageEdge << " mm (average edge length)\n";
   if (measured) {
     const tetra::ToolQueryWeights& w = measured->calibrated;
-    std::cout << "calibrated       weights cell " << w.cell << ", kept tetrahedron " << w.overlapping
-              << ", point test " << w.pointTest << " (per listed tetrahedron)";
+    std::cout << "calibrated       cell " << w.cell << " ns, listed tetrahedron " << w.listed << " ns, kept "
+              << w.overlapping << " ns, point test " << w.pointTest << " ns";
     if (deltaCalibrated) std::cout << ": delta " << *deltaCalibrated << " mm";
     std::cout << "\n";
   }

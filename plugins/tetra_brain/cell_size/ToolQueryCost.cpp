@@ -9,11 +9,27 @@
 
 namespace trephine::tetra {
 
-double TetBoxMoments::overlapping(const Vec3& e) const {
+namespace {
+
+double expectedOverlaps(const BoxProductSums& s, double tetrahedra, double volume, const Vec3& e) {
   if (!(volume > 0)) return 0;
-  const double sum = xyz + pairs.dot(e) + singles.x() * e.y() * e.z() + singles.y() * e.x() * e.z() +
-                     singles.z() * e.x() * e.y() + tetrahedra * e.x() * e.y() * e.z();
+  const double sum = s.xyz + s.pairs.dot(e) + s.singles.x() * e.y() * e.z() + s.singles.y() * e.x() * e.z() +
+                     s.singles.z() * e.x() * e.y() + tetrahedra * e.x() * e.y() * e.z();
   return sum / volume;
+}
+
+void addBox(BoxProductSums& s, const Vec3& A) {
+  s.xyz += A.x() * A.y() * A.z();
+  s.pairs += Vec3(A.y() * A.z(), A.x() * A.z(), A.x() * A.y());
+  s.singles += A;
+}
+
+}  // namespace
+
+double TetBoxMoments::overlapping(const Vec3& e) const { return expectedOverlaps(grown, tetrahedra, volume, e); }
+
+double TetBoxMoments::tightOverlapping(const Vec3& e) const {
+  return expectedOverlaps(tight, tetrahedra, volume, e);
 }
 
 TetBoxMoments measureBoxMoments(const TetMesh& mesh, double margin) {
@@ -22,10 +38,8 @@ TetBoxMoments measureBoxMoments(const TetMesh& mesh, double margin) {
     const Vec3 &a = mesh.nodes[k[0]], &b = mesh.nodes[k[1]], &c = mesh.nodes[k[2]], &d = mesh.nodes[k[3]];
     m.volume += std::abs(signedVolume(a, b, c, d));
     const Vec3 lo = a.cwiseMin(b).cwiseMin(c).cwiseMin(d), hi = a.cwiseMax(b).cwiseMax(c).cwiseMax(d);
-    const Vec3 A = (hi - lo).array() + 2 * margin;
-    m.xyz += A.x() * A.y() * A.z();
-    m.pairs += Vec3(A.y() * A.z(), A.x() * A.z(), A.x() * A.y());
-    m.singles += A;
+    addBox(m.grown, (hi - lo).array() + 2 * margin);
+    addBox(m.tight, hi - lo);
     m.tetrahedra += 1;
   }
   return m;
@@ -62,11 +76,10 @@ ToolQueryWork predictToolQueryWork(const TetBoxMoments& moments, std::span<const
       Box3 box(cells[first].point, cells[first].point);
       while (last + 1 < cells.size() && cells[last + 1].key == cells[first].key) box.extend(cells[++last].point);
       const double k = double(last - first + 1);
-      const double overlapping = moments.overlapping(box.sizes());
       work.cells += 1;
       work.listed += inside;
-      work.overlapping += overlapping;
-      work.pointTests += k * overlapping;
+      work.overlapping += moments.overlapping(box.sizes());
+      work.pointTests += k * moments.tightOverlapping(box.sizes());
       first = last + 1;
     }
   }
@@ -79,7 +92,7 @@ ToolQueryWork predictToolQueryWork(const TetBoxMoments& moments, std::span<const
 }
 
 double toolQueryCost(const ToolQueryWork& work, const ToolQueryWeights& weights) {
-  return weights.cell * work.cells + work.listed + weights.overlapping * work.overlapping +
+  return weights.cell * work.cells + weights.listed * work.listed + weights.overlapping * work.overlapping +
          weights.pointTest * work.pointTests;
 }
 

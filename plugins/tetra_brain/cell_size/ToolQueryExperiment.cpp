@@ -2,10 +2,12 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetTopology.h"
@@ -55,6 +57,37 @@ std::vector<Pose> contactPoses(const TetMesh& mesh, const TetTopology& topology,
   return poses;
 }
 
+// Least squares of y on the four counts plus a constant, every count's
+// coefficient at least 0: the best of the fits on each subset of the counts
+// whose coefficients all come out non-negative (16 subsets; the constant is
+// always in). The counts rise and fall together across a sweep, and a plain
+// fit trades them against each other with negative costs.
+std::array<double, 4> nonNegativeFit(const std::vector<std::array<double, 4>>& x, const std::vector<double>& y) {
+  std::array<double, 4> best{0, 0, 0, 0};
+  double bestResidual = INFINITY;
+  for (int subset = 0; subset < 16; ++subset) {
+    std::vector<int> columns;
+    for (int c = 0; c < 4; ++c)
+      if (subset & (1 << c)) columns.push_back(c);
+    Eigen::MatrixXd A(Eigen::Index(x.size()), Eigen::Index(columns.size() + 1));
+    Eigen::VectorXd b(Eigen::Index(x.size()));
+    for (size_t i = 0; i < x.size(); ++i) {
+      for (size_t c = 0; c < columns.size(); ++c) A(Eigen::Index(i), Eigen::Index(c)) = x[i][columns[c]];
+      A(Eigen::Index(i), Eigen::Index(columns.size())) = 1.0;
+      b[Eigen::Index(i)] = y[i];
+    }
+    const Eigen::VectorXd k = A.colPivHouseholderQr().solve(b);
+    bool valid = true;
+    for (size_t c = 0; c < columns.size(); ++c) valid = valid && k[Eigen::Index(c)] >= 0;
+    const double residual = (A * k - b).squaredNorm();
+    if (!valid || !(residual < bestResidual)) continue;
+    bestResidual = residual;
+    best = {0, 0, 0, 0};
+    for (size_t c = 0; c < columns.size(); ++c) best[columns[c]] = k[Eigen::Index(c)];
+  }
+  return best;
+}
+
 ToolQueryWork perQuery(const NativeTetBackend::LocateWork& after, const NativeTetBackend::LocateWork& before) {
   const double q = double(after.queries - before.queries);
   if (!(q > 0)) return {};
@@ -95,6 +128,13 @@ ToolQueryExperimentResult runToolQueryExperiment(const TetMesh& mesh, const std:
   std::vector<double> sizes = options.cellSizes;
   if (sizes.empty())
     for (int i = 0; i <= 16; ++i) sizes.push_back(result.averageEdge * 0.1 * std::pow(20.0, i / 16.0));
+  // Cells so small that the grid would list more than kMostGridEntries
+  // entries (4 bytes each) are left out: a million tetrahedra at a tenth of
+  // an edge would take gigabytes.
+  constexpr double kMostGridEntries = 64e6;
+  auto entries = [&](double delta) { return moments.overlapping(Vec3::Constant(delta)) * moments.volume / (delta * delta * delta); };
+  std::erase_if(sizes, [&](double delta) { return entries(delta) > kMostGridEntries; });
+  if (sizes.size() < 5) throw std::invalid_argument("fewer than 5 of the cell sizes keep the grid under 64 million entries");
   std::vector<std::vector<double>> times(sizes.size());
   result.samples.resize(sizes.size());
   size_t inside = 0, tested = 0;
@@ -135,18 +175,17 @@ ToolQueryExperimentResult runToolQueryExperiment(const TetMesh& mesh, const std:
   result.zoneLow = std::exp(curve.low);
   result.zoneHigh = std::exp(curve.high);
 
-  // The weights: time = a cells + b listed + d point tests + e. The kept
-  // tetrahedra follow the listed ones too closely across the sweep to be
-  // told apart: their cost is left in b (and in the model's 1).
-  Eigen::MatrixXd A(sizes.size(), 4);
-  Eigen::VectorXd b(sizes.size());
-  for (size_t s = 0; s < sizes.size(); ++s) {
-    const ToolQueryWork& w = result.samples[s].measured;
-    A.row(Eigen::Index(s)) << w.cells, w.listed, w.pointTests, 1.0;
-    b[Eigen::Index(s)] = result.samples[s].timeNs;
+  // The weights: time = w_c cells + w_l listed + w_o overlapping + w_p point
+  // tests + a constant, in ns, none negative.
+  std::vector<std::array<double, 4>> counts;
+  std::vector<double> ns;
+  for (const ToolQuerySample& sample : result.samples) {
+    const ToolQueryWork& w = sample.measured;
+    counts.push_back({w.cells, w.listed, w.overlapping, w.pointTests});
+    ns.push_back(sample.timeNs);
   }
-  const Eigen::VectorXd k = A.colPivHouseholderQr().solve(b);
-  if (k[1] > 0) result.calibrated = {k[0] / k[1], 0.0, k[2] / k[1]};
+  const std::array<double, 4> k = nonNegativeFit(counts, ns);
+  result.calibrated = {k[0], k[1], k[2], k[3]};
   return result;
 }
 

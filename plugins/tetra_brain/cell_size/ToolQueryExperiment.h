@@ -18,7 +18,9 @@ struct ToolQueryExperimentOptions {
   int poses = 200;                // per cell size and round
   double depth = 0.05;            // mm, how far the tool is in the surface (a god-object proxy's contact depth)
   int rounds = 3;                 // sweeps, interleaved; each size's time is the median of its rounds
-  std::vector<double> cellSizes;  // mm; empty: 17 sizes from 0.1 to 2 average edges, evenly in log(delta)
+  // mm; empty: 17 sizes from 0.1 to 2 average edges, evenly in log(delta),
+  // less those whose grid would list over 64 million entries.
+  std::vector<double> cellSizes;
   double zoneTolerance = 0.10;
   int fitDegree = 4;              // of the polynomial in log(delta)
   // The grids of a deforming mesh: boxes grown by the displacement margin (a
@@ -43,11 +45,12 @@ struct ToolQueryExperimentResult {
   double averageEdge = 0;            // mm
   double margin = 0;                 // mm, the grids' displacement margin (0 rigid)
   double insideFraction = 0;         // of the shell's points in a tetrahedron, over all poses
-  // The weights fitted to the sweep: time = a cells + b listed + c overlapping
-  // + d point tests + e, each relative to b.
+  // The weights fitted to the sweep (ns, none negative): time = w_c cells +
+  // w_l listed + w_o overlapping + w_p point tests + a constant.
   ToolQueryWeights calibrated;
 };
 
+// Throws std::invalid_argument when fewer than 5 cell sizes are left.
 ToolQueryExperimentResult runToolQueryExperiment(const TetMesh& mesh, const std::vector<Vec3>& shell,
                                                  const ToolQueryExperimentOptions& options);
 

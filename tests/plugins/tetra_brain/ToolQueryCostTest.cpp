@@ -29,10 +29,11 @@ TEST(ToolQueryCostTest, OverlapCountsMatchBoxesPlacedAtRandom) {
   const TetMesh mesh = makeCubeMesh(12);  // 200 mm cube, 8,640 tetrahedra
   const double margin = 1.5;
   const TetBoxMoments moments = measureBoxMoments(mesh, margin);
-  std::vector<Box3> boxes;
+  std::vector<Box3> boxes, tightBoxes;
   for (const TetIndices& k : mesh.tets) {
     Box3 box;
     for (int32_t n : k) box.extend(mesh.nodes[n]);
+    tightBoxes.push_back(box);
     boxes.emplace_back(box.min() - Vec3::Constant(margin), box.max() + Vec3::Constant(margin));
   }
   std::mt19937 random(3);
@@ -40,15 +41,18 @@ TEST(ToolQueryCostTest, OverlapCountsMatchBoxesPlacedAtRandom) {
   // are the cube's cells, so a range of part cells would weigh their borders unevenly.
   std::uniform_real_distribution<double> where(-50, 50);
   for (const Vec3& e : {Vec3(0, 0, 0), Vec3(2, 2, 2), Vec3(10, 3, 0.5), Vec3(40, 40, 40)}) {
-    double counted = 0;
+    double counted = 0, tight = 0;
     constexpr int kBoxes = 4000;
     for (int i = 0; i < kBoxes; ++i) {
       const Vec3 lo(where(random), where(random), where(random));
       const Box3 query(lo, lo + e);
       for (const Box3& b : boxes) counted += b.intersects(query);
+      for (const Box3& b : tightBoxes) tight += b.intersects(query);
     }
     counted /= kBoxes;
+    tight /= kBoxes;
     EXPECT_NEAR(moments.overlapping(e), counted, 0.03 * counted) << e.transpose();
+    EXPECT_NEAR(moments.tightOverlapping(e), tight, 0.03 * tight) << e.transpose();
   }
   EXPECT_NEAR(moments.volume, 200.0 * 200.0 * 200.0, 1e-6);
 }
@@ -99,25 +103,30 @@ TEST(ToolQueryCostTest, TheOptimalCellScalesWithTheMeshAndTheTool) {
   TetMesh mesh = makeCubeMesh(10);
   const std::vector<Vec3> shell = positions(shapes::sphereShell(2.5, 266));
   const double edge = 20.0;
-  const double cell = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{shell}, edge);
+  const double cell = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{shell}, edge,
+                                          kDeformingToolQueryWeights);
   for (Vec3& p : mesh.nodes) p *= 3.0;
   std::vector<Vec3> larger = shell;
   for (Vec3& p : larger) p *= 3.0;
-  const double scaled = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{larger}, 3 * edge);
+  const double scaled = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{larger}, 3 * edge,
+                                            kDeformingToolQueryWeights);
   EXPECT_NEAR(scaled, 3 * cell, 0.03 * 3 * cell);
   // It is a minimum: the cost there is below that of half and twice the cell.
   const TetBoxMoments moments = measureBoxMoments(makeCubeMesh(10), 0.0);
-  auto cost = [&](double delta) { return toolQueryCost(predictToolQueryWork(moments, shell, delta), {}); };
+  auto cost = [&](double delta) {
+    return toolQueryCost(predictToolQueryWork(moments, shell, delta), kDeformingToolQueryWeights);
+  };
   EXPECT_LT(cost(cell), cost(0.5 * cell));
   EXPECT_LT(cost(cell), cost(2 * cell));
 }
 
 // One point has one cell whatever its size, and a larger cell only lists
-// more tetrahedra: the smallest cell searched wins.
+// more tetrahedra: the smallest cell searched wins (where listing costs, as on
+// a deforming mesh).
 TEST(ToolQueryCostTest, ASinglePointWantsTheSmallestCell) {
   const TetBoxMoments moments = measureBoxMoments(makeCubeMesh(10), 0.0);
   const std::vector<Vec3> point{Vec3::Zero()};
-  EXPECT_NEAR(optimalToolCellSize(moments, std::vector<std::vector<Vec3>>{point}, 20.0),
+  EXPECT_NEAR(optimalToolCellSize(moments, std::vector<std::vector<Vec3>>{point}, 20.0, kDeformingToolQueryWeights),
               kSmallestCellInEdges * 20.0, 1e-3);
   const ToolQueryWork work = predictToolQueryWork(moments, point, 5.0);
   EXPECT_DOUBLE_EQ(work.cells, 1.0);
@@ -152,7 +161,8 @@ TEST(ToolQueryCostTest, TetraBrainPicksItsCellByTheRule) {
   // and the warning reserve it both; it counts once.
   std::vector<Vec3> shell;
   for (const Vec3& d : haptics::angleStepDirections(15)) shell.push_back(2.5 * d);
-  const double model = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{shell}, edge);
+  const double model = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{shell}, edge,
+                                          kRigidToolQueryWeights);
   const double tool = cellOf("");
   EXPECT_NEAR(tool, model, 1e-9 * model);
   EXPECT_LT(tool, 0.4 * edge);  // a few-millimetre tool against 20 mm tetrahedra: well below half an edge
