@@ -86,7 +86,7 @@ void NativeTetBackend::buildAccelerations() {
 
 void NativeTetBackend::buildRestGrids() {
   // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
-  buildTetGrids(*m_mesh, *m_topology, m_mesh->nodes, m_margin, m_cellSize, m_restGrids);
+  buildTetGrids(*m_mesh, *m_topology, m_mesh->nodes, m_margin, m_cellSize, faceCellSize(), m_restGrids);
   m_grids = &m_restGrids;
   m_tetBoxes = m_restGrids.boxes;
   m_bounds = m_restGrids.bounds;
@@ -197,6 +197,7 @@ void NativeTetBackend::reserveShell(std::span<const ShellPoint> shell) {
 void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"average_edge_mm", m_averageEdge});
   counters.push_back({"cell_size_mm", m_grids->tetGrid.cellSide()});
+  counters.push_back({"face_cell_size_mm", m_grids->faceGrid.cellSide()});
   counters.push_back({"grid_cells", double(m_grids->tetGrid.cellCount())});
   // Memory of the tetrahedron grid: 4 bytes per entry and per cell.
   counters.push_back({"grid_entries", double(m_grids->tetGrid.entryCount())});

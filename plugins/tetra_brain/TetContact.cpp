@@ -58,11 +58,13 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   m_faceVisits.begin();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
     if ((ring - 1) * m_grids->faceGrid.cellSide() - slack > best) break;
-    for (int32_t k = ck - ring; k <= ck + ring; ++k)
-      for (int32_t j = cj - ring; j <= cj + ring; ++j)
-        for (int32_t i = ci - ring; i <= ci + ring; ++i) {
-          if (std::max({std::abs(i - ci), std::abs(j - cj), std::abs(k - ck)}) != ring) continue;  // shell only
-          if (i < 0 || j < 0 || k < 0 || i >= dims[0] || j >= dims[1] || k >= dims[2]) continue;
+    for (int32_t k = std::max(0, ck - ring); k <= std::min(dims[2] - 1, ck + ring); ++k)
+      for (int32_t j = std::max(0, cj - ring); j <= std::min(dims[1] - 1, cj + ring); ++j) {
+        // The ring's shell only: a whole row where j or k is on it, else its two ends.
+        const bool wholeRow = std::abs(k - ck) == ring || std::abs(j - cj) == ring;
+        const int32_t step = wholeRow ? 1 : std::max(1, 2 * ring);
+        for (int32_t i = ci - ring; i <= ci + ring; i += step) {
+          if (i < 0 || i >= dims[0]) continue;
           for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
             if (!m_faceVisits.firstVisit(f)) continue;
             const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
@@ -74,6 +76,7 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
             }
           }
         }
+      }
   }
   return std::isfinite(best) ? best : 0.0;
 }

@@ -46,7 +46,8 @@ void TetGridRebuild::tick(const TickContext&) {
   const auto start = std::chrono::steady_clock::now();
   // The back-end's cell, final once initialisation ended (the tools' shells
   // may change it after this component's init).
-  buildTetGrids(*m_mesh, *m_topology, frame.positions, m_margin, m_native->cellSize(), m_set);
+  buildTetGrids(*m_mesh, *m_topology, frame.positions, m_margin, m_native->cellSize(), m_native->faceCellSize(),
+                m_set);
   ++m_set.version;
   m_channel->publish(m_set);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

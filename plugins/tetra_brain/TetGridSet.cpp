@@ -6,7 +6,7 @@
 namespace trephine::tetra {
 
 void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<const Vec3> positions, double margin,
-                   double cellSize, TetGridSet& out) {
+                   double cellSize, double faceCellSize, TetGridSet& out) {
   const size_t n = mesh.tetCount();
   out.reference.assign(positions.begin(), positions.end());
   out.margin = margin;
@@ -31,7 +31,7 @@ void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<c
     for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) box.extend(positions[i]);
     boxes.push_back(grown(box));
   }
-  out.faceGrid.build(grown(out.bounds), out.tetGrid.cellSide(), boxes);
+  out.faceGrid.build(grown(out.bounds), faceCellSize, boxes);
 }
 
 double driftFromReference(const TetGridSet& set, std::span<const Vec3> positions) {

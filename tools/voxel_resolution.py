@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Which CT resampling gives the skull the best accuracy per microsecond.
+
+usage: tools/voxel_resolution.py [--quick] [--out DIR]
+
+Runs `trephine study` on scenes/bench/skull_backends.xml (the 466-point burr
+pressed 1 mm into the skull phantom and circled, native back-end) with the
+voxel size of the phantom's CT swept from 2 to 0.5 mm, on both surfaces
+(smooth: the trilinear isosurface; voxels: the thesis's boxes), once touching
+and once drilling. The phantom has an exact shape, so every setting's
+penetration and normal errors are against the truth at the same 400 poses.
+For each setting: the error, the haptic step, and the figure of merit
+accuracy per microsecond = 1 / (penetration error p99 x step p99); the best
+per surface and task is marked. Writes DIR/voxel_resolution.csv and
+DIR/voxel_resolution.png (error and step against voxel size), and prints a
+markdown table.
+"""
+import argparse
+import csv
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+from bench_common import PROGRAM, ROOT, ensure_matplotlib
+
+SCENE = ROOT / "scenes/bench/skull_backends.xml"
+VOXELS = [2.0, 1.5, 1.25, 1.0, 0.75, 0.6, 0.5]
+SURFACES = ["smooth", "voxels"]
+
+
+def run_study(voxels, task, out):
+    files = ",".join(f"phantom:skull?voxel={v}" for v in voxels)
+    # The poses come from the finest smooth setting's run (file major, surface minor).
+    reference = (len(voxels) - 1) * len(SURFACES) + 1
+    command = [str(PROGRAM), "study", str(SCENE), "--jobs", "1", "--vary", f"/patient/skull.file={files}",
+               "--vary", f"/patient/skull.surface={','.join(SURFACES)}", "--reference", str(reference),
+               "--out", str(out / f"study-{task}")]
+    if task == "drill":
+        command += ["--set", "/patient/skull.drill=true"]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    with open(out / f"study-{task}" / "study.csv", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--out", default="runs/voxel_resolution")
+    parser.add_argument("--quick", action="store_true", help="two voxel sizes, touching only")
+    args = parser.parse_args()
+    plt = ensure_matplotlib("voxel_resolution.py")  # before the studies: it may start this script again
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    voxels = [2.0, 1.0] if args.quick else VOXELS
+    rows = []
+    for task in ["touch"] if args.quick else ["touch", "drill"]:
+        for r in run_study(voxels, task, out):
+            if r["status"] != "ok":
+                sys.exit(f"setting {r['label']} failed: {r['status']}")
+            voxel = float(r["/patient/skull.file"].split("voxel=")[1])
+            error, step = float(r["pen_err_p99_mm"]), float(r["step_p99_us"])
+            rows.append({"task": task, "surface": r["/patient/skull.surface"], "voxel_mm": voxel,
+                         "pen_err_p50_mm": float(r["pen_err_p50_mm"]), "pen_err_p99_mm": error,
+                         "normal_err_p99_deg": float(r["normal_err_p99_deg"]),
+                         "step_p50_us": float(r["step_p50_us"]), "step_p99_us": step,
+                         "accuracy_per_us": 1.0 / (error * step) if error > 0 and step > 0 else math.nan})
+    for task in {r["task"] for r in rows}:
+        for surface in SURFACES:
+            group = [r for r in rows if r["task"] == task and r["surface"] == surface]
+            best = max(group, key=lambda r: r["accuracy_per_us"])
+            for r in group:
+                r["best"] = int(r is best)
+    with open(out / "voxel_resolution.csv", "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    print("| task | surface | voxel (mm) | pen. error p50 / p99 (mm) | normal error p99 (°) | step p50 / p99 (µs) "
+          "| 1 / (error x step) (1/(mm µs)) |")
+    print("|---|---|---:|---|---:|---|---:|")
+    for r in rows:
+        mark = " **best**" if r["best"] else ""
+        print(f"| {r['task']} | {r['surface']} | {r['voxel_mm']:g} | {r['pen_err_p50_mm']:.3f} / "
+              f"{r['pen_err_p99_mm']:.3f} | {r['normal_err_p99_deg']:.1f} | {r['step_p50_us']:.1f} / "
+              f"{r['step_p99_us']:.1f} | {r['accuracy_per_us']:.2f}{mark} |")
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+    for task in ["touch", "drill"]:
+        for surface, style in [("smooth", "o-"), ("voxels", "s--")]:
+            group = sorted((r for r in rows if r["task"] == task and r["surface"] == surface),
+                           key=lambda r: r["voxel_mm"])
+            if not group:
+                continue
+            v = [r["voxel_mm"] for r in group]
+            top.plot(v, [r["pen_err_p99_mm"] for r in group], style, label=f"{task}, {surface}")
+            bottom.plot(v, [r["step_p99_us"] for r in group], style, label=f"{task}, {surface}")
+    top.set_ylabel("penetration error p99 (mm)")
+    top.set_yscale("log")
+    top.legend(fontsize=8)
+    bottom.set_ylabel("haptic step p99 (µs)")
+    bottom.set_yscale("log")
+    bottom.set_xlabel("voxel size of the resampled CT (mm)")
+    top.set_title("Skull phantom: accuracy against the exact shape, and the time it costs")
+    fig.tight_layout()
+    fig.savefig(out / "voxel_resolution.png", dpi=120)
+
+
+if __name__ == "__main__":
+    main()
