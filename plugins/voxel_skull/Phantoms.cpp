@@ -31,12 +31,17 @@ void checkVoxel(double voxel, const Vec3& extent) {
   if (count > 1.5e9) throw std::invalid_argument("voxel size too small: more than 1.5e9 voxels");
 }
 
-// Fills every voxel from density(centre) with the grid centred on the origin.
-DensityVolume fill(const Vec3& extent, double voxel, const std::function<double(const Vec3&)>& density) {
+// Fills every voxel from density(centre) with the grid centred on the origin,
+// then moved by `shift` (mm) along each axis against the shape: where the
+// voxel centres fall on a surface (the scan's phase) sets how far the
+// interpolated isosurface is from it, so a study of the voxel size averages
+// over shifts.
+DensityVolume fill(const Vec3& extent, double voxel, const std::function<double(const Vec3&)>& density,
+                   double shift = 0.0) {
   checkVoxel(voxel, extent);
   const auto dims = dimsFor(extent, voxel);
   const Vec3 size(dims[0] * voxel, dims[1] * voxel, dims[2] * voxel);
-  const Vec3 origin = -0.5 * size + 0.5 * Vec3::Constant(voxel);
+  const Vec3 origin = -0.5 * size + Vec3::Constant(0.5 * voxel + shift);
   DensityVolume volume(dims, Vec3::Constant(voxel), origin);
   for (int32_t k = 0; k < dims[2]; ++k)
     for (int32_t j = 0; j < dims[1]; ++j)
@@ -113,7 +118,7 @@ DensityVolume makeCubePhantom(int voxelsPerAxis, double density) {
 
 std::array<int32_t, 3> skullPhantomDims(double voxel) { return dimsFor(kSkullExtent, voxel); }
 
-DensityVolume makeSkullPhantom(double voxel) {
+DensityVolume makeSkullPhantom(double voxel, double shift) {
   return fill(kSkullExtent, voxel, [&](const Vec3& p) {
     const auto [depth, thickness, atCentre] = skullDepth(p);
     if (atCentre) return 40.0;
@@ -126,7 +131,7 @@ DensityVolume makeSkullPhantom(double voxel) {
     const double opening = p.z() < 0 ? insideFraction(-skullOpening(p), voxel) : 0.0;
     const double inCavity = insideFraction(thickness - depth, voxel);
     return inBone * (1.0 - opening) * boneDensity + inCavity * 40.0;
-  });
+  }, shift);
 }
 
 DensityVolume makeHalfSpacePhantom(double voxel, const Vec3& normal, double size, double density) {
@@ -167,9 +172,12 @@ PhantomDefinition definePhantom(const std::string& specification) {
     return {[=] { return makeCubePhantom(voxels, density); }, cubeLevel};
   }
   if (name == "skull") {
-    const SourceSpec k(name, query, {{"voxel", 1.0}});
-    const double voxel = k.positive("voxel");
-    return {[=] { return makeSkullPhantom(voxel); }, skullLevel};
+    const SourceSpec k(name, query, {{"voxel", 1.0}, {"shift", 0.0}});
+    const double voxel = k.positive("voxel"), shift = k.number("shift");
+    if (!(std::abs(shift) < voxel))
+      throw std::invalid_argument("phantom key 'shift' must be less than a voxel (" + std::to_string(voxel) +
+                                  " mm) either way, not " + std::to_string(shift));
+    return {[=] { return makeSkullPhantom(voxel, shift); }, skullLevel};
   }
   if (name == "halfspace") {
     const SourceSpec k(name, query, {{"voxel", 0.5}, {"nx", 0}, {"ny", 0}, {"nz", 1}, {"size", 40}, {"density", 1000}});
@@ -203,7 +211,8 @@ LevelSet phantomShape(const std::string& specification) { return definePhantom(s
 
 std::string phantomHelp() {
   return "  cube?voxels=200&density=1200          160 mm solid cube in a 200 mm grid of voxels^3 (Table 3.1)\n"
-         "  skull?voxel=1.0                       skull shell, 212.5 x 201.5 x 141.5 mm (Table 3.2: 1.5 .. 0.5)\n"
+         "  skull?voxel=1.0&shift=0               skull shell, 212.5 x 201.5 x 141.5 mm (Table 3.2: 1.5 .. 0.5);\n"
+         "                                        shift (mm, under a voxel) moves the voxels against the shape\n"
          "  halfspace?voxel=0.5&nx=0&ny=0&nz=1&size=40&density=1000   solid below a plane through the centre\n"
          "  wall?voxel=0.5&thickness=0.5&size=40&density=1000        wall across z = 0\n"
          "  channel?voxel=0.5&width=3&size=40&density=1000           block with a square channel along z\n";

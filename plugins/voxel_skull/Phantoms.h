@@ -20,7 +20,9 @@ DensityVolume makeCubePhantom(int voxelsPerAxis, double density = 1200.0);
 // 4.5 to 8.5 mm thick (varying with direction): an outer cortical table of
 // density 1500, diploe of 700 and an inner table of 1300, soft tissue (40)
 // inside, and an opening of 16 mm radius at the base (foramen magnum).
-DensityVolume makeSkullPhantom(double voxelSize);
+// `shift` (mm, under a voxel) moves the voxel grid against the shape along
+// each axis: the same skull scanned at another phase.
+DensityVolume makeSkullPhantom(double voxelSize, double shift = 0.0);
 // Its voxel counts per axis, without building it.
 std::array<int32_t, 3> skullPhantomDims(double voxelSize);
 

@@ -42,6 +42,16 @@ TEST(PhantomTest, SkullPhantomHasTheThesisDimensions) {
   EXPECT_EQ(skull.minDensity(), 0.0) << "air around the skull";
 }
 
+// The same skull at another phase of the scan: the grid moves against the
+// shape, the shape stays (a voxel centre that was on the outer surface is now
+// `shift` inside or outside it).
+TEST(PhantomTest, AShiftMovesTheVoxelsAgainstTheShape) {
+  const DensityVolume a = voxel::makePhantom("skull?voxel=3"), b = voxel::makePhantom("skull?voxel=3&shift=1.2");
+  EXPECT_EQ(a.dims(), b.dims());
+  EXPECT_TRUE((b.origin() - a.origin()).isApprox(Vec3::Constant(1.2), 1e-12));
+  EXPECT_FALSE(std::equal(a.codes(), a.codes() + a.voxelCount(), b.codes())) << "other partial volumes";
+}
+
 TEST(PhantomTest, PhantomsAreDeterministic) {
   const DensityVolume a = voxel::makePhantom("skull?voxel=4"), b = voxel::makePhantom("skull?voxel=4");
   ASSERT_EQ(a.voxelCount(), b.voxelCount());
@@ -67,7 +77,8 @@ TEST(PhantomTest, BadSpecificationsSayWhatIsWrong) {
     return std::string("no error");
   };
   EXPECT_EQ(message("sphere"), "unknown phantom 'sphere' (cube, skull, halfspace, wall, channel)");
-  EXPECT_EQ(message("skull?voxels=1"), "phantom 'skull' has no key 'voxels' (keys: voxel)");
+  EXPECT_EQ(message("skull?voxels=1"), "phantom 'skull' has no key 'voxels' (keys: shift, voxel)");
+  EXPECT_NE(message("skull?voxel=2&shift=2").find("'shift' must be less than a voxel"), std::string::npos);
   EXPECT_EQ(message("skull?voxel=abc"), "phantom key 'voxel': 'abc' is not a number");
   EXPECT_EQ(message("skull?voxel=0"), "phantom key 'voxel' must be > 0");
   EXPECT_EQ(message("cube?voxels=2.5"), "phantom key 'voxels' must be a whole number");
