@@ -150,7 +150,7 @@ int toolCellSizeCommand(const Arguments& a) {
   bool drawn = false;
   if (experiment) {
     std::ofstream(out / "tool_cellsize.json") << json.str();
-    drawn = runPlotScript("plot_tool_cellsize.py", {(out / "tool_cellsize.csv").string()}, "tool_cellsize.png");
+    drawn = runPlotScript("plot_cellsize.py", {(out / "tool_cellsize.csv").string()}, "tool_cellsize.png");
   }
   if (a.has("--json")) {
     std::cout << json.str();
