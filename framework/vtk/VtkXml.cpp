@@ -1,0 +1,181 @@
+#include "framework/vtk/VtkXml.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "framework/compression/Deflate.h"
+#include "framework/core/AtomicFile.h"
+#include "framework/core/Strings.h"
+
+namespace trephine::vtk {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the files say byte_order=\"LittleEndian\"");
+
+constexpr size_t kBlockBytes = 32768;
+
+// The <AppendedData> section: each array's header (block count, block size,
+// size of the last block, each block's compressed size; UInt64) and blocks.
+class Appended {
+ public:
+  // Appends `bytes` and returns the DataArray element that points at them.
+  std::string array(const std::string& type, const std::string& nameAttribute, int components,
+                    std::span<const uint8_t> bytes) {
+    const uint64_t offset = m_bytes.size();
+    const uint64_t blocks = bytes.empty() ? 0 : (bytes.size() + kBlockBytes - 1) / kBlockBytes;
+    const uint64_t last = bytes.empty() ? 0 : bytes.size() - (blocks - 1) * kBlockBytes;
+    std::vector<std::string> compressed;
+    for (uint64_t b = 0; b < blocks; ++b)
+      compressed.push_back(deflateBytes(bytes.subspan(b * kBlockBytes, b + 1 == blocks ? last : kBlockBytes)));
+    append(blocks);
+    append(uint64_t(kBlockBytes));
+    append(last);
+    for (const std::string& c : compressed) append(uint64_t(c.size()));
+    for (const std::string& c : compressed) m_bytes += c;
+    std::string element = "<DataArray type=\"" + type + "\"" + nameAttribute;
+    if (components != 1) element += " NumberOfComponents=\"" + std::to_string(components) + "\"";
+    return element + " format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
+  }
+  const std::string& bytes() const { return m_bytes; }
+
+ private:
+  void append(uint64_t value) { m_bytes.append(reinterpret_cast<const char*>(&value), sizeof value); }
+  std::string m_bytes;
+};
+
+template <class T>
+std::span<const uint8_t> asBytes(const std::vector<T>& values) {
+  return {reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(T)};
+}
+
+// `text` as an XML attribute value.
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string named(const std::string& name) { return " Name=\"" + escaped(name) + "\""; }
+
+std::vector<float> coordinates(std::span<const Vec3> points, const std::filesystem::path& file) {
+  std::vector<float> out;
+  out.reserve(3 * points.size());
+  for (const Vec3& p : points) {
+    if (!p.allFinite()) throw FileWriteError(file, "a point has a non-finite coordinate");
+    out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z())});
+  }
+  return out;
+}
+
+std::string arrays(const std::vector<DataArray>& data, size_t tuples, Appended& appended,
+                   const std::filesystem::path& file) {
+  std::string xml;
+  for (const DataArray& a : data) {
+    if (a.components < 1 || a.values.size() != tuples * size_t(a.components))
+      throw FileWriteError(file, "array \"" + a.name + "\" holds " + std::to_string(a.values.size()) +
+                                     " values, expected " + std::to_string(tuples) + " x " +
+                                     std::to_string(a.components));
+    xml += appended.array("Float32", named(a.name), a.components, asBytes(a.values));
+  }
+  return xml;
+}
+
+// connectivity and offsets of cells of `size` points each.
+template <size_t N>
+std::string cells(std::span<const std::array<int32_t, N>> cells, size_t points, Appended& appended,
+                  const std::filesystem::path& file) {
+  std::vector<int32_t> connectivity, offsets;
+  connectivity.reserve(N * cells.size());
+  offsets.reserve(cells.size());
+  for (const auto& cell : cells) {
+    for (int32_t i : cell) {
+      if (i < 0 || size_t(i) >= points)
+        throw FileWriteError(file, "a cell names point " + std::to_string(i) + " of " + std::to_string(points));
+      connectivity.push_back(i);
+    }
+    offsets.push_back(int32_t(connectivity.size()));
+  }
+  return appended.array("Int32", named("connectivity"), 1, asBytes(connectivity)) +
+         appended.array("Int32", named("offsets"), 1, asBytes(offsets));
+}
+
+void writeFile(const std::string& type, const std::string& body, const Appended& appended,
+               const std::filesystem::path& file) {
+  AtomicFile out(file);
+  out.write("<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
+            "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+            "compressor=\"vtkZLibDataCompressor\">\n<" +
+            type + ">\n" + body + "</" + type + ">\n<AppendedData encoding=\"raw\">\n_");
+  out.write(appended.bytes());
+  out.write("\n</AppendedData>\n</VTKFile>\n");
+  out.commit();
+}
+
+}  // namespace
+
+void writePolyData(const PolyData& data, const std::filesystem::path& file) {
+  Appended appended;
+  const size_t n = data.points.size();
+  std::string body = "<Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfVerts=\"" +
+                     std::to_string(data.vertices.size()) + "\" NumberOfLines=\"" + std::to_string(data.lines.size()) +
+                     "\" NumberOfStrips=\"0\" NumberOfPolys=\"" + std::to_string(data.triangles.size()) + "\">\n";
+  body += "<PointData>\n" + arrays(data.pointData, n, appended, file) + "</PointData>\n";
+  body += "<Points>\n" + appended.array("Float32", "", 3, asBytes(coordinates(data.points, file))) + "</Points>\n";
+  std::vector<std::array<int32_t, 1>> vertices;
+  for (int32_t i : data.vertices) vertices.push_back({i});
+  body += "<Verts>\n" + cells<1>(vertices, n, appended, file) + "</Verts>\n";
+  body += "<Lines>\n" + cells<2>(data.lines, n, appended, file) + "</Lines>\n";
+  body += "<Polys>\n" + cells<3>(data.triangles, n, appended, file) + "</Polys>\n";
+  body += "</Piece>\n";
+  writeFile("PolyData", body, appended, file);
+}
+
+void writeTetGrid(const TetGrid& grid, const std::filesystem::path& file) {
+  Appended appended;
+  const size_t n = grid.points.size();
+  std::string body = "<Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" +
+                     std::to_string(grid.tets.size()) + "\">\n";
+  body += "<PointData>\n" + arrays(grid.pointData, n, appended, file) + "</PointData>\n";
+  std::string cellArrays = arrays(grid.cellData, grid.tets.size(), appended, file);
+  if (!grid.labels.empty()) {
+    if (grid.labels.size() != grid.tets.size())
+      throw FileWriteError(file, std::to_string(grid.labels.size()) + " labels for " +
+                                     std::to_string(grid.tets.size()) + " tetrahedra");
+    cellArrays += appended.array("Int32", named("label"), 1,
+                                 {reinterpret_cast<const uint8_t*>(grid.labels.data()), grid.labels.size() * 4});
+  }
+  body += "<CellData>\n" + cellArrays + "</CellData>\n";
+  body += "<Points>\n" + appended.array("Float32", "", 3, asBytes(coordinates(grid.points, file))) + "</Points>\n";
+  const std::vector<uint8_t> types(grid.tets.size(), 10);  // VTK_TETRA
+  body += "<Cells>\n" + cells<4>(grid.tets, n, appended, file) +
+          appended.array("UInt8", named("types"), 1, asBytes(types)) + "</Cells>\n";
+  body += "</Piece>\n";
+  writeFile("UnstructuredGrid", body, appended, file);
+}
+
+void Collection::add(double time, const std::string& file, int part) { m_entries.push_back({time, file, part}); }
+
+void Collection::write(const std::filesystem::path& file) const {
+  std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const Entry& e : m_entries) {
+    if (!std::isfinite(e.time)) throw FileWriteError(file, "a dataset of " + e.file + " has a non-finite time");
+    xml += "<DataSet timestep=\"" + formatDouble(e.time) + "\" part=\"" + std::to_string(e.part) + "\" file=\"" +
+           escaped(e.file) + "\"/>\n";
+  }
+  xml += "</Collection>\n</VTKFile>\n";
+  AtomicFile out(file);
+  out.write(xml);
+  out.commit();
+}
+
+}  // namespace trephine::vtk

@@ -1,0 +1,153 @@
+// The VTK XML writers read back independently: tetrahedral grids through the
+// project's VTU reader (its own XML, base64 and zlib code), poly data by
+// parsing the XML part with tinyxml2 and inflating each appended array, and
+// the collection as plain XML.
+#include <gtest/gtest.h>
+#include <tinyxml2.h>
+
+#include <cstring>
+
+#include "framework/compression/Inflate.h"
+#include "framework/core/AtomicFile.h"
+#include "framework/vtk/VtkXml.h"
+#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+// The values of the appended array at `offset` (raw, zlib blocks, UInt64 header).
+template <class T>
+std::vector<T> appendedArray(const std::string& file, uint64_t offset) {
+  const size_t start = file.find("<AppendedData encoding=\"raw\">\n_");
+  EXPECT_NE(start, std::string::npos);
+  const uint8_t* data = reinterpret_cast<const uint8_t*>(file.data()) + start + 31 + offset;
+  auto header = [&](size_t i) {
+    uint64_t v;
+    std::memcpy(&v, data + 8 * i, 8);
+    return v;
+  };
+  const uint64_t blocks = header(0), blockBytes = header(1), last = header(2);
+  std::vector<uint8_t> bytes(blocks ? (blocks - 1) * blockBytes + last : 0);
+  const uint8_t* block = data + 8 * (3 + blocks);
+  for (uint64_t b = 0; b < blocks; ++b) {
+    const uint64_t size = header(3 + b);
+    const std::span<uint8_t> out(bytes.data() + b * blockBytes, b + 1 == blocks ? last : blockBytes);
+    EXPECT_FALSE(inflateExactly({block, size}, out)) << "block " << b;
+    block += size;
+  }
+  std::vector<T> values(bytes.size() / sizeof(T));
+  std::memcpy(values.data(), bytes.data(), bytes.size());
+  return values;
+}
+
+TEST(VtkXmlTest, ATetrahedralGridReadsBackThroughTheVtuReader) {
+  test::TempDir dir;
+  // 4,000 tetrahedra sharing nodes along a strip: connectivity (64 KB) in 2 zlib blocks.
+  std::vector<Vec3> points;
+  std::vector<std::array<int32_t, 4>> tets;
+  std::vector<int32_t> labels;
+  for (int i = 0; i < 4003; ++i) points.emplace_back(0.1 * i, (i % 2) * 1.5, (i % 3) * 2.25 - 100.0);
+  for (int i = 0; i + 3 < 4003; ++i) {
+    tets.push_back({i, i + 1, i + 2, i + 3});
+    labels.push_back(i % 3 + 1);
+  }
+  vtk::TetGrid grid;
+  grid.points = points;
+  grid.tets = tets;
+  grid.labels = labels;
+  vtk::DataArray force{"force", 3, {}};
+  for (size_t i = 0; i < points.size(); ++i) force.values.insert(force.values.end(), {float(i), 0.5f, -1.0f});
+  grid.pointData.push_back(force);
+  vtk::writeTetGrid(grid, dir / "brain.vtu");
+  const tetra::TetMesh mesh = tetra::readTetMesh(dir / "brain.vtu");
+  ASSERT_EQ(mesh.nodeCount(), points.size());
+  ASSERT_EQ(mesh.tetCount(), tets.size());
+  for (size_t i = 0; i < points.size(); ++i) EXPECT_NEAR((mesh.nodes[i] - points[i]).norm(), 0.0, 2e-5) << i;
+  for (size_t t = 0; t < tets.size(); ++t) EXPECT_EQ(mesh.tets[t], tets[t]) << t;
+  ASSERT_EQ(mesh.labels.size(), labels.size());
+  for (size_t t = 0; t < labels.size(); ++t) EXPECT_EQ(mesh.labels[t], labels[t]);
+  // The point array: first in <PointData>, so at offset 0.
+  const std::string text = test::readFile(dir / "brain.vtu");
+  EXPECT_NE(text.find("<DataArray type=\"Float32\" Name=\"force\" NumberOfComponents=\"3\" format=\"appended\" "
+                      "offset=\"0\"/>"),
+            std::string::npos);
+  const std::vector<float> forces = appendedArray<float>(text, 0);
+  EXPECT_EQ(forces, force.values);
+}
+
+TEST(VtkXmlTest, PolyDataHoldsItsPointsAndCellsInTheAppendedBlocks) {
+  test::TempDir dir;
+  vtk::PolyData data;
+  data.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  data.vertices = {3};
+  data.lines = {{0, 3}};
+  data.triangles = {{0, 1, 2}, {0, 2, 3}};
+  data.pointData.push_back({"depth", 1, {0.f, 0.25f, 0.5f, 1.f}});
+  vtk::writePolyData(data, dir / "tool.vtp");
+  const std::string text = test::readFile(dir / "tool.vtp");
+  tinyxml2::XMLDocument xml;
+  const std::string head = text.substr(0, text.find("<AppendedData")) + "</VTKFile>";
+  ASSERT_EQ(xml.Parse(head.c_str()), tinyxml2::XML_SUCCESS) << head;
+  const auto* piece = xml.RootElement()->FirstChildElement("PolyData")->FirstChildElement("Piece");
+  EXPECT_EQ(piece->IntAttribute("NumberOfPoints"), 4);
+  EXPECT_EQ(piece->IntAttribute("NumberOfVerts"), 1);
+  EXPECT_EQ(piece->IntAttribute("NumberOfLines"), 1);
+  EXPECT_EQ(piece->IntAttribute("NumberOfPolys"), 2);
+  auto offsetOf = [&](const char* section, const char* name) {
+    for (const auto* a = piece->FirstChildElement(section)->FirstChildElement("DataArray"); a;
+         a = a->NextSiblingElement("DataArray"))
+      if (!name || (a->Attribute("Name") && std::string(a->Attribute("Name")) == name))
+        return uint64_t(a->Unsigned64Attribute("offset"));
+    ADD_FAILURE() << section << " " << (name ? name : "");
+    return uint64_t(0);
+  };
+  EXPECT_EQ(appendedArray<float>(text, offsetOf("Points", nullptr)),
+            (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}));
+  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Polys", "connectivity")), (std::vector<int32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Polys", "offsets")), (std::vector<int32_t>{3, 6}));
+  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Lines", "connectivity")), (std::vector<int32_t>{0, 3}));
+  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Verts", "connectivity")), (std::vector<int32_t>{3}));
+  EXPECT_EQ(appendedArray<float>(text, offsetOf("PointData", "depth")), data.pointData[0].values);
+}
+
+TEST(VtkXmlTest, BadDataIsRefusedWithTheFileAndNothingIsLeft) {
+  test::TempDir dir;
+  vtk::PolyData data;
+  data.points = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  data.lines = {{0, 2}};
+  try {
+    vtk::writePolyData(data, dir / "bad.vtp");
+    ADD_FAILURE() << "no error";
+  } catch (const FileWriteError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.vtp"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("names point 2 of 2"), std::string::npos) << e.what();
+  }
+  data.lines.clear();
+  data.pointData.push_back({"force", 3, {1, 2, 3}});  // one tuple for two points
+  EXPECT_THROW(vtk::writePolyData(data, dir / "bad.vtp"), FileWriteError);
+  data.pointData.clear();
+  data.points[1].x() = NAN;
+  EXPECT_THROW(vtk::writePolyData(data, dir / "bad.vtp"), FileWriteError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.vtp"));
+}
+
+TEST(VtkXmlTest, TheCollectionListsEachDatasetWithItsTime) {
+  test::TempDir dir;
+  vtk::Collection run;
+  run.add(0.0, "brain_0.vtu");
+  run.add(1.0 / 30, "tool_0.vtp", 1);
+  run.add(0.5, "a&b.vtu");
+  run.write(dir / "run.pvd");
+  tinyxml2::XMLDocument xml;
+  ASSERT_EQ(xml.LoadFile((dir / "run.pvd").c_str()), tinyxml2::XML_SUCCESS);
+  const auto* set = xml.RootElement()->FirstChildElement("Collection")->FirstChildElement("DataSet");
+  EXPECT_STREQ(set->Attribute("file"), "brain_0.vtu");
+  set = set->NextSiblingElement("DataSet");
+  EXPECT_DOUBLE_EQ(set->DoubleAttribute("timestep"), 1.0 / 30);
+  EXPECT_EQ(set->IntAttribute("part"), 1);
+  EXPECT_STREQ(set->NextSiblingElement("DataSet")->Attribute("file"), "a&b.vtu");
+}
+
+}  // namespace
+}  // namespace trephine
