@@ -65,6 +65,10 @@ struct RunPlan {
   double duration = 1.0;  // s of simulated time
   bool realtime = false;
   uint64_t seed = 0;
+  // Where the run's files will go, for components that write as they run
+  // (an exporter, in its own group); empty when the run writes no files
+  // (tests, validate). FinishContext has the same directory at the end.
+  std::filesystem::path outputDirectory;
   // Number of calls a component of `rateHz` receives in this run.
   uint64_t callsAt(double rateHz) const;
 };

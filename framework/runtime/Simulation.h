@@ -34,6 +34,9 @@ struct SimulationOptions {
   uint64_t seed = 0;
   std::vector<std::string> overrides;  // "path.field=value"
   bool strict = false;                 // warnings are errors (--strict)
+  // The directory writeOutputs() will be given, known before the run
+  // (RunPlan::outputDirectory); empty: components write nothing while running.
+  std::filesystem::path outputDirectory;
 };
 
 // Registers the components that need no plugin (Recorder).

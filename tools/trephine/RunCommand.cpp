@@ -103,13 +103,14 @@ int runCommand(const Arguments& a) {
     return kUsage;
   }
   std::string error;
-  const auto options = readSimulationOptions(a, error);
+  auto options = readSimulationOptions(a, error);
   if (!options) {
     std::cerr << "trephine: " << error << "\n";
     return kUsage;
   }
   const std::filesystem::path scene = a.positional[0];
   const std::filesystem::path out = a.get("--out").value_or("runs/" + scene.stem().string());
+  options->outputDirectory = out;
 
   Diagnostics diagnostics;
   auto simulation = Simulation::fromFile(scene, *options, diagnostics);

@@ -31,8 +31,11 @@ struct StudyPose {
   Vec3 exactNormal = Vec3::Constant(std::nan(""));
 };
 
-std::unique_ptr<Simulation> load(const StudyOptions& options, const StudySetting& setting) {
+// `outputDirectory`: where the setting's run writes (empty for the probes).
+std::unique_ptr<Simulation> load(const StudyOptions& options, const StudySetting& setting,
+                                 const std::filesystem::path& outputDirectory = {}) {
   SimulationOptions simulationOptions = options.simulation;
+  simulationOptions.outputDirectory = outputDirectory;
   for (const std::string& o : setting.overrides()) simulationOptions.overrides.push_back(o);
   Diagnostics diagnostics;
   auto simulation = Simulation::fromFile(options.scene, simulationOptions, diagnostics);
@@ -225,7 +228,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
     // Every setting's probe runs on an instance of its own, loaded fresh and
     // never run, so that the probe neither changes the run it measures (its
     // counters, caches, warm starts) nor sees a drilled or deformed target.
-    auto simulation = load(options, setting);
+    auto simulation = load(options, setting, directory);
     std::vector<Vec3> positions;
     if (isReference) {
       // The reference's run gives the poses.

@@ -1,0 +1,9 @@
+// Seeing a simulation: files ParaView opens.
+#include "framework/core/Registry.h"
+#include "plugins/viewer/VtkExporter.h"
+
+TREPHINE_PLUGIN_ENTRY(registrar) {
+  registrar.add<trephine::viewer::VtkExporter>(
+      "VtkExporter",
+      "Writes the brain and the tool as VTK XML files (.vtu, .vtp) at its own rate, with a .pvd that ParaView plays");
+}

@@ -1,0 +1,145 @@
+#include "plugins/viewer/VtkExporter.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "framework/core/AtomicFile.h"
+#include "framework/core/Lifecycle.h"
+
+namespace trephine::viewer {
+
+namespace {
+
+// The index of `name` among the source's columns, or -1.
+int columnOf(const std::vector<std::string>& columns, const std::string& name) {
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  return it == columns.end() ? -1 : int(it - columns.begin());
+}
+
+std::string numbered(const std::string& stem, uint64_t frame, const char* extension) {
+  char digits[24];
+  std::snprintf(digits, sizeof digits, "_%05llu", static_cast<unsigned long long>(frame));
+  return stem + digits + extension;
+}
+
+}  // namespace
+
+void VtkExporter::init(InitContext& context) {
+  if (!l_brain && !l_force) context.error(*this, "names nothing to write: link a brain, a force or both");
+  if (l_brain) {
+    const tetra::TetraBrain& brain = *l_brain;
+    const tetra::TetMesh& mesh = brain.mesh();
+    m_cells.emplace(std::span<const std::array<int32_t, 4>>(mesh.tets), std::span<const int32_t>(mesh.labels),
+                    mesh.nodeCount());
+    m_displacement.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
+    m_force.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
+    if (brain.deformer())
+      m_positions = context.channels().subscribe<tetra::NodePositions>(*brain.deformer(), tetra::kNodePositionsChannel);
+    m_nodeForces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
+  }
+  if (l_force) {
+    const std::vector<std::string> columns = l_force->sampleColumns();
+    m_device = columnOf(columns, "device_x");
+    m_proxy = columnOf(columns, "proxy_x");
+    m_forceColumn = columnOf(columns, "force_x");
+    m_normal = columnOf(columns, "normal_x");
+    m_penetration = columnOf(columns, "penetration");
+    if (m_device < 0 || m_proxy < 0 || m_forceColumn < 0)
+      context.error(l_force, "publishes no device_x, proxy_x and force_x columns (a ForceFeedback does)");
+    m_samples = context.channels().subscribe<Sample>(*l_force.boundComponent(), kSampleChannel);
+  }
+}
+
+void VtkExporter::prepare(const RunPlan& plan) {
+  if (l_brain && l_brain->deformer() && !m_positions)
+    throw std::runtime_error("the deformation of " + l_brain->path() + " starts after this component: place the " +
+                             "VtkExporter after it in the scene, or its files show the brain at rest");
+  m_root = plan.outputDirectory;
+  m_collection = {};
+  m_frames = m_files = m_failed = 0;
+  m_firstFailure.clear();
+  m_brainWritten = false;
+  if (m_root.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(m_root / d_directory.value(), ec);
+  if (ec) throw std::runtime_error("cannot create " + (m_root / d_directory.value()).string() + ": " + ec.message());
+}
+
+template <class Write>
+void VtkExporter::attempt(const std::string& file, double t, int part, Write&& write) {
+  try {
+    write(m_root / d_directory.value() / file);
+    m_collection.add(t, d_directory.value() + "/" + file, part);
+    ++m_files;
+  } catch (const std::exception& e) {
+    if (m_failed++ == 0) m_firstFailure = e.what();
+  }
+}
+
+void VtkExporter::writeBrain(double t) {
+  const tetra::TetraBrain& brain = *l_brain;
+  const std::vector<Vec3>& rest = brain.mesh().nodes;
+  const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
+  if (!moved && m_brainWritten && !m_nodeForces->fetch()) return;  // rigid and untouched: its file stands
+  const std::vector<Vec3>& nodes = moved ? m_positions->read().positions : rest;
+  for (size_t i = 0; i < nodes.size(); ++i)
+    for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);
+  std::fill(m_force.values.begin(), m_force.values.end(), 0.0f);
+  for (const tetra::NodeForce& f : m_nodeForces->read().forces)
+    if (f.node >= 0 && size_t(f.node) < nodes.size())
+      for (int a = 0; a < 3; ++a) m_force.values[3 * size_t(f.node) + a] += float(f.force[a]);
+  attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const std::filesystem::path& f) {
+    vtk::writeTetGrid(nodes, *m_cells, {m_displacement, m_force}, {}, f);
+  });
+  m_brainWritten = true;
+}
+
+void VtkExporter::writeTool(double t) {
+  m_samples->fetch();
+  const Sample& s = m_samples->read();
+  auto vec = [&](int column) { return column < 0 ? Vec3::Zero() : Vec3(s.values[column], s.values[column + 1], s.values[column + 2]); };
+  vtk::PolyData tool;
+  tool.points = {vec(m_device), vec(m_proxy)};
+  tool.vertices = {0, 1};
+  tool.lines = {{0, 1}};
+  const Vec3 force = vec(m_forceColumn), normal = vec(m_normal);
+  const float penetration = m_penetration < 0 ? 0.0f : float(s.values[m_penetration]);
+  tool.pointData = {{"force", 3, {float(force.x()), float(force.y()), float(force.z()), float(force.x()),
+                                  float(force.y()), float(force.z())}},
+                    {"normal", 3, {float(normal.x()), float(normal.y()), float(normal.z()), float(normal.x()),
+                                   float(normal.y()), float(normal.z())}},
+                    {"penetration", 1, {penetration, penetration}}};
+  attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { vtk::writePolyData(tool, f); });
+}
+
+void VtkExporter::tick(const TickContext& context) {
+  if (m_root.empty()) return;  // the run writes no files
+  if (l_brain) writeBrain(context.t);
+  if (l_force) writeTool(context.t);
+  ++m_frames;
+}
+
+std::string VtkExporter::pvdName() const { return d_directory.value() + ".pvd"; }
+
+void VtkExporter::declareOutputs(std::vector<OutputFile>& outputs) const {
+  outputs.push_back({pvdName(), d_directory.isSet() ? &d_directory : nullptr});
+}
+
+void VtkExporter::finish(FinishContext& context) {
+  if (m_failed) context.error(*this, std::to_string(m_failed) + " files could not be written; the first: " + m_firstFailure);
+  if (context.outputDirectory().empty() || m_root.empty()) return;
+  if (!context.claimOutput(*this, pvdName())) return;
+  try {
+    m_collection.write(context.outputDirectory() / pvdName());
+  } catch (const std::exception& e) {
+    context.error(*this, e.what());
+  }
+}
+
+void VtkExporter::reportCounters(std::vector<Counter>& counters) const {
+  counters.push_back({"frames", double(m_frames)});
+  counters.push_back({"files", double(m_files)});
+  counters.push_back({"failed_files", double(m_failed)});
+}
+
+}  // namespace trephine::viewer

@@ -1,0 +1,79 @@
+#pragma once
+// Writes what a scene names as VTK XML files that ParaView plays in time
+// (after SOFA's VTKExporter): at its own rate (30 Hz by default), in a group
+// of its own, it reads the latest state through channels and writes
+//   brain_NNNNN.vtu  the brain's mesh at its current node positions, with the
+//                    node displacements (mm), the tool's forces on the nodes
+//                    (N) and the tissue labels;
+//   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, with the
+//                    force rendered to the hand (N), the contact normal and
+//                    the penetration (mm);
+// into the directory `directory` of the run, and `directory`.pvd beside it
+// listing every file with its time. Only what the links name is written. The
+// haptic and FEM threads only copy into the channels' slots; the files are
+// written here, off their threads. A rigid brain is written once.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "framework/channels/Channel.h"
+#include "framework/core/Component.h"
+#include "framework/core/Link.h"
+#include "framework/core/SampleSource.h"
+#include "framework/vtk/VtkXml.h"
+#include "plugins/tetra_brain/MeshDeformation.h"
+#include "plugins/tetra_brain/TetraBrain.h"
+
+namespace trephine::viewer {
+
+class VtkExporter final : public Component {
+ public:
+  static constexpr std::string_view kTypeName = "VtkExporter";
+
+  void init(InitContext& context) override;
+  void prepare(const RunPlan& plan) override;
+  void tick(const TickContext& context) override;
+  void finish(FinishContext& context) override;
+  void reportCounters(std::vector<Counter>& counters) const override;
+  void declareOutputs(std::vector<OutputFile>& outputs) const override;
+
+ private:
+  std::string pvdName() const;
+  void writeBrain(double t);
+  void writeTool(double t);
+  // Writes through `write`, keeping the first failure for finish() instead of
+  // stopping the run (what was written so far stays listed).
+  template <class Write>
+  void attempt(const std::string& file, double t, int part, Write&& write);
+
+  Link<tetra::TetraBrain> l_brain{
+      this, "brain", {.help = "Brain whose mesh is written at its current node positions", .initOnly = true}};
+  Link<SampleSource> l_force{this,
+                             "force",
+                             {.help = "ForceFeedback whose device, proxy, force, normal and penetration are written",
+                              .initOnly = true}};
+  RateField d_rate{this, 30.0, "Frames per second of the files (ParaView plays them at their times)"};
+  Field<std::string> d_directory{
+      this,
+      "directory",
+      "vtk",
+      {.help = "Folder of the files in the run directory; the index is this name with .pvd beside it"}};
+
+  // Brain.
+  std::optional<ChannelReader<tetra::NodePositions>> m_positions;  // none: a rigid brain
+  std::optional<ChannelReader<tetra::NodeForces>> m_nodeForces;
+  std::optional<vtk::TetCells> m_cells;  // compressed once
+  vtk::DataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
+  bool m_brainWritten = false;
+  // Tool: the source's columns, by name.
+  std::optional<ChannelReader<Sample>> m_samples;
+  int m_device = -1, m_proxy = -1, m_forceColumn = -1, m_normal = -1, m_penetration = -1;
+
+  std::filesystem::path m_root;  // the run directory, empty: write nothing
+  vtk::Collection m_collection;
+  uint64_t m_frames = 0, m_files = 0, m_failed = 0;
+  std::string m_firstFailure;
+};
+
+}  // namespace trephine::viewer
