@@ -11,7 +11,8 @@
 // into the directory `directory` of the run, and `directory`.pvd beside it
 // listing every file with its time. Only what the links name is written. The
 // haptic and FEM threads only copy into the channels' slots; the files are
-// written here, off their threads. A rigid brain is written once.
+// written here, off their threads. A rigid brain is written again only when
+// the tool's forces on it change.
 #include <filesystem>
 #include <optional>
 #include <string>
