@@ -66,8 +66,10 @@ bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int3
   m_locator.group(m_grids->tetGrid, points);
   const Vec3 slack = Vec3::Constant(m_displacementBound);
   const bool moved = m_displacementBound > 0;
-  LocateWork& work = m_locateWork;
-  ++work.queries;
+  // The work counts in locals (registers), added to the totals once a query:
+  // the innermost loop stays a load and a compare.
+  LocateWork work;
+  work.queries = 1;
   m_locator.forEachCell([&](int64_t cell, const Box3& pointsBox, int32_t first) {
     if (any && stopAtFirst) return;
     const auto listed = m_grids->tetGrid.items(cell);
@@ -99,6 +101,12 @@ bool NativeTetBackend::locatePoints(std::span<const Vec3> points, std::span<int3
       }
     }
   });
+  m_locateWork.queries += work.queries;
+  m_locateWork.cells += work.cells;
+  m_locateWork.listed += work.listed;
+  m_locateWork.overlapping += work.overlapping;
+  m_locateWork.pointTests += work.pointTests;
+  m_locateWork.insideTests += work.insideTests;
   return any;
 }
 
