@@ -23,6 +23,7 @@ namespace {
 constexpr const char* kUsageLine =
     "usage: trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]\n"
     "                              [--frames N] [--rounds N]\n"
+    "       trephine cellsize MESH --tool RADIUS ...   (the tool query's cell: see trephine --help)\n"
     "  MESH: a tetrahedral mesh file (.mesh, .vtu, .vtk, .msh, .node/.ele) or phantom:SPEC\n";
 
 std::string number(double v) { return formatDouble(v); }
