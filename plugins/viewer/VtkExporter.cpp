@@ -25,7 +25,24 @@ std::string numbered(const std::string& stem, uint64_t frame, const char* extens
 }  // namespace
 
 void VtkExporter::init(InitContext& context) {
-  if (!l_brain && !l_force) context.error(*this, "names nothing to write: link a brain, a force or both");
+  if (!l_brain && !l_force && !l_skull)
+    context.error(*this, "names nothing to write: link a brain, a skull, a force, or several");
+  if (l_skull) {
+    voxel::VoxelSkull& skull = *l_skull;
+    const voxel::SolidGrid& grid = skull.grid();
+    m_skullCodes.assign(grid.codes, grid.codes + size_t(grid.nx) * grid.ny * grid.nz);
+    m_skullGrid = grid;
+    m_skullGrid.codes = m_skullCodes.data();
+    m_skullGrid.occupancy = nullptr;
+    m_skullGrid.edits = nullptr;
+    m_skullSurface.build(m_skullGrid);
+    if (skull.drills()) {
+      // A drill frame lowers at most a few thousand codes (a 466-point shell,
+      // 8 corners each); at 30 Hz the ring holds some 70 frames of that.
+      m_edits = std::make_shared<ChangeQueue<voxel::VoxelEdit>>(size_t(1) << 18);
+      skull.recordEdits(m_edits);
+    }
+  }
   if (l_brain) {
     const tetra::TetraBrain& brain = *l_brain;
     const tetra::TetMesh& mesh = brain.mesh();
@@ -59,6 +76,9 @@ void VtkExporter::prepare(const RunPlan& plan) {
   m_frames = m_files = m_failed = 0;
   m_firstFailure.clear();
   m_brainWritten = false;
+  m_skullChanged = true;  // the first frame writes it
+  m_lastSkullWrite = -INFINITY;
+  m_skullEdits = m_skullFiles = 0;
   if (m_root.empty()) return;
   std::error_code ec;
   std::filesystem::create_directories(m_root / d_directory.value(), ec);
@@ -112,10 +132,43 @@ void VtkExporter::writeTool(double t) {
   attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { vtk::writePolyData(tool, f); });
 }
 
+bool VtkExporter::applySkullEdits() {
+  if (!m_edits) return false;
+  std::array<int64_t, 3> first{INT64_MAX, INT64_MAX, INT64_MAX}, last{INT64_MIN, INT64_MIN, INT64_MIN};
+  const int64_t nx = m_skullGrid.nx, ny = m_skullGrid.ny;
+  const size_t n = m_edits->drain([&](const voxel::VoxelEdit& e) {
+    m_skullCodes[size_t(e.voxel)] = e.code;
+    const std::array<int64_t, 3> ijk{e.voxel % nx, (e.voxel / nx) % ny, e.voxel / (nx * ny)};
+    for (int a = 0; a < 3; ++a) {
+      first[a] = std::min(first[a], ijk[a]);
+      last[a] = std::max(last[a], ijk[a]);
+    }
+  });
+  if (n == 0) return false;
+  m_skullEdits += n;
+  m_skullSurface.update(m_skullGrid, first, last);
+  return true;
+}
+
+void VtkExporter::writeSkull(double t) {
+  const voxel::TriangleMesh mesh = m_skullSurface.merged();
+  vtk::PolyData surface;
+  surface.points = mesh.vertices;
+  surface.triangles = mesh.triangles;
+  attempt(numbered("skull", m_frames, ".vtp"), t, 2, [&](const std::filesystem::path& f) {
+    vtk::writePolyData(surface, f);
+  });
+  ++m_skullFiles;
+  m_skullChanged = false;
+  m_lastSkullWrite = t;
+}
+
 void VtkExporter::tick(const TickContext& context) {
+  if (l_skull) m_skullChanged = applySkullEdits() || m_skullChanged;  // the copy follows even with no files
   if (m_root.empty()) return;  // the run writes no files
   if (l_brain) writeBrain(context.t);
   if (l_force) writeTool(context.t);
+  if (l_skull && m_skullChanged && context.t - m_lastSkullWrite >= d_skullInterval.value()) writeSkull(context.t);
   ++m_frames;
 }
 
@@ -126,6 +179,13 @@ void VtkExporter::declareOutputs(std::vector<OutputFile>& outputs) const {
 }
 
 void VtkExporter::finish(FinishContext& context) {
+  if (l_skull && !m_root.empty()) {
+    // The drill's last changes: the skull as the run left it.
+    if (applySkullEdits() || m_skullChanged) writeSkull(context.simulatedTime());
+  }
+  if (m_edits && m_edits->dropped())
+    context.error(*this, "fell behind the drill: " + std::to_string(m_edits->dropped()) +
+                             " changes of the skull's codes were lost, and its files after the first loss miss them");
   if (m_failed) context.error(*this, std::to_string(m_failed) + " files could not be written; the first: " + m_firstFailure);
   if (context.outputDirectory().empty() || m_root.empty()) return;
   if (!context.claimOutput(*this, pvdName())) return;
@@ -140,6 +200,10 @@ void VtkExporter::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"frames", double(m_frames)});
   counters.push_back({"files", double(m_files)});
   counters.push_back({"failed_files", double(m_failed)});
+  if (l_skull) {
+    counters.push_back({"skull_files", double(m_skullFiles)});
+    counters.push_back({"skull_edits", double(m_skullEdits)});  // code changes applied to the copy
+  }
 }
 
 }  // namespace trephine::viewer

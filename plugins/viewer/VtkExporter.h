@@ -8,6 +8,10 @@
 //   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, with the
 //                    force rendered to the hand (N), the contact normal and
 //                    the penetration (mm);
+//   skull_NNNNN.vtp  the skull's surface (the isosurface of its interpolated
+//                    density, as the mesh back-ends see it) at the start and,
+//                    while the drill removes bone, at most every
+//                    `skullInterval`, re-extracted only in the blocks drilled;
 // into the directory `directory` of the run, and `directory`.pvd beside it
 // listing every file with its time. Only what the links name is written. The
 // haptic and FEM threads only copy into the channels' slots; the files are
@@ -25,6 +29,8 @@
 #include "framework/vtk/VtkXml.h"
 #include "plugins/tetra_brain/MeshDeformation.h"
 #include "plugins/tetra_brain/TetraBrain.h"
+#include "plugins/voxel_skull/IsoSurface.h"
+#include "plugins/voxel_skull/VoxelSkull.h"
 
 namespace trephine::viewer {
 
@@ -43,6 +49,9 @@ class VtkExporter final : public Component {
   std::string pvdName() const;
   void writeBrain(double t);
   void writeTool(double t);
+  // Applies the drill's changes to the copy of the codes; true if any.
+  bool applySkullEdits();
+  void writeSkull(double t);
   // Writes through `write`, keeping the first failure for finish() instead of
   // stopping the run (what was written so far stays listed).
   template <class Write>
@@ -54,7 +63,17 @@ class VtkExporter final : public Component {
                              "force",
                              {.help = "ForceFeedback whose device, proxy, force, normal and penetration are written",
                               .initOnly = true}};
+  Link<voxel::VoxelSkull> l_skull{
+      this, "skull", {.help = "Skull whose surface is written (again where drilled)", .initOnly = true}};
   RateField d_rate{this, 30.0, "Frames per second of the files (ParaView plays them at their times)"};
+  Field<double> d_skullInterval{
+      this,
+      "skullInterval",
+      0.5,
+      {.help = "While the skull is drilled, its surface is written at most this often (a 0.5 mm skull's surface "
+               "is tens of MB); the last state is written at the end",
+       .unit = "s",
+       .min = 0.0}};
   Field<std::string> d_directory{
       this,
       "directory",
@@ -70,6 +89,16 @@ class VtkExporter final : public Component {
   // Tool: the source's columns, by name.
   std::optional<ChannelReader<Sample>> m_samples;
   int m_device = -1, m_proxy = -1, m_forceColumn = -1, m_normal = -1, m_penetration = -1;
+
+  // Skull: a copy of its codes, kept current from the drill's changes (the
+  // haptic thread pushes them into m_edits), and its surface in blocks.
+  std::shared_ptr<ChangeQueue<voxel::VoxelEdit>> m_edits;
+  std::vector<voxel::VoxelCode> m_skullCodes;
+  voxel::SolidGrid m_skullGrid;
+  voxel::BlockedIsoSurface m_skullSurface;
+  bool m_skullChanged = false;
+  double m_lastSkullWrite = -INFINITY;  // s
+  uint64_t m_skullEdits = 0, m_skullFiles = 0;
 
   std::filesystem::path m_root;  // the run directory, empty: write nothing
   vtk::Collection m_collection;

@@ -12,10 +12,17 @@
 #include <cstdint>
 #include <memory>
 
+#include "framework/channels/ChangeQueue.h"
 #include "plugins/voxel_skull/DensityVolume.h"
 #include "plugins/voxel_skull/OccupancyCells.h"
 
 namespace trephine::voxel {
+
+// A voxel's code after a change (drilling only lowers codes).
+struct VoxelEdit {
+  int64_t voxel = -1;
+  VoxelCode code = 0;
+};
 
 struct SolidGrid {
   VoxelCode* codes = nullptr;
@@ -31,6 +38,10 @@ struct SolidGrid {
   // cross (OccupancyCells.h), so the smooth point test interpolates only there.
   // Shared by copies of the grid, as the codes are. Null: every point interpolates.
   std::shared_ptr<OccupancyCells> occupancy;
+  // Optional: every code change, for a reader on another thread that keeps a
+  // copy of the codes (an exporter of the surface). Shared by copies of the
+  // grid. Null unless a reader asked (VoxelSkull::recordEdits).
+  std::shared_ptr<ChangeQueue<VoxelEdit>> edits;
 
   static SolidGrid of(DensityVolume& volume, double isovalue, bool smoothSurface = false) {
     SolidGrid g;
@@ -59,12 +70,14 @@ struct SolidGrid {
   // point test would then report bone where the interpolation finds none.
   // Raising a code needs buildOccupancy() again.
   void noteLowered(int64_t voxel, VoxelCode newCode) {
+    if (edits) edits->push({voxel, newCode});
     if (occupancy) occupancy->lowered(voxel, newCode);
   }
   // The same, knowing the code before (drilling): a voxel lowered through the
   // outside threshold also turns the cells it empties "outside", so the cells
   // stay exactly what a build would give (OccupancyCells::emptied).
   void noteLowered(int64_t voxel, VoxelCode newCode, VoxelCode oldCode) {
+    if (edits) edits->push({voxel, newCode});
     if (!occupancy) return;
     occupancy->lowered(voxel, newCode);
     if (newCode <= occupancy->outsideCodeMax() && oldCode > occupancy->outsideCodeMax())

@@ -54,6 +54,10 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   const DensityVolume& volume() const { return m_volume; }
   const SolidGrid& grid() const { return m_grid; }
+  bool drills() const { return d_drill.value(); }
+  // Every code change from now on goes to `edits` as well (initialisation
+  // only: a reader on another thread that keeps its own copy of the codes).
+  void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) { m_grid.edits = std::move(edits); }
   uint64_t voxelsRemoved() const { return m_voxelsRemoved; }
   const RemovalLaw& removalLaw() const { return m_law; }
   // Replaces the volume (tests and tools); call before the run.

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <regex>
 
-#include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "plugins/tetra_brain/CubePhantom.h"
+#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "plugins/voxel_skull/IsoSurface.h"
+#include "plugins/voxel_skull/io/VolumeReader.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -99,6 +101,82 @@ TEST(VtkExporterTest, ScenesThatNameNothingOrDeformLateAreRefused) {
   options.outputDirectory = "unused";
   EXPECT_FALSE(test::loadScene(scene(R"(<VtkExporter name="vtk" brain="@brain"/>)", true), late, options));
   EXPECT_NE(test::messages(late).find("place the VtkExporter after it"), std::string::npos) << test::messages(late);
+}
+
+// The number of triangles in a .vtp the exporter wrote (its Piece's NumberOfPolys).
+int polysIn(const std::filesystem::path& file) {
+  const std::string text = test::readFile(file);
+  const size_t at = text.find("NumberOfPolys=\"");
+  return at == std::string::npos ? -1 : std::stoi(text.substr(at + 15));
+}
+
+// A burr drilling the skull phantom (1.5 mm voxels) for 0.6 s, the surface
+// written at most every 0.1 s and the drilled volume saved at the end.
+std::string drillScene(bool drill) {
+  return std::string(R"(<Node name="root" units="mm">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="viewer"/>
+  <Node name="patient">
+    <VoxelSkull name="skull" file="phantom:skull?voxel=1.5" isovalue="600" drill=")") +
+         (drill ? "true\" saveDrilled=\"drilled.mha\"" : "false\"") + R"(/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="circle" target="@/patient/skull" direction="0 0 -1" tipOffset="2.5"
+                    standoff="2" speed="20" depth="1.5" radius="5" period="1" turns="2" rate="1000"/>
+    <PointshellTool name="burr" radius="2.5" pointCount="466" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull" sweep="line" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" maxForce="3.3" rate="1000"/>
+  </Node>
+  <Node name="out">
+    <VtkExporter name="vtk" skull="@/patient/skull" rate="30" skullInterval="0.1"/>
+  </Node>
+</Node>)";
+}
+
+// The copy the exporter keeps from the drill's changes ends as the skull
+// itself: its last surface is the one extracted from the drilled volume the
+// skull saves, triangle for triangle.
+TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
+  test::TempDir dir;
+  dir.write("scene.xml", drillScene(true));
+  std::string output;
+  ASSERT_EQ(test::runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--duration", "0.6", "--out",
+                              (dir / "run").string()},
+                             &output),
+            0)
+      << output;
+  std::vector<std::filesystem::path> skulls;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk"))
+    if (entry.path().filename().string().starts_with("skull_")) skulls.push_back(entry.path());
+  std::sort(skulls.begin(), skulls.end());
+  ASSERT_GE(skulls.size(), 2u) << "the start and at least one drilled state";
+  EXPECT_LE(skulls.size(), 8u) << "at most every 0.1 s, and the end";
+  voxel::DensityVolume drilled = voxel::readVolume(dir / "run" / "drilled.mha");
+  voxel::BlockedIsoSurface expected;
+  expected.build(voxel::SolidGrid::of(drilled, 600.0, true));
+  const voxel::TriangleMesh merged = expected.merged();
+  EXPECT_EQ(polysIn(skulls.back()), int(merged.triangles.size()));
+  EXPECT_NE(polysIn(skulls.front()), polysIn(skulls.back())) << "the drill changed the surface";
+  const std::string summary = test::readFile(dir / "run" / "summary.json");
+  const size_t at = summary.find("\"skull_edits\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_GT(std::stod(summary.substr(at + 15)), 0.0) << "code changes reached the copy";
+}
+
+TEST(VtkExporterTest, ASkullNotDrilledIsWrittenOnce) {
+  test::TempDir dir;
+  dir.write("scene.xml", drillScene(false));
+  std::string output;
+  ASSERT_EQ(test::runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--duration", "0.3", "--out",
+                              (dir / "run").string()},
+                             &output),
+            0)
+      << output;
+  int skulls = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk"))
+    skulls += entry.path().filename().string().starts_with("skull_");
+  EXPECT_EQ(skulls, 1);
 }
 
 }  // namespace
