@@ -5,5 +5,5 @@
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<trephine::viewer::VtkExporter>(
       "VtkExporter",
-      "Writes the brain and the tool as VTK XML files (.vtu, .vtp) at its own rate, with a .pvd that ParaView plays");
+      "Writes the brain, the skull and the tool as VTK XML files (.vtu, .vtp) at its own rate, with a .pvd that ParaView plays");
 }
