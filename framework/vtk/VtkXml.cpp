@@ -208,6 +208,17 @@ void writeTetGrid(std::span<const Vec3> points, const TetCells& cells, const std
   writeFile("UnstructuredGrid", body, appended, file);
 }
 
+void writeMultiBlock(const std::vector<std::string>& files, const std::filesystem::path& file) {
+  std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n"
+                    "<vtkMultiBlockDataSet>\n";
+  for (size_t i = 0; i < files.size(); ++i)
+    xml += "<DataSet index=\"" + std::to_string(i) + "\" file=\"" + escaped(files[i]) + "\"/>\n";
+  xml += "</vtkMultiBlockDataSet>\n</VTKFile>\n";
+  AtomicFile out(file);
+  out.write(xml);
+  out.commit();
+}
+
 void Collection::add(double time, const std::string& file, int part) { m_entries.push_back({time, file, part}); }
 
 void Collection::write(const std::filesystem::path& file) const {

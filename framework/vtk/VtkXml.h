@@ -66,6 +66,11 @@ void writeTetGrid(const TetGrid& grid, const std::filesystem::path& file);
 void writeTetGrid(std::span<const Vec3> points, const TetCells& cells, const std::vector<DataArray>& pointData,
                   const std::vector<DataArray>& cellData, const std::filesystem::path& file);
 
+// A .vtm multiblock index: one dataset made of the files listed (relative to
+// the .vtm's directory), for a surface written block by block where only the
+// changed blocks get new files.
+void writeMultiBlock(const std::vector<std::string>& files, const std::filesystem::path& file);
+
 // A .pvd collection: ParaView plays its datasets in time order, parts drawn together.
 class Collection {
  public:

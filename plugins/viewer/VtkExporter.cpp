@@ -36,6 +36,8 @@ void VtkExporter::init(InitContext& context) {
     m_skullGrid.occupancy = nullptr;
     m_skullGrid.edits = nullptr;
     m_skullSurface.build(m_skullGrid);
+    m_blockChanged.assign(m_skullSurface.blockCount(), 1);
+    m_blockFiles.assign(m_skullSurface.blockCount(), "");
     if (skull.drills()) {
       // A drill frame lowers at most a few thousand codes (a 466-point shell,
       // 8 corners each); at 30 Hz the ring holds some 70 frames of that.
@@ -76,7 +78,8 @@ void VtkExporter::prepare(const RunPlan& plan) {
   m_frames = m_files = m_failed = 0;
   m_firstFailure.clear();
   m_brainWritten = false;
-  m_skullChanged = true;  // the first frame writes it
+  m_skullChanged = true;  // the first frame writes every block
+  std::fill(m_blockChanged.begin(), m_blockChanged.end(), 1);
   m_lastSkullWrite = -INFINITY;
   m_skullEdits = m_skullFiles = 0;
   if (m_root.empty()) return;
@@ -146,17 +149,41 @@ bool VtkExporter::applySkullEdits() {
   });
   if (n == 0) return false;
   m_skullEdits += n;
-  m_skullSurface.update(m_skullGrid, first, last);
+  for (size_t block : m_skullSurface.update(m_skullGrid, first, last)) m_blockChanged[block] = 1;
   return true;
 }
 
 void VtkExporter::writeSkull(double t) {
-  const voxel::TriangleMesh mesh = m_skullSurface.merged();
-  vtk::PolyData surface;
-  surface.points = mesh.vertices;
-  surface.triangles = mesh.triangles;
-  attempt(numbered("skull", m_frames, ".vtp"), t, 2, [&](const std::filesystem::path& f) {
-    vtk::writePolyData(surface, f);
+  const std::string folder = d_directory.value() + "/skull";
+  if (m_skullFiles == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(m_root / folder, ec);
+  }
+  for (size_t b = 0; b < m_blockChanged.size(); ++b) {
+    if (!m_blockChanged[b]) continue;
+    m_blockChanged[b] = 0;
+    const voxel::TriangleMesh& mesh = m_skullSurface.block(b);
+    if (mesh.triangles.empty()) {
+      m_blockFiles[b].clear();
+      continue;
+    }
+    vtk::PolyData surface;
+    surface.points = mesh.vertices;
+    surface.triangles = mesh.triangles;
+    const std::string name = numbered("b" + std::to_string(b), m_frames, ".vtp");
+    try {
+      vtk::writePolyData(surface, m_root / folder / name);
+      m_blockFiles[b] = "skull/" + name;
+      ++m_files;
+    } catch (const std::exception& e) {
+      if (m_failed++ == 0) m_firstFailure = e.what();
+    }
+  }
+  std::vector<std::string> files;
+  for (const std::string& f : m_blockFiles)
+    if (!f.empty()) files.push_back(f);
+  attempt(numbered("skull", m_frames, ".vtm"), t, 2, [&](const std::filesystem::path& f) {
+    vtk::writeMultiBlock(files, f);
   });
   ++m_skullFiles;
   m_skullChanged = false;

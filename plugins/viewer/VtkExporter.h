@@ -8,10 +8,13 @@
 //   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, with the
 //                    force rendered to the hand (N), the contact normal and
 //                    the penetration (mm);
-//   skull_NNNNN.vtp  the skull's surface (the isosurface of its interpolated
-//                    density, as the mesh back-ends see it) at the start and,
-//                    while the drill removes bone, at most every
-//                    `skullInterval`, re-extracted only in the blocks drilled;
+//   skull_NNNNN.vtm  the skull's surface (the isosurface of its interpolated
+//                    density, as the mesh back-ends see it), block by block:
+//                    each block of 16^3 cells in skull/bBBBBB_NNNNN.vtp, at
+//                    the start for every block and then, while the drill
+//                    removes bone (at most every `skullInterval`), only for
+//                    the blocks it changed; each .vtm lists every block's
+//                    latest file;
 // into the directory `directory` of the run, and `directory`.pvd beside it
 // listing every file with its time. Only what the links name is written. The
 // haptic and FEM threads only copy into the channels' slots; the files are
@@ -69,9 +72,10 @@ class VtkExporter final : public Component {
   Field<double> d_skullInterval{
       this,
       "skullInterval",
-      2.0,
-      {.help = "While the skull is drilled, its whole surface is written at most this often (a 0.5 mm skull's "
-               "is 54 MB and takes 2 s to write); the last state is written at the end",
+      0.1,
+      {.help = "While the skull is drilled, its changed blocks are written at most this often (0: every frame of "
+               "the exporter that follows a change; each skull frame also writes an index of every block, 180 KB "
+               "for a 0.5 mm skull); the last state is written at the end",
        .unit = "s",
        .min = 0.0}};
   Field<std::string> d_directory{
@@ -96,6 +100,8 @@ class VtkExporter final : public Component {
   std::vector<voxel::VoxelCode> m_skullCodes;
   voxel::SolidGrid m_skullGrid;
   voxel::BlockedIsoSurface m_skullSurface;
+  std::vector<uint8_t> m_blockChanged;       // per block: to write at the next skull frame
+  std::vector<std::string> m_blockFiles;     // per block: its latest file (relative to the .vtm), "" when empty
   bool m_skullChanged = false;
   double m_lastSkullWrite = -INFINITY;  // s
   uint64_t m_skullEdits = 0, m_skullFiles = 0;

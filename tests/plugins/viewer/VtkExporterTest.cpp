@@ -110,6 +110,17 @@ int polysIn(const std::filesystem::path& file) {
   return at == std::string::npos ? -1 : std::stoi(text.substr(at + 15));
 }
 
+// The triangles of a skull frame: those of every block file its .vtm lists.
+int polysOfFrame(const std::filesystem::path& vtm) {
+  tinyxml2::XMLDocument xml;
+  if (xml.LoadFile(vtm.c_str()) != tinyxml2::XML_SUCCESS) return -1;
+  int total = 0;
+  for (const auto* set = xml.RootElement()->FirstChildElement("vtkMultiBlockDataSet")->FirstChildElement("DataSet");
+       set; set = set->NextSiblingElement("DataSet"))
+    total += polysIn(vtm.parent_path() / set->Attribute("file"));
+  return total;
+}
+
 // A burr drilling the skull phantom (1.5 mm voxels) for 0.6 s, the surface
 // written at most every 0.1 s and the drilled volume saved at the end.
 std::string drillScene(bool drill) {
@@ -152,12 +163,23 @@ TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
   std::sort(skulls.begin(), skulls.end());
   ASSERT_GE(skulls.size(), 2u) << "the start and at least one drilled state";
   EXPECT_LE(skulls.size(), 8u) << "at most every 0.1 s, and the end";
+  // After the first frame only the drilled blocks get files: far fewer than the skull has.
+  size_t blockFiles = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk" / "skull")) blockFiles += entry.is_regular_file();
+  tinyxml2::XMLDocument first;
+  ASSERT_EQ(first.LoadFile(skulls.front().c_str()), tinyxml2::XML_SUCCESS);
+  size_t firstBlocks = 0;
+  for (const auto* set = first.RootElement()->FirstChildElement("vtkMultiBlockDataSet")->FirstChildElement("DataSet");
+       set; set = set->NextSiblingElement("DataSet"))
+    ++firstBlocks;
+  EXPECT_GT(blockFiles, firstBlocks) << "drilled blocks were written again";
+  EXPECT_LT(blockFiles, firstBlocks + firstBlocks / 4) << "only the drilled ones";
   voxel::DensityVolume drilled = voxel::readVolume(dir / "run" / "drilled.mha");
   voxel::BlockedIsoSurface expected;
   expected.build(voxel::SolidGrid::of(drilled, 600.0, true));
   const voxel::TriangleMesh merged = expected.merged();
-  EXPECT_EQ(polysIn(skulls.back()), int(merged.triangles.size()));
-  EXPECT_NE(polysIn(skulls.front()), polysIn(skulls.back())) << "the drill changed the surface";
+  EXPECT_EQ(polysOfFrame(skulls.back()), int(merged.triangles.size()));
+  EXPECT_NE(polysOfFrame(skulls.front()), polysOfFrame(skulls.back())) << "the drill changed the surface";
   const std::string summary = test::readFile(dir / "run" / "summary.json");
   const size_t at = summary.find("\"skull_edits\": ");
   ASSERT_NE(at, std::string::npos) << summary;
