@@ -103,7 +103,8 @@ void VtkExporter::writeBrain(double t) {
   const tetra::TetraBrain& brain = *l_brain;
   const std::vector<Vec3>& rest = brain.mesh().nodes;
   const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
-  if (!moved && m_brainWritten && !m_nodeForces->fetch()) return;  // rigid and untouched: its file stands
+  const bool newForces = m_nodeForces->fetch();  // every frame: a deforming brain's files carry them too
+  if (!moved && m_brainWritten && !newForces) return;  // rigid and untouched: its file stands
   const std::vector<Vec3>& nodes = moved ? m_positions->read().positions : rest;
   for (size_t i = 0; i < nodes.size(); ++i)
     for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);

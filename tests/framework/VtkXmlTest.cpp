@@ -12,34 +12,10 @@
 #include "framework/vtk/VtkXml.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
+#include "tests/support/VtkAppended.h"
 
 namespace trephine {
 namespace {
-
-// The values of the appended array at `offset` (raw, zlib blocks, UInt64 header).
-template <class T>
-std::vector<T> appendedArray(const std::string& file, uint64_t offset) {
-  const size_t start = file.find("<AppendedData encoding=\"raw\">\n_");
-  EXPECT_NE(start, std::string::npos);
-  const uint8_t* data = reinterpret_cast<const uint8_t*>(file.data()) + start + 31 + offset;
-  auto header = [&](size_t i) {
-    uint64_t v;
-    std::memcpy(&v, data + 8 * i, 8);
-    return v;
-  };
-  const uint64_t blocks = header(0), blockBytes = header(1), last = header(2);
-  std::vector<uint8_t> bytes(blocks ? (blocks - 1) * blockBytes + last : 0);
-  const uint8_t* block = data + 8 * (3 + blocks);
-  for (uint64_t b = 0; b < blocks; ++b) {
-    const uint64_t size = header(3 + b);
-    const std::span<uint8_t> out(bytes.data() + b * blockBytes, b + 1 == blocks ? last : blockBytes);
-    EXPECT_FALSE(inflateExactly({block, size}, out)) << "block " << b;
-    block += size;
-  }
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), bytes.size());
-  return values;
-}
 
 TEST(VtkXmlTest, ATetrahedralGridReadsBackThroughTheVtuReader) {
   test::TempDir dir;
@@ -72,7 +48,7 @@ TEST(VtkXmlTest, ATetrahedralGridReadsBackThroughTheVtuReader) {
   EXPECT_NE(text.find("<DataArray type=\"Float32\" Name=\"force\" NumberOfComponents=\"3\" format=\"appended\" "
                       "offset=\"0\"/>"),
             std::string::npos);
-  const std::vector<float> forces = appendedArray<float>(text, 0);
+  const std::vector<float> forces = test::appendedArray<float>(text, 0);
   EXPECT_EQ(forces, force.values);
 }
 
@@ -102,13 +78,13 @@ TEST(VtkXmlTest, PolyDataHoldsItsPointsAndCellsInTheAppendedBlocks) {
     ADD_FAILURE() << section << " " << (name ? name : "");
     return uint64_t(0);
   };
-  EXPECT_EQ(appendedArray<float>(text, offsetOf("Points", nullptr)),
+  EXPECT_EQ(test::appendedArray<float>(text, offsetOf("Points", nullptr)),
             (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}));
-  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Polys", "connectivity")), (std::vector<int32_t>{0, 1, 2, 0, 2, 3}));
-  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Polys", "offsets")), (std::vector<int32_t>{3, 6}));
-  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Lines", "connectivity")), (std::vector<int32_t>{0, 3}));
-  EXPECT_EQ(appendedArray<int32_t>(text, offsetOf("Verts", "connectivity")), (std::vector<int32_t>{3}));
-  EXPECT_EQ(appendedArray<float>(text, offsetOf("PointData", "depth")), data.pointData[0].values);
+  EXPECT_EQ(test::appendedArray<int32_t>(text, offsetOf("Polys", "connectivity")), (std::vector<int32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(test::appendedArray<int32_t>(text, offsetOf("Polys", "offsets")), (std::vector<int32_t>{3, 6}));
+  EXPECT_EQ(test::appendedArray<int32_t>(text, offsetOf("Lines", "connectivity")), (std::vector<int32_t>{0, 3}));
+  EXPECT_EQ(test::appendedArray<int32_t>(text, offsetOf("Verts", "connectivity")), (std::vector<int32_t>{3}));
+  EXPECT_EQ(test::appendedArray<float>(text, offsetOf("PointData", "depth")), data.pointData[0].values);
 }
 
 TEST(VtkXmlTest, BadDataIsRefusedWithTheFileAndNothingIsLeft) {
