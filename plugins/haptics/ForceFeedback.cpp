@@ -38,7 +38,8 @@ double ForceFeedback::damping() const { return l_proxy->changedTools() ? damping
 
 std::vector<std::string> ForceFeedback::sampleColumns() const {
   return {"device_x", "device_y", "device_z", "proxy_x",  "proxy_y",     "proxy_z",         "force_x", "force_y",
-          "force_z",  "normal_x", "normal_y", "normal_z", "penetration", "penetration_raw", "points",  "primitives"};
+          "force_z",  "normal_x", "normal_y", "normal_z", "penetration", "penetration_raw", "points",  "primitives",
+          "tool_radius"};
 }
 
 void ForceFeedback::tick(const TickContext& context) {
@@ -98,6 +99,7 @@ void ForceFeedback::tick(const TickContext& context) {
   sample.values[k++] = frame.rawPenetration;
   sample.values[k++] = s.points;
   sample.values[k++] = s.primitives;
+  sample.values[k++] = proxy.tool().boundingRadius();  // mm: the tool in hand (it changes with a ToolChange)
   m_samples->publish(sample);
 }
 

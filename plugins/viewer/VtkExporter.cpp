@@ -63,6 +63,7 @@ void VtkExporter::init(InitContext& context) {
     m_forceColumn = columnOf(columns, "force_x");
     m_normal = columnOf(columns, "normal_x");
     m_penetration = columnOf(columns, "penetration");
+    m_toolRadius = columnOf(columns, "tool_radius");
     if (m_device < 0 || m_proxy < 0 || m_forceColumn < 0)
       context.error(l_force, "publishes no device_x, proxy_x and force_x columns (a ForceFeedback does)");
     m_samples = context.channels().subscribe<Sample>(*l_force.boundComponent(), kSampleChannel);
@@ -104,8 +105,11 @@ void VtkExporter::writeBrain(double t) {
   const std::vector<Vec3>& rest = brain.mesh().nodes;
   const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
   const bool newForces = m_nodeForces->fetch();  // every frame: a deforming brain's files carry them too
-  if (!moved && m_brainWritten && !newForces) return;  // rigid and untouched: its file stands
   const std::vector<Vec3>& nodes = moved ? m_positions->read().positions : rest;
+  // A brain at rest between touches (the FEM still publishes) is not written
+  // again: its last file stands.
+  if (m_brainWritten && !newForces && nodes == m_writtenNodes) return;
+  m_writtenNodes = nodes;
   for (size_t i = 0; i < nodes.size(); ++i)
     for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);
   std::fill(m_force.values.begin(), m_force.values.end(), 0.0f);
@@ -133,6 +137,10 @@ void VtkExporter::writeTool(double t) {
                     {"normal", 3, {float(normal.x()), float(normal.y()), float(normal.z()), float(normal.x()),
                                    float(normal.y()), float(normal.z())}},
                     {"penetration", 1, {penetration, penetration}}};
+  if (m_toolRadius >= 0) {
+    const float radius = float(s.values[m_toolRadius]);  // mm
+    tool.pointData.push_back({"radius", 1, {radius, radius}});
+  }
   attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { vtk::writePolyData(tool, f); });
 }
 

@@ -6,8 +6,8 @@
 //                    node displacements (mm), the tool's forces on the nodes
 //                    (N) and the tissue labels;
 //   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, with the
-//                    force rendered to the hand (N), the contact normal and
-//                    the penetration (mm);
+//                    force rendered to the hand (N), the contact normal, the
+//                    penetration (mm) and the radius of the tool in hand (mm);
 //   skull_NNNNN.vtm  the skull's surface (the isosurface of its interpolated
 //                    density, as the mesh back-ends see it), block by block:
 //                    each block of 16^3 cells in skull/bBBBBB_NNNNN.vtp, at
@@ -18,8 +18,8 @@
 // into the directory `directory` of the run, and `directory`.pvd beside it
 // listing every file with its time. Only what the links name is written. The
 // haptic and FEM threads only copy into the channels' slots; the files are
-// written here, off their threads. A rigid brain is written again only when
-// the tool's forces on it change.
+// written here, off their threads. The brain is written again only when its
+// nodes moved or the tool's forces on it changed.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -90,9 +90,10 @@ class VtkExporter final : public Component {
   std::optional<vtk::TetCells> m_cells;  // compressed once
   vtk::DataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
   bool m_brainWritten = false;
+  std::vector<Vec3> m_writtenNodes;  // the positions of the last file
   // Tool: the source's columns, by name.
   std::optional<ChannelReader<Sample>> m_samples;
-  int m_device = -1, m_proxy = -1, m_forceColumn = -1, m_normal = -1, m_penetration = -1;
+  int m_device = -1, m_proxy = -1, m_forceColumn = -1, m_normal = -1, m_penetration = -1, m_toolRadius = -1;
 
   // Skull: a copy of its codes, kept current from the drill's changes (the
   // haptic thread pushes them into m_edits), and its surface in blocks.

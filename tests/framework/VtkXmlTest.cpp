@@ -6,9 +6,11 @@
 #include <tinyxml2.h>
 
 #include <cstring>
+#include <fstream>
 
 #include "framework/compression/Inflate.h"
 #include "framework/core/AtomicFile.h"
+#include "framework/vtk/VtkSurfaceReader.h"
 #include "framework/vtk/VtkXml.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
@@ -138,6 +140,34 @@ TEST(VtkXmlTest, TheCollectionListsEachDatasetWithItsTime) {
   EXPECT_DOUBLE_EQ(set->DoubleAttribute("timestep"), 1.0 / 30);
   EXPECT_EQ(set->IntAttribute("part"), 1);
   EXPECT_STREQ(set->NextSiblingElement("DataSet")->Attribute("file"), "a&b.vtu");
+}
+
+// The surface reader (trephine view's) reads back what the writer wrote:
+// over 32 KiB of points, so several zlib blocks.
+TEST(VtkXmlTest, TriangleSurfacesReadBackThroughTheSurfaceReader) {
+  test::TempDir dir;
+  vtk::PolyData surface;
+  for (int i = 0; i < 3000; ++i) surface.points.push_back(Vec3(i * 0.25, std::sin(i), -i / 7.0));
+  for (int i = 0; i + 2 < 3000; ++i) surface.triangles.push_back({i, i + 1, i + 2});
+  surface.lines = {{0, 5}};  // not a triangle: skipped
+  vtk::writePolyData(surface, dir.path() / "s.vtp");
+  const vtk::TriangleSurface read = vtk::readTriangleSurface(dir.path() / "s.vtp");
+  ASSERT_EQ(read.points.size(), surface.points.size());
+  for (size_t i = 0; i < read.points.size(); ++i)
+    EXPECT_LT((read.points[i] - surface.points[i]).norm(), 1e-4) << i;  // Float32
+  EXPECT_EQ(read.triangles, surface.triangles);
+
+  // A truncated file and a grid are errors that name the file.
+  const std::string bytes = test::readFile(dir.path() / "s.vtp");
+  std::ofstream(dir.path() / "cut.vtp", std::ios::binary) << bytes.substr(0, bytes.size() - 5000);
+  try {
+    vtk::readTriangleSurface(dir.path() / "cut.vtp");
+    ADD_FAILURE() << "a truncated file was read";
+  } catch (const vtk::VtkReadError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.vtp: "), std::string::npos) << e.what();
+  }
+  std::ofstream(dir.path() / "grid.vtp") << "<?xml version=\"1.0\"?><VTKFile type=\"UnstructuredGrid\"/>";
+  EXPECT_THROW(vtk::readTriangleSurface(dir.path() / "grid.vtp"), vtk::VtkReadError);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "tools/trephine/Reference.h"
 #include "tools/trephine/RunCommand.h"
 #include "tools/trephine/StudyCommand.h"
+#include "tools/trephine/ViewCommand.h"
 
 namespace {
 
@@ -76,6 +77,17 @@ usage:
       proxy holds the tool), fits a polynomial in log(delta), and writes tool_cellsize.csv, .json and .png; --calibrate
       fits the model's weights to those times. --deforming: the grids of a
       deforming mesh (boxes grown by the displacement margin).
+  trephine view RUN_DIR [--triangles N]
+      Write the browser viewer of a run whose scene has a VtkExporter:
+      RUN_DIR/view/index.html opens from the disk in a browser (nothing to
+      install, no network) and shows the skull, the brain, the tool, the
+      proxy and the force arrow in time, with a slider, play, and the force
+      and penetration plots (from trace.csv); a click on a plot goes to its
+      time. The skull is simplified to N triangles (15000: what a browser
+      without a graphics card, SwiftShader on one core, draws some 25 times
+      a second; give 500000 or more on a machine with one), the blocks the
+      drill changed kept whole while they fit in half of that. Needs the
+      viewer built (Node.js and npm, see tools/setup).
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
@@ -141,12 +153,15 @@ int main(int argc, char** argv) {
       if (!problem.empty()) std::cerr << "trephine: " << problem << "\n";
       return ok ? kOk : kSceneError;
     }
+  } else if (command == "view") {
+    error = parseArguments(argc, argv, {"--triangles"}, {}, arguments);
+    if (!error) return viewCommand(arguments);
   } else if (command == "phantom") {
     error = parseArguments(argc, argv, {"--out"}, {"--raw"}, arguments);
     if (!error) return phantomCommand(arguments);
   } else {
     std::cerr << "trephine: unknown command '" << command
-              << "' (run, validate, components, phantom, --help, --version)\n";
+              << "' (run, validate, study, components, phantom, mesh, cellsize, view, --help, --version)\n";
     return kUsage;
   }
   std::cerr << "trephine " << command << ": " << *error << "\n";

@@ -1,0 +1,290 @@
+// The 3D view (vtk.js): the skull's surface, the brain's boundary at its
+// current node positions, the device and the proxy, and the force on the hand
+// as an arrow.
+import '@kitware/vtk.js/Rendering/Profiles/Geometry';
+import vtkGenericRenderWindow from '@kitware/vtk.js/Rendering/Misc/GenericRenderWindow';
+import vtkActor from '@kitware/vtk.js/Rendering/Core/Actor';
+import vtkMapper from '@kitware/vtk.js/Rendering/Core/Mapper';
+import vtkPolyData from '@kitware/vtk.js/Common/DataModel/PolyData';
+import vtkSphereSource from '@kitware/vtk.js/Filters/Sources/SphereSource';
+import vtkArrowSource from '@kitware/vtk.js/Filters/Sources/ArrowSource';
+import { tetBoundary } from './tetSurface.js';
+
+// Colours (RGB, 0..1); the browser test looks for them.
+export const kColours = {
+  background: [0.12, 0.13, 0.16],
+  skull: [0.91, 0.87, 0.76],
+  brain: [0.9, 0.55, 0.6],
+  surface: [0.7, 0.75, 0.8],
+  proxy: [0.2, 0.45, 0.95],
+  device: [0.3, 0.85, 0.35],
+  force: [0.95, 0.25, 0.15],
+};
+
+function surfaceActor(colour) {
+  const polyData = vtkPolyData.newInstance();
+  const mapper = vtkMapper.newInstance({ scalarVisibility: false });
+  mapper.setInputData(polyData);
+  const actor = vtkActor.newInstance();
+  actor.setMapper(mapper);
+  actor.getProperty().setColor(...colour);
+  actor.getProperty().setDiffuse(0.85);
+  actor.getProperty().setAmbient(0.15);
+  actor.setVisibility(false);
+  return { polyData, actor };
+}
+
+function sourceActor(source, colour) {
+  const mapper = vtkMapper.newInstance({ scalarVisibility: false });
+  mapper.setInputConnection(source.getOutputPort());
+  const actor = vtkActor.newInstance();
+  actor.setMapper(mapper);
+  actor.getProperty().setColor(...colour);
+  actor.setVisibility(false);
+  return actor;
+}
+
+// A column-major matrix taking the unit arrow along +x (from 0 to 1) to
+// `from` + `vector`, `width` mm thick.
+function arrowMatrix(from, vector, width) {
+  const length = Math.hypot(...vector);
+  const x = vector.map((v) => v / length);
+  const helper = Math.abs(x[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  let y = cross(x, helper);
+  const norm = Math.hypot(...y);
+  y = y.map((v) => v / norm);
+  const z = cross(x, y);
+  return [
+    ...x.map((v) => v * length), 0,
+    ...y.map((v) => v * width), 0,
+    ...z.map((v) => v * width), 0,
+    ...from, 1,
+  ];
+}
+
+export class Scene3d {
+  constructor(container) {
+    this.view = vtkGenericRenderWindow.newInstance({ background: kColours.background, listenWindowResize: true });
+    this.view.setContainer(container);
+    this.pixelScale = 1;  // drawn pixels per CSS pixel (and device pixel ratio)
+    this.view.resize();
+    this.renderer = this.view.getRenderer();
+    this.renderWindow = this.view.getRenderWindow();
+    this.parts = new Map();  // part name -> its drawing
+    this.hidden = new Set();  // part names the user hid
+    this.opacity = new Map();  // part name -> opacity (0..1)
+    this.cameraSet = false;
+    this.forceScale = 10;  // mm of arrow per N; set from the run's largest force
+  }
+
+  setForceScale(maxForce, sceneSize) {
+    if (maxForce > 0) this.forceScale = (0.2 * sceneSize) / maxForce;
+  }
+
+  // Draws part `name` of kind `kind` from `files` (one file, or a .vtm's
+  // blocks) at `key` (a state: nothing is rebuilt when it did not change).
+  show(name, kind, key, files) {
+    let part = this.parts.get(name);
+    if (!part) {
+      part = this.createPart(kind);
+      part.name = name;
+      this.parts.set(name, part);
+      if (this.opacity.has(name)) this.setOpacity(name, this.opacity.get(name));
+    }
+    if (part.key === key) return;
+    part.key = key;
+    if (kind === 'mesh') this.updateMesh(part, files[0]);
+    else if (kind === 'blocks') this.updateBlocks(part, files);
+    else if (kind === 'tool') this.updateTool(part, files[0]);
+    else this.updateSurface(part, files[0]);
+  }
+
+  createPart(kind) {
+    if (kind === 'tool') {
+      const proxySource = vtkSphereSource.newInstance({ thetaResolution: 24, phiResolution: 16 });
+      const deviceSource = vtkSphereSource.newInstance({ thetaResolution: 16, phiResolution: 12 });
+      const arrowSource = vtkArrowSource.newInstance({ tipLength: 0.3, tipRadius: 0.25, shaftRadius: 0.1 });
+      arrowSource.update();
+      // The arrow from 0 to 1 along x (its source centres it).
+      const arrow = arrowSource.getOutputData();
+      const arrowPoints = arrow.getPoints().getData();
+      for (let i = 0; i < arrowPoints.length; i += 3) arrowPoints[i] += 0.5;
+      const arrowMapper = vtkMapper.newInstance({ scalarVisibility: false });
+      arrowMapper.setInputData(arrow);
+      const arrowActor = vtkActor.newInstance();
+      arrowActor.setMapper(arrowMapper);
+      arrowActor.getProperty().setColor(...kColours.force);
+      arrowActor.setVisibility(false);
+      const part = {
+        proxySource,
+        deviceSource,
+        proxy: sourceActor(proxySource, kColours.proxy),
+        device: sourceActor(deviceSource, kColours.device),
+        arrow: arrowActor,
+      };
+      for (const actor of [part.proxy, part.device, part.arrow]) this.renderer.addActor(actor);
+      return part;
+    }
+    const colour = kind === 'mesh' ? kColours.brain : kind === 'blocks' ? kColours.skull : kColours.surface;
+    const part = surfaceActor(colour);
+    this.renderer.addActor(part.actor);
+    return part;
+  }
+
+  updateMesh(part, file) {
+    const points = file.array('Points');
+    const topology = `${file.count('NumberOfPoints')}/${file.count('NumberOfCells')}`;
+    if (part.topology !== topology) {
+      part.topology = topology;
+      const polys = tetBoundary(points, file.array('Cells', 'connectivity'), file.array('Cells', 'offsets'),
+                                file.array('Cells', 'types'));
+      part.polyData.getPolys().setData(polys, 1);
+    }
+    part.polyData.getPoints().setData(points, 3);
+    part.polyData.modified();
+    part.hasData = true;
+    this.applyVisibility(part);
+  }
+
+  // A polygonal surface: its triangles (polygons of 3 corners) only.
+  static triangles(file, cache) {
+    if (file.surface) return file.surface();
+    let found = cache && cache.get(file.name);
+    if (found) return found;
+    const points = file.array('Points') || new Float32Array(0);
+    const connectivity = file.array('Polys', 'connectivity') || new Int32Array(0);
+    const offsets = file.array('Polys', 'offsets') || new Int32Array(0);
+    const triangles = [];
+    let start = 0;
+    for (const end of offsets) {
+      if (end - start === 3) triangles.push(connectivity[start], connectivity[start + 1], connectivity[start + 2]);
+      start = end;
+    }
+    found = { points, triangles: Uint32Array.from(triangles) };
+    if (cache) cache.set(file.name, found);
+    return found;
+  }
+
+  updateSurface(part, file) {
+    const { points, triangles } = Scene3d.triangles(file, null);
+    this.setTriangles(part, [{ points, triangles }]);
+  }
+
+  updateBlocks(part, files) {
+    part.blockCache = part.blockCache || new Map();
+    this.setTriangles(part, files.map((file) => Scene3d.triangles(file, part.blockCache)));
+  }
+
+  setTriangles(part, pieces) {
+    let pointCount = 0;
+    let triangleCount = 0;
+    for (const piece of pieces) {
+      pointCount += piece.points.length / 3;
+      triangleCount += piece.triangles.length / 3;
+    }
+    const points = new Float32Array(pointCount * 3);
+    const polys = new Uint32Array(triangleCount * 4);
+    let p = 0;
+    let t = 0;
+    for (const piece of pieces) {
+      points.set(piece.points, p * 3);
+      const triangles = piece.triangles;
+      for (let i = 0; i < triangles.length; i += 3, ++t) {
+        polys[4 * t] = 3;
+        polys[4 * t + 1] = triangles[i] + p;
+        polys[4 * t + 2] = triangles[i + 1] + p;
+        polys[4 * t + 3] = triangles[i + 2] + p;
+      }
+      p += piece.points.length / 3;
+    }
+    part.polyData.getPoints().setData(points, 3);
+    part.polyData.getPolys().setData(polys, 1);
+    part.polyData.modified();
+    part.hasData = triangleCount > 0;
+    this.applyVisibility(part);
+    part.triangleCount = triangleCount;
+  }
+
+  updateTool(part, file) {
+    const points = file.array('Points');
+    const force = file.array('PointData', 'force');
+    const radius = file.array('PointData', 'radius');
+    if (!points || points.length < 6) return;
+    const device = Array.from(points.subarray(0, 3));
+    const proxy = Array.from(points.subarray(3, 6));
+    const toolRadius = radius ? radius[1] : 2.5;  // mm
+    part.proxySource.setCenter(...proxy);
+    part.proxySource.setRadius(toolRadius);
+    part.deviceSource.setCenter(...device);
+    part.deviceSource.setRadius(0.4 * toolRadius);
+    part.hasTool = true;
+    const f = force ? Array.from(force.subarray(3, 6)) : [0, 0, 0];
+    const length = Math.hypot(...f) * this.forceScale;
+    if (length > 1e-3) {
+      part.arrow.setUserMatrix(arrowMatrix(proxy, f.map((v) => v * this.forceScale), Math.max(toolRadius, 0.2 * length)));
+      part.hasArrow = true;
+    } else {
+      part.hasArrow = false;
+    }
+    this.applyVisibility(part);
+  }
+
+  // The actors of a part, each with whether it has something to draw.
+  static actorsOf(part) {
+    if (part.proxy) return [[part.proxy, part.hasTool], [part.device, part.hasTool], [part.arrow, part.hasArrow]];
+    return [[part.actor, part.hasData]];
+  }
+
+  applyVisibility(part) {
+    const shown = !this.hidden.has(part.name);
+    for (const [actor, has] of Scene3d.actorsOf(part)) actor.setVisibility(shown && Boolean(has));
+  }
+
+  setHidden(name, hidden) {
+    if (hidden) this.hidden.add(name);
+    else this.hidden.delete(name);
+    const part = this.parts.get(name);
+    if (part) this.applyVisibility(part);
+  }
+
+  setOpacity(name, opacity) {
+    this.opacity.set(name, opacity);
+    const part = this.parts.get(name);
+    if (part) for (const [actor] of Scene3d.actorsOf(part)) actor.getProperty().setOpacity(opacity);
+  }
+
+  resetCameraOnce() {
+    if (this.cameraSet) return;
+    this.cameraSet = true;
+    const camera = this.renderer.getActiveCamera();
+    // From the front and a little above: +y is posterior and +z superior
+    // in the scanner's frame of the phantoms.
+    camera.setPosition(0.8, -1, 0.6);
+    camera.setFocalPoint(0, 0, 0);
+    camera.setViewUp(0, 0, 1);
+    this.renderer.resetCamera();
+    this.renderer.getActiveCamera().zoom(1.4);  // resetCamera leaves a wide margin
+  }
+
+  // Draws at `scale` of the display's pixels (the canvas is stretched): a
+  // software renderer shades a quarter of the pixels at 0.5.
+  setPixelScale(scale) {
+    this.pixelScale = scale;
+    const box = this.view.getContainer().getBoundingClientRect();
+    const ratio = (window.devicePixelRatio || 1) * scale;
+    this.view.getApiSpecificRenderWindow().setSize(Math.max(1, Math.floor(box.width * ratio)),
+                                                   Math.max(1, Math.floor(box.height * ratio)));
+  }
+
+  render() {
+    this.renderWindow.render();
+  }
+
+  triangleCount(name) {
+    const part = this.parts.get(name);
+    if (!part) return 0;
+    if (part.triangleCount) return part.triangleCount;
+    return part.polyData ? part.polyData.getPolys().getNumberOfCells() : 0;
+  }
+}

@@ -1,0 +1,255 @@
+// Loads a run's viewer (trephine view) in headless Chromium and checks what
+// it draws:
+//   - it opens (the first frame drawn) within --open-limit seconds, with no
+//     console error;
+//   - at two times, the parts named by --parts are drawn in their colours in
+//     the 3D view (the brain's near its middle), and the two screenshots
+//     differ where the tool moved;
+//   - a click on the plots goes to the time under the click;
+//   - playing at real time, it draws the run's frames at --min-fps or more.
+// Screenshots and results.json go to --out for a person to look at.
+//   node viewerBrowserTest.mjs --web plugins/viewer/web --view RUN/view --out DIR
+//        --times T1,T2 --parts brain,tool[,skull] [--open-limit S] [--min-fps F]
+import { createRequire } from 'node:module';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { decodePng } from './png.mjs';
+
+const options = {};
+for (let i = 2; i < process.argv.length; i += 2) options[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
+for (const required of ['web', 'view', 'out', 'times', 'parts']) {
+  if (!options[required]) {
+    console.error(`viewerBrowserTest: --${required} is missing`);
+    process.exit(2);
+  }
+}
+const { chromium } = createRequire(path.resolve(options.web, 'package.json'))('playwright-core');
+const times = options.times.split(',').map(Number);
+const parts = options.parts.split(',');
+const openLimit = Number(options['open-limit'] || 3);
+const minFps = Number(options['min-fps'] || 0);
+mkdirSync(options.out, { recursive: true });
+
+// The colours the viewer draws (its scene3d.js), as chromaticities: shading
+// scales a colour, so a pixel's colour over its largest channel is the
+// material's whatever the light.
+const kMaterials = {
+  skull: [0.91, 0.87, 0.76],
+  brain: [0.9, 0.55, 0.6],
+  proxy: [0.2, 0.45, 0.95],
+  device: [0.3, 0.85, 0.35],
+  force: [0.95, 0.25, 0.15],
+};
+const chroma = (rgb) => {
+  const top = Math.max(...rgb);
+  return rgb.map((v) => v / top);
+};
+const kChroma = Object.fromEntries(Object.entries(kMaterials).map(([name, rgb]) => [name, chroma(rgb)]));
+
+// Per material: its pixel count and their centroid and box; `changed`: the
+// pixels that differ from `other` (same size).
+function classify(image) {
+  const found = {};
+  for (const name of Object.keys(kChroma)) found[name] = { count: 0, x: 0, y: 0, box: [Infinity, Infinity, -Infinity, -Infinity] };
+  const { width, height, pixels } = image;
+  for (let y = 0; y < height; ++y) {
+    for (let x = 0; x < width; ++x) {
+      const o = 4 * (y * width + x);
+      const rgb = [pixels[o], pixels[o + 1], pixels[o + 2]];
+      const top = Math.max(...rgb);
+      if (top < 60) continue;  // background or deep shadow
+      const c = rgb.map((v) => v / top);
+      for (const [name, target] of Object.entries(kChroma)) {
+        if (Math.hypot(c[0] - target[0], c[1] - target[1], c[2] - target[2]) > 0.07) continue;
+        const f = found[name];
+        f.count += 1;
+        f.x += x;
+        f.y += y;
+        f.box = [Math.min(f.box[0], x), Math.min(f.box[1], y), Math.max(f.box[2], x), Math.max(f.box[3], y)];
+        break;
+      }
+    }
+  }
+  for (const f of Object.values(found)) {
+    if (f.count) {
+      f.x /= f.count;
+      f.y /= f.count;
+    }
+  }
+  return found;
+}
+
+const failures = [];
+const check = (ok, message) => {
+  if (!ok) failures.push(message);
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
+};
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: [
+    '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
+    '--disable-quic',
+  ],
+});
+const results = { times, screenshots: [] };
+try {
+  const page = await browser.newPage({ viewport: { width: 1000, height: 760 } });
+  const consoleErrors = [];
+  page.on('console', (message) => {
+    if (message.type() === 'error') consoleErrors.push(message.text());
+  });
+  page.on('pageerror', (error) => consoleErrors.push(String(error)));
+  const url = pathToFileURL(path.resolve(options.view, 'index.html')).href;
+  const viewer = () => page.evaluate(() => {
+    const s = window.trephineViewer;
+    return s && { ready: s.ready, openSeconds: s.openSeconds, time: s.time, frame: s.frame, framesDrawn: s.framesDrawn,
+                  triangles: s.triangles, errors: s.errors, renderer: s.renderer };
+  });
+  const settle = async (frame) => {
+    await page.waitForFunction((f) => window.trephineViewer && window.trephineViewer.ready &&
+                                      (f < 0 || window.trephineViewer.frame === f), frame, { timeout: 60000 });
+    // Two animation frames: the render reaches the canvas.
+    await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+  };
+
+  // Opening, at the first time.
+  await page.goto(`${url}?t=${times[0]}`);
+  await settle(-1);
+  let state = await viewer();
+  results.openSeconds = state.openSeconds;
+  results.renderer = state.renderer;
+  results.triangles = state.triangles;
+  check(state.openSeconds < openLimit, `opens in ${state.openSeconds.toFixed(2)} s (limit ${openLimit} s) with ${state.renderer}`);
+  for (const part of parts.filter((p) => p !== 'tool'))
+    check(state.triangles[part] > 0, `${part}: ${state.triangles[part]} triangles drawn`);
+
+  const view = page.locator('#view');
+  const toggle = async (part, on) => {
+    const box = page.locator('#parts label', { hasText: part }).locator('input');
+    if ((await box.isChecked()) !== on) await box.click();
+    await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+  };
+  const shoot = async (name) => {
+    const png = await view.screenshot();
+    const file = path.join(options.out, name);
+    writeFileSync(file, png);
+    results.screenshots.push(file);
+    const image = decodePng(png);
+    return { image, found: classify(image), area: image.width * image.height };
+  };
+  // The skull hides what is inside it: each time is shot with every part,
+  // then with the skull's checkbox off.
+  const shots = [];
+  for (const [i, t] of times.entries()) {
+    const frame = await page.evaluate((time) => {
+      window.trephineViewer.seek(time);
+      const frames = window.trephineRun.frames;
+      let k = 0;
+      while (k + 1 < frames.length && frames[k + 1].t <= time + 1e-9) ++k;
+      return k;
+    }, t);
+    await settle(frame);
+    if (parts.includes('skull')) {
+      const all = await shoot(`viewer_t${i}_${t}s.png`);
+      check(all.found.skull.count >= 0.01 * all.area,
+            `t = ${t} s: skull drawn on ${all.found.skull.count} pixels (at least ${Math.round(0.01 * all.area)})`);
+      await toggle('skull', false);
+    }
+    const inside = await shoot(parts.includes('skull') ? `viewer_t${i}_${t}s_no_skull.png` : `viewer_t${i}_${t}s.png`);
+    if (parts.includes('skull')) await toggle('skull', true);
+    shots.push(inside);
+    for (const part of parts.filter((p) => p !== 'skull')) {
+      const name = part === 'tool' ? 'proxy' : part;
+      const least = name === 'proxy' ? 20 : 0.01 * inside.area;
+      check(inside.found[name].count >= least,
+            `t = ${t} s: ${name} drawn on ${inside.found[name].count} pixels (at least ${Math.round(least)})`);
+    }
+    if (parts.includes('brain')) {
+      const b = inside.found.brain;
+      const { width, height } = inside.image;
+      check(Math.abs(b.x / width - 0.5) < 0.3 && Math.abs(b.y / height - 0.5) < 0.35,
+            `t = ${t} s: the brain's centroid (${(b.x / width).toFixed(2)}, ${(b.y / height).toFixed(2)} of the view) near the middle`);
+    }
+  }
+  // The two times differ where the tool moved: most changed pixels lie in
+  // the box around the proxy and its force arrow at both times (grown by
+  // twice the proxy's size).
+  if (shots.length === 2 && parts.includes('tool')) {
+    const [a, b] = shots;
+    const pa = a.found.proxy;
+    const pb = b.found.proxy;
+    // The tool: the proxy and the force arrow at either time.
+    const boxes = [pa.box, pb.box, a.found.force.box, b.found.force.box].filter((q) => q[0] <= q[2]);
+    const grow = 2 * Math.max(pa.box[2] - pa.box[0], pb.box[2] - pb.box[0], 10);
+    const box = [Math.min(...boxes.map((q) => q[0])) - grow, Math.min(...boxes.map((q) => q[1])) - grow,
+                 Math.max(...boxes.map((q) => q[2])) + grow, Math.max(...boxes.map((q) => q[3])) + grow];
+    let changed = 0;
+    let inside = 0;
+    const { width, height } = a.image;
+    for (let y = 0; y < height; ++y) {
+      for (let x = 0; x < width; ++x) {
+        const o = 4 * (y * width + x);
+        const d = Math.abs(a.image.pixels[o] - b.image.pixels[o]) + Math.abs(a.image.pixels[o + 1] - b.image.pixels[o + 1]) +
+                  Math.abs(a.image.pixels[o + 2] - b.image.pixels[o + 2]);
+        if (d < 40) continue;
+        ++changed;
+        if (x >= box[0] && x <= box[2] && y >= box[1] && y <= box[3]) ++inside;
+      }
+    }
+    const moved = Math.hypot(pa.x - pb.x, pa.y - pb.y);
+    results.toolMovedPixels = moved;
+    results.changedPixels = changed;
+    results.changedNearTool = changed ? inside / changed : 0;
+    check(moved > 3, `the proxy moved ${moved.toFixed(1)} pixels between the two times`);
+    check(changed > 100 && inside / changed > 0.5,
+          `${changed} pixels changed, ${(100 * results.changedNearTool).toFixed(0)}% of them around the tool (at least half; the rest: the brain deforming under it)`);
+  }
+
+  // A click on the plots goes to its time.
+  const plots = page.locator('#plots');
+  const box = await plots.boundingBox();
+  const target = times[times.length - 1] / 2;
+  const end = await page.evaluate(() => window.trephineRun.end);
+  const left = 64;
+  const right = 12;
+  await page.mouse.click(box.x + left + ((box.width - left - right) * target) / end, box.y + box.height / 2);
+  state = await viewer();
+  check(Math.abs(state.time - target) < 0.01 * end + 1e-3, `a click on the plots at ${target.toFixed(3)} s goes to ${state.time.toFixed(3)} s`);
+
+  // Playing at real time from the start.
+  if (minFps > 0) {
+    await page.goto(`${url}?t=0&play=1`);
+    await settle(-1);
+    const before = await viewer();
+    const seconds = 3;
+    const rafs = await page.evaluate((s) => new Promise((done) => {
+      let n = 0;
+      const start = performance.now();
+      const step = (now) => {
+        ++n;
+        if (now - start < s * 1000) requestAnimationFrame(step);
+        else done(n / ((now - start) / 1000));
+      };
+      requestAnimationFrame(step);
+    }), seconds);
+    const after = await viewer();
+    const runFrames = await page.evaluate(([t0, t1]) => window.trephineRun.frames.filter((f) => f.t > t0 && f.t <= t1).length,
+                                          [before.time, after.time]);
+    const elapsed = after.time - before.time;  // s of the run played
+    results.playFps = (after.framesDrawn - before.framesDrawn) / seconds;
+    results.runFramesPerSecond = runFrames / Math.max(elapsed, 1e-9);
+    results.animationFps = rafs;
+    check(results.playFps >= minFps,
+          `plays ${results.playFps.toFixed(1)} frames a second (the run has ${results.runFramesPerSecond.toFixed(1)}; browser animation ${rafs.toFixed(1)}/s; at least ${minFps})`);
+  }
+  results.consoleErrors = consoleErrors;
+  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
+} finally {
+  await browser.close();
+}
+results.failures = failures;
+writeFileSync(path.join(options.out, 'results.json'), JSON.stringify(results, null, 2));
+process.exit(failures.length ? 1 : 0);

@@ -1,0 +1,209 @@
+// `trephine view`: the viewer's data from a run's VTK files (every frame's
+// files, packed byte for byte; the skull simplified to the budget; the plots
+// from trace.csv) and clear errors for runs it cannot show. The browser
+// itself is tested by tests/plugins/viewer/browser.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+
+#include "tests/support/TestSupport.h"
+#include "tools/trephine/RunViewerData.h"
+#include "tools/trephine/VertexClustering.h"
+
+namespace trephine {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runProgram;
+
+// Standard base64 decoding, written apart from the encoder under test.
+std::string decodeBase64(const std::string& text) {
+  std::string out;
+  uint32_t bits = 0;
+  int count = 0;
+  for (char c : text) {
+    int v = c >= 'A' && c <= 'Z'   ? c - 'A'
+            : c >= 'a' && c <= 'z' ? c - 'a' + 26
+            : c >= '0' && c <= '9' ? c - '0' + 52
+            : c == '+'             ? 62
+            : c == '/'             ? 63
+                                   : -1;
+    if (v < 0) continue;  // padding
+    bits = (bits << 6) | uint32_t(v);
+    if ((count += 6) >= 8) {
+      count -= 8;
+      out += char((bits >> count) & 0xff);
+    }
+  }
+  return out;
+}
+
+TEST(ViewCommandTest, Base64MatchesTheStandardForEveryRemainder) {
+  EXPECT_EQ(cli::base64(""), "");
+  EXPECT_EQ(cli::base64("f"), "Zg==");
+  EXPECT_EQ(cli::base64("fo"), "Zm8=");
+  EXPECT_EQ(cli::base64("foo"), "Zm9v");
+  EXPECT_EQ(cli::base64("foobar"), "Zm9vYmFy");  // RFC 4648's test vectors
+  std::string bytes;
+  for (int i = 0; i < 1000; ++i) bytes += char(i * 37 + 11);
+  EXPECT_EQ(decodeBase64(cli::base64(bytes)), bytes);
+}
+
+// A viewer's assets stand-in, so these tests do not need the bundle built.
+struct FakeAssets {
+  test::TempDir dir{"trephine-viewer-assets"};
+  FakeAssets() {
+    std::ofstream(dir.path() / "index.html") << "<html></html>";
+    std::ofstream(dir.path() / "viewer.js") << "// viewer";
+  }
+  std::string environment() const { return "TREPHINE_VIEWER_ASSETS=" + dir.path().string(); }
+};
+
+TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
+  test::TempDir dir;
+  const fs::path run = dir.path() / "run";
+  std::string out;
+  // The default scene for 3 s: the burr reaches the bone at 0.8 s and drills.
+  ASSERT_EQ(runProgram({"run", (test::sourceDir() / "scenes/integrated.xml").string(), "--duration", "3", "--out",
+                        run.string(), "--quiet"},
+                       &out),
+            0)
+      << out;
+  FakeAssets assets;
+  ASSERT_EQ(runProgram({"view", run.string(), "--triangles", "4000"}, &out, assets.environment()), 0) << out;
+  EXPECT_TRUE(fs::exists(run / "view/index.html"));
+  EXPECT_TRUE(fs::exists(run / "view/viewer.js"));
+  const std::string manifest = test::readFile(run / "view/data/manifest.js");
+  ASSERT_TRUE(manifest.starts_with("window.trephineRun = {")) << manifest.substr(0, 100);
+  for (const char* part : {"\"skull\"", "\"brain\"", "\"tool\""}) EXPECT_NE(manifest.find(part), std::string::npos) << part;
+  EXPECT_NE(manifest.find("\"plots\": {"), std::string::npos) << "trace.csv gives the plots";
+
+  // One frame per time of the .pvd, 30 a second over 3 s.
+  const std::string pvd = test::readFile(run / "vtk.pvd");
+  std::set<std::string> times;
+  const std::regex timestep("timestep=\"([^\"]+)\"");
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), timestep); it != std::sregex_iterator(); ++it)
+    times.insert((*it)[1]);
+  EXPECT_GE(times.size(), 90u) << "30 a second, and the skull as the run left it";
+  const std::regex frame("\"t\": [0-9]");
+  EXPECT_EQ(size_t(std::distance(std::sregex_iterator(manifest.begin(), manifest.end(), frame), std::sregex_iterator())),
+            times.size());
+
+  // Each tool file the .pvd lists is in a chunk, byte for byte.
+  std::string chunks;
+  for (const auto& entry : fs::directory_iterator(run / "view/data"))
+    if (entry.path().filename().string().starts_with("chunk_")) chunks += test::readFile(entry.path());
+  size_t checked = 0;
+  for (const std::string file : {"vtk/tool_00000.vtp", "vtk/tool_00045.vtp", "vtk/brain_00000.vtu"}) {
+    const size_t at = chunks.find("\"" + file + "\": \"");
+    ASSERT_NE(at, std::string::npos) << file;
+    const size_t start = at + file.size() + 5, end = chunks.find('"', start);
+    EXPECT_EQ(decodeBase64(chunks.substr(start, end - start)), test::readFile(run / file)) << file;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3u);
+
+  // The skull within its budget of triangles, the drilled blocks apart.
+  std::smatch numbers;
+  ASSERT_TRUE(std::regex_search(out, numbers, std::regex("skull: (\\d+) triangles drawn as (\\d+)"))) << out;
+  const double full = std::stod(numbers[1]), drawn = std::stod(numbers[2]);
+  EXPECT_GT(full, 100000) << "the 1 mm skull phantom";
+  EXPECT_LE(drawn, 4000) << out;
+  EXPECT_GT(drawn, 1000) << out;
+  EXPECT_NE(manifest.find("skull/untouched.tri"), std::string::npos);
+  EXPECT_NE(manifest.find("skull/drilled_"), std::string::npos) << "the drill changed blocks after 0.8 s";
+}
+
+TEST(ViewCommandTest, RunsItCannotShowAreClearErrors) {
+  test::TempDir dir;
+  FakeAssets assets;
+  std::string out;
+  EXPECT_EQ(runProgram({"view"}, &out, assets.environment()), 2);
+  EXPECT_EQ(runProgram({"view", (dir.path() / "absent").string()}, &out, assets.environment()), 1);
+  EXPECT_NE(out.find("not a directory"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"view", dir.path().string()}, &out, assets.environment()), 1);
+  EXPECT_NE(out.find("no .pvd index"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"view", dir.path().string(), "--triangles", "12x"}, &out, assets.environment()), 2);
+  // An index that lists a file that is not there, and one that is not XML.
+  std::ofstream(dir.path() / "vtk.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n<Collection>\n"
+                                           "<DataSet timestep=\"0\" part=\"0\" file=\"vtk/brain_00000.vtu\"/>\n"
+                                           "</Collection>\n</VTKFile>\n";
+  EXPECT_EQ(runProgram({"view", dir.path().string()}, &out, assets.environment()), 1);
+  EXPECT_NE(out.find("lists vtk/brain_00000.vtu, which is missing"), std::string::npos) << out;
+  std::ofstream(dir.path() / "vtk.pvd") << "<VTKFile type=\"Collection\"><Collection><DataSet timestep=";
+  EXPECT_EQ(runProgram({"view", dir.path().string()}, &out, assets.environment()), 1);
+  EXPECT_NE(out.find("vtk.pvd:1: not XML"), std::string::npos) << out;
+}
+
+// A sphere of radius 50 mm as a UV grid of about 2 x n^2 triangles.
+vtk::TriangleSurface sphere(int n) {
+  vtk::TriangleSurface s;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const double theta = M_PI * i / n, phi = M_PI * j / n;
+      s.points.push_back(50 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const int a = i * 2 * n + j, b = i * 2 * n + (j + 1) % (2 * n), c = a + 2 * n, d = b + 2 * n;
+      if (i > 0) s.triangles.push_back({a, b, d});
+      if (i + 1 < n) s.triangles.push_back({a, d, c});
+    }
+  return s;
+}
+
+TEST(VertexClusteringTest, MeetsTheBudgetAndKeepsTheShape) {
+  const vtk::TriangleSurface fine = sphere(150);  // 89,400 triangles, 1 mm edges
+  ASSERT_GT(fine.triangles.size(), 80000u);
+  double cell = 0;
+  const vtk::TriangleSurface coarse = cli::simplifyToBudget({&fine}, 3000, 0, &cell);
+  EXPECT_LE(coarse.triangles.size(), 3000u);
+  EXPECT_GT(coarse.triangles.size(), 1500u) << "the cell grows by 1.25 a try: not far under the budget";
+  EXPECT_GT(cell, 1.0);
+  // The cluster means stay near the sphere (within a cell of it) and cover
+  // it: the clustered surface's area is the sphere's within 10%.
+  double area = 0;
+  for (const Vec3& p : coarse.points) EXPECT_NEAR(p.norm(), 50.0, cell);
+  for (const auto& t : coarse.triangles)
+    area += 0.5 * (coarse.points[t[1]] - coarse.points[t[0]]).cross(coarse.points[t[2]] - coarse.points[t[0]]).norm();
+  EXPECT_NEAR(area, 4 * M_PI * 50 * 50, 0.1 * 4 * M_PI * 50 * 50);
+  // Within the budget: unchanged.
+  const vtk::TriangleSurface same = cli::simplifyToBudget({&fine}, 100000, 0, &cell);
+  EXPECT_EQ(same.triangles.size(), fine.triangles.size());
+  EXPECT_EQ(cell, 0.0);
+}
+
+TEST(VertexClusteringTest, PiecesAddedApartJoinWithoutCracks) {
+  // A sphere cut in two halves and clustered piece by piece gives the
+  // clustering of the whole sphere: the same triangles on the same points,
+  // no crack along the cut.
+  const vtk::TriangleSurface whole = sphere(60);
+  vtk::TriangleSurface top = whole, bottom = whole;
+  top.triangles.clear();
+  bottom.triangles.clear();
+  for (const auto& t : whole.triangles) (whole.points[t[0]].z() > 0 ? top : bottom).triangles.push_back(t);
+  auto openEdges = [](const vtk::TriangleSurface& s) {
+    std::map<std::pair<int, int>, int> edges;
+    for (const auto& t : s.triangles)
+      for (int k = 0; k < 3; ++k) ++edges[std::minmax(t[k], t[(k + 1) % 3])];
+    size_t open = 0;
+    for (const auto& [edge, n] : edges) open += n == 1;
+    return open;
+  };
+  cli::VertexClustering pieces(7.0), one(7.0);
+  pieces.add(top);
+  pieces.add(bottom);
+  one.add(whole);
+  const vtk::TriangleSurface joined = pieces.result(), reference = one.result();
+  EXPECT_GT(joined.triangles.size(), 100u);
+  EXPECT_EQ(joined.triangles.size(), reference.triangles.size());
+  EXPECT_EQ(openEdges(joined), openEdges(reference));
+  EXPECT_EQ(joined.points.size(), reference.points.size());
+}
+
+}  // namespace
+}  // namespace trephine

@@ -1,0 +1,469 @@
+#include "tools/trephine/RunViewerData.h"
+
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "framework/runtime/JsonWriter.h"
+#include "framework/vtk/VtkSurfaceReader.h"
+#include "tools/trephine/VertexClustering.h"
+
+namespace trephine::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Plots keep at most this many points (each the largest of its rows): a
+// plot is at most a few thousand pixels wide.
+constexpr size_t kPlotPoints = 4000;
+
+struct IndexEntry {
+  double time = 0;  // s
+  std::string file;  // relative to the run directory
+};
+
+struct PartState {
+  std::string file;
+  std::vector<std::pair<int, std::string>> changes;  // blocks: (block, file or "")
+};
+
+struct Part {
+  std::string name, kind;
+  std::vector<double> times;
+  std::vector<PartState> states;
+};
+
+std::string readBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ViewerDataError(file.string() + ": cannot be read");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+void loadXml(tinyxml2::XMLDocument& document, const fs::path& file, const char* expected) {
+  const std::string text = readBytes(file);
+  if (document.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw ViewerDataError(file.string() + ":" + std::to_string(document.ErrorLineNum()) + ": not XML (" +
+                          document.ErrorStr() + ")");
+  const tinyxml2::XMLElement* root = document.RootElement();
+  if (!root || std::string(root->Name()) != "VTKFile" || !root->FirstChildElement(expected))
+    throw ViewerDataError(file.string() + ": expected a VTKFile holding a " + expected);
+}
+
+// "vtk/brain_00012.vtu" -> "brain": the series a file belongs to.
+std::string seriesName(const fs::path& file) {
+  std::string stem = file.stem().string();
+  const size_t underscore = stem.find_last_of('_');
+  if (underscore != std::string::npos && underscore + 1 < stem.size() &&
+      std::all_of(stem.begin() + underscore + 1, stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    stem.resize(underscore);
+  return stem;
+}
+
+std::vector<IndexEntry> readCollection(const fs::path& pvd, const fs::path& run) {
+  tinyxml2::XMLDocument document;
+  loadXml(document, pvd, "Collection");
+  std::vector<IndexEntry> entries;
+  const auto* collection = document.RootElement()->FirstChildElement("Collection");
+  for (const auto* e = collection->FirstChildElement("DataSet"); e; e = e->NextSiblingElement("DataSet")) {
+    const char* file = e->Attribute("file");
+    double time = NAN;
+    if (!file || e->QueryDoubleAttribute("timestep", &time) != tinyxml2::XML_SUCCESS || !std::isfinite(time))
+      throw ViewerDataError(pvd.string() + ":" + std::to_string(e->GetLineNum()) +
+                            ": a DataSet needs a file and a finite timestep");
+    const fs::path relative = (pvd.parent_path().lexically_relative(run) / file).lexically_normal();
+    entries.push_back({time, relative.generic_string()});
+  }
+  return entries;
+}
+
+// The block files a .vtm lists, by block index, relative to the run.
+std::map<int, std::string> readBlocks(const fs::path& vtm, const fs::path& run) {
+  tinyxml2::XMLDocument document;
+  loadXml(document, vtm, "vtkMultiBlockDataSet");
+  std::map<int, std::string> blocks;
+  const auto* set = document.RootElement()->FirstChildElement("vtkMultiBlockDataSet");
+  for (const auto* e = set->FirstChildElement("DataSet"); e; e = e->NextSiblingElement("DataSet")) {
+    int index = -1;
+    const char* file = e->Attribute("file");
+    if (!file || e->QueryIntAttribute("index", &index) != tinyxml2::XML_SUCCESS || index < 0)
+      throw ViewerDataError(vtm.string() + ":" + std::to_string(e->GetLineNum()) +
+                            ": a DataSet needs an index (0 or more) and a file");
+    blocks[index] =
+        *file ? (vtm.parent_path().lexically_relative(run) / file).lexically_normal().generic_string() : "";
+  }
+  return blocks;
+}
+
+std::string kindOf(const std::string& file, const std::string& series) {
+  const std::string extension = fs::path(file).extension().string();
+  if (extension == ".vtu") return "mesh";
+  if (extension == ".vtm") return "blocks";
+  if (extension == ".vtp") return series == "tool" ? "tool" : "polydata";
+  throw ViewerDataError(file + ": the viewer draws .vtu, .vtp and .vtm files, not " + extension);
+}
+
+struct Plots {
+  std::vector<double> time, force, penetration;
+};
+
+// |F| and the penetration from trace.csv, at most kPlotPoints (the largest
+// of each run of rows, so no peak is lost).
+bool readPlots(const fs::path& trace, Plots& plots, double& end) {
+  std::ifstream in(trace);
+  if (!in) return false;
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  std::vector<std::string> header;
+  std::stringstream names(line);
+  for (std::string name; std::getline(names, name, ',');) header.push_back(name);
+  auto column = [&](const char* name) {
+    auto at = std::find(header.begin(), header.end(), name);
+    return at == header.end() ? -1 : static_cast<int>(at - header.begin());
+  };
+  const int t = column("t"), fx = column("force_x"), fy = column("force_y"), fz = column("force_z"),
+            p = column("penetration");
+  if (t < 0 || fx < 0 || fy < 0 || fz < 0 || p < 0) return false;
+  Plots all;
+  std::vector<double> row(header.size());
+  while (std::getline(in, line)) {
+    std::stringstream cells(line);
+    size_t i = 0;
+    for (std::string cell; std::getline(cells, cell, ',') && i < row.size(); ++i) row[i] = std::strtod(cell.c_str(), nullptr);
+    if (i < row.size()) continue;
+    all.time.push_back(row[t]);
+    all.force.push_back(std::sqrt(row[fx] * row[fx] + row[fy] * row[fy] + row[fz] * row[fz]));
+    all.penetration.push_back(row[p]);
+  }
+  if (all.time.empty()) return false;
+  end = std::max(end, all.time.back());
+  const size_t stride = (all.time.size() + kPlotPoints - 1) / kPlotPoints;
+  for (size_t start = 0; start < all.time.size(); start += stride) {
+    const size_t stop = std::min(start + stride, all.time.size());
+    plots.time.push_back(all.time[start]);
+    plots.force.push_back(*std::max_element(all.force.begin() + start, all.force.begin() + stop));
+    plots.penetration.push_back(*std::max_element(all.penetration.begin() + start, all.penetration.begin() + stop));
+  }
+  return true;
+}
+
+void writeText(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  if (!out.flush()) throw ViewerDataError(file.string() + ": cannot be written");
+}
+
+// The .tri bytes of a surface (see the header).
+std::string triBytes(const vtk::TriangleSurface& surface) {
+  std::string out = "TRI1";
+  auto put = [&](const void* data, size_t size) { out.append(static_cast<const char*>(data), size); };
+  const uint32_t counts[2] = {uint32_t(surface.points.size()), uint32_t(surface.triangles.size())};
+  put(counts, sizeof counts);
+  for (const Vec3& p : surface.points) {
+    const float xyz[3] = {float(p.x()), float(p.y()), float(p.z())};
+    put(xyz, sizeof xyz);
+  }
+  for (const auto& t : surface.triangles) {
+    const uint32_t corners[3] = {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])};
+    put(corners, sizeof corners);
+  }
+  return out;
+}
+
+// Replaces a block part's states by two pseudo-blocks a state: 0, the
+// untouched blocks clustered (the same file throughout), and 1, the blocks
+// the drill changed, at that state. Their bytes go to `generated`.
+void simplifyBlocks(Part& part, const fs::path& run, size_t budget, std::map<std::string, std::string>& generated,
+                    ViewerDataSummary& summary) {
+  std::map<std::string, vtk::TriangleSurface> surfaces;  // by file
+  auto surfaceOf = [&](const std::string& file) -> const vtk::TriangleSurface& {
+    auto [at, added] = surfaces.try_emplace(file);
+    if (added) {
+      try {
+        at->second = vtk::readTriangleSurface(run / file);
+      } catch (const vtk::VtkReadError& e) {
+        throw ViewerDataError(e.what());
+      }
+    }
+    return at->second;
+  };
+  // Each state's blocks; the blocks any later state changed.
+  std::vector<std::map<int, std::string>> blocks;
+  std::set<int> drilled;
+  std::map<int, std::string> current;
+  for (size_t s = 0; s < part.states.size(); ++s) {
+    for (const auto& [block, file] : part.states[s].changes) {
+      if (file.empty()) current.erase(block);
+      else current[block] = file;
+      if (s > 0) drilled.insert(block);
+    }
+    blocks.push_back(current);
+  }
+  auto drilledSurfaces = [&](size_t s) {
+    std::vector<const vtk::TriangleSurface*> list;
+    for (const auto& [block, file] : blocks[s])
+      if (drilled.count(block)) list.push_back(&surfaceOf(file));
+    return list;
+  };
+  auto count = [](const std::vector<const vtk::TriangleSurface*>& list) {
+    size_t n = 0;
+    for (const auto* s : list) n += s->triangles.size();
+    return n;
+  };
+  // The drilled blocks: whole while they fit in half the budget.
+  size_t drilledMost = 0, widest = 0;
+  for (size_t s = 0; s < blocks.size(); ++s)
+    if (const size_t n = count(drilledSurfaces(s)); n > drilledMost) drilledMost = n, widest = s;
+  double drilledCell = 0;
+  size_t drilledBudget = drilledMost;
+  if (drilledMost > budget / 2) {
+    drilledBudget = budget / 2;
+    drilledBudget = simplifyToBudget(drilledSurfaces(widest), drilledBudget, 0, &drilledCell).triangles.size();
+  }
+  // The untouched blocks: the rest of the budget, never finer than the drilled ones.
+  std::vector<const vtk::TriangleSurface*> untouched;
+  for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
+    if (!drilled.count(block)) untouched.push_back(&surfaceOf(file));
+  summary.surfaceTriangles += count(untouched) + drilledMost;
+  double coarseCell = 0;
+  const vtk::TriangleSurface coarse =
+      simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4), drilledCell,
+                       &coarseCell);
+  // Surfaces are no longer needed once clustered: the untouched ones go.
+  for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
+    if (!drilled.count(block)) surfaces.erase(file);
+  summary.coarseCell = std::max(summary.coarseCell, coarseCell);
+  summary.drilledCell = std::max(summary.drilledCell, drilledCell);
+  const std::string coarseName = part.name + "/untouched.tri";
+  generated[coarseName] = triBytes(coarse);
+  size_t drawnMost = 0;
+  std::string previous;
+  for (size_t s = 0; s < part.states.size(); ++s) {
+    PartState& state = part.states[s];
+    state.changes.clear();
+    if (s == 0) state.changes.push_back({0, coarseName});
+    // Only states whose drilled blocks changed get a new surface.
+    std::string key;
+    for (const auto& [block, file] : blocks[s])
+      if (drilled.count(block)) key += file + ";";
+    if (s > 0 && key == previous) continue;
+    previous = key;
+    const auto list = drilledSurfaces(s);
+    vtk::TriangleSurface surface;
+    if (drilledCell > 0) {
+      VertexClustering clustering(drilledCell);
+      for (const auto* piece : list) clustering.add(*piece);
+      surface = clustering.result();
+    } else {
+      surface = simplifyToBudget(list, SIZE_MAX, 0);
+    }
+    drawnMost = std::max(drawnMost, surface.triangles.size());
+    char name[32];
+    std::snprintf(name, sizeof name, "/drilled_%05zu.tri", s);
+    if (surface.triangles.empty()) {
+      state.changes.push_back({1, ""});
+      continue;
+    }
+    generated[part.name + name] = triBytes(surface);
+    state.changes.push_back({1, part.name + name});
+  }
+  summary.drawnTriangles += coarse.triangles.size() + drawnMost;
+}
+
+}  // namespace
+
+std::string base64(std::string_view bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  size_t i = 0;
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8) | uint8_t(bytes[i + 2]);
+    out += kAlphabet[v >> 18];
+    out += kAlphabet[(v >> 12) & 63];
+    out += kAlphabet[(v >> 6) & 63];
+    out += kAlphabet[v & 63];
+  }
+  if (const size_t rest = bytes.size() - i; rest > 0) {
+    const uint32_t v = (uint8_t(bytes[i]) << 16) | (rest == 2 ? uint8_t(bytes[i + 1]) << 8 : 0);
+    out += kAlphabet[v >> 18];
+    out += kAlphabet[(v >> 12) & 63];
+    out += rest == 2 ? kAlphabet[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, size_t blockTriangles,
+                                  uint64_t chunkBytes) {
+  std::vector<fs::path> indexes;
+  for (const auto& entry : fs::directory_iterator(run))
+    if (entry.path().extension() == ".pvd") indexes.push_back(entry.path());
+  std::sort(indexes.begin(), indexes.end());
+  if (indexes.empty())
+    throw ViewerDataError(run.string() + ": no .pvd index (a scene writes one with a VtkExporter component)");
+
+  // The parts, each file series of each index.
+  std::vector<Part> parts;
+  std::map<std::string, size_t> partOf;
+  std::vector<double> times;
+  for (const fs::path& pvd : indexes) {
+    for (const IndexEntry& entry : readCollection(pvd, run)) {
+      std::string name = seriesName(entry.file);
+      if (indexes.size() > 1) name = pvd.stem().string() + "/" + name;
+      auto [at, added] = partOf.try_emplace(name, parts.size());
+      if (added) parts.push_back({name, kindOf(entry.file, seriesName(entry.file)), {}, {}});
+      Part& part = parts[at->second];
+      if (!part.times.empty() && entry.time < part.times.back())
+        throw ViewerDataError(pvd.string() + ": " + entry.file + " goes back in time (" +
+                              std::to_string(entry.time) + " s after " + std::to_string(part.times.back()) + " s)");
+      if (!fs::is_regular_file(run / entry.file))
+        throw ViewerDataError(pvd.string() + ": lists " + entry.file + ", which is missing");
+      part.times.push_back(entry.time);
+      part.states.push_back({entry.file, {}});
+      times.push_back(entry.time);
+    }
+  }
+  // Blocks: each state as its changes against the one before.
+  for (Part& part : parts) {
+    if (part.kind != "blocks") continue;
+    std::map<int, std::string> previous;
+    for (PartState& state : part.states) {
+      std::map<int, std::string> blocks = readBlocks(run / state.file, run);
+      for (const auto& [block, file] : blocks) {
+        if (!file.empty() && !fs::is_regular_file(run / file))
+          throw ViewerDataError((run / state.file).string() + ": lists " + file + ", which is missing");
+        auto before = previous.find(block);
+        if (before == previous.end() ? !file.empty() : before->second != file) state.changes.push_back({block, file});
+      }
+      for (const auto& [block, file] : previous)
+        if (!file.empty() && !blocks.count(block)) state.changes.push_back({block, ""});
+      previous = std::move(blocks);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  ViewerDataSummary summary;
+  std::map<std::string, std::string> generated;  // file -> bytes, made here
+  for (Part& part : parts)
+    if (part.kind == "blocks") simplifyBlocks(part, run, blockTriangles, generated, summary);
+
+  // Frames: each part's latest state at each time.
+  std::vector<std::vector<int>> frames(times.size(), std::vector<int>(parts.size(), -1));
+  for (size_t p = 0; p < parts.size(); ++p) {
+    size_t state = 0;
+    int current = -1;
+    for (size_t f = 0; f < times.size(); ++f) {
+      while (state < parts[p].times.size() && parts[p].times[state] <= times[f]) current = static_cast<int>(state++);
+      frames[f][p] = current;
+    }
+  }
+
+  // Chunks, in the order the frames first need the files.
+  fs::remove_all(data);
+  fs::create_directories(data);
+  std::map<std::string, size_t> chunkOf;
+  std::ostringstream chunk;
+  uint64_t chunkSize = 0;
+  bool chunkEmpty = true;
+  auto closeChunk = [&] {
+    if (chunkEmpty) return;
+    char name[32];
+    std::snprintf(name, sizeof name, "chunk_%05zu.js", summary.chunks);
+    writeText(data / name, chunk.str() + "});\n");
+    ++summary.chunks;
+    chunk.str("");
+    chunkSize = 0;
+    chunkEmpty = true;
+  };
+  auto pack = [&](const std::string& file) {
+    if (file.empty() || chunkOf.count(file)) return;
+    if (chunkSize >= chunkBytes) closeChunk();
+    auto made = generated.find(file);
+    const std::string bytes = made != generated.end() ? made->second : readBytes(run / file);
+    if (chunkEmpty) chunk << "trephineChunk(" << summary.chunks << ", {\n";
+    chunk << (chunkEmpty ? "" : ",\n") << '"' << JsonWriter::escape(file) << "\": \"" << base64(bytes) << '"';
+    chunkEmpty = false;
+    chunkSize += bytes.size();
+    summary.bytes += bytes.size();
+    chunkOf[file] = summary.chunks;
+  };
+  for (const auto& frame : frames) {
+    for (size_t p = 0; p < parts.size(); ++p) {
+      if (frame[p] < 0) continue;
+      const PartState& state = parts[p].states[frame[p]];
+      if (parts[p].kind == "blocks")
+        for (const auto& change : state.changes) pack(change.second);
+      else
+        pack(state.file);
+    }
+  }
+  closeChunk();
+
+  double end = times.empty() ? 0 : times.back();
+  Plots plots;
+  summary.plots = readPlots(run / "trace.csv", plots, end);
+
+  std::ostringstream manifest;
+  manifest << "window.trephineRun = ";
+  JsonWriter json(manifest);
+  json.beginObject();
+  json.field("name", fs::absolute(run).lexically_normal().filename().string());
+  json.field("end", end);
+  json.key("parts").beginArray();
+  for (const Part& part : parts) {
+    json.beginObject().field("name", part.name).field("kind", part.kind);
+    json.key("states").beginArray();
+    for (const PartState& state : part.states) {
+      if (part.kind != "blocks") {
+        json.value(state.file);
+        continue;
+      }
+      json.beginObject().field("file", state.file).key("changes").beginArray();
+      for (const auto& [block, file] : state.changes) json.beginArray().value(block).value(file).endArray();
+      json.endArray().endObject();
+    }
+    json.endArray().endObject();
+  }
+  json.endArray();
+  json.key("frames").beginArray();
+  for (size_t f = 0; f < frames.size(); ++f) {
+    json.beginObject().field("t", times[f]).key("states").beginArray();
+    for (int state : frames[f]) json.value(state);
+    json.endArray().endObject();
+  }
+  json.endArray();
+  json.key("files").beginObject();
+  for (const auto& [file, index] : chunkOf) json.field(file, static_cast<unsigned long long>(index));
+  json.endObject();
+  json.key("plots");
+  if (summary.plots) {
+    json.beginObject();
+    for (auto [name, values] : {std::pair{"t", &plots.time}, {"force", &plots.force}, {"penetration", &plots.penetration}}) {
+      json.key(name).beginArray();
+      for (double v : *values) json.value(v);
+      json.endArray();
+    }
+    json.endObject();
+  } else {
+    json.null();
+  }
+  json.endObject();
+  manifest << ";\n";
+  writeText(data / "manifest.js", manifest.str());
+
+  summary.frames = frames.size();
+  summary.parts = parts.size();
+  summary.files = chunkOf.size();
+  summary.end = end;
+  return summary;
+}
+
+}  // namespace trephine::cli

@@ -1,0 +1,50 @@
+#pragma once
+// The data of a run's browser viewer, read from the .pvd indexes a
+// VtkExporter wrote (and from trace.csv for the plots), written as
+//   data/manifest.js  window.trephineRun = {name, end, parts, frames, files, plots}
+//   data/chunk_N.js   trephineChunk(N, {"vtk/brain_00003.vtu": "<base64>", ...})
+// A part is what one exporter file series shows (brain_, tool_, skull_); its
+// states are its files in time, a .vtm's as the blocks that changed. Files
+// go into chunks of about `chunkBytes` in the order the frames first need
+// them, so the first frame loads first and in parallel.
+//
+// A skull of a million triangles is more than a browser without a graphics
+// card draws 30 times a second (SwiftShader draws some 25 frames a second of
+// a 15,000-triangle skull and a 3,000-triangle brain here), so its blocks are
+// simplified (VertexClustering) to at
+// most `blockTriangles`: the blocks the drill changed are kept whole while
+// they fit in half of that (else clustered, finer than the rest), and the
+// blocks it never touched are clustered into the remainder. Those surfaces go
+// into the chunks as binary meshes (.tri: "TRI1", uint32 point and triangle
+// counts, float32 points in mm, uint32 corners).
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace trephine::cli {
+
+// Bad or missing run data; the message names the file and what was expected.
+class ViewerDataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ViewerDataSummary {
+  size_t frames = 0, parts = 0, files = 0, chunks = 0;
+  size_t surfaceTriangles = 0, drawnTriangles = 0;  // of block parts (a skull): in the files, in the viewer
+  double coarseCell = 0, drilledCell = 0;           // mm of their clustering (0: none)
+  uint64_t bytes = 0;  // of the VTK files packed
+  double end = 0;      // s
+  bool plots = false;
+};
+
+// Writes `dataDirectory` (emptied first) from `runDirectory`.
+ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
+                                  const std::filesystem::path& dataDirectory, size_t blockTriangles = 15000,
+                                  uint64_t chunkBytes = 4u << 20);
+
+// Standard base64 (RFC 4648, padded).
+std::string base64(std::string_view bytes);
+
+}  // namespace trephine::cli

@@ -1,0 +1,97 @@
+#include "tools/trephine/VertexClustering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace trephine::cli {
+
+int32_t VertexClustering::clusterOf(const Vec3& p) {
+  // 21 bits a coordinate around the origin: 2^20 cubes each way.
+  uint64_t key = 0;
+  for (int a = 0; a < 3; ++a) {
+    const int64_t i = std::clamp<int64_t>(int64_t(std::floor(p[a] / m_cell)) + (int64_t(1) << 20), 0, (int64_t(1) << 21) - 1);
+    key = (key << 21) | uint64_t(i);
+  }
+  auto [at, added] = m_index.try_emplace(key, int32_t(m_sums.size()));
+  if (added) {
+    m_sums.push_back(Vec3::Zero());
+    m_counts.push_back(0);
+  }
+  return at->second;
+}
+
+void VertexClustering::add(const vtk::TriangleSurface& surface) {
+  std::vector<int32_t> cluster(surface.points.size());
+  for (size_t i = 0; i < surface.points.size(); ++i) {
+    cluster[i] = clusterOf(surface.points[i]);
+    m_sums[size_t(cluster[i])] += surface.points[i];
+    ++m_counts[size_t(cluster[i])];
+  }
+  for (const auto& t : surface.triangles) {
+    const std::array<int32_t, 3> c{cluster[size_t(t[0])], cluster[size_t(t[1])], cluster[size_t(t[2])]};
+    if (c[0] != c[1] && c[1] != c[2] && c[0] != c[2]) m_triangles.push_back(c);
+  }
+}
+
+vtk::TriangleSurface VertexClustering::result() const {
+  vtk::TriangleSurface out;
+  // Each triangle once, whatever its turn (both sides of a thin wall can
+  // collapse onto the same three clusters: those are kept, one a side).
+  std::set<std::array<int32_t, 3>> seen;
+  std::vector<int32_t> renumber(m_sums.size(), -1);
+  for (const auto& t : m_triangles) {
+    std::array<int32_t, 3> key = t;
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    if (!seen.insert(key).second) continue;
+    std::array<int32_t, 3> kept;
+    for (int k = 0; k < 3; ++k) {
+      int32_t& n = renumber[size_t(t[k])];
+      if (n < 0) {
+        n = int32_t(out.points.size());
+        out.points.push_back(m_sums[size_t(t[k])] / m_counts[size_t(t[k])]);
+      }
+      kept[k] = n;
+    }
+    out.triangles.push_back(kept);
+  }
+  return out;
+}
+
+vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurface*>& surfaces, size_t triangles,
+                                      double smallest, double* cellUsed) {
+  size_t total = 0;
+  double edge = 0;  // mean edge, mm: where clustering starts to matter
+  size_t edges = 0;
+  for (const auto* s : surfaces) {
+    total += s->triangles.size();
+    for (size_t i = 0; i < s->triangles.size(); i += 97, ++edges)
+      edge += (s->points[size_t(s->triangles[i][0])] - s->points[size_t(s->triangles[i][1])]).norm();
+  }
+  if (total <= triangles && smallest <= 0) {
+    vtk::TriangleSurface joined;
+    for (const auto* s : surfaces) {
+      const int32_t base = int32_t(joined.points.size());
+      joined.points.insert(joined.points.end(), s->points.begin(), s->points.end());
+      for (auto t : s->triangles) joined.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    }
+    if (cellUsed) *cellUsed = 0;
+    return joined;
+  }
+  edge = edges ? edge / double(edges) : 1.0;
+  // Clustering keeps about total * (edge / cell)^2 / 2 triangles: start there.
+  double cell = std::max(smallest, edge * std::sqrt(0.5 * double(total) / double(std::max<size_t>(triangles, 1))));
+  cell = std::max(cell, edge);
+  for (;;) {
+    VertexClustering clustering(cell);
+    for (const auto* s : surfaces) clustering.add(*s);
+    vtk::TriangleSurface out = clustering.result();
+    if (out.triangles.size() <= triangles || cell > 1e4 * edge) {
+      if (cellUsed) *cellUsed = cell;
+      return out;
+    }
+    cell *= 1.25;
+  }
+}
+
+}  // namespace trephine::cli

@@ -1,0 +1,44 @@
+#pragma once
+// Simplification of a triangle surface by vertex clustering (Rossignac and
+// Borrel, 1993): space is cut into cubes of `cell` mm, every vertex moves to
+// the mean of the vertices in its cube, and triangles whose corners fall in
+// fewer than three cubes vanish. The cubes are global, so surfaces added
+// apart (a skull's blocks) join without cracks. A wall thinner than a cube
+// (a skull's tables, at coarse cells) folds onto itself: drawn flat-shaded,
+// with both sides kept, it still reads as a surface. For a viewer that must draw
+// a skull of millions of triangles in a software renderer: the triangle
+// count falls about as 1 / cell^2.
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "framework/vtk/VtkSurfaceReader.h"
+
+namespace trephine::cli {
+
+class VertexClustering {
+ public:
+  explicit VertexClustering(double cell) : m_cell(cell) {}
+
+  void add(const vtk::TriangleSurface& surface);
+  // The clustered surface; each triangle once.
+  vtk::TriangleSurface result() const;
+
+ private:
+  int32_t clusterOf(const Vec3& p);
+
+  double m_cell;  // mm
+  std::unordered_map<uint64_t, int32_t> m_index;  // cube key -> cluster
+  std::vector<Vec3> m_sums;
+  std::vector<int32_t> m_counts;
+  std::vector<std::array<int32_t, 3>> m_triangles;  // clusters
+};
+
+// The surfaces joined, clustered with the smallest cell (from `smallest` mm up,
+// each try 1.25 times the last) that gives at most `triangles` triangles;
+// with `smallest` 0 and the surfaces within the budget, unchanged.
+vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurface*>& surfaces, size_t triangles,
+                                      double smallest, double* cellUsed = nullptr);
+
+}  // namespace trephine::cli

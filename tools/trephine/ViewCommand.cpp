@@ -1,0 +1,83 @@
+#include "tools/trephine/ViewCommand.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include "tools/trephine/RunViewerData.h"
+
+namespace trephine::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The built viewer (index.html and viewer.js): TREPHINE_VIEWER_ASSETS, the
+// installed copy, or the build's.
+fs::path findViewerAssets() {
+  std::vector<fs::path> candidates;
+  if (const char* set = std::getenv("TREPHINE_VIEWER_ASSETS")) candidates.emplace_back(set);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/trephine/viewer");
+  candidates.emplace_back(TREPHINE_VIEWER_BUILD_DIR);
+  for (const fs::path& candidate : candidates)
+    if (fs::is_regular_file(candidate / "viewer.js", ec) && fs::is_regular_file(candidate / "index.html", ec))
+      return candidate;
+  return {};
+}
+
+}  // namespace
+
+int viewCommand(const Arguments& arguments) {
+  if (arguments.positional.size() != 1) {
+    std::cerr << "usage: trephine view RUN_DIR [--triangles N]\n";
+    return kUsage;
+  }
+  const fs::path run = arguments.positional[0];
+  std::error_code ec;
+  if (!fs::is_directory(run, ec)) {
+    std::cerr << "trephine view: " << run.string() << ": not a directory (the output directory of trephine run)\n";
+    return kSceneError;
+  }
+  const fs::path assets = findViewerAssets();
+  if (assets.empty()) {
+    std::cerr << "trephine view: the browser viewer was not built: it needs Node.js and npm (tools/setup installs "
+                 "them and the viewer's packages, then builds it). ParaView opens the run's .pvd files meanwhile.\n";
+    return kRuntimeFailure;
+  }
+  const fs::path view = run / "view";
+  try {
+    size_t triangles = 15000;
+    if (auto value = arguments.get("--triangles")) {
+      char* end = nullptr;
+      const long long n = std::strtoll(value->c_str(), &end, 10);
+      if (end == value->c_str() || *end || n < 1000) {
+        std::cerr << "trephine view: --triangles takes a whole number of 1000 or more, not '" << *value << "'\n";
+        return kUsage;
+      }
+      triangles = size_t(n);
+    }
+    const ViewerDataSummary summary = writeViewerData(run, view / "data", triangles);
+    for (const char* file : {"index.html", "viewer.js"})
+      fs::copy_file(assets / file, view / file, fs::copy_options::overwrite_existing);
+    std::cout << "viewer    " << (view / "index.html").string() << " (open it in a browser)\n"
+              << "          " << summary.frames << " frames over " << summary.end << " s, " << summary.parts
+              << " parts, " << summary.files << " files (" << summary.bytes / 1e6 << " MB) in " << summary.chunks
+              << " chunks" << (summary.plots ? ", plots from trace.csv" : ", no plots (no trace.csv)") << "\n";
+    if (summary.surfaceTriangles)
+      std::cout << "          skull: " << summary.surfaceTriangles << " triangles drawn as " << summary.drawnTriangles
+                << " (untouched blocks clustered at " << summary.coarseCell << " mm, drilled ones "
+                << (summary.drilledCell > 0 ? "at " + std::to_string(summary.drilledCell) + " mm" : "whole")
+                << "; --triangles sets the budget)\n";
+  } catch (const ViewerDataError& e) {
+    std::cerr << "trephine view: " << e.what() << "\n";
+    return kSceneError;
+  } catch (const fs::filesystem_error& e) {
+    std::cerr << "trephine view: " << e.what() << "\n";
+    return kRuntimeFailure;
+  }
+  return kOk;
+}
+
+}  // namespace trephine::cli
