@@ -30,7 +30,8 @@ struct IndexEntry {
 
 struct PartState {
   std::string file;
-  std::vector<std::pair<int, std::string>> changes;  // blocks: (block, file or "")
+  std::vector<std::pair<int, std::string>> changes;       // blocks: (block, file or "")
+  std::vector<std::pair<int, std::string>> stillChanges;  // the same, finer: drawn when still
 };
 
 struct Part {
@@ -177,11 +178,23 @@ std::string triBytes(const vtk::TriangleSurface& surface) {
   return out;
 }
 
-// Replaces a block part's states by two pseudo-blocks a state: 0, the
-// untouched blocks clustered (the same file throughout), and 1, the blocks
-// the drill changed, at that state. Their bytes go to `generated`.
-void simplifyBlocks(Part& part, const fs::path& run, size_t budget, std::map<std::string, std::string>& generated,
-                    ViewerDataSummary& summary) {
+using BlockChanges = std::vector<std::pair<int, std::string>>;  // (block, file or "")
+
+// What simplifyBlocks made of a part at one level of detail.
+struct BlockLevel {
+  std::vector<BlockChanges> changes;  // per state
+  size_t surfaceTriangles = 0, drawnTriangles = 0;
+  double coarseCell = 0, drilledCell = 0;  // mm, 0: whole
+};
+
+// A block part's surface at most `budget` triangles a state, as two
+// pseudo-blocks: 0, the untouched blocks clustered (one file throughout),
+// and 1, the blocks the drill changed, at that state (a file for each state
+// whose drilled blocks differ). The files are named after the part and
+// `level`; their bytes go to `generated`.
+BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, const std::string& level,
+                          std::map<std::string, std::string>& generated) {
+  BlockLevel out;
   std::map<std::string, vtk::TriangleSurface> surfaces;  // by file
   auto surfaceOf = [&](const std::string& file) -> const vtk::TriangleSurface& {
     auto [at, added] = surfaces.try_emplace(file);
@@ -221,35 +234,27 @@ void simplifyBlocks(Part& part, const fs::path& run, size_t budget, std::map<std
   size_t drilledMost = 0, widest = 0;
   for (size_t s = 0; s < blocks.size(); ++s)
     if (const size_t n = count(drilledSurfaces(s)); n > drilledMost) drilledMost = n, widest = s;
-  double drilledCell = 0;
   size_t drilledBudget = drilledMost;
-  if (drilledMost > budget / 2) {
-    drilledBudget = budget / 2;
-    drilledBudget = simplifyToBudget(drilledSurfaces(widest), drilledBudget, 0, &drilledCell).triangles.size();
-  }
+  if (drilledMost > budget / 2)
+    drilledBudget = simplifyToBudget(drilledSurfaces(widest), budget / 2, 0, &out.drilledCell).triangles.size();
   // The untouched blocks: the rest of the budget, never finer than the drilled ones.
   std::vector<const vtk::TriangleSurface*> untouched;
   for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
     if (!drilled.count(block)) untouched.push_back(&surfaceOf(file));
-  summary.surfaceTriangles += count(untouched) + drilledMost;
-  double coarseCell = 0;
+  out.surfaceTriangles = count(untouched) + drilledMost;
   const vtk::TriangleSurface coarse =
-      simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4), drilledCell,
-                       &coarseCell);
-  // Surfaces are no longer needed once clustered: the untouched ones go.
+      simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
+                       out.drilledCell, &out.coarseCell);
   for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
-    if (!drilled.count(block)) surfaces.erase(file);
-  summary.coarseCell = std::max(summary.coarseCell, coarseCell);
-  summary.drilledCell = std::max(summary.drilledCell, drilledCell);
-  const std::string coarseName = part.name + "/untouched.tri";
+    if (!drilled.count(block)) surfaces.erase(file);  // clustered: no longer needed
+  const std::string coarseName = part.name + "/" + level + "_untouched.tri";
   generated[coarseName] = triBytes(coarse);
   size_t drawnMost = 0;
   std::string previous;
+  out.changes.resize(part.states.size());
   for (size_t s = 0; s < part.states.size(); ++s) {
-    PartState& state = part.states[s];
-    state.changes.clear();
-    if (s == 0) state.changes.push_back({0, coarseName});
-    // Only states whose drilled blocks changed get a new surface.
+    BlockChanges& changes = out.changes[s];
+    if (s == 0) changes.push_back({0, coarseName});
     std::string key;
     for (const auto& [block, file] : blocks[s])
       if (drilled.count(block)) key += file + ";";
@@ -257,24 +262,26 @@ void simplifyBlocks(Part& part, const fs::path& run, size_t budget, std::map<std
     previous = key;
     const auto list = drilledSurfaces(s);
     vtk::TriangleSurface surface;
-    if (drilledCell > 0) {
-      VertexClustering clustering(drilledCell);
+    if (out.drilledCell > 0) {
+      VertexClustering clustering(out.drilledCell);
       for (const auto* piece : list) clustering.add(*piece);
       surface = clustering.result();
     } else {
       surface = simplifyToBudget(list, SIZE_MAX, 0);
     }
     drawnMost = std::max(drawnMost, surface.triangles.size());
-    char name[32];
-    std::snprintf(name, sizeof name, "/drilled_%05zu.tri", s);
     if (surface.triangles.empty()) {
-      state.changes.push_back({1, ""});
+      changes.push_back({1, ""});
       continue;
     }
-    generated[part.name + name] = triBytes(surface);
-    state.changes.push_back({1, part.name + name});
+    char name[48];
+    std::snprintf(name, sizeof name, "_drilled_%05zu.tri", s);
+    const std::string file = part.name + "/" + level + name;
+    generated[file] = triBytes(surface);
+    changes.push_back({1, file});
   }
-  summary.drawnTriangles += coarse.triangles.size() + drawnMost;
+  out.drawnTriangles = coarse.triangles.size() + drawnMost;
+  return out;
 }
 
 }  // namespace
@@ -352,8 +359,21 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   times.erase(std::unique(times.begin(), times.end()), times.end());
   ViewerDataSummary summary;
   std::map<std::string, std::string> generated;  // file -> bytes, made here
-  for (Part& part : parts)
-    if (part.kind == "blocks") simplifyBlocks(part, run, blockTriangles, generated, summary);
+  for (Part& part : parts) {
+    if (part.kind != "blocks") continue;
+    // Two levels: while playing or turning, and still (ten times finer).
+    const BlockLevel moving = simplifyBlocks(part, run, blockTriangles, "moving", generated);
+    const BlockLevel still = simplifyBlocks(part, run, 10 * blockTriangles, "still", generated);
+    for (size_t s = 0; s < part.states.size(); ++s) {
+      part.states[s].changes = moving.changes[s];
+      part.states[s].stillChanges = still.changes[s];
+    }
+    summary.surfaceTriangles += moving.surfaceTriangles;
+    summary.drawnTriangles += moving.drawnTriangles;
+    summary.stillTriangles += still.drawnTriangles;
+    summary.coarseCell = std::max(summary.coarseCell, moving.coarseCell);
+    summary.drilledCell = std::max(summary.drilledCell, moving.drilledCell);
+  }
 
   // Frames: each part's latest state at each time.
   std::vector<std::vector<int>> frames(times.size(), std::vector<int>(parts.size(), -1));
@@ -395,6 +415,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
     summary.bytes += bytes.size();
     chunkOf[file] = summary.chunks;
   };
+  // What playback needs first, then the still level of the blocks.
   for (const auto& frame : frames) {
     for (size_t p = 0; p < parts.size(); ++p) {
       if (frame[p] < 0) continue;
@@ -405,6 +426,11 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
         pack(state.file);
     }
   }
+  closeChunk();
+  for (const auto& frame : frames)
+    for (size_t p = 0; p < parts.size(); ++p)
+      if (frame[p] >= 0 && parts[p].kind == "blocks")
+        for (const auto& change : parts[p].states[frame[p]].stillChanges) pack(change.second);
   closeChunk();
 
   double end = times.empty() ? 0 : times.back();
@@ -426,9 +452,13 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
         json.value(state.file);
         continue;
       }
-      json.beginObject().field("file", state.file).key("changes").beginArray();
-      for (const auto& [block, file] : state.changes) json.beginArray().value(block).value(file).endArray();
-      json.endArray().endObject();
+      json.beginObject().field("file", state.file);
+      for (auto [key, changes] : {std::pair{"changes", &state.changes}, {"still", &state.stillChanges}}) {
+        json.key(key).beginArray();
+        for (const auto& [block, file] : *changes) json.beginArray().value(block).value(file).endArray();
+        json.endArray();
+      }
+      json.endObject();
     }
     json.endArray().endObject();
   }

@@ -2,6 +2,7 @@
 // The data of a run's browser viewer, read from the .pvd indexes a
 // VtkExporter wrote (and from trace.csv for the plots), written as
 //   data/manifest.js  window.trephineRun = {name, end, parts, frames, files, plots}
+//                     (plugins/viewer/web/src/runData.js describes it)
 //   data/chunk_N.js   trephineChunk(N, {"vtk/brain_00003.vtu": "<base64>", ...})
 // A part is what one exporter file series shows (brain_, tool_, skull_); its
 // states are its files in time, a .vtm's as the blocks that changed. Files
@@ -14,7 +15,9 @@
 // simplified (VertexClustering) to at
 // most `blockTriangles`: the blocks the drill changed are kept whole while
 // they fit in half of that (else clustered, finer than the rest), and the
-// blocks it never touched are clustered into the remainder. Those surfaces go
+// blocks it never touched are clustered into the remainder. A second level,
+// ten times finer, is drawn while the view stands still (neither playing
+// nor turning), loaded after everything playback needs. Those surfaces go
 // into the chunks as binary meshes (.tri: "TRI1", uint32 point and triangle
 // counts, float32 points in mm, uint32 corners).
 #include <filesystem>
@@ -32,7 +35,8 @@ class ViewerDataError : public std::runtime_error {
 
 struct ViewerDataSummary {
   size_t frames = 0, parts = 0, files = 0, chunks = 0;
-  size_t surfaceTriangles = 0, drawnTriangles = 0;  // of block parts (a skull): in the files, in the viewer
+  // Of block parts (a skull): in the files, in the viewer while moving, still.
+  size_t surfaceTriangles = 0, drawnTriangles = 0, stillTriangles = 0;
   double coarseCell = 0, drilledCell = 0;           // mm of their clustering (0: none)
   uint64_t bytes = 0;  // of the VTK files packed
   double end = 0;      // s

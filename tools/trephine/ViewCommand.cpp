@@ -67,9 +67,10 @@ int viewCommand(const Arguments& arguments) {
               << " chunks" << (summary.plots ? ", plots from trace.csv" : ", no plots (no trace.csv)") << "\n";
     if (summary.surfaceTriangles)
       std::cout << "          skull: " << summary.surfaceTriangles << " triangles drawn as " << summary.drawnTriangles
-                << " (untouched blocks clustered at " << summary.coarseCell << " mm, drilled ones "
+                << " while playing or turning (untouched blocks clustered at " << summary.coarseCell
+                << " mm, drilled ones "
                 << (summary.drilledCell > 0 ? "at " + std::to_string(summary.drilledCell) + " mm" : "whole")
-                << "; --triangles sets the budget)\n";
+                << "; --triangles sets it), " << summary.stillTriangles << " when still\n";
   } catch (const ViewerDataError& e) {
     std::cerr << "trephine view: " << e.what() << "\n";
     return kSceneError;

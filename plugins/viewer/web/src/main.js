@@ -4,7 +4,8 @@
 // those parts, opacity=X draws the skull at that opacity (0..1), scale=X
 // draws at X of the display's pixels, playScale=X while playing (0.35).
 // window.trephineViewer reports its state: ready (the first frame drawn),
-// openSeconds, time, frame, framesDrawn, triangles per part, renderer,
+// openSeconds, time, frame, framesDrawn, triangles per part, levels (of
+// the block parts: 'moving' or 'still'), renderer,
 // errors; and seek(t).
 import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
@@ -56,6 +57,8 @@ async function start() {
   if (manifest.plots && manifest.plots.force) for (const f of manifest.plots.force) maxForce = Math.max(maxForce, f);
 
   let time = 0;
+  let playing = false;
+  let interacting = false;  // the user turning or moving the view
   let shown = -1;       // the frame on screen
   let wanted = -1;      // the frame being loaded
   const drawFrame = (index) => {
@@ -81,14 +84,31 @@ async function start() {
       status.openSeconds = performance.now() / 1000;
     }
   };
+  // Draws a frame's parts; the blocks (a skull) at their still level when the
+  // view stands still and that level is at hand, else at the moving level
+  // while the still one loads (then drawn again).
   const drawFrameParts = (index) => {
+    const still = !playing && !interacting;
+    let upgrade = false;
     manifest.frames[index].states.forEach((state, p) => {
       if (state < 0) return;
       const part = manifest.parts[p];
       const value = part.states[state];
-      const names = typeof value === 'string' ? [value] : value.blocks;
-      scene.show(part.name, part.kind, state, names.map((name) => data.file(name)));
+      if (typeof value === 'string') {
+        scene.show(part.name, part.kind, state, [data.file(value)]);
+        return;
+      }
+      const useStill = still && value.stillBlocks.length > 0 && data.isAtHand(value.stillBlocks);
+      upgrade = upgrade || (still && !useStill && value.stillBlocks.length > 0);
+      const names = useStill ? value.stillBlocks : value.blocks;
+      scene.show(part.name, part.kind, state, names.map((name) => data.file(name)), useStill ? 'still' : 'moving');
     });
+    if (upgrade) {
+      data.require(data.namesOf(index, true)).then(() => {
+        if (shown === index && !playing && !interacting) drawFrame(index);
+      }, report);
+    }
+    status.levels = Object.fromEntries(scene.levels);
   };
   // Shows the frame of time t as soon as its files are at hand (loading them
   // if not); the latest request wins.
@@ -122,7 +142,6 @@ async function start() {
   };
 
   const parameters = new URLSearchParams(window.location.search);
-  let playing = false;
   let speed = 1;
   let last = 0;
   const tick = (now) => {
@@ -149,7 +168,7 @@ async function start() {
     playing = on;
     play.textContent = on ? 'Pause' : 'Play';
     scene.setPixelScale(on ? Math.min(playScale, fullScale) : fullScale);
-    scene.render();
+    if (shown >= 0) drawFrame(shown);  // at the level for playing, or still
     if (on) {
       if (time >= end) showTime(0);
       last = performance.now();
@@ -157,6 +176,16 @@ async function start() {
     }
   };
   play.addEventListener('click', () => setPlaying(!playing));
+  // Turning the view: the moving level, the still one once it stops.
+  const interactor = scene.view.getInteractor();
+  interactor.onStartAnimation(() => {
+    interacting = true;
+    if (shown >= 0 && !playing) drawFrame(shown);
+  });
+  interactor.onEndAnimation(() => {
+    interacting = false;
+    if (shown >= 0 && !playing) drawFrame(shown);
+  });
   slider.addEventListener('input', () => seek(Number(slider.value)));
   window.addEventListener('keydown', (event) => {
     if (event.key === ' ') setPlaying(!playing);

@@ -2,7 +2,8 @@
 //   data/manifest.js   window.trephineRun = {
 //     parts:  [{name, kind: 'mesh' | 'tool' | 'polydata' | 'blocks', states}]
 //             a state is a file; for 'blocks' (a .vtm of blocks) it is
-//             {file, changes: [[block, file or ''], ...]} against the state before;
+//             {file, changes: [[block, file or ''], ...], still: [...]} against
+//             the state before (still: the finer level, drawn when still);
 //     frames: [{t (s), states: [per part: its state, -1 before its first]}],
 //     files:  {file: chunk}, plots: {t, force, penetration} or null}
 //   data/chunk_N.js    trephineChunk(N, {"vtk/brain_00012.vtu": "<base64>", ...})
@@ -23,10 +24,14 @@ export class RunData {
     for (const part of manifest.parts) {
       if (part.kind !== 'blocks') continue;
       let blocks = [];
+      let still = [];
       for (const state of part.states) {
         blocks = blocks.slice();
         for (const [block, file] of state.changes) blocks[block] = file;
         state.blocks = blocks.filter((file) => file);
+        still = still.slice();
+        for (const [block, file] of state.still || []) still[block] = file;
+        state.stillBlocks = still.filter((file) => file);
       }
     }
     window.trephineChunk = (chunk, files) => {
@@ -84,14 +89,14 @@ export class RunData {
     return file;
   }
 
-  // Every file frame `index` shows.
-  namesOf(index) {
+  // Every file frame `index` shows; `still`: the still level of its blocks.
+  namesOf(index, still = false) {
     const names = [];
     this.manifest.frames[index].states.forEach((state, part) => {
       if (state < 0) return;
       const value = this.manifest.parts[part].states[state];
       if (typeof value === 'string') names.push(value);
-      else names.push(...value.blocks);
+      else names.push(...(still ? value.stillBlocks : value.blocks));
     });
     return names;
   }

@@ -74,6 +74,7 @@ export class Scene3d {
     this.parts = new Map();  // part name -> its drawing
     this.hidden = new Set();  // part names the user hid
     this.opacity = new Map();  // part name -> opacity (0..1)
+    this.levels = new Map();  // block part name -> the level drawn
     this.cameraSet = false;
     this.forceScale = 10;  // mm of arrow per N; set from the run's largest force
   }
@@ -84,20 +85,31 @@ export class Scene3d {
 
   // Draws part `name` of kind `kind` from `files` (one file, or a .vtm's
   // blocks) at `key` (a state: nothing is rebuilt when it did not change).
-  show(name, kind, key, files) {
-    let part = this.parts.get(name);
+  // Block parts (a skull) have two levels of detail, 'moving' and 'still',
+  // each with its own actor: switching between them uploads nothing.
+  show(name, kind, key, files, level = 'moving') {
+    const id = kind === 'blocks' && level === 'still' ? `${name}@still` : name;
+    let part = this.parts.get(id);
     if (!part) {
       part = this.createPart(kind);
       part.name = name;
-      this.parts.set(name, part);
+      if (kind === 'blocks') part.level = level;
+      this.parts.set(id, part);
       if (this.opacity.has(name)) this.setOpacity(name, this.opacity.get(name));
     }
-    if (part.key === key) return;
-    part.key = key;
-    if (kind === 'mesh') this.updateMesh(part, files[0]);
-    else if (kind === 'blocks') this.updateBlocks(part, files);
-    else if (kind === 'tool') this.updateTool(part, files[0]);
-    else this.updateSurface(part, files[0]);
+    if (kind === 'blocks') this.levels.set(name, level);
+    if (part.key !== key) {
+      part.key = key;
+      if (kind === 'mesh') this.updateMesh(part, files[0]);
+      else if (kind === 'blocks') this.updateBlocks(part, files);
+      else if (kind === 'tool') this.updateTool(part, files[0]);
+      else this.updateSurface(part, files[0]);
+    }
+    for (const other of this.partsNamed(name)) this.applyVisibility(other);
+  }
+
+  partsNamed(name) {
+    return [...this.parts.values()].filter((part) => part.name === name);
   }
 
   createPart(kind) {
@@ -237,21 +249,20 @@ export class Scene3d {
   }
 
   applyVisibility(part) {
-    const shown = !this.hidden.has(part.name);
+    const shown = !this.hidden.has(part.name) && (part.level === undefined || this.levels.get(part.name) === part.level);
     for (const [actor, has] of Scene3d.actorsOf(part)) actor.setVisibility(shown && Boolean(has));
   }
 
   setHidden(name, hidden) {
     if (hidden) this.hidden.add(name);
     else this.hidden.delete(name);
-    const part = this.parts.get(name);
-    if (part) this.applyVisibility(part);
+    for (const part of this.partsNamed(name)) this.applyVisibility(part);
   }
 
   setOpacity(name, opacity) {
     this.opacity.set(name, opacity);
-    const part = this.parts.get(name);
-    if (part) for (const [actor] of Scene3d.actorsOf(part)) actor.getProperty().setOpacity(opacity);
+    for (const part of this.partsNamed(name))
+      for (const [actor] of Scene3d.actorsOf(part)) actor.getProperty().setOpacity(opacity);
   }
 
   resetCameraOnce() {
@@ -281,8 +292,9 @@ export class Scene3d {
     this.renderWindow.render();
   }
 
+  // Of the level drawn.
   triangleCount(name) {
-    const part = this.parts.get(name);
+    const part = this.partsNamed(name).find((p) => p.level === undefined || this.levels.get(name) === p.level);
     if (!part) return 0;
     if (part.triangleCount) return part.triangleCount;
     return part.polyData ? part.polyData.getPolys().getNumberOfCells() : 0;

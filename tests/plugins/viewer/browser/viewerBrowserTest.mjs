@@ -108,9 +108,13 @@ try {
     return s && { ready: s.ready, openSeconds: s.openSeconds, time: s.time, frame: s.frame, framesDrawn: s.framesDrawn,
                   triangles: s.triangles, errors: s.errors, renderer: s.renderer };
   });
-  const settle = async (frame) => {
-    await page.waitForFunction((f) => window.trephineViewer && window.trephineViewer.ready &&
-                                      (f < 0 || window.trephineViewer.frame === f), frame, { timeout: 60000 });
+  const settle = async (frame, still = true) => {
+    // The frame, with its blocks (a skull) at their still level.
+    await page.waitForFunction(([f, still]) => {
+      const v = window.trephineViewer;
+      return v && v.ready && (f < 0 || v.frame === f) &&
+             (!still || Object.values(v.levels || {}).every((l) => l === 'still'));
+    }, [frame, still], { timeout: 60000 });
     // Two animation frames: the render reaches the canvas.
     await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
   };
@@ -222,7 +226,7 @@ try {
   // Playing at real time from the start.
   if (minFps > 0) {
     await page.goto(`${url}?t=0&play=1`);
-    await settle(-1);
+    await settle(-1, false);
     const before = await viewer();
     const seconds = 3;
     const rafs = await page.evaluate((s) => new Promise((done) => {
