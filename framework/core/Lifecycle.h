@@ -69,6 +69,10 @@ struct RunPlan {
   // (an exporter, in its own group); empty when the run writes no files
   // (tests, validate). FinishContext has the same directory at the end.
   std::filesystem::path outputDirectory;
+  // The port of the live view (`trephine run --realtime --view PORT`): the
+  // scene's exporter serves the browser viewer there and streams the run to
+  // it. -1: no live view; 0: any free port.
+  int liveViewPort = -1;
   // Number of calls a component of `rateHz` receives in this run.
   uint64_t callsAt(double rateHz) const;
 };

@@ -37,6 +37,8 @@ struct SimulationOptions {
   // The directory writeOutputs() will be given, known before the run
   // (RunPlan::outputDirectory); empty: components write nothing while running.
   std::filesystem::path outputDirectory;
+  // The live view's port (RunPlan::liveViewPort); -1: none.
+  int liveViewPort = -1;
 };
 
 // Registers the components that need no plugin (Recorder).

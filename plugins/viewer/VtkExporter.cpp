@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iostream>
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
@@ -75,6 +76,8 @@ void VtkExporter::prepare(const RunPlan& plan) {
     throw std::runtime_error("the deformation of " + l_brain->path() + " starts after this component: place the " +
                              "VtkExporter after it in the scene, or its files show the brain at rest");
   m_root = plan.outputDirectory;
+  m_live.reset();
+  if (plan.liveViewPort >= 0) startLiveView(plan);
   m_collection = {};
   m_frames = m_files = m_failed = 0;
   m_firstFailure.clear();
@@ -100,7 +103,7 @@ void VtkExporter::attempt(const std::string& file, double t, int part, Write&& w
   }
 }
 
-void VtkExporter::writeBrain(double t) {
+bool VtkExporter::updateBrain() {
   const tetra::TetraBrain& brain = *l_brain;
   const std::vector<Vec3>& rest = brain.mesh().nodes;
   const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
@@ -108,7 +111,7 @@ void VtkExporter::writeBrain(double t) {
   const std::vector<Vec3>& nodes = moved ? m_positions->read().positions : rest;
   // A brain at rest between touches (the FEM still publishes) is not written
   // again: its last file stands.
-  if (m_brainWritten && !newForces && nodes == m_writtenNodes) return;
+  if (m_brainWritten && !newForces && nodes == m_writtenNodes) return false;
   m_writtenNodes = nodes;
   for (size_t i = 0; i < nodes.size(); ++i)
     for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);
@@ -116,14 +119,17 @@ void VtkExporter::writeBrain(double t) {
   for (const tetra::NodeForce& f : m_nodeForces->read().forces)
     if (f.node >= 0 && size_t(f.node) < nodes.size())
       for (int a = 0; a < 3; ++a) m_force.values[3 * size_t(f.node) + a] += float(f.force[a]);
-  attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const std::filesystem::path& f) {
-    vtk::writeTetGrid(nodes, *m_cells, {m_displacement, m_force}, {}, f);
-  });
   m_brainWritten = true;
+  return true;
+}
+
+void VtkExporter::writeBrain(double t) {
+  attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const std::filesystem::path& f) {
+    vtk::writeTetGrid(m_writtenNodes, *m_cells, {m_displacement, m_force}, {}, f);
+  });
 }
 
 void VtkExporter::writeTool(double t) {
-  m_samples->fetch();
   const Sample& s = m_samples->read();
   auto vec = [&](int column) { return column < 0 ? Vec3::Zero() : Vec3(s.values[column], s.values[column + 1], s.values[column + 2]); };
   vtk::PolyData tool;
@@ -158,7 +164,10 @@ bool VtkExporter::applySkullEdits() {
   });
   if (n == 0) return false;
   m_skullEdits += n;
-  for (size_t block : m_skullSurface.update(m_skullGrid, first, last)) m_blockChanged[block] = 1;
+  for (size_t block : m_skullSurface.update(m_skullGrid, first, last)) {
+    m_blockChanged[block] = 1;
+    if (m_live) m_liveBlockChanged[block] = 1;
+  }
   return true;
 }
 
@@ -201,11 +210,54 @@ void VtkExporter::writeSkull(double t) {
 
 void VtkExporter::tick(const TickContext& context) {
   if (l_skull) m_skullChanged = applySkullEdits() || m_skullChanged;  // the copy follows even with no files
-  if (m_root.empty()) return;  // the run writes no files
-  if (l_brain) writeBrain(context.t);
-  if (l_force) writeTool(context.t);
-  if (l_skull && m_skullChanged && context.t - m_lastSkullWrite >= d_skullInterval.value()) writeSkull(context.t);
+  const bool files = !m_root.empty();
+  if (!files && !m_live) return;  // the run writes no files and streams nothing
+  if (l_brain && updateBrain()) {
+    if (files) writeBrain(context.t);
+    if (m_live) m_live->sendNodes(context.t, m_writtenNodes);
+  }
+  if (l_force) {
+    m_samples->fetch();
+    if (files) writeTool(context.t);
+    if (m_live) sendTool(context.t);
+  }
+  if (l_skull && files && m_skullChanged && context.t - m_lastSkullWrite >= d_skullInterval.value())
+    writeSkull(context.t);
+  if (l_skull && m_live) {
+    // The drill's blocks, whole, each frame they change.
+    for (size_t b = 0; b < m_liveBlockChanged.size(); ++b) {
+      if (!m_liveBlockChanged[b]) continue;
+      m_liveBlockChanged[b] = 0;
+      m_live->sendSkullBlock(b, m_skullSurface.block(b));
+    }
+  }
   ++m_frames;
+}
+
+void VtkExporter::sendTool(double t) {
+  const Sample& s = m_samples->read();
+  auto vec = [&](int column) {
+    return column < 0 ? Vec3::Zero() : Vec3(s.values[column], s.values[column + 1], s.values[column + 2]);
+  };
+  m_live->sendTool(t, vec(m_device), vec(m_proxy), vec(m_forceColumn), m_toolRadius < 0 ? 0.0 : s.values[m_toolRadius],
+                   m_penetration < 0 ? 0.0 : s.values[m_penetration]);
+}
+
+void VtkExporter::startLiveView(const RunPlan& plan) {
+  std::vector<std::string> names, kinds;
+  if (l_brain) names.push_back("brain"), kinds.push_back("mesh");
+  if (l_force) names.push_back("tool"), kinds.push_back("tool");
+  if (l_skull) names.push_back("skull"), kinds.push_back("blocks");
+  m_live = std::make_unique<LiveStream>(plan.liveViewPort, path(), plan.duration, names, kinds);
+  if (l_brain) {
+    m_live->sendCells(l_brain->mesh().tets);
+    m_live->sendNodes(0, l_brain->mesh().nodes);
+  }
+  if (l_skull) {
+    m_live->sendSkullClustered(m_skullSurface, size_t(d_viewTriangles.value()));
+    m_liveBlockChanged.assign(m_skullSurface.blockCount(), 0);
+  }
+  std::cout << "view      http://127.0.0.1:" << m_live->port() << "/ (live, while the run goes)" << std::endl;
 }
 
 std::string VtkExporter::pvdName() const { return d_directory.value() + ".pvd"; }
@@ -232,7 +284,14 @@ void VtkExporter::finish(FinishContext& context) {
   }
 }
 
+VtkExporter::VtkExporter() = default;
+VtkExporter::~VtkExporter() = default;
+
 void VtkExporter::reportCounters(std::vector<Counter>& counters) const {
+  if (m_live) {
+    counters.push_back({"view_clients", double(m_live->clients())});
+    counters.push_back({"view_skipped_messages", double(m_live->coalesced())});  // a slow browser got newer ones
+  }
   counters.push_back({"frames", double(m_frames)});
   counters.push_back({"files", double(m_files)});
   counters.push_back({"failed_files", double(m_failed)});

@@ -19,7 +19,9 @@
 // listing every file with its time. Only what the links name is written. The
 // haptic and FEM threads only copy into the channels' slots; the files are
 // written here, off their threads. The brain is written again only when its
-// nodes moved or the tool's forces on it changed.
+// nodes moved or the tool's forces on it changed. Under `trephine run
+// --realtime --view PORT` it also serves the browser viewer and streams the
+// same parts to it (LiveStream).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -30,6 +32,7 @@
 #include "framework/core/Link.h"
 #include "framework/core/SampleSource.h"
 #include "framework/vtk/VtkXml.h"
+#include "plugins/viewer/LiveStream.h"
 #include "plugins/tetra_brain/MeshDeformation.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 #include "plugins/voxel_skull/IsoSurface.h"
@@ -40,6 +43,8 @@ namespace trephine::viewer {
 class VtkExporter final : public Component {
  public:
   static constexpr std::string_view kTypeName = "VtkExporter";
+  VtkExporter();
+  ~VtkExporter() override;
 
   void init(InitContext& context) override;
   void prepare(const RunPlan& plan) override;
@@ -50,7 +55,12 @@ class VtkExporter final : public Component {
 
  private:
   std::string pvdName() const;
+  // Reads the brain's nodes and forces; true when they changed since the
+  // last frame written (or streamed).
+  bool updateBrain();
   void writeBrain(double t);
+  void sendTool(double t);
+  void startLiveView(const RunPlan& plan);
   void writeTool(double t);
   // Applies the drill's changes to the copy of the codes; true if any.
   bool applySkullEdits();
@@ -78,6 +88,12 @@ class VtkExporter final : public Component {
                "for a 0.5 mm skull); the last state is written at the end",
        .unit = "s",
        .min = 0.0}};
+  Field<int> d_viewTriangles{this,
+                             "viewTriangles",
+                             15000,
+                             {.help = "Triangles of the skull at the start of a live view (trephine run --view): its "
+                                      "blocks clustered to this many; the blocks the drill changes are sent whole",
+                              .min = 1000.0}};
   Field<std::string> d_directory{
       this,
       "directory",
@@ -106,6 +122,11 @@ class VtkExporter final : public Component {
   bool m_skullChanged = false;
   double m_lastSkullWrite = -INFINITY;  // s
   uint64_t m_skullEdits = 0, m_skullFiles = 0;
+
+  // The live view (trephine run --view): its server, and the blocks changed
+  // since they were last sent.
+  std::unique_ptr<LiveStream> m_live;
+  std::vector<uint8_t> m_liveBlockChanged;
 
   std::filesystem::path m_root;  // the run directory, empty: write nothing
   vtk::Collection m_collection;

@@ -12,7 +12,7 @@
 
 #include "tests/support/TestSupport.h"
 #include "tools/trephine/RunViewerData.h"
-#include "tools/trephine/VertexClustering.h"
+#include "framework/vtk/VertexClustering.h"
 
 namespace trephine {
 namespace {
@@ -146,6 +146,19 @@ TEST(ViewCommandTest, RunsItCannotShowAreClearErrors) {
   EXPECT_NE(out.find("vtk.pvd:1: not XML"), std::string::npos) << out;
 }
 
+TEST(ViewCommandTest, TheLiveViewNeedsRealTimeAnExporterAndAPort) {
+  test::TempDir dir;
+  std::string out;
+  const std::string exporting = (test::sourceDir() / "scenes/examples/fem_press_export.xml").string();
+  const std::string plain = (test::sourceDir() / "scenes/examples/plane_touch.xml").string();
+  EXPECT_EQ(runProgram({"run", exporting, "--view", "0", "--out", dir.path().string()}, &out), 2);
+  EXPECT_NE(out.find("--view needs --realtime"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"run", exporting, "--realtime", "--view", "70000", "--out", dir.path().string()}, &out), 2);
+  EXPECT_NE(out.find("--view takes a port"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"run", plain, "--realtime", "--view", "--out", dir.path().string()}, &out), 1);
+  EXPECT_NE(out.find("has none; add one"), std::string::npos) << out;
+}
+
 // A sphere of radius 50 mm as a UV grid of about 2 x n^2 triangles.
 vtk::TriangleSurface sphere(int n) {
   vtk::TriangleSurface s;
@@ -167,7 +180,7 @@ TEST(VertexClusteringTest, MeetsTheBudgetAndKeepsTheShape) {
   const vtk::TriangleSurface fine = sphere(150);  // 89,400 triangles, 1 mm edges
   ASSERT_GT(fine.triangles.size(), 80000u);
   double cell = 0;
-  const vtk::TriangleSurface coarse = cli::simplifyToBudget({&fine}, 3000, 0, &cell);
+  const vtk::TriangleSurface coarse = vtk::simplifyToBudget({&fine}, 3000, 0, &cell);
   EXPECT_LE(coarse.triangles.size(), 3000u);
   EXPECT_GT(coarse.triangles.size(), 1500u) << "the cell grows by 1.25 a try: not far under the budget";
   EXPECT_GT(cell, 1.0);
@@ -179,7 +192,7 @@ TEST(VertexClusteringTest, MeetsTheBudgetAndKeepsTheShape) {
     area += 0.5 * (coarse.points[t[1]] - coarse.points[t[0]]).cross(coarse.points[t[2]] - coarse.points[t[0]]).norm();
   EXPECT_NEAR(area, 4 * M_PI * 50 * 50, 0.1 * 4 * M_PI * 50 * 50);
   // Within the budget: unchanged.
-  const vtk::TriangleSurface same = cli::simplifyToBudget({&fine}, 100000, 0, &cell);
+  const vtk::TriangleSurface same = vtk::simplifyToBudget({&fine}, 100000, 0, &cell);
   EXPECT_EQ(same.triangles.size(), fine.triangles.size());
   EXPECT_EQ(cell, 0.0);
 }
@@ -201,7 +214,7 @@ TEST(VertexClusteringTest, PiecesAddedApartJoinWithoutCracks) {
     for (const auto& [edge, n] : edges) open += n == 1;
     return open;
   };
-  cli::VertexClustering pieces(7.0), one(7.0);
+  vtk::VertexClustering pieces(7.0), one(7.0);
   pieces.add(top);
   pieces.add(bottom);
   one.add(whole);

@@ -98,8 +98,8 @@ int validateCommand(const Arguments& a) {
 
 int runCommand(const Arguments& a) {
   if (a.positional.size() != 1) {
-    std::cerr << "usage: trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value "
-                 "...] [--strict]\n";
+    std::cerr << "usage: trephine run SCENE [--duration S] [--out DIR] [--realtime [--view [PORT]]] [--seed N] "
+                 "[--set path.field=value ...] [--strict]\n";
     return kUsage;
   }
   std::string error;
@@ -111,6 +111,20 @@ int runCommand(const Arguments& a) {
   const std::filesystem::path scene = a.positional[0];
   const std::filesystem::path out = a.get("--out").value_or("runs/" + scene.stem().string());
   options->outputDirectory = out;
+  if (auto port = a.get("--view")) {
+    int value = -1;
+    const auto result = std::from_chars(port->data(), port->data() + port->size(), value);
+    if (port->empty() || result.ec != std::errc() || result.ptr != port->data() + port->size() || value < 0 ||
+        value > 65535) {
+      std::cerr << "trephine: --view takes a port (0 to 65535; 0: any free one), not '" << *port << "'\n";
+      return kUsage;
+    }
+    if (!options->realtime) {
+      std::cerr << "trephine: --view needs --realtime (in virtual time the run is over before a browser connects)\n";
+      return kUsage;
+    }
+    options->liveViewPort = value;
+  }
 
   Diagnostics diagnostics;
   auto simulation = Simulation::fromFile(scene, *options, diagnostics);
@@ -119,6 +133,15 @@ int runCommand(const Arguments& a) {
     return kSceneError;
   }
   diagnostics.print(std::cerr);
+  if (options->liveViewPort >= 0) {
+    bool exporter = false;
+    for (const Component* c : simulation->scene().components()) exporter = exporter || c->typeName() == "VtkExporter";
+    if (!exporter) {
+      std::cerr << "trephine: --view streams what the scene's VtkExporter names (the skull, the brain, the tool): "
+                << scene.string() << " has none; add one (see scenes/integrated.xml)\n";
+      return kSceneError;
+    }
+  }
   // The output directory must be usable before anything is simulated.
   if (auto problem = prepareOutputDirectory(out)) {
     std::cerr << "trephine: --out " << out.string() << ": " << *problem << "\n";

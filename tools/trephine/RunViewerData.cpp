@@ -11,7 +11,7 @@
 
 #include "framework/runtime/JsonWriter.h"
 #include "framework/vtk/VtkSurfaceReader.h"
-#include "tools/trephine/VertexClustering.h"
+#include "framework/vtk/VertexClustering.h"
 
 namespace trephine::cli {
 
@@ -236,14 +236,14 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     if (const size_t n = count(drilledSurfaces(s)); n > drilledMost) drilledMost = n, widest = s;
   size_t drilledBudget = drilledMost;
   if (drilledMost > budget / 2)
-    drilledBudget = simplifyToBudget(drilledSurfaces(widest), budget / 2, 0, &out.drilledCell).triangles.size();
+    drilledBudget = vtk::simplifyToBudget(drilledSurfaces(widest), budget / 2, 0, &out.drilledCell).triangles.size();
   // The untouched blocks: the rest of the budget, never finer than the drilled ones.
   std::vector<const vtk::TriangleSurface*> untouched;
   for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
     if (!drilled.count(block)) untouched.push_back(&surfaceOf(file));
   out.surfaceTriangles = count(untouched) + drilledMost;
   const vtk::TriangleSurface coarse =
-      simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
+      vtk::simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
                        out.drilledCell, &out.coarseCell);
   for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
     if (!drilled.count(block)) surfaces.erase(file);  // clustered: no longer needed
@@ -263,11 +263,11 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     const auto list = drilledSurfaces(s);
     vtk::TriangleSurface surface;
     if (out.drilledCell > 0) {
-      VertexClustering clustering(out.drilledCell);
+      vtk::VertexClustering clustering(out.drilledCell);
       for (const auto* piece : list) clustering.add(*piece);
       surface = clustering.result();
     } else {
-      surface = simplifyToBudget(list, SIZE_MAX, 0);
+      surface = vtk::simplifyToBudget(list, SIZE_MAX, 0);
     }
     drawnMost = std::max(drawnMost, surface.triangles.size());
     if (surface.triangles.empty()) {

@@ -4,30 +4,13 @@
 #include <filesystem>
 #include <iostream>
 
+#include "plugins/viewer/ViewerAssets.h"
 #include "tools/trephine/RunViewerData.h"
 
 namespace trephine::cli {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// The built viewer (index.html and viewer.js): TREPHINE_VIEWER_ASSETS, the
-// installed copy, or the build's.
-fs::path findViewerAssets() {
-  std::vector<fs::path> candidates;
-  if (const char* set = std::getenv("TREPHINE_VIEWER_ASSETS")) candidates.emplace_back(set);
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/trephine/viewer");
-  candidates.emplace_back(TREPHINE_VIEWER_BUILD_DIR);
-  for (const fs::path& candidate : candidates)
-    if (fs::is_regular_file(candidate / "viewer.js", ec) && fs::is_regular_file(candidate / "index.html", ec))
-      return candidate;
-  return {};
-}
-
-}  // namespace
 
 int viewCommand(const Arguments& arguments) {
   if (arguments.positional.size() != 1) {
@@ -40,7 +23,7 @@ int viewCommand(const Arguments& arguments) {
     std::cerr << "trephine view: " << run.string() << ": not a directory (the output directory of trephine run)\n";
     return kSceneError;
   }
-  const fs::path assets = findViewerAssets();
+  const fs::path assets = viewer::findViewerAssets();
   if (assets.empty()) {
     std::cerr << "trephine view: the browser viewer was not built: it needs Node.js and npm (tools/setup installs "
                  "them and the viewer's packages, then builds it). ParaView opens the run's .pvd files meanwhile.\n";

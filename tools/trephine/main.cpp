@@ -1,5 +1,6 @@
 // trephine: run, validate and document scenes.
 #include <iostream>
+#include <vector>
 #include <string>
 
 #include "tools/trephine/CellSizeCommand.h"
@@ -16,10 +17,13 @@ namespace {
 constexpr const char* kHelp = R"(trephine - haptic neurosurgery simulation framework
 
 usage:
-  trephine run SCENE [--duration S] [--out DIR] [--realtime] [--seed N] [--set path.field=value ...] [--quiet]
+  trephine run SCENE [--duration S] [--out DIR] [--realtime [--view [PORT]]] [--seed N] [--set path.field=value ...] [--quiet]
                     [--strict]
       Run a scene (virtual time unless --realtime) and write summary.json,
       trace.csv and timings.csv to DIR (default runs/<scene name>).
+      --view [PORT] (with --realtime): the browser viewer at
+      http://127.0.0.1:PORT/ (8080 unless given; 0: any free port, printed),
+      streaming what the scene's VtkExporter names as it happens.
   trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...] [--strict]
       Load and initialise a scene as run would, without running it;
       print every error, or "ok".
@@ -117,7 +121,15 @@ int main(int argc, char** argv) {
   arguments.command = command;
   std::optional<std::string> error;
   if (command == "run") {
-    error = parseArguments(argc, argv, {"--duration", "--out", "--seed", "--set"},
+    // --view takes an optional port: "--view" alone is "--view 8080".
+    std::vector<std::string> words(argv, argv + argc);
+    for (size_t i = 2; i < words.size(); ++i)
+      if (words[i] == "--view" && (i + 1 == words.size() || words[i + 1].empty() || words[i + 1][0] < '0' ||
+                                   words[i + 1][0] > '9'))
+        words[i] = "--view=8080";
+    std::vector<char*> pointers;
+    for (std::string& w : words) pointers.push_back(w.data());
+    error = parseArguments(int(pointers.size()), pointers.data(), {"--duration", "--out", "--seed", "--set", "--view"},
                            {"--realtime", "--quiet", "--strict"}, arguments);
     if (!error) return runCommand(arguments);
   } else if (command == "study") {

@@ -10,6 +10,7 @@
 import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
 import { Plots } from './plots.js';
+import { startLive } from './live.js';
 
 const status = {
   ready: false,
@@ -38,13 +39,59 @@ function rendererName() {
   return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
 }
 
+// A checkbox per part, and the skull's opacity (to see the brain inside).
+function addPartToggles(manifest, scene, parameters) {
+  const toggles = document.getElementById('parts');
+  const hidden = new Set((parameters.get('hide') || '').split(',').filter(Boolean));
+  for (const part of manifest.parts) {
+    const label = document.createElement('label');
+    const box = document.createElement('input');
+    box.type = 'checkbox';
+    box.checked = !hidden.has(part.name);
+    scene.setHidden(part.name, !box.checked);
+    box.addEventListener('change', () => {
+      scene.setHidden(part.name, !box.checked);
+      scene.render();
+    });
+    label.append(box, ` ${part.name}`);
+    toggles.append(label);
+    if (part.kind === 'blocks') {
+      const opacity = document.createElement('input');
+      opacity.type = 'range';
+      opacity.min = '0.1';
+      opacity.max = '1';
+      opacity.step = '0.05';
+      opacity.value = parameters.get('opacity') || '1';
+      opacity.title = `${part.name} opacity`;
+      scene.setOpacity(part.name, Number(opacity.value));
+      opacity.addEventListener('input', () => {
+        scene.setOpacity(part.name, Number(opacity.value));
+        scene.render();
+      });
+      toggles.append(opacity);
+    }
+  }
+}
+
 async function start() {
   const manifest = window.trephineRun;
   if (!manifest) throw new Error('data/manifest.js is missing: write the viewer with trephine view RUN_DIR');
   document.getElementById('title').textContent = manifest.name;
   status.renderer = rendererName();
-  const data = new RunData(manifest, report);
   const scene = new Scene3d(document.getElementById('view'));
+  if (manifest.live) {
+    // Served by trephine run --view: no files, a stream.
+    document.getElementById('play').style.display = 'none';
+    document.getElementById('time').style.display = 'none';
+    addPartToggles(manifest, scene, new URLSearchParams(window.location.search));
+    const plots = new Plots(document.getElementById('plots'), null, 10, () => {});
+    // Always moving: drawn at the playing scale of the pixels.
+    const parameters = new URLSearchParams(window.location.search);
+    scene.setPixelScale(Number(parameters.get('playScale') || 0.35));
+    startLive(manifest, scene, plots, status, report);
+    return;
+  }
+  const data = new RunData(manifest, report);
   const end = manifest.end;
   const slider = document.getElementById('time');
   const label = document.getElementById('clock');
@@ -191,37 +238,7 @@ async function start() {
     if (event.key === ' ') setPlaying(!playing);
   });
 
-  // A checkbox per part, and the skull's opacity (to see the brain inside).
-  const toggles = document.getElementById('parts');
-  const hidden = new Set((parameters.get('hide') || '').split(',').filter(Boolean));
-  for (const part of manifest.parts) {
-    const label = document.createElement('label');
-    const box = document.createElement('input');
-    box.type = 'checkbox';
-    box.checked = !hidden.has(part.name);
-    scene.setHidden(part.name, !box.checked);
-    box.addEventListener('change', () => {
-      scene.setHidden(part.name, !box.checked);
-      scene.render();
-    });
-    label.append(box, ` ${part.name}`);
-    toggles.append(label);
-    if (part.kind === 'blocks') {
-      const opacity = document.createElement('input');
-      opacity.type = 'range';
-      opacity.min = '0.1';
-      opacity.max = '1';
-      opacity.step = '0.05';
-      opacity.value = parameters.get('opacity') || '1';
-      opacity.title = `${part.name} opacity`;
-      scene.setOpacity(part.name, Number(opacity.value));
-      opacity.addEventListener('input', () => {
-        scene.setOpacity(part.name, Number(opacity.value));
-        scene.render();
-      });
-      toggles.append(opacity);
-    }
-  }
+  addPartToggles(manifest, scene, parameters);
   speed = Number(parameters.get('speed') || 1);
   if (fullScale !== 1) scene.setPixelScale(fullScale);
   showTime(Number(parameters.get('t') || 0));

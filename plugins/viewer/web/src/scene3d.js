@@ -223,23 +223,59 @@ export class Scene3d {
     const force = file.array('PointData', 'force');
     const radius = file.array('PointData', 'radius');
     if (!points || points.length < 6) return;
-    const device = Array.from(points.subarray(0, 3));
-    const proxy = Array.from(points.subarray(3, 6));
-    const toolRadius = radius ? radius[1] : 2.5;  // mm
+    this.setToolPose(part, Array.from(points.subarray(0, 3)), Array.from(points.subarray(3, 6)),
+                     force ? Array.from(force.subarray(3, 6)) : [0, 0, 0], radius ? radius[1] : 0);
+  }
+
+  // The device and proxy (mm), the force on the hand (N) and the tool's
+  // radius (mm; 0: unknown, drawn 2.5 mm).
+  setToolPose(part, device, proxy, force, radius) {
+    const toolRadius = radius > 0 ? radius : 2.5;
     part.proxySource.setCenter(...proxy);
     part.proxySource.setRadius(toolRadius);
     part.deviceSource.setCenter(...device);
     part.deviceSource.setRadius(0.4 * toolRadius);
     part.hasTool = true;
-    const f = force ? Array.from(force.subarray(3, 6)) : [0, 0, 0];
-    const length = Math.hypot(...f) * this.forceScale;
+    const length = Math.hypot(...force) * this.forceScale;
     if (length > 1e-3) {
-      part.arrow.setUserMatrix(arrowMatrix(proxy, f.map((v) => v * this.forceScale), Math.max(toolRadius, 0.2 * length)));
+      part.arrow.setUserMatrix(arrowMatrix(proxy, force.map((v) => v * this.forceScale), Math.max(toolRadius, 0.2 * length)));
       part.hasArrow = true;
     } else {
       part.hasArrow = false;
     }
     this.applyVisibility(part);
+  }
+
+  // The part named `name`, made on first use (the live view has no files).
+  partFor(name, kind) {
+    let part = this.parts.get(name);
+    if (!part) {
+      part = this.createPart(kind);
+      part.name = name;
+      this.parts.set(name, part);
+      if (this.opacity.has(name)) this.setOpacity(name, this.opacity.get(name));
+    }
+    return part;
+  }
+
+  // A tetrahedral mesh's nodes (Float32Array, mm); `corners` (4 a
+  // tetrahedron) when its topology is new.
+  setMeshNodes(part, points, corners) {
+    if (corners) {
+      const tets = corners.length / 4;
+      const offsets = new Int32Array(tets);
+      for (let i = 0; i < tets; ++i) offsets[i] = 4 * (i + 1);
+      part.polyData.getPolys().setData(tetBoundary(points, corners, offsets, new Uint8Array(tets).fill(10)), 1);
+    }
+    part.polyData.getPoints().setData(points, 3);
+    part.polyData.modified();
+    part.hasData = part.polyData.getPolys().getNumberOfCells() > 0;
+    this.applyVisibility(part);
+  }
+
+  // Surfaces [{points, triangles}] drawn as one.
+  setPieces(part, pieces) {
+    this.setTriangles(part, pieces);
   }
 
   // The actors of a part, each with whether it has something to draw.

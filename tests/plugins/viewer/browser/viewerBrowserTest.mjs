@@ -14,6 +14,7 @@ import { createRequire } from 'node:module';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { classify, differenceNearTool } from './pixels.mjs';
 import { decodePng } from './png.mjs';
 
 const options = {};
@@ -30,55 +31,6 @@ const parts = options.parts.split(',');
 const openLimit = Number(options['open-limit'] || 3);
 const minFps = Number(options['min-fps'] || 0);
 mkdirSync(options.out, { recursive: true });
-
-// The colours the viewer draws (its scene3d.js), as chromaticities: shading
-// scales a colour, so a pixel's colour over its largest channel is the
-// material's whatever the light.
-const kMaterials = {
-  skull: [0.91, 0.87, 0.76],
-  brain: [0.9, 0.55, 0.6],
-  proxy: [0.2, 0.45, 0.95],
-  device: [0.3, 0.85, 0.35],
-  force: [0.95, 0.25, 0.15],
-};
-const chroma = (rgb) => {
-  const top = Math.max(...rgb);
-  return rgb.map((v) => v / top);
-};
-const kChroma = Object.fromEntries(Object.entries(kMaterials).map(([name, rgb]) => [name, chroma(rgb)]));
-
-// Per material: its pixel count and their centroid and box; `changed`: the
-// pixels that differ from `other` (same size).
-function classify(image) {
-  const found = {};
-  for (const name of Object.keys(kChroma)) found[name] = { count: 0, x: 0, y: 0, box: [Infinity, Infinity, -Infinity, -Infinity] };
-  const { width, height, pixels } = image;
-  for (let y = 0; y < height; ++y) {
-    for (let x = 0; x < width; ++x) {
-      const o = 4 * (y * width + x);
-      const rgb = [pixels[o], pixels[o + 1], pixels[o + 2]];
-      const top = Math.max(...rgb);
-      if (top < 60) continue;  // background or deep shadow
-      const c = rgb.map((v) => v / top);
-      for (const [name, target] of Object.entries(kChroma)) {
-        if (Math.hypot(c[0] - target[0], c[1] - target[1], c[2] - target[2]) > 0.07) continue;
-        const f = found[name];
-        f.count += 1;
-        f.x += x;
-        f.y += y;
-        f.box = [Math.min(f.box[0], x), Math.min(f.box[1], y), Math.max(f.box[2], x), Math.max(f.box[3], y)];
-        break;
-      }
-    }
-  }
-  for (const f of Object.values(found)) {
-    if (f.count) {
-      f.x /= f.count;
-      f.y /= f.count;
-    }
-  }
-  return found;
-}
 
 const failures = [];
 const check = (ok, message) => {
@@ -179,37 +131,16 @@ try {
     }
   }
   // The two times differ where the tool moved: most changed pixels lie in
-  // the box around the proxy and its force arrow at both times (grown by
-  // twice the proxy's size).
+  // the box around the proxy and its force arrow at both times.
   if (shots.length === 2 && parts.includes('tool')) {
-    const [a, b] = shots;
-    const pa = a.found.proxy;
-    const pb = b.found.proxy;
-    // The tool: the proxy and the force arrow at either time.
-    const boxes = [pa.box, pb.box, a.found.force.box, b.found.force.box].filter((q) => q[0] <= q[2]);
-    const grow = 2 * Math.max(pa.box[2] - pa.box[0], pb.box[2] - pb.box[0], 10);
-    const box = [Math.min(...boxes.map((q) => q[0])) - grow, Math.min(...boxes.map((q) => q[1])) - grow,
-                 Math.max(...boxes.map((q) => q[2])) + grow, Math.max(...boxes.map((q) => q[3])) + grow];
-    let changed = 0;
-    let inside = 0;
-    const { width, height } = a.image;
-    for (let y = 0; y < height; ++y) {
-      for (let x = 0; x < width; ++x) {
-        const o = 4 * (y * width + x);
-        const d = Math.abs(a.image.pixels[o] - b.image.pixels[o]) + Math.abs(a.image.pixels[o + 1] - b.image.pixels[o + 1]) +
-                  Math.abs(a.image.pixels[o + 2] - b.image.pixels[o + 2]);
-        if (d < 40) continue;
-        ++changed;
-        if (x >= box[0] && x <= box[2] && y >= box[1] && y <= box[3]) ++inside;
-      }
-    }
-    const moved = Math.hypot(pa.x - pb.x, pa.y - pb.y);
-    results.toolMovedPixels = moved;
-    results.changedPixels = changed;
-    results.changedNearTool = changed ? inside / changed : 0;
-    check(moved > 3, `the proxy moved ${moved.toFixed(1)} pixels between the two times`);
-    check(changed > 100 && inside / changed > 0.5,
-          `${changed} pixels changed, ${(100 * results.changedNearTool).toFixed(0)}% of them around the tool (at least half; the rest: the brain deforming under it)`);
+    const difference = differenceNearTool(shots[0], shots[1]);
+    results.toolMovedPixels = difference.moved;
+    results.changedPixels = difference.changed;
+    results.changedNearTool = difference.near;
+    check(difference.moved > 3, `the proxy moved ${difference.moved.toFixed(1)} pixels between the two times`);
+    check(difference.proxyChanged > 0.8,
+          `${(100 * difference.proxyChanged).toFixed(0)}% of the proxy's pixels at either time changed (at least 80%); ` +
+          `${difference.changed} pixels changed in all, ${(100 * difference.near).toFixed(0)}% of them around the tool`);
   }
 
   // A click on the plots goes to its time.

@@ -1,10 +1,10 @@
-#include "tools/trephine/VertexClustering.h"
+#include "framework/vtk/VertexClustering.h"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 
-namespace trephine::cli {
+namespace trephine::vtk {
 
 int32_t VertexClustering::clusterOf(const Vec3& p) {
   // 21 bits a coordinate around the origin: 2^20 cubes each way.
@@ -21,7 +21,8 @@ int32_t VertexClustering::clusterOf(const Vec3& p) {
   return at->second;
 }
 
-void VertexClustering::add(const vtk::TriangleSurface& surface) {
+std::pair<size_t, size_t> VertexClustering::add(const TriangleSurface& surface) {
+  const size_t first = m_triangles.size();
   std::vector<int32_t> cluster(surface.points.size());
   for (size_t i = 0; i < surface.points.size(); ++i) {
     cluster[i] = clusterOf(surface.points[i]);
@@ -32,10 +33,31 @@ void VertexClustering::add(const vtk::TriangleSurface& surface) {
     const std::array<int32_t, 3> c{cluster[size_t(t[0])], cluster[size_t(t[1])], cluster[size_t(t[2])]};
     if (c[0] != c[1] && c[1] != c[2] && c[0] != c[2]) m_triangles.push_back(c);
   }
+  return {first, m_triangles.size()};
 }
 
-vtk::TriangleSurface VertexClustering::result() const {
-  vtk::TriangleSurface out;
+TriangleSurface VertexClustering::piece(std::pair<size_t, size_t> range) const {
+  TriangleSurface out;
+  std::set<std::array<int32_t, 3>> seen;
+  std::unordered_map<int32_t, int32_t> renumber;
+  for (size_t i = range.first; i < range.second && i < m_triangles.size(); ++i) {
+    std::array<int32_t, 3> key = m_triangles[i];
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    if (!seen.insert(key).second) continue;
+    std::array<int32_t, 3> kept;
+    for (int k = 0; k < 3; ++k) {
+      const int32_t cluster = m_triangles[i][k];
+      auto [at, added] = renumber.try_emplace(cluster, int32_t(out.points.size()));
+      if (added) out.points.push_back(m_sums[size_t(cluster)] / m_counts[size_t(cluster)]);
+      kept[k] = at->second;
+    }
+    out.triangles.push_back(kept);
+  }
+  return out;
+}
+
+TriangleSurface VertexClustering::result() const {
+  TriangleSurface out;
   // Each triangle once, whatever its turn (both sides of a thin wall can
   // collapse onto the same three clusters: those are kept, one a side).
   std::set<std::array<int32_t, 3>> seen;
@@ -58,7 +80,7 @@ vtk::TriangleSurface VertexClustering::result() const {
   return out;
 }
 
-vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurface*>& surfaces, size_t triangles,
+TriangleSurface simplifyToBudget(const std::vector<const TriangleSurface*>& surfaces, size_t triangles,
                                       double smallest, double* cellUsed) {
   size_t total = 0;
   double edge = 0;  // mean edge, mm: where clustering starts to matter
@@ -69,7 +91,7 @@ vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurfa
       edge += (s->points[size_t(s->triangles[i][0])] - s->points[size_t(s->triangles[i][1])]).norm();
   }
   if (total <= triangles && smallest <= 0) {
-    vtk::TriangleSurface joined;
+    TriangleSurface joined;
     for (const auto* s : surfaces) {
       const int32_t base = int32_t(joined.points.size());
       joined.points.insert(joined.points.end(), s->points.begin(), s->points.end());
@@ -85,7 +107,7 @@ vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurfa
   for (;;) {
     VertexClustering clustering(cell);
     for (const auto* s : surfaces) clustering.add(*s);
-    vtk::TriangleSurface out = clustering.result();
+    TriangleSurface out = clustering.result();
     if (out.triangles.size() <= triangles || cell > 1e4 * edge) {
       if (cellUsed) *cellUsed = cell;
       return out;
@@ -94,4 +116,4 @@ vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurfa
   }
 }
 
-}  // namespace trephine::cli
+}  // namespace trephine::vtk

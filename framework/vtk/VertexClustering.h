@@ -5,25 +5,32 @@
 // fewer than three cubes vanish. The cubes are global, so surfaces added
 // apart (a skull's blocks) join without cracks. A wall thinner than a cube
 // (a skull's tables, at coarse cells) folds onto itself: drawn flat-shaded,
-// with both sides kept, it still reads as a surface. For a viewer that must draw
+// with both sides kept, it still reads as a surface. Used by the browser
+// viewer's data (trephine view) and its live stream (VtkExporter). For a viewer that must draw
 // a skull of millions of triangles in a software renderer: the triangle
 // count falls about as 1 / cell^2.
 #include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "framework/vtk/VtkSurfaceReader.h"
 
-namespace trephine::cli {
+namespace trephine::vtk {
 
 class VertexClustering {
  public:
   explicit VertexClustering(double cell) : m_cell(cell) {}
 
-  void add(const vtk::TriangleSurface& surface);
+  // Returns the surface's piece: the range of its kept triangles, for piece().
+  std::pair<size_t, size_t> add(const TriangleSurface& surface);
   // The clustered surface; each triangle once.
-  vtk::TriangleSurface result() const;
+  TriangleSurface result() const;
+  // The triangles of one added surface on the clusters of all of them (its
+  // own copy of the points it uses): a piece can be replaced alone, and
+  // pieces join without cracks.
+  TriangleSurface piece(std::pair<size_t, size_t> range) const;
 
  private:
   int32_t clusterOf(const Vec3& p);
@@ -38,7 +45,7 @@ class VertexClustering {
 // The surfaces joined, clustered with the smallest cell (from `smallest` mm up,
 // each try 1.25 times the last) that gives at most `triangles` triangles;
 // with `smallest` 0 and the surfaces within the budget, unchanged.
-vtk::TriangleSurface simplifyToBudget(const std::vector<const vtk::TriangleSurface*>& surfaces, size_t triangles,
+TriangleSurface simplifyToBudget(const std::vector<const TriangleSurface*>& surfaces, size_t triangles,
                                       double smallest, double* cellUsed = nullptr);
 
-}  // namespace trephine::cli
+}  // namespace trephine::vtk

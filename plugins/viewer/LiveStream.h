@@ -1,0 +1,56 @@
+#pragma once
+// What a VtkExporter streams to the live view (`trephine run --realtime
+// --view PORT`): the same parts as its files, as WebSocket messages the
+// browser viewer (plugins/viewer/web/src/live.js) reads. All little-endian,
+// 4-byte aligned, each starting with a uint32 type:
+//   1 tool    u32 pad, f64 t (s), f32 device[3], proxy[3], force[3] (mm, N),
+//             f32 tool radius (mm), penetration (mm)
+//   2 nodes   u32 node count n, f64 t, f32 positions[3n] (mm)
+//   3 cells   u32 tetrahedron count m, i32 corners[4m]
+//   4 block   u32 block, u32 point count p, u32 triangle count q,
+//             f32 points[3p] (mm), u32 corners[3q]
+// and a first text message, {"type": "hello", "parts": [...], ...}. The
+// skull starts as every block clustered (VertexClustering, at most
+// `skullTriangles` in all, the clusters shared so the blocks join), and each
+// block the drill changes is sent whole. Messages are keyed (LiveServer): a
+// slow browser gets the latest tool, nodes and each block's latest surface.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "framework/geometry/TriangleBlocks.h"
+#include "framework/math/Math.h"
+
+namespace trephine::viewer {
+
+class LiveServer;
+
+class LiveStream {
+ public:
+  // Throws std::runtime_error when the viewer was not built or the port
+  // cannot be had.
+  LiveStream(int port, const std::string& name, double duration, const std::vector<std::string>& partNames,
+             const std::vector<std::string>& partKinds);
+  ~LiveStream();
+
+  int port() const;
+  uint64_t clients() const;
+  uint64_t coalesced() const;
+
+  void sendCells(std::span<const std::array<int32_t, 4>> tets);
+  void sendNodes(double t, std::span<const Vec3> nodes);
+  void sendTool(double t, const Vec3& device, const Vec3& proxy, const Vec3& force, double radius,
+                double penetration);
+  // Every block of `blocks`, clustered to at most `triangles` in all.
+  void sendSkullClustered(const TriangleBlocks& blocks, size_t triangles);
+  void sendSkullBlock(size_t block, const TriangleMesh& mesh);
+
+ private:
+  std::unique_ptr<LiveServer> m_server;
+  std::string m_message;  // reused
+};
+
+}  // namespace trephine::viewer
