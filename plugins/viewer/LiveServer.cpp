@@ -68,6 +68,7 @@ struct LiveServer::Impl : std::enable_shared_from_this<LiveServer::Impl> {
 
     void start(http::request<http::string_body> request) {
       m_ws.binary(true);
+      m_ws.auto_fragment(false);  // a message is one frame: a block's surface is sent whole
       m_ws.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
         if (ec) return;
         self->m_open = true;
