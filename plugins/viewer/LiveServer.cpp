@@ -43,7 +43,10 @@ std::string contentType(const std::string& file) {
 
 }  // namespace
 
-struct LiveServer::Impl : std::enable_shared_from_this<LiveServer::Impl> {
+// Handlers hold the server by plain pointer: it outlives its thread (the
+// destructor joins it), and a handler holding it by shared pointer in its own
+// io_context would keep both alive forever.
+struct LiveServer::Impl {
   class Stream;
 
   asio::io_context io;
@@ -195,16 +198,16 @@ struct LiveServer::Impl : std::enable_shared_from_this<LiveServer::Impl> {
   };
 
   void accept() {
-    acceptor.async_accept([self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
+    acceptor.async_accept([this](beast::error_code ec, tcp::socket socket) {
       if (ec) return;  // closed
-      std::make_shared<Request>(std::move(socket), *self)->start();
-      self->accept();
+      std::make_shared<Request>(std::move(socket), *this)->start();
+      accept();
     });
   }
 };
 
 LiveServer::LiveServer(int port, std::filesystem::path assets, std::string manifest)
-    : m_impl(std::make_shared<Impl>()) {
+    : m_impl(std::make_unique<Impl>()) {
   m_impl->assets = std::move(assets);
   m_impl->manifest = std::move(manifest);
   beast::error_code ec;
@@ -217,11 +220,11 @@ LiveServer::LiveServer(int port, std::filesystem::path assets, std::string manif
     throw std::runtime_error("the live view cannot listen on 127.0.0.1:" + std::to_string(port) + ": " + ec.message());
   m_impl->port = m_impl->acceptor.local_endpoint().port();
   m_impl->accept();
-  m_impl->thread = std::thread([impl = m_impl] { impl->io.run(); });
+  m_impl->thread = std::thread([impl = m_impl.get()] { impl->io.run(); });
 }
 
 LiveServer::~LiveServer() {
-  asio::post(m_impl->io, [impl = m_impl] {
+  asio::post(m_impl->io, [impl = m_impl.get()] {
     beast::error_code ignored;
     impl->acceptor.close(ignored);
     for (const auto& stream : impl->streams) stream->close();
@@ -243,7 +246,7 @@ void LiveServer::send(const std::string& key, std::string bytes, bool binary) {
     if (added) m_impl->kept.push_back({key, message});
     else m_impl->kept[at->second].second = message;
   }
-  asio::post(m_impl->io, [impl = m_impl, key, message] {
+  asio::post(m_impl->io, [impl = m_impl.get(), key, message] {
     for (const auto& stream : impl->streams) stream->enqueue(key, message);
   });
 }

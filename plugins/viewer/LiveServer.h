@@ -33,7 +33,7 @@ class LiveServer {
 
  private:
   struct Impl;
-  std::shared_ptr<Impl> m_impl;
+  std::unique_ptr<Impl> m_impl;
 };
 
 }  // namespace trephine::viewer

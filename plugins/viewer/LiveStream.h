@@ -9,8 +9,7 @@
 //   3 cells   u32 tetrahedron count m, i32 corners[4m]
 //   4 block   u32 block, u32 point count p, u32 triangle count q,
 //             f32 points[3p] (mm), u32 corners[3q]
-// and a first text message, {"type": "hello", "parts": [...], ...}. The
-// skull starts as every block clustered (VertexClustering, at most
+// The parts are in the manifest the server gives the page. The skull starts as every block clustered (VertexClustering, at most
 // `skullTriangles` in all, the clusters shared so the blocks join), and each
 // block the drill changes is sent whole. Messages are keyed (LiveServer): a
 // slow browser gets the latest tool, nodes and each block's latest surface.

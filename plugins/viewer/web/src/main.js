@@ -83,10 +83,10 @@ async function start() {
     // Served by trephine run --view: no files, a stream.
     document.getElementById('play').style.display = 'none';
     document.getElementById('time').style.display = 'none';
-    addPartToggles(manifest, scene, new URLSearchParams(window.location.search));
+    const parameters = new URLSearchParams(window.location.search);
+    addPartToggles(manifest, scene, parameters);
     const plots = new Plots(document.getElementById('plots'), null, 10, () => {});
     // Always moving: drawn at the playing scale of the pixels.
-    const parameters = new URLSearchParams(window.location.search);
     scene.setPixelScale(Number(parameters.get('playScale') || 0.35));
     startLive(manifest, scene, plots, status, report);
     return;
