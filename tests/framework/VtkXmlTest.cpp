@@ -170,5 +170,18 @@ TEST(VtkXmlTest, TriangleSurfacesReadBackThroughTheSurfaceReader) {
   EXPECT_THROW(vtk::readTriangleSurface(dir.path() / "grid.vtp"), vtk::VtkReadError);
 }
 
+// Files written apart from the project's writer (the fuzzer's seeds, made
+// with Python's zlib): a tetrahedron's four faces, zlib blocks and raw.
+TEST(VtkXmlTest, TheSurfaceReaderReadsFilesOfAnotherWriterCompressedOrNot) {
+  for (const char* name : {"tet.vtp", "tet_raw.vtp"}) {
+    const vtk::TriangleSurface s =
+        vtk::readTriangleSurface(test::sourceDir() / "tests/fuzz/surface_reader_seeds" / name);
+    ASSERT_EQ(s.points.size(), 4u) << name;
+    ASSERT_EQ(s.triangles.size(), 4u) << name;
+    EXPECT_EQ(s.points[3], Vec3(0, 0, 1)) << name;
+    EXPECT_EQ(s.triangles[3], (std::array<int32_t, 3>{1, 2, 3})) << name;
+  }
+}
+
 }  // namespace
 }  // namespace trephine

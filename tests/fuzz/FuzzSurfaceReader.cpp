@@ -1,13 +1,16 @@
 // libFuzzer target: arbitrary bytes as a triangle surface file. The first
 // byte picks the extension (.off, .obj, .stl or .ply: the reader takes OBJ
-// and binary STL by their extension); the rest is the file. Any crash,
-// sanitizer report, hang or exception other than TetMeshReadError is a
-// reader bug; so is a surface that breaks the TriangleSurface contract.
+// and binary STL by their extension; or .vtp, VTK XML poly data, which
+// trephine view reads with vtk::readTriangleSurface); the rest is the file.
+// Any crash, sanitizer report, hang or exception other than TetMeshReadError
+// (VtkReadError for .vtp) is a reader bug; so is a surface that breaks the
+// TriangleSurface contract.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 
+#include "framework/vtk/VtkSurfaceReader.h"
 #include "plugins/tetra_brain/io/SurfaceReader.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "tests/fuzz/FuzzInputFiles.h"
@@ -18,9 +21,22 @@ const std::filesystem::path& inputDirectory() { return trephine::fuzz::inputDire
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
-  static const char* const kExtensions[] = {".off", ".obj", ".stl", ".ply"};
-  const std::filesystem::path file = inputDirectory() / (std::string("input") + kExtensions[data[0] % 4]);
+  static const char* const kExtensions[] = {".off", ".obj", ".stl", ".ply", ".vtp"};
+  const std::filesystem::path file = inputDirectory() / (std::string("input") + kExtensions[data[0] % 5]);
   trephine::fuzz::writeInputFile(file, data + 1, size - 1);
+  if (data[0] % 5 == 4) {
+    try {
+      const trephine::vtk::TriangleSurface surface = trephine::vtk::readTriangleSurface(file);
+      for (const auto& triangle : surface.triangles)
+        for (const int32_t index : triangle)
+          if (index < 0 || size_t(index) >= surface.points.size()) __builtin_trap();
+    } catch (const trephine::vtk::VtkReadError& error) {
+      if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
+    }
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+    return 0;
+  }
   try {
     const trephine::tetra::TriangleSurface surface = trephine::tetra::readSurface(file);
     if (surface.triangles.empty()) __builtin_trap();
