@@ -81,16 +81,17 @@ void LiveStream::sendNodes(double t, std::span<const Vec3> nodes) {
 }
 
 void LiveStream::sendTool(double t, const Vec3& device, const Vec3& proxy, const Vec3& force, double radius,
-                          double penetration) {
+                          double penetration, const std::optional<Vec3>& contact) {
   m_message.clear();
   put(m_message, uint32_t(1));
-  put(m_message, uint32_t(0));
+  put(m_message, uint32_t(contact ? 1 : 0));
   put(m_message, t);
   putVec(m_message, device);
   putVec(m_message, proxy);
   putVec(m_message, force);
   put(m_message, float(radius));
   put(m_message, float(penetration));
+  putVec(m_message, contact.value_or(Vec3::Zero()));
   m_server->send("tool", m_message, true);
 }
 

@@ -3,8 +3,9 @@
 // --view PORT`): the same parts as its files, as WebSocket messages the
 // browser viewer (plugins/viewer/web/src/live.js) reads. All little-endian,
 // 4-byte aligned, each starting with a uint32 type:
-//   1 tool    u32 pad, f64 t (s), f32 device[3], proxy[3], force[3] (mm, N),
-//             f32 tool radius (mm), penetration (mm)
+//   1 tool    u32 contact (1: the contact point follows), f64 t (s),
+//             f32 device[3], proxy[3], force[3] (mm, N), f32 tool radius
+//             (mm), penetration (mm), contact point[3] (mm)
 //   2 nodes   u32 node count n, f64 t, f32 positions[3n] (mm)
 //   3 cells   u32 tetrahedron count m, i32 corners[4m]
 //   4 block   u32 block, u32 point count p, u32 triangle count q,
@@ -16,6 +17,7 @@
 #include <array>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -42,7 +44,7 @@ class LiveStream {
   void sendCells(std::span<const std::array<int32_t, 4>> tets);
   void sendNodes(double t, std::span<const Vec3> nodes);
   void sendTool(double t, const Vec3& device, const Vec3& proxy, const Vec3& force, double radius,
-                double penetration);
+                double penetration, const std::optional<Vec3>& contact);
   // Every block of `blocks`, clustered to at most `triangles` in all.
   void sendSkullClustered(const TriangleBlocks& blocks, size_t triangles);
   void sendSkullBlock(size_t block, const TriangleMesh& mesh);

@@ -129,24 +129,36 @@ void VtkExporter::writeBrain(double t) {
   });
 }
 
+std::optional<Vec3> VtkExporter::contactPoint(const Sample& s) const {
+  if (m_normal < 0 || m_toolRadius < 0) return std::nullopt;
+  const Vec3 normal(s.values[m_normal], s.values[m_normal + 1], s.values[m_normal + 2]);
+  if (normal.squaredNorm() < 0.5) return std::nullopt;  // no contact: no normal
+  const Vec3 proxy(s.values[m_proxy], s.values[m_proxy + 1], s.values[m_proxy + 2]);
+  return proxy - s.values[m_toolRadius] * normal;
+}
+
 void VtkExporter::writeTool(double t) {
   const Sample& s = m_samples->read();
   auto vec = [&](int column) { return column < 0 ? Vec3::Zero() : Vec3(s.values[column], s.values[column + 1], s.values[column + 2]); };
   vtk::PolyData tool;
   tool.points = {vec(m_device), vec(m_proxy)};
-  tool.vertices = {0, 1};
+  const std::optional<Vec3> contact = contactPoint(s);
+  if (contact) tool.points.push_back(*contact);
+  const size_t n = tool.points.size();
+  for (size_t i = 0; i < n; ++i) tool.vertices.push_back(int32_t(i));
   tool.lines = {{0, 1}};
+  // Each array holds one value for every point: the frame's value.
+  auto perPoint = [n](std::string name, std::initializer_list<float> value) {
+    vtk::DataArray array{std::move(name), int(value.size()), {}};
+    for (size_t i = 0; i < n; ++i) array.values.insert(array.values.end(), value);
+    return array;
+  };
   const Vec3 force = vec(m_forceColumn), normal = vec(m_normal);
   const float penetration = m_penetration < 0 ? 0.0f : float(s.values[m_penetration]);
-  tool.pointData = {{"force", 3, {float(force.x()), float(force.y()), float(force.z()), float(force.x()),
-                                  float(force.y()), float(force.z())}},
-                    {"normal", 3, {float(normal.x()), float(normal.y()), float(normal.z()), float(normal.x()),
-                                   float(normal.y()), float(normal.z())}},
-                    {"penetration", 1, {penetration, penetration}}};
-  if (m_toolRadius >= 0) {
-    const float radius = float(s.values[m_toolRadius]);  // mm
-    tool.pointData.push_back({"radius", 1, {radius, radius}});
-  }
+  tool.pointData = {perPoint("force", {float(force.x()), float(force.y()), float(force.z())}),
+                    perPoint("normal", {float(normal.x()), float(normal.y()), float(normal.z())}),
+                    perPoint("penetration", {penetration})};
+  if (m_toolRadius >= 0) tool.pointData.push_back(perPoint("radius", {float(s.values[m_toolRadius])}));  // mm
   attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { vtk::writePolyData(tool, f); });
 }
 
@@ -240,7 +252,7 @@ void VtkExporter::sendTool(double t) {
     return column < 0 ? Vec3::Zero() : Vec3(s.values[column], s.values[column + 1], s.values[column + 2]);
   };
   m_live->sendTool(t, vec(m_device), vec(m_proxy), vec(m_forceColumn), m_toolRadius < 0 ? 0.0 : s.values[m_toolRadius],
-                   m_penetration < 0 ? 0.0 : s.values[m_penetration]);
+                   m_penetration < 0 ? 0.0 : s.values[m_penetration], contactPoint(s));
 }
 
 void VtkExporter::startLiveView(const RunPlan& plan) {

@@ -5,9 +5,12 @@
 //   brain_NNNNN.vtu  the brain's mesh at its current node positions, with the
 //                    node displacements (mm), the tool's forces on the nodes
 //                    (N) and the tissue labels;
-//   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, with the
-//                    force rendered to the hand (N), the contact normal, the
-//                    penetration (mm) and the radius of the tool in hand (mm);
+//   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, and in
+//                    contact the contact point (where the displayed tool
+//                    meets the surface: the proxy less the tool's radius
+//                    along the contact normal), with the force rendered to
+//                    the hand (N), the contact normal, the penetration (mm)
+//                    and the radius of the tool in hand (mm);
 //   skull_NNNNN.vtm  the skull's surface (the isosurface of its interpolated
 //                    density, as the mesh back-ends see it), block by block:
 //                    each block of 16^3 cells in skull/bBBBBB_NNNNN.vtp, at
@@ -60,6 +63,9 @@ class VtkExporter final : public Component {
   bool updateBrain();
   void writeBrain(double t);
   void sendTool(double t);
+  // Where the displayed tool touches (mm), from a ForceFeedback sample; none
+  // out of contact.
+  std::optional<Vec3> contactPoint(const Sample& s) const;
   void startLiveView(const RunPlan& plan);
   void writeTool(double t);
   // Applies the drill's changes to the copy of the codes; true if any.

@@ -102,6 +102,31 @@ TEST(VtkExporterTest, ARunLeavesItsFilesAndAnIndexInTime) {
   }
   EXPECT_GT(strongest, 0.01) << "N";
   EXPECT_GT(downward, 0.9 * strongest);
+  // In contact, the tool's file has a third point, where the displayed probe
+  // meets the top face (z = 100 mm, the wave within 0.5 mm of it): 2.5 mm
+  // (the probe's radius) below the proxy. Out of contact, two points.
+  int inContact = 0, outOfContact = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk")) {
+    if (!entry.path().filename().string().starts_with("tool_")) continue;
+    const std::string text = test::readFile(entry.path());
+    const size_t points = text.find("<Points>");
+    ASSERT_NE(points, std::string::npos);
+    const std::vector<float> xyz =
+        test::appendedArray<float>(text, std::stoull(text.substr(text.find("offset=\"", points) + 8)));
+    if (xyz.size() == 6) {
+      ++outOfContact;
+      continue;
+    }
+    ASSERT_EQ(xyz.size(), 9u) << entry.path();
+    ++inContact;
+    const Vec3 proxy(xyz[3], xyz[4], xyz[5]), contact(xyz[6], xyz[7], xyz[8]);
+    EXPECT_NEAR((proxy - contact).norm(), 2.5, 1e-4) << entry.path();
+    EXPECT_NEAR(contact.z(), 100.0, 0.6) << entry.path();
+    EXPECT_LT(proxy.z() - contact.z(), 2.5 + 1e-4);
+    EXPECT_GT(proxy.z() - contact.z(), 2.4) << "the normal is the top face's";
+  }
+  EXPECT_GT(inContact, 3);
+  EXPECT_GT(outOfContact, 3);
 }
 
 TEST(VtkExporterTest, ARunThatWritesNoFilesWritesNoneOfThese) {

@@ -59,7 +59,8 @@ export function startLive(manifest, scene, plots, status, report) {
     const force = vec(40);
     const radius = view.getFloat32(52, true);
     const penetration = view.getFloat32(56, true);
-    if (tool) scene.setToolPose(scene.partFor(tool, 'tool'), device, proxy, force, radius);
+    const contact = view.getUint32(4, true) ? vec(60) : null;
+    if (tool) scene.setToolPose(scene.partFor(tool, 'tool'), device, proxy, force, radius, contact);
     status.toolMessages = (status.toolMessages || 0) + 1;
     history.t.push(time);
     history.force.push(Math.hypot(...force));

@@ -1,6 +1,6 @@
 // The 3D view (vtk.js): the skull's surface, the brain's boundary at its
-// current node positions, the device and the proxy, and the force on the hand
-// as an arrow.
+// current node positions, the device, the proxy and the contact point, and
+// the force on the hand as an arrow.
 import '@kitware/vtk.js/Rendering/Profiles/Geometry';
 import vtkGenericRenderWindow from '@kitware/vtk.js/Rendering/Misc/GenericRenderWindow';
 import vtkActor from '@kitware/vtk.js/Rendering/Core/Actor';
@@ -19,6 +19,7 @@ export const kColours = {
   proxy: [0.2, 0.45, 0.95],
   device: [0.3, 0.85, 0.35],
   force: [0.95, 0.25, 0.15],
+  contact: [1.0, 0.85, 0.1],
 };
 
 function surfaceActor(colour) {
@@ -128,14 +129,17 @@ export class Scene3d {
       arrowActor.setMapper(arrowMapper);
       arrowActor.getProperty().setColor(...kColours.force);
       arrowActor.setVisibility(false);
+      const contactSource = vtkSphereSource.newInstance({ thetaResolution: 12, phiResolution: 8 });
       const part = {
         proxySource,
         deviceSource,
+        contactSource,
         proxy: sourceActor(proxySource, kColours.proxy),
         device: sourceActor(deviceSource, kColours.device),
+        contact: sourceActor(contactSource, kColours.contact),
         arrow: arrowActor,
       };
-      for (const actor of [part.proxy, part.device, part.arrow]) this.renderer.addActor(actor);
+      for (const actor of [part.proxy, part.device, part.contact, part.arrow]) this.renderer.addActor(actor);
       return part;
     }
     const colour = kind === 'mesh' ? kColours.brain : kind === 'blocks' ? kColours.skull : kColours.surface;
@@ -223,14 +227,21 @@ export class Scene3d {
     const force = file.array('PointData', 'force');
     const radius = file.array('PointData', 'radius');
     if (!points || points.length < 6) return;
+    // A third point: the contact point (in contact only).
     this.setToolPose(part, Array.from(points.subarray(0, 3)), Array.from(points.subarray(3, 6)),
-                     force ? Array.from(force.subarray(3, 6)) : [0, 0, 0], radius ? radius[1] : 0);
+                     force ? Array.from(force.subarray(3, 6)) : [0, 0, 0], radius ? radius[1] : 0,
+                     points.length >= 9 ? Array.from(points.subarray(6, 9)) : null);
   }
 
-  // The device and proxy (mm), the force on the hand (N) and the tool's
-  // radius (mm; 0: unknown, drawn 2.5 mm).
-  setToolPose(part, device, proxy, force, radius) {
+  // The device and proxy (mm), the force on the hand (N), the tool's radius
+  // (mm; 0: unknown, drawn 2.5 mm) and the contact point (mm, or null).
+  setToolPose(part, device, proxy, force, radius, contact) {
     const toolRadius = radius > 0 ? radius : 2.5;
+    part.hasContact = Boolean(contact);
+    if (contact) {
+      part.contactSource.setCenter(...contact);
+      part.contactSource.setRadius(0.3 * toolRadius);
+    }
     part.proxySource.setCenter(...proxy);
     part.proxySource.setRadius(toolRadius);
     part.deviceSource.setCenter(...device);
@@ -280,7 +291,10 @@ export class Scene3d {
 
   // The actors of a part, each with whether it has something to draw.
   static actorsOf(part) {
-    if (part.proxy) return [[part.proxy, part.hasTool], [part.device, part.hasTool], [part.arrow, part.hasArrow]];
+    if (part.proxy) {
+      return [[part.proxy, part.hasTool], [part.device, part.hasTool], [part.contact, part.hasContact],
+              [part.arrow, part.hasArrow]];
+    }
     return [[part.actor, part.hasData]];
   }
 
