@@ -9,7 +9,7 @@ usage: tools/bench_viewer.py [--rounds N] [--out DIR] [--triangles N,...]
 Cases: scenes/integrated.xml (the 1 mm skull drilled, the deforming brain,
 the tool) and scenes/bench/craniotomy_view.xml (the 0.5 mm skull drilled),
 each run once, then written with each skull budget (--triangles, default
-15000, the default of trephine view) and opened N times (default 3,
+8000, the default of trephine view) and opened N times (default 3,
 interleaved) by tests/plugins/viewer/browser/viewerBrowserTest.mjs. Writes
 DIR/viewer.csv (default runs/bench-viewer) and prints a table of medians.
 Needs Chromium (/usr/bin/chromium) and the viewer's packages (tools/setup).
@@ -35,7 +35,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--out", type=Path, default=ROOT / "runs/bench-viewer")
-    parser.add_argument("--triangles", default="15000")
+    parser.add_argument("--triangles", default="8000")
     args = parser.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []

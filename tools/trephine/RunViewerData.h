@@ -10,8 +10,8 @@
 // them, so the first frame loads first and in parallel.
 //
 // A skull of a million triangles is more than a browser without a graphics
-// card draws 30 times a second (SwiftShader draws some 25 frames a second of
-// a 15,000-triangle skull and a 3,000-triangle brain here), so its blocks are
+// card draws 30 times a second (SwiftShader here draws every frame of a run's
+// 30 a second with an 8,000-triangle skull, 27 with 15,000), so its blocks are
 // simplified (VertexClustering) to at
 // most `blockTriangles`: the blocks the drill changed are kept whole while
 // they fit in half of that (else clustered, finer than the rest), and the
@@ -45,7 +45,7 @@ struct ViewerDataSummary {
 
 // Writes `dataDirectory` (emptied first) from `runDirectory`.
 ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                  const std::filesystem::path& dataDirectory, size_t blockTriangles = 15000,
+                                  const std::filesystem::path& dataDirectory, size_t blockTriangles = 8000,
                                   uint64_t chunkBytes = 4u << 20);
 
 // Standard base64 (RFC 4648, padded).

@@ -31,7 +31,7 @@ int viewCommand(const Arguments& arguments) {
   }
   const fs::path view = run / "view";
   try {
-    size_t triangles = 15000;
+    size_t triangles = 8000;
     if (auto value = arguments.get("--triangles")) {
       char* end = nullptr;
       const long long n = std::strtoll(value->c_str(), &end, 10);

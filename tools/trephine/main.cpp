@@ -87,11 +87,12 @@ usage:
       install, no network) and shows the skull, the brain, the tool, the
       proxy and the force arrow in time, with a slider, play, and the force
       and penetration plots (from trace.csv); a click on a plot goes to its
-      time. The skull is simplified to N triangles (15000: what a browser
-      without a graphics card, SwiftShader on one core, draws some 25 times
-      a second; give 500000 or more on a machine with one), the blocks the
-      drill changed kept whole while they fit in half of that. Needs the
-      viewer built (Node.js and npm, see tools/setup).
+      time. While playing or turning, the skull is simplified to N
+      triangles (8000: what a browser without a graphics card, SwiftShader,
+      draws 30 times a second; give 500000 or more on a machine with one),
+      the blocks the drill changed kept whole while they fit in half of
+      that; standing still, to 10 N. Needs the viewer built (Node.js and
+      npm, see tools/setup).
   trephine --version | --help
 
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
