@@ -44,6 +44,9 @@ int viewCommand(const Arguments& arguments) {
     const ViewerDataSummary summary = writeViewerData(run, view / "data", triangles);
     for (const char* file : {"index.html", "viewer.js"})
       fs::copy_file(assets / file, view / file, fs::copy_options::overwrite_existing);
+    // The licences of what the bundle holds, when the build wrote them.
+    if (fs::is_regular_file(assets / "viewer.js.LICENSES.txt", ec))
+      fs::copy_file(assets / "viewer.js.LICENSES.txt", view / "viewer.js.LICENSES.txt", fs::copy_options::overwrite_existing);
     std::cout << "viewer    " << (view / "index.html").string() << " (open it in a browser)\n"
               << "          " << summary.frames << " frames over " << summary.end << " s, " << summary.parts
               << " parts, " << summary.files << " files (" << summary.bytes / 1e6 << " MB) in " << summary.chunks
