@@ -91,7 +91,7 @@ async function start() {
     startLive(manifest, scene, plots, status, report);
     return;
   }
-  const data = new RunData(manifest, report);
+  const data = new RunData(manifest);
   const end = manifest.end;
   const slider = document.getElementById('time');
   const label = document.getElementById('clock');

@@ -13,9 +13,8 @@ import { VtkXmlFile, bytesFromBase64 } from './vtkXmlFile.js';
 import { TriangleFile } from './triangleFile.js';
 
 export class RunData {
-  constructor(manifest, onError) {
+  constructor(manifest) {
     this.manifest = manifest;
-    this.onError = onError;
     this.encoded = new Map();  // file -> base64, until decoded
     this.files = new Map();    // file -> VtkXmlFile
     this.chunkLoads = new Map();  // chunk -> Promise
