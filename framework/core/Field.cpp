@@ -205,11 +205,20 @@ std::string_view FilePathField::schemeBody() const {
   return isScheme() ? std::string_view(m_text).substr(m_scheme.size() + 1) : std::string_view();
 }
 
-std::string FilePathField::rangeText() const {
-  if (m_schemes.empty()) return m_role == Role::Input ? "existing file" : "";
-  std::string s = "existing file or ";
-  for (size_t i = 0; i < m_schemes.size(); ++i) s += (i ? ", " : "") + m_schemes[i] + ":...";
+namespace {
+std::string schemeList(const std::vector<std::string>& schemes) {
+  std::string s;
+  for (size_t i = 0; i < schemes.size(); ++i) s += (i ? ", " : "") + schemes[i] + ":...";
   return s;
+}
+}  // namespace
+
+std::string FilePathField::rangeText() const {
+  const std::string paths = m_role == Role::Input              ? "existing file"
+                            : m_role == Role::InputOrDirectory ? "existing file or directory"
+                                                               : "";
+  if (m_schemes.empty()) return paths;
+  return (paths.empty() ? "a path" : paths) + " or " + schemeList(m_schemes);
 }
 
 std::optional<std::string> FilePathField::parseAndStore(std::string_view text, const ParseContext& context) {
@@ -224,20 +233,37 @@ std::optional<std::string> FilePathField::parseAndStore(std::string_view text, c
     if (std::find(m_schemes.begin(), m_schemes.end(), scheme) == m_schemes.end()) {
       return "unknown source '" + scheme + ":'" +
              (m_schemes.empty() ? std::string(", expected a file path")
-                                : ", expected a file path or " + rangeText().substr(17));
+                                : ", expected a file path or " + schemeList(m_schemes));
     }
     m_text = t;
     m_scheme = scheme;
     m_resolved.clear();
     return std::nullopt;
   }
-  std::filesystem::path p(t);
+  // A query after a directory ("DIR/?series=UID"): the path is before it.
+  std::string pathText = t, query;
+  if (m_role == Role::InputOrDirectory) {
+    if (const size_t mark = t.find('?'); mark != std::string::npos) pathText = t.substr(0, mark), query = t.substr(mark);
+  }
+  std::filesystem::path p(pathText);
   if (p.is_relative()) p = context.baseDirectory / p;
   p = p.lexically_normal();
+  std::error_code ec;
   if (m_role == Role::Input) {
-    std::error_code ec;
     if (!std::filesystem::exists(p, ec)) return "file not found: " + p.string();
     if (!std::filesystem::is_regular_file(p, ec)) return "not a regular file: " + p.string();
+  } else if (m_role == Role::InputOrDirectory) {
+    if (!std::filesystem::exists(p, ec)) return "file or directory not found: " + p.string();
+    const bool directory = std::filesystem::is_directory(p, ec);
+    if (!directory && !std::filesystem::is_regular_file(p, ec)) return "not a regular file or directory: " + p.string();
+    if (!query.empty() && !directory)
+      return "'" + query + "' follows a file: a query picks within a directory (a DICOM series), e.g. DIR/?series=UID";
+  }
+  if (!query.empty()) {
+    // lexically_normal() keeps a trailing slash as an empty last part; the
+    // reader wants the directory.
+    if (p.filename().empty()) p = p.parent_path();
+    p += query;
   }
   m_text = t;
   m_scheme.clear();

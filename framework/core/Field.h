@@ -211,7 +211,10 @@ class EnumField final : public BaseField {
 // example "phantom:skull?voxel=1.0") when the scheme is one the field accepts.
 class FilePathField final : public BaseField {
  public:
-  enum class Role { Input, Output };
+  // Input: an existing file. InputOrDirectory: an existing file or directory
+  // (a DICOM series), the directory optionally followed by "?key=value"
+  // (kept in path(), for the reader). Output: any path.
+  enum class Role { Input, Output, InputOrDirectory };
   FilePathField(FieldOwner* owner, std::string_view name, FieldInfo info, Role role = Role::Input,
                 std::vector<std::string> schemes = {});
 

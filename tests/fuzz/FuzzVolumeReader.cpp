@@ -1,6 +1,8 @@
 // libFuzzer target: arbitrary bytes as a volume file. The first byte picks
 // the extension (.mha, .nrrd or .nii; the readers detect the format from the
-// content, the extension is only the fallback), the rest is the file. The
+// content, the extension is only the fallback; a DICOM file, "DICM" after its
+// 128-byte preamble, goes to the DICOM reader whatever its name), the rest
+// is the file. The
 // file lives in a directory of its own per process, so relative data file
 // names in fuzzed headers resolve inside it. Any crash, sanitizer report,
 // hang or exception other than VolumeReadError is a reader bug.

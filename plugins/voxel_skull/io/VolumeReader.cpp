@@ -5,6 +5,7 @@
 
 #include "plugins/voxel_skull/io/ByteSource.h"
 #include "plugins/voxel_skull/io/Decompress.h"
+#include "plugins/voxel_skull/io/DicomReader.h"
 #include "plugins/voxel_skull/io/HeaderText.h"
 #include "plugins/voxel_skull/io/MetaImageReader.h"
 #include "plugins/voxel_skull/io/NiftiReader.h"
@@ -67,10 +68,17 @@ VolumeReadError::VolumeReadError(const std::filesystem::path& file, const std::s
     : std::runtime_error(withoutNul(file.string() + ": " + problem)) {}
 
 DensityVolume readVolume(const std::filesystem::path& file) {
+  // A DICOM series: a directory (of one series, or DIR?series=UID to pick one).
+  const std::string text = file.string();
+  if (const size_t query = text.find("?series="); query != std::string::npos)
+    return readDicom(text.substr(0, query), text.substr(query + 8));
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) return readDicom(file);
   const FileByteSource source(file);
   if (source.size() == 0)
     throw VolumeReadError(file, "the file is empty (expected a MetaImage, NRRD or NIfTI-1 volume)");
   const std::vector<uint8_t> head = source.readClipped(0, kDetectionBytes);
+  if (looksLikeDicom(head)) return readDicom(file);  // one slice, or a multi-frame image
   if (!isGzip(head)) {
     const Format format = formatFromContent(head);
     return readFormat(format != Format::kUnknown ? format : formatFromExtension(file), source);

@@ -24,6 +24,8 @@ class FieldZoo final : public Component {
   FilePathField input{this, "input", {.help = "an input file"}};
   FilePathField volume{this, "volume", {.help = "a file or a phantom"}, FilePathField::Role::Input, {"phantom"}};
   FilePathField output{this, "output", {.help = "an output file"}, FilePathField::Role::Output};
+  FilePathField series{this, "series", {.help = "a file or a directory"}, FilePathField::Role::InputOrDirectory,
+                       {"phantom"}};
   RateField rate{this, 100.0};
   Link<Component> other{this, "other", {.help = "a link"}};
 };
@@ -180,6 +182,26 @@ TEST(FieldParsingTest, SchemeIsAcceptedOnlyByAFieldThatListsIt) {
 
   EXPECT_EQ(assign(zoo.volume, "mesh:skull"), "unknown source 'mesh:', expected a file path or phantom:...");
   EXPECT_EQ(assign(zoo.input, "phantom:skull?voxel=1"), "unknown source 'phantom:', expected a file path");
+}
+
+// A DICOM series is a directory, and one series among several is picked by a
+// query after it, which the path keeps for the reader.
+TEST(FieldParsingTest, AFieldForSeriesTakesADirectoryAndAQueryAfterIt) {
+  FieldZoo zoo;
+  test::TempDir dir;
+  std::filesystem::create_directories(dir.path() / "ct");
+  dir.write("ct/a.dcm", "x");
+  EXPECT_EQ(assign(zoo.series, "ct/", dir.path()), "");
+  EXPECT_EQ(zoo.series.path(), (dir.path() / "ct/").lexically_normal());
+  EXPECT_EQ(assign(zoo.series, "ct/?series=1.2.3", dir.path()), "");
+  EXPECT_EQ(zoo.series.path().string(), (dir.path() / "ct").string() + "?series=1.2.3");
+  EXPECT_EQ(assign(zoo.series, "ct/a.dcm", dir.path()), "");
+  EXPECT_EQ(assign(zoo.series, "ct/a.dcm?series=1", dir.path()),
+            "'?series=1' follows a file: a query picks within a directory (a DICOM series), e.g. DIR/?series=UID");
+  EXPECT_EQ(assign(zoo.series, "none/", dir.path()), "file or directory not found: " + (dir.path() / "none/").string());
+  EXPECT_EQ(zoo.series.rangeText(), "existing file or directory or phantom:...");
+  // A plain input still wants a file.
+  EXPECT_EQ(assign(zoo.input, "ct", dir.path()), "not a regular file: " + (dir.path() / "ct").string());
 }
 
 TEST(FieldParsingTest, OneLetterBeforeAColonIsAPathNotAScheme) {

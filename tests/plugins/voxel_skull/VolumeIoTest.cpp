@@ -822,7 +822,8 @@ TEST(VolumeReader, ContentDecidesAndExtensionIsTheFallback) {
                   "noise.mhd: line 1: expected 'Key = Value'");
   EXPECT_CONTAINS(readError(writeFile(dir / "empty.nrrd", {})), "empty.nrrd: the file is empty");
   EXPECT_CONTAINS(readError(dir / "absent.nii"), "absent.nii: cannot open");
-  EXPECT_CONTAINS(readError(dir.path()), "not a regular file");
+  // A directory is read as a DICOM series; this one holds none.
+  EXPECT_CONTAINS(readError(dir.path()), "a directory with no DICOM file in it");
   EXPECT_CONTAINS(readError(writeFile(dir / "broken.nii.gz", Bytes{0x1f, 0x8b, 8, 0, 0, 0, 0, 0, 0, 3, 1, 2, 3})),
                   "broken.nii.gz:");
 }
