@@ -192,10 +192,11 @@ struct BlockLevel {
 // and 1, the blocks the drill changed, at that state (a file for each state
 // whose drilled blocks differ). The files are named after the part and
 // `level`; their bytes go to `generated`.
+using SurfaceCache = std::map<std::string, vtk::TriangleSurface>;  // block file -> its surface, read once
+
 BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, const std::string& level,
-                          std::map<std::string, std::string>& generated) {
+                          SurfaceCache& surfaces, std::map<std::string, std::string>& generated) {
   BlockLevel out;
-  std::map<std::string, vtk::TriangleSurface> surfaces;  // by file
   auto surfaceOf = [&](const std::string& file) -> const vtk::TriangleSurface& {
     auto [at, added] = surfaces.try_emplace(file);
     if (added) {
@@ -245,8 +246,6 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
   const vtk::TriangleSurface coarse =
       vtk::simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
                        out.drilledCell, &out.coarseCell);
-  for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
-    if (!drilled.count(block)) surfaces.erase(file);  // clustered: no longer needed
   const std::string coarseName = part.name + "/" + level + "_untouched.tri";
   generated[coarseName] = triBytes(coarse);
   size_t drawnMost = 0;
@@ -362,8 +361,10 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   for (Part& part : parts) {
     if (part.kind != "blocks") continue;
     // Two levels: while playing or turning, and still (ten times finer).
-    const BlockLevel moving = simplifyBlocks(part, run, blockTriangles, "moving", generated);
-    const BlockLevel still = simplifyBlocks(part, run, 10 * blockTriangles, "still", generated);
+    // The block files are read once for both levels.
+    SurfaceCache surfaces;
+    const BlockLevel moving = simplifyBlocks(part, run, blockTriangles, "moving", surfaces, generated);
+    const BlockLevel still = simplifyBlocks(part, run, 10 * blockTriangles, "still", surfaces, generated);
     for (size_t s = 0; s < part.states.size(); ++s) {
       part.states[s].changes = moving.changes[s];
       part.states[s].stillChanges = still.changes[s];

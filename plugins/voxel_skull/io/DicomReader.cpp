@@ -11,7 +11,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <vector>
 
 #include "plugins/voxel_skull/io/DicomStructure.h"
