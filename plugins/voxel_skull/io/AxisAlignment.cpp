@@ -16,6 +16,22 @@ std::string describe(const Vec3& v) {
 
 }  // namespace
 
+bool isAxisAligned(const Eigen::Matrix3d& axes) {
+  std::array<bool, 3> taken{false, false, false};
+  for (int a = 0; a < 3; ++a) {
+    const Vec3 step = axes.col(a);
+    const double length = step.norm();
+    if (!(length > 0) || !std::isfinite(length)) return true;  // degenerate: alignGrid says why
+    int dominant = 0;
+    step.cwiseAbs().maxCoeff(&dominant);
+    for (int w = 0; w < 3; ++w)
+      if (w != dominant && std::abs(step[w]) > kAxisAlignmentTolerance * length) return false;
+    if (taken[dominant]) return false;
+    taken[dominant] = true;
+  }
+  return true;
+}
+
 AlignedGrid alignGrid(const std::array<int64_t, 3>& storedDims, const Eigen::Matrix3d& axes, const Vec3& origin,
                       const std::filesystem::path& file) {
   if (!origin.allFinite()) throw VolumeReadError(file, "origin " + describe(origin) + " is not finite");

@@ -1,9 +1,8 @@
 #pragma once
 // Bringing a stored grid whose axes are a signed permutation of the world
 // axes (flipped and/or swapped, as scanners and ITK write them) onto the
-// axis-aligned, positive-spacing grid of a DensityVolume. Oblique grids are
-// refused: resampling them would blur the data and belongs in a tool made
-// for it, before the file reaches us.
+// axis-aligned, positive-spacing grid of a DensityVolume without touching a
+// sample. Other grids (oblique, sheared) are resampled (ObliqueResampling.h).
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -23,6 +22,10 @@ struct AlignedGrid {
   Vec3 origin = Vec3::Zero();            // mm, centre of voxel (0, 0, 0) of the aligned grid
   SamplePlacement placement;             // where each stored sample goes in the aligned grid
 };
+
+// Whether each column of `axes` points along one world axis (within
+// kAxisAlignmentTolerance), each along a different one.
+bool isAxisAligned(const Eigen::Matrix3d& axes);
 
 // `axes` column a is the world step (mm) between neighbouring samples along
 // stored axis a; `origin` is the world position (mm) of stored sample

@@ -165,6 +165,7 @@ DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
   // GDCM's own warnings go to stderr; what matters comes back as errors here.
   gdcm::Trace::SetWarning(false);
   gdcm::Trace::SetDebug(false);
+  gdcm::Trace::SetError(false);  // the reader reports its own errors, naming the file
   // The files: the one given, or the directory's DICOM files.
   std::vector<fs::path> files;
   std::error_code ec;
@@ -246,13 +247,9 @@ DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
     }
     stored.dims = {first.dims[0], first.dims[1], int64_t(slices.size())};
     // From the first slice to the last, the mean step. A tilted gantry makes
-    // it leave the normal: such a grid is sheared, and not read yet.
+    // it leave the normal: the grid is sheared, and assembleVolume resamples
+    // it onto an axis-aligned one (as it does an oblique plane).
     sliceStep = (slices.back().origin - slices.front().origin) / double(slices.size() - 1);
-    const double across = (sliceStep - sliceStep.dot(normal) * normal).norm();
-    if (across > 1e-3 * sliceStep.norm())
-      throw VolumeReadError(path, "a gantry-tilted series: each slice is shifted " + std::to_string(across) +
-                                      " mm across the image plane (expected slices stacked along its normal; "
-                                      "resample the series onto an axis-aligned grid first)");
   }
   checkDimensions(stored.dims, "the series' Rows, Columns and slices", path);
   stored.axes.col(0) = first.rowDirection * first.pixelSpacing.x();

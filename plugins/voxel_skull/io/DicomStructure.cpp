@@ -201,36 +201,62 @@ class Walker {
     fail(at, "encapsulated pixel data are not closed");
   }
 
+  // The transfer syntaxes read: uncompressed little endian, and the
+  // compressed ones GDCM decodes (JPEG, JPEG-LS, JPEG 2000, RLE). GDCM's
+  // meta reader falls back to a path that asserts when it does not know one.
+  static bool isReadSyntax(const std::string& uid) {
+    static constexpr std::array<std::string_view, 11> kSyntaxes = {
+        "1.2.840.10008.1.2",      "1.2.840.10008.1.2.1",    "1.2.840.10008.1.2.4.50", "1.2.840.10008.1.2.4.51",
+        "1.2.840.10008.1.2.4.57", "1.2.840.10008.1.2.4.70", "1.2.840.10008.1.2.4.80", "1.2.840.10008.1.2.4.81",
+        "1.2.840.10008.1.2.4.90", "1.2.840.10008.1.2.4.91", "1.2.840.10008.1.2.5"};
+    return std::find(kSyntaxes.begin(), kSyntaxes.end(), uid) != kSyntaxes.end();
+  }
+
+  // The value representations of the File Meta Information elements
+  // (PS3.10 table 7.1-1).
+  static bool isMetaVr(const std::string& vr) {
+    return vr == "UL" || vr == "OB" || vr == "UI" || vr == "SH" || vr == "AE" || vr == "UR";
+  }
+
+  // GDCM reads the meta group strictly only while it is what PS3.10
+  // describes; on anything else it retries with a lenient reader that
+  // asserts on a short file or an unknown syntax. So the meta group must be:
+  // (0002,0000) UL first, explicit VR elements of the meta VRs, exactly as
+  // long as (0002,0000) says, a syntax read here, and a data set after it.
   void walk() {
     if (m_bytes.size() < 132 || std::memcmp(m_bytes.data() + 128, "DICM", 4) != 0)
       fail(0, "no \"DICM\" after a 128-byte preamble");
-    // File Meta Information: explicit VR little endian, group 0002.
     uint64_t at = 132;
+    const Header first = header(at, true);
+    if (first.group != 0x0002 || first.element != 0x0000 || first.vr != "UL" || first.length != 4)
+      fail(at, "the meta information does not start with its Group Length (0002,0000), one UL");
+    const uint64_t groupLength = u32(first.value);
+    const uint64_t groupStart = first.value + 4;
+    at = groupStart;
     std::string syntax;
     bool sawSopClass = false;
-    int64_t groupLength = -1;  // (0002,0000), bytes of the meta group after it
-    uint64_t groupStart = 0;
     while (at + 4 <= m_bytes.size() && u16(at) == 0x0002) {
       const Header h = header(at, true);
-      if (h.element == 0x0000) {
-        if (h.vr != "UL" || h.length != 4) fail(at, "File Meta Information Group Length (0002,0000) is not one UL");
-        groupLength = u32(h.value);
-        groupStart = h.value + 4;
-      }
-      if (h.length == kUndefined || h.vr == "SQ") fail(at, "a sequence or undefined length in the meta information");
+      if (!isMetaVr(h.vr))
+        fail(at, "the meta element (0002," + hex(h.element) + ") has value representation " + h.vr +
+                     " (expected UL, OB, UI, SH, AE or UR)");
       if (h.value + h.length > m_bytes.size()) fail(at, "a meta element runs past the end of the file");
+      if (h.element == 0x0000) fail(at, "a second Group Length (0002,0000) in the meta information");
       if (h.element == 0x0010) syntax = text(h);
       if (h.element == 0x0002) checkSopClass(text(h), at), sawSopClass = true;
       at = h.value + h.length;
     }
-    // GDCM reads the meta group as long as (0002,0000) says, whatever follows.
-    if (groupLength >= 0 && uint64_t(groupLength) != at - groupStart)
+    if (groupLength != at - groupStart)
       fail(groupStart, "File Meta Information Group Length (0002,0000) says " + std::to_string(groupLength) +
                            " bytes, the group holds " + std::to_string(at - groupStart));
     if (syntax.empty()) fail(at, "no Transfer Syntax UID (0002,0010) in the meta information");
     if (!sawSopClass) fail(at, "no Media Storage SOP Class UID (0002,0002) in the meta information");
     if (syntax == "1.2.840.10008.1.2.2") fail(at, "explicit VR big endian (retired) is not read");
     if (syntax == "1.2.840.10008.1.2.1.99") fail(at, "deflated data sets are not read");
+    if (!isReadSyntax(syntax))
+      fail(at, "transfer syntax " + syntax +
+                   " (expected implicit or explicit VR little endian, JPEG, JPEG-LS, JPEG 2000 or RLE)");
+    if (at >= m_bytes.size()) fail(at, "the file ends after its meta information, with no data set");
     elements(at, m_bytes.size(), syntax != "1.2.840.10008.1.2", 0, 0);
   }
 

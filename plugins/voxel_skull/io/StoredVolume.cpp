@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "framework/core/Strings.h"
 #include "plugins/voxel_skull/io/AxisAlignment.h"
+#include "plugins/voxel_skull/io/ObliqueResampling.h"
 #include "plugins/voxel_skull/io/VolumeReader.h"
 
 namespace trephine::voxel {
@@ -32,8 +34,6 @@ DensityVolume assembleVolume(const StoredVolume& stored, std::span<const uint8_t
   if (samples.size() != stored.byteCount())
     throw VolumeReadError(file, "internal error: " + std::to_string(samples.size()) + " bytes of samples for " +
                                     std::to_string(stored.byteCount()));
-  const AlignedGrid grid = alignGrid(stored.dims, stored.axes, stored.origin, file);
-
   const SampleRange range = scanSamples(samples, stored.layout, stored.scaling);
   if (range.firstNonFinite) {
     const size_t n = *range.firstNonFinite;
@@ -49,6 +49,19 @@ DensityVolume assembleVolume(const StoredVolume& stored, std::span<const uint8_t
                                     " is too wide to encode");
   const DensityEncoding encoding = DensityEncoding::fit(range.min, range.max, range.allIntegers);
 
+  if (!isAxisAligned(stored.axes)) {
+    // Codes in stored order, then interpolated onto the aligned grid (codes
+    // are affine in density, so this is interpolation of densities).
+    std::vector<VoxelCode> storedCodes(stored.voxelCount());
+    const SamplePlacement identity{stored.dims, {1, stored.dims[0], stored.dims[0] * stored.dims[1]}, 0};
+    encodeSamples(samples, stored.layout, stored.scaling, encoding, identity, storedCodes);
+    const ResampledGrid grid = resampledGrid(stored.dims, stored.axes, stored.origin, file);
+    DensityVolume volume(grid.dims, grid.spacing, grid.origin, encoding);
+    const VoxelCode air = *std::min_element(storedCodes.begin(), storedCodes.end());
+    resampleCodes(storedCodes, stored.dims, stored.axes, stored.origin, grid, air, volume.codeVector());
+    return volume;
+  }
+  const AlignedGrid grid = alignGrid(stored.dims, stored.axes, stored.origin, file);
   DensityVolume volume(grid.dims, grid.spacing, grid.origin, encoding);
   encodeSamples(samples, stored.layout, stored.scaling, encoding, grid.placement, volume.codeVector());
   return volume;

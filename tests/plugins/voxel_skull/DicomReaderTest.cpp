@@ -1,9 +1,11 @@
 // DICOM series read as volumes: series written here with GDCM's writer
 // (sorted and shuffled files, slices stacked downwards, rescale to
-// Hounsfield units, two series, a missing slice, a tilted gantry, a
-// truncated file), each read back against the values and geometry written.
+// Hounsfield units, two series, a missing slice, a tilted gantry, an oblique
+// plane, a truncated file, malformed meta information), each read back
+// against the values and geometry written.
 #include <gdcmAttribute.h>
 #include <gdcmImageWriter.h>
+#include <gdcmSequenceOfFragments.h>
 #include <gdcmTrace.h>
 #include <gdcmUIDGenerator.h>
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@
 #include <numeric>
 
 #include "plugins/voxel_skull/io/VolumeReader.h"
+#include "tests/plugins/voxel_skull/ResampledVolumeCheck.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -29,16 +32,23 @@ struct SliceSpec {
   double columnSpacing = 0.5, rowSpacing = 0.75;  // mm
   double slope = 1, intercept = -1024;
   std::string series = "1.2.826.0.1.3680043.2.1125.1", description = "head CT";
-  std::function<int16_t(int, int)> value;  // stored value at (column, row)
+  std::function<int16_t(int, int)> value;  // stored value at (column, row), plus 1000 per frame
+  int frames = 1;                           // several: one multi-frame file
+  double frameSpacing = 1;                  // mm between frames
+  std::string sopClass = "1.2.840.10008.5.1.4.1.1.2";  // CT Image Storage
+  // Encapsulated pixel data written as these fragments, under this syntax.
+  gdcm::TransferSyntax::TSType transferSyntax = gdcm::TransferSyntax::ExplicitVRLittleEndian;
+  std::vector<std::string> fragments;
 };
 
 void writeSlice(const std::filesystem::path& file, const SliceSpec& s) {
   gdcm::Trace::SetWarning(false);  // GDCM's writer fills in what these slices leave out
   gdcm::ImageWriter writer;
   gdcm::Image& image = writer.GetImage();
-  image.SetNumberOfDimensions(2);
+  image.SetNumberOfDimensions(s.frames > 1 ? 3 : 2);
   image.SetDimension(0, s.columns);
   image.SetDimension(1, s.rows);
+  if (s.frames > 1) image.SetDimension(2, s.frames), image.SetSpacing(2, s.frameSpacing);
   image.SetPixelFormat(gdcm::PixelFormat::INT16);
   image.SetPhotometricInterpretation(gdcm::PhotometricInterpretation::MONOCHROME2);
   image.SetSpacing(0, s.columnSpacing);
@@ -49,14 +59,29 @@ void writeSlice(const std::filesystem::path& file, const SliceSpec& s) {
   image.SetDirectionCosines(cosines);
   image.SetSlope(s.slope);
   image.SetIntercept(s.intercept);
-  std::vector<int16_t> pixels(size_t(s.columns) * s.rows);
-  for (int r = 0; r < s.rows; ++r)
-    for (int c = 0; c < s.columns; ++c) pixels[size_t(r) * s.columns + c] = s.value(c, r);
+  std::vector<int16_t> pixels(size_t(s.columns) * s.rows * s.frames);
+  for (int f = 0; f < s.frames; ++f)
+    for (int r = 0; r < s.rows; ++r)
+      for (int c = 0; c < s.columns; ++c)
+        pixels[(size_t(f) * s.rows + r) * s.columns + c] = int16_t(s.value(c, r) + 1000 * f);
   gdcm::DataElement data(gdcm::Tag(0x7fe0, 0x0010));
-  data.SetByteValue(reinterpret_cast<const char*>(pixels.data()), uint32_t(pixels.size() * 2));
+  if (s.fragments.empty()) {
+    data.SetByteValue(reinterpret_cast<const char*>(pixels.data()), uint32_t(pixels.size() * 2));
+  } else {
+    gdcm::SmartPointer<gdcm::SequenceOfFragments> sequence = new gdcm::SequenceOfFragments;
+    for (const std::string& bytes : s.fragments) {
+      gdcm::Fragment fragment;
+      fragment.SetByteValue(bytes.data(), uint32_t(bytes.size()));
+      sequence->AddFragment(fragment);
+    }
+    data.SetValue(*sequence);
+    data.SetVLToUndefined();
+    data.SetVR(gdcm::VR::OB);
+  }
+  image.SetTransferSyntax(s.transferSyntax);
   image.SetDataElement(data);
   gdcm::DataSet& ds = writer.GetFile().GetDataSet();
-  gdcm::Attribute<0x0008, 0x0016> sopClass = {"1.2.840.10008.5.1.4.1.1.2"};  // CT Image Storage
+  gdcm::Attribute<0x0008, 0x0016> sopClass = {s.sopClass.c_str()};
   ds.Replace(sopClass.GetAsDataElement());
   gdcm::Attribute<0x0008, 0x0060> modality = {"CT"};
   ds.Replace(modality.GetAsDataElement());
@@ -149,34 +174,128 @@ TEST(DicomReaderTest, BrokenSeriesAreClearErrorsNamingTheFiles) {
       << message(dir.path() / "gap");
   std::filesystem::create_directories(dir.path() / "empty");
   EXPECT_NE(message(dir.path() / "empty").find("no DICOM file"), std::string::npos);
-  // A tilted gantry: each slice shifted along y as it steps in z.
-  std::filesystem::create_directories(dir.path() / "sheared");
-  for (int k = 0; k < 3; ++k) {
-    SliceSpec s;
-    s.origin = Vec3(0, 0.5 * k, 1.0 * k);
-    s.value = [](int, int) { return int16_t(1); };
-    writeSlice(dir.path() / "sheared" / ("t" + std::to_string(k) + ".dcm"), s);
-  }
-  EXPECT_NE(message(dir.path() / "sheared").find("gantry-tilted series: each slice is shifted 0.5"),
-            std::string::npos)
-      << message(dir.path() / "sheared");
-  // An oblique plane (rotated 30 degrees about z).
-  std::filesystem::create_directories(dir.path() / "turned");
-  for (int k = 0; k < 2; ++k) {
-    SliceSpec s;
-    s.rowDirection = Vec3(std::cos(M_PI / 6), std::sin(M_PI / 6), 0);
-    s.columnDirection = Vec3(-std::sin(M_PI / 6), std::cos(M_PI / 6), 0);
-    s.origin = Vec3(0, 0, 1.0 * k);
-    s.value = [](int, int) { return int16_t(1); };
-    writeSlice(dir.path() / "turned" / ("o" + std::to_string(k) + ".dcm"), s);
-  }
-  EXPECT_NE(message(dir.path() / "turned").find("oblique"), std::string::npos) << message(dir.path() / "turned");
   // A file cut short in its pixel data.
   writeSeries(dir.path() / "cut", 3, 1.0);
   const auto victim = dir.path() / "cut" / "img96.dcm";
   const auto size = std::filesystem::file_size(victim);
   std::filesystem::resize_file(victim, size - 20);
   EXPECT_NE(message(dir.path() / "cut").find("img96.dcm"), std::string::npos) << message(dir.path() / "cut");
+}
+
+// A gantry-tilted CT (each slice shifted across the plane as it steps) and
+// an oblique plane are resampled onto an axis-aligned grid: where the stored
+// slices are, the density is the stored one interpolated (exact for this
+// ramp, linear in the stored index); outside them, the lowest density.
+TEST(DicomReaderTest, TiltedAndObliqueSeriesAreResampledOntoAnAxisAlignedGrid) {
+  test::TempDir dir;
+  struct Case {
+    std::string name;
+    Vec3 rowDirection, columnDirection, step;
+  };
+  const double c30 = std::cos(M_PI / 6), s30 = std::sin(M_PI / 6);
+  const std::vector<Case> cases = {
+      {"tilted", Vec3::UnitX(), Vec3::UnitY(), Vec3(0, 0.5, 1.0)},  // tilt of 26.6 degrees about x
+      {"oblique", Vec3(c30, s30, 0), Vec3(-s30, c30, 0), Vec3(0, 0, 1.5)},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const int slices = 5;
+    std::filesystem::create_directories(dir.path() / c.name);
+    SliceSpec spec;
+    spec.rowDirection = c.rowDirection;
+    spec.columnDirection = c.columnDirection;
+    for (int k = 0; k < slices; ++k) {
+      SliceSpec s = spec;
+      s.origin = Vec3(3, -2, 10) + k * c.step;
+      s.value = [k](int col, int row) { return int16_t(100 * col + 10 * row + 3 * k); };
+      writeSlice(dir.path() / c.name / ("s" + std::to_string(k) + ".dcm"), s);
+    }
+    const DensityVolume volume = voxel::readVolume(dir.path() / c.name);
+    Eigen::Matrix3d axes;
+    axes.col(0) = c.rowDirection * spec.columnSpacing;
+    axes.col(1) = c.columnDirection * spec.rowSpacing;
+    axes.col(2) = c.step;
+    const size_t inside = test::expectResampledLinear(
+        volume, {spec.columns, spec.rows, slices}, axes, Vec3(3, -2, 10),
+        [](const Vec3& u) { return 100 * u[0] + 10 * u[1] + 3 * u[2] - 1024; }, -1024);
+    EXPECT_GT(inside, size_t(spec.columns * spec.rows * slices / 2));
+    // Spacing: the stored steps' components along the world axes.
+    EXPECT_NEAR(volume.spacing().z(), c.step.z(), 1e-9);
+    if (c.name == "tilted") {
+      EXPECT_NEAR(volume.spacing().x(), spec.columnSpacing, 1e-9);
+      EXPECT_NEAR(volume.spacing().y(), spec.rowSpacing, 1e-9);
+    }
+  }
+}
+
+// One multi-frame file: frames stacked along the normal at the spacing the
+// file gives.
+TEST(DicomReaderTest, AMultiFrameFileIsAVolume) {
+  test::TempDir dir;
+  SliceSpec spec;
+  spec.frames = 4;
+  spec.frameSpacing = 2.5;
+  spec.origin = Vec3(1, 2, 3);
+  spec.sopClass = "1.2.840.10008.5.1.4.1.1.2.1";  // Enhanced CT Image Storage
+  spec.value = [](int c, int r) { return int16_t(100 * c + 10 * r); };
+  writeSlice(dir.path() / "frames.dcm", spec);
+  const DensityVolume volume = voxel::readVolume(dir.path() / "frames.dcm");
+  ASSERT_EQ(volume.dims(), (std::array<int32_t, 3>{spec.columns, spec.rows, 4}));
+  EXPECT_EQ(volume.spacing(), Vec3(spec.columnSpacing, spec.rowSpacing, 2.5));
+  EXPECT_EQ(volume.origin(), Vec3(1, 2, 3));
+  for (int f = 0; f < 4; ++f)
+    for (int r = 0; r < spec.rows; ++r)
+      for (int c = 0; c < spec.columns; ++c)
+        ASSERT_EQ(volume.density(c, r, f), 100 * c + 10 * r + 1000 * f - 1024) << c << " " << r << " " << f;
+}
+
+// Files whose meta information GDCM's lenient fallback reader asserts on
+// (found by fuzzing): each is one clear error naming the file.
+TEST(DicomReaderTest, MalformedMetaInformationIsAnErrorNotAnAbort) {
+  test::TempDir dir;
+  SliceSpec spec;
+  spec.value = [](int c, int r) { return int16_t(c + r); };
+  writeSlice(dir.path() / "good.dcm", spec);
+  std::ifstream in(dir.path() / "good.dcm", std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // (0002,0000) UL at byte 132: its value at 140, the group after it at 144.
+  ASSERT_EQ(good.compare(132, 6, std::string("\x02\x00\x00\x00UL", 6)), 0);
+  const uint32_t groupLength = uint8_t(good[140]) | uint8_t(good[141]) << 8 | uint8_t(good[142]) << 16;
+  const size_t metaEnd = 144 + groupLength;
+  const size_t syntaxAt = good.find("1.2.840.10008.1.2.1");
+  ASSERT_LT(syntaxAt, metaEnd);
+  auto read = [&](const std::string& name) {
+    try {
+      voxel::readVolume(dir.path() / name);
+    } catch (const VolumeReadError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto message = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir.path() / name, std::ios::binary) << bytes;
+    return read(name);
+  };
+  auto expect = [&](const std::string& name, const std::string& bytes, const std::string& problem) {
+    const std::string text = message(name, bytes);
+    EXPECT_NE(text.find(name), std::string::npos) << text;
+    EXPECT_NE(text.find(problem), std::string::npos) << text;
+  };
+  expect("meta_only.dcm", good.substr(0, metaEnd), "ends after its meta information");
+  std::string unknownSyntax = good;
+  unknownSyntax.replace(syntaxAt, 19, "1.2.840.10008.9.9.9");
+  expect("unknown_syntax.dcm", unknownSyntax, "transfer syntax 1.2.840.10008.9.9.9 (expected");
+  expect("no_group_length.dcm", good.substr(0, 132) + good.substr(144), "does not start with its Group Length");
+  std::string sequenceInMeta = good;
+  sequenceInMeta.replace(syntaxAt - 4, 2, "SQ");
+  expect("sequence_in_meta.dcm", sequenceInMeta, "value representation SQ");
+  // JPEG baseline pixel data that are no JPEG stream.
+  spec.transferSyntax = gdcm::TransferSyntax::JPEGBaselineProcess1;
+  spec.fragments = {std::string(48, '\x5a')};
+  writeSlice(dir.path() / "bad_jpeg.dcm", spec);
+  const std::string text = read("bad_jpeg.dcm");
+  EXPECT_NE(text.find("bad_jpeg.dcm"), std::string::npos) << text;
+  EXPECT_NE(text.find("cannot be decoded (transfer syntax 1.2.840.10008.1.2.4.50"), std::string::npos) << text;
 }
 
 // In a scene: VoxelSkull's file is the series' directory, or the directory

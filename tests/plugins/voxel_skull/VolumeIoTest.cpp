@@ -20,11 +20,13 @@
 #include "plugins/voxel_skull/io/Resample.h"
 #include "plugins/voxel_skull/io/VolumeReader.h"
 #include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "tests/plugins/voxel_skull/ResampledVolumeCheck.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine::voxel {
 namespace {
 
+using test::expectResampledLinear;
 using test::TempDir;
 using Bytes = std::vector<uint8_t>;
 
@@ -138,6 +140,9 @@ std::vector<double> rampValues() {
       for (int64_t i = 0; i < kDims[0]; ++i) values.push_back(rampValue(i, j, k));
   return values;
 }
+
+// rampValue at a fractional stored index (it is linear in the index).
+double linearRamp(const Vec3& u) { return 100.0 * u.z() + 10.0 * u.y() + u.x() - 7; }
 
 Bytes rampInt16(bool bigEndian = false) { return encodeAs<int16_t>(rampValues(), bigEndian); }
 
@@ -286,7 +291,7 @@ TEST(MetaImageReader, PermutedAndFlippedTransformMatrixIsApplied) {
   expectWorldMapping(volume, kDims, axes, Vec3(-10, 20, 30.5), rampValue);
 }
 
-TEST(MetaImageReader, NearlyAlignedAxesAreAcceptedObliqueAreRefused) {
+TEST(MetaImageReader, NearlyAlignedAxesAreKeptObliqueAreResampled) {
   TempDir dir;
   const auto nearly = writeFile(
       dir / "nearly.mha",
@@ -294,11 +299,16 @@ TEST(MetaImageReader, NearlyAlignedAxesAreAcceptedObliqueAreRefused) {
   EXPECT_EQ(readVolume(nearly).dims(), (std::array<int32_t, 3>{3, 4, 5}));
   const auto oblique =
       writeFile(dir / "oblique.mha",
-                text(metaHeader("MET_SHORT", "TransformMatrix = 0.7071 0.7071 0 -0.7071 0.7071 0 0 0 1\n", "LOCAL")) +
+                text(metaHeader("MET_SHORT", "TransformMatrix = 0.6 0.8 0 -0.8 0.6 0 0 0 1\n", "LOCAL")) +
                     rampInt16());
-  const std::string message = readError(oblique);
-  EXPECT_CONTAINS(message, "oblique.mha: oblique orientations are not supported");
-  EXPECT_CONTAINS(message, "resample");
+  const DensityVolume volume = readVolume(oblique);
+  Eigen::Matrix3d axes;
+  axes.col(0) = Vec3(0.6, 0.8, 0) * 0.5;
+  axes.col(1) = Vec3(-0.8, 0.6, 0) * 0.75;
+  axes.col(2) = Vec3(0, 0, 2);
+  // Axis 1 is the closer to x, axis 0 to y.
+  EXPECT_LT((volume.spacing() - Vec3(0.8 * 0.75, 0.8 * 0.5, 2)).norm(), 1e-9) << volume.spacing().transpose();
+  EXPECT_GT(expectResampledLinear(volume, kDims, axes, Vec3(-10, 20, 30.5), linearRamp, rampValue(0, 0, 0)), 20u);
 }
 
 TEST(MetaImageReader, UnsupportedFieldsAreNamed) {
@@ -616,11 +626,14 @@ TEST(NrrdReader, ErrorsNameTheField) {
       readError(writeFile(dir / "cut.nrrd", text(nrrdHeader("short", "endian: little\nencoding: gzip\n\n")) +
                                                 Bytes(packed.begin(), packed.begin() + 30))),
       "cut.nrrd: truncated: expected 120 bytes of data, found");
+  // An oblique frame is resampled.
   const std::string oblique = nrrdHeader("short",
-                                         "endian: little\nencoding: raw\nspace: RAS\n"
+                                         "endian: little\nencoding: raw\nspace: left-posterior-superior\n"
                                          "space directions: (0.5,0.5,0) (-0.5,0.5,0) (0,0,1)\n\n");
-  EXPECT_CONTAINS(readError(writeFile(dir / "oblique.nrrd", text(oblique) + rampInt16())),
-                  "oblique orientations are not supported");
+  const DensityVolume resampled = readVolume(writeFile(dir / "oblique.nrrd", text(oblique) + rampInt16()));
+  Eigen::Matrix3d axes;
+  axes << 0.5, -0.5, 0, 0.5, 0.5, 0, 0, 0, 1;
+  EXPECT_GT(expectResampledLinear(resampled, kDims, axes, Vec3::Zero(), linearRamp, rampValue(0, 0, 0)), 20u);
 }
 
 TEST(NrrdReader, AxisMinsGiveTheOriginWithoutSpace) {
@@ -748,9 +761,13 @@ TEST(NiftiReader, QformRotationAndQfacAreApplied) {
   EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{3, 4, 5}));
   EXPECT_EQ(volume.origin(), Vec3(5 - 2 * 0.5, 6 - 3 * 0.75, 7 - 4 * 2));
   expectWorldMapping(volume, kDims, Vec3(-0.5, -0.75, -2).asDiagonal(), Vec3(5, 6, 7), rampValue);
-  fields.quatern = {0, 0, 0.3826834f, 0, 0, 0};  // 45 degrees about z
-  EXPECT_CONTAINS(readError(writeFile(dir / "qform.nii", niftiFile(fields, false, rampInt16()))),
-                  "oblique orientations are not supported");
+  fields.quatern = {0, 0, 0.3826834f, 0, 0, 0};  // 45 degrees about z: resampled
+  const DensityVolume oblique = readVolume(writeFile(dir / "qform.nii", niftiFile(fields, false, rampInt16())));
+  const double c = std::sqrt(0.5);
+  Eigen::Matrix3d rotation;
+  rotation << c, -c, 0, c, c, 0, 0, 0, 1;
+  const Eigen::Matrix3d axes = rotation * Vec3(0.5, 0.75, -2).asDiagonal();  // qfac -1 flips z
+  EXPECT_GT(expectResampledLinear(oblique, kDims, axes, Vec3::Zero(), linearRamp, rampValue(0, 0, 0)), 20u);
 }
 
 TEST(NiftiReader, GzippedAndMetres) {
