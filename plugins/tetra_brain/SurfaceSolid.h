@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "plugins/tetra_brain/ImplicitMesher.h"
+#include "plugins/meshing/ImplicitMesher.h"
 #include "plugins/tetra_brain/io/SurfaceReader.h"
 
 namespace trephine::tetra {

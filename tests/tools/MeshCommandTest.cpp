@@ -1,6 +1,8 @@
-// `trephine mesh`: a surface or a ball to a tetrahedral mesh file at a
-// count, and clear errors.
+// `trephine mesh`: a surface, a ball or a labelled image to a tetrahedral
+// mesh file at a count, and clear errors.
 #include <gtest/gtest.h>
+
+#include <set>
 
 #include "plugins/tetra_brain/io/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
@@ -43,6 +45,76 @@ TEST(MeshCommandTest, TheSameSurfaceGivesTheSameFile) {
   const std::string a = test::readFile(dir / "a.mesh");
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, test::readFile(dir / "b.mesh")) << "seeded: byte-identical";
+}
+
+// A segmentation as NRRD (unsigned 8-bit, 1 mm voxels): a ball of label 42
+// inside a ball of label 3, and a block of label 7 apart.
+std::string segmentation(int n, bool fractional = false) {
+  std::string header = "NRRD0004\ntype: " + std::string(fractional ? "float" : "uchar") +
+                       "\ndimension: 3\nsizes: " + std::to_string(n) + " " + std::to_string(n) + " " +
+                       std::to_string(n) + "\nspacings: 1 1 1\nencoding: raw\nendian: little\n\n";
+  std::string data;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double r = Vec3(i - 14.5, j - 14.5, k - 14.5).norm();
+        const int label = r < 6 ? 42 : r < 12 ? 3 : (i > n - 6 && j > n - 6 && k > n - 6) ? 7 : 0;
+        if (fractional) {
+          const float value = label + 0.5f;
+          data.append(reinterpret_cast<const char*>(&value), 4);
+        } else {
+          data.push_back(char(label));
+        }
+      }
+  return header + data;
+}
+
+TEST(MeshCommandTest, ALabelledImageMeshesWithItsLabels) {
+  test::TempDir dir;
+  dir.write("labels.nrrd", segmentation(34));
+  std::string out;
+  ASSERT_EQ(runProgram({"mesh", (dir / "labels.nrrd").string(), "--labels", "3,42", "--tets", "3000", "--out",
+                        (dir / "head.mesh").string()},
+                       &out),
+            0)
+      << out;
+  const tetra::TetMesh mesh = tetra::readTetMesh(dir / "head.mesh");
+  EXPECT_NEAR(double(mesh.tetCount()), 3000.0, 0.05 * 3000) << out;
+  std::set<int32_t> labels(mesh.labels.begin(), mesh.labels.end());
+  EXPECT_EQ(labels, (std::set<int32_t>{3, 42})) << out;
+  EXPECT_NE(out.find("tetrahedra per label: 3: "), std::string::npos) << out;
+  // Without --labels every non-zero label is meshed.
+  ASSERT_EQ(runProgram({"mesh", (dir / "labels.nrrd").string(), "--size", "3", "--out", (dir / "all.vtu").string()},
+                       &out),
+            0)
+      << out;
+  const tetra::TetMesh all = tetra::readTetMesh(dir / "all.vtu");
+  labels = std::set<int32_t>(all.labels.begin(), all.labels.end());
+  EXPECT_EQ(labels, (std::set<int32_t>{3, 7, 42})) << out;
+  // Errors: a label no voxel holds, values that are no labels, a bad list,
+  // labels for a surface.
+  EXPECT_EQ(runProgram({"mesh", (dir / "labels.nrrd").string(), "--labels", "5", "--tets", "1000", "--out",
+                        (dir / "x.mesh").string()},
+                       &out),
+            1);
+  EXPECT_NE(out.find("labels.nrrd: no voxel holds label 5 of --labels"), std::string::npos) << out;
+  dir.write("density.nrrd", segmentation(20, true));
+  EXPECT_EQ(runProgram({"mesh", (dir / "density.nrrd").string(), "--tets", "1000", "--out", (dir / "x.mesh").string()},
+                       &out),
+            1);
+  EXPECT_NE(out.find("holds 0.5"), std::string::npos) << out;
+  EXPECT_NE(out.find("expected a segmentation"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"mesh", (dir / "labels.nrrd").string(), "--labels", "3,,4", "--tets", "1000", "--out",
+                        (dir / "x.mesh").string()},
+                       &out),
+            2);
+  EXPECT_NE(out.find("--labels takes labels of 1 and up"), std::string::npos) << out;
+  dir.write("tet.off", kTetrahedron);
+  EXPECT_EQ(runProgram({"mesh", (dir / "tet.off").string(), "--labels", "3", "--tets", "1000", "--out",
+                        (dir / "x.mesh").string()},
+                       &out),
+            2);
+  EXPECT_NE(out.find("--labels is for a labelled image"), std::string::npos) << out;
 }
 
 TEST(MeshCommandTest, BadArgumentsAndSurfacesAreClearErrors) {

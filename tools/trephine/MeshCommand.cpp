@@ -1,22 +1,37 @@
 #include "tools/trephine/MeshCommand.h"
 
+#include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 
 #include "framework/core/SourceSpec.h"
-#include "plugins/tetra_brain/ImplicitMesher.h"
+#include "plugins/meshing/ImplicitMesher.h"
+#include "plugins/meshing/LabelledImageMesher.h"
 #include "plugins/tetra_brain/SurfaceSolid.h"
 #include "plugins/tetra_brain/io/SurfaceReader.h"
 #include "plugins/tetra_brain/io/VtuWriter.h"
+#include "tools/trephine/LabelledImageInput.h"
 
 namespace trephine::cli {
 
 namespace {
 
 constexpr const char* kUsageLine =
-    "usage: trephine mesh SURFACE --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--tets N | --size S]\n"
-    "  SURFACE: a closed surface (.off, .obj, .stl, .ply) or phantom:sphere?radius=R (a ball, mm)\n";
+    "usage: trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,L,...] [--tets N | --size S]\n"
+    "  INPUT: a closed surface (.off, .obj, .stl, .ply), phantom:sphere?radius=R (a ball, mm), or a labelled\n"
+    "  image (a segmentation: .nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd or a DICOM series' directory)\n";
+
+bool isSurfaceName(const std::string& name) {
+  for (const char* ext : {".off", ".obj", ".stl", ".ply"}) {
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ext) == 0) return true;
+  }
+  return false;
+}
 
 // The solid and what to say of it.
 struct Solid {
@@ -39,11 +54,37 @@ Solid solidOf(const std::string& name) {
                                std::to_string(std::abs(surface.volume())) + " mm^3 (inside: the winding number)"};
 }
 
+int meshLabelledImageFile(const std::string& input, const std::string& out, const std::vector<int32_t>& keep, int tets,
+                          double size) {
+  try {
+    const LabelledImageInput labelled = readLabelledImage(input, keep);
+    const auto start = std::chrono::steady_clock::now();
+    const tetra::TetMesh mesh = tets > 0 ? tetra::meshLabelledImage(labelled.image, tets)
+                                         : tetra::meshLabelledImageAtSize(labelled.image, size);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    tetra::writeTetMeshFile(mesh, out);
+    std::map<int32_t, size_t> perLabel;
+    for (int32_t label : mesh.labels) ++perLabel[label];
+    std::cout << out << ": " << mesh.tetCount() << " tetrahedra, " << mesh.nodeCount() << " nodes";
+    if (tets > 0)
+      std::cout << " (" << std::showpos << 100.0 * (double(mesh.tetCount()) / double(tets) - 1) << std::noshowpos
+                << "% from " << tets << ")";
+    std::cout << " in " << seconds << " s from " << input << ": " << labelled.labelledVoxels
+              << " labelled voxels of " << labelled.image.labels.size() << "\n  tetrahedra per label:";
+    for (const auto& [label, count] : perLabel) std::cout << " " << label << ": " << count;
+    std::cout << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "trephine mesh: " << e.what() << "\n";
+    return kSceneError;
+  }
+  return kOk;
+}
+
 }  // namespace
 
 int meshCommand(const Arguments& a) {
   std::string error;
-  if (a.positional.size() != 1) error = "one surface expected";
+  if (a.positional.size() != 1) error = "one input expected";
   else if (!a.get("--out")) error = "--out OUT is required";
   else if (a.has("--tets") == a.has("--size")) error = "give --tets N or --size S (one of them)";
   else if (!tetra::isWritableTetMeshName(*a.get("--out"))) error = "--out must end in .mesh, .mesh.gz or .vtu";
@@ -61,11 +102,22 @@ int meshCommand(const Arguments& a) {
     if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !(size > 0) || !std::isfinite(size))
       error = "--size takes a positive length in mm, not '" + t + "'";
   }
+  std::vector<int32_t> keep;
+  if (error.empty() && a.has("--labels")) {
+    try {
+      keep = parseLabelList(*a.get("--labels"));
+    } catch (const std::invalid_argument& e) {
+      error = e.what();
+    }
+  }
+  const bool isImage = error.empty() && !isSurfaceName(a.positional[0]) && a.positional[0].rfind("phantom:", 0) != 0;
+  if (error.empty() && a.has("--labels") && !isImage) error = "--labels is for a labelled image, not a surface";
   if (!error.empty()) {
     std::cerr << "trephine mesh: " << error << "\n" << kUsageLine;
     return kUsage;
   }
   const std::string input = a.positional[0], out = *a.get("--out");
+  if (isImage) return meshLabelledImageFile(input, out, keep, int(tets), size);
   try {
     const Solid solid = solidOf(input);
     const tetra::TetMesh mesh =

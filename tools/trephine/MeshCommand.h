@@ -1,7 +1,8 @@
 #pragma once
-// `trephine mesh SURFACE --out OUT [--tets N | --size S]`: tetrahedral
-// meshing of a closed surface (OFF, OBJ, STL, PLY) or of an implicit ball,
-// with CGAL Mesh_3.
+// `trephine mesh INPUT --out OUT [--labels L,...] [--tets N | --size S]`:
+// tetrahedral meshing of a closed surface (OFF, OBJ, STL, PLY), an implicit
+// ball, or a labelled image (a segmentation; each tetrahedron keeps its
+// label), with CGAL Mesh_3 (the meshing plugin).
 #include "tools/trephine/CommandLine.h"
 
 namespace trephine::cli {

@@ -53,13 +53,17 @@ usage:
       zlib-compressed unless --raw. .mesh/.mesh.gz: a tetrahedral mesh as
       Medit (gzipped for .gz), e.g. cube?cells=22 or brain?tets=22000.
       Run without arguments for the list of phantoms.
-  trephine mesh SURFACE --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--tets N | --size S]
-      Mesh a closed surface (.off, .obj, .stl, .ply) or phantom:sphere?radius=R
-      into tetrahedra with CGAL Mesh_3, at about N tetrahedra (within 3% from
-      a few thousand up) or at cells of circumradius S mm. Seeded: the same
-      input gives the same mesh. The inside is the surface's winding number,
-      so a surface that passes through itself is meshed as the union of its
-      parts.
+  trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,...] [--tets N | --size S]
+      Mesh a closed surface (.off, .obj, .stl, .ply), phantom:sphere?radius=R
+      or a labelled image into tetrahedra with CGAL Mesh_3, at about N
+      tetrahedra (within 3% from a few thousand up) or at cells of
+      circumradius S mm. Seeded: the same input gives the same mesh. The
+      inside of a surface is its winding number, so a surface that passes
+      through itself is meshed as the union of its parts. A labelled image (a
+      segmentation: NRRD, NIfTI, MetaImage or a DICOM series of whole labels,
+      0 outside) is meshed region by region, each tetrahedron keeping its
+      label (TetraBrain's labels, LabelMaterial's label); --labels keeps only
+      those listed. Needs the meshing plugin (CGAL, GPL-3.0-or-later).
   trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]
                         [--frames N] [--rounds N]
       The grid cell size for collision between two copies of a tetrahedral
@@ -140,7 +144,7 @@ int main(int argc, char** argv) {
                            {}, arguments);
     if (!error) return studyCommand(arguments);
   } else if (command == "mesh") {
-    error = parseArguments(argc, argv, {"--out", "--tets", "--size"}, {}, arguments);
+    error = parseArguments(argc, argv, {"--out", "--tets", "--size", "--labels"}, {}, arguments);
     if (!error) return meshCommand(arguments);
   } else if (command == "cellsize") {
     error = parseArguments(argc, argv, {"--pnc", "--rt", "--out", "--frames", "--rounds", "--tool", "--tool-step", "--poses", "--depth"},

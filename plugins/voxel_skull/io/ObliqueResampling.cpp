@@ -40,7 +40,14 @@ ResampledGrid resampledGrid(const std::array<int64_t, 3>& storedDims, const Eige
     high = high.cwiseMax(p);
   }
   std::array<int64_t, 3> dims{};
-  for (int w = 0; w < 3; ++w) dims[w] = int64_t(std::floor((high[w] - low[w]) / grid.spacing[w] + 1e-9)) + 1;
+  for (int w = 0; w < 3; ++w) {
+    const double count = std::floor((high[w] - low[w]) / grid.spacing[w] + 1e-9) + 1;
+    if (!(count <= double(kMaxVoxels)))
+      throw VolumeReadError(file, "resampling the oblique grid onto axis-aligned voxels would take more than " +
+                                      std::to_string(kMaxVoxels) + " voxels along world axis " + std::to_string(w) +
+                                      " (expected axes of a scan, not nearly in one plane)");
+    dims[w] = int64_t(count);
+  }
   checkDimensions(dims, "the axis-aligned grid resampled from the oblique one", file);
   // A 45-degree plane needs 4 times the stored voxels; far more means axes
   // nearly in one plane, which a corrupt header gives and no scanner.

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "plugins/tetra_brain/ImplicitMesher.h"
+#include "plugins/meshing/ImplicitMesher.h"
 #include "plugins/tetra_brain/SurfaceSolid.h"
 #include "plugins/tetra_brain/io/SurfaceReader.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"

@@ -9,8 +9,8 @@
 // the same solid and target give identical nodes and tetrahedra on every call
 // of the same build. Every tetrahedron has positive signedVolume(), every
 // node belongs to a tetrahedron, and all labels are 1. All CGAL code of the
-// project is in ImplicitMesher.cpp: each translation unit that includes
-// Mesh_3 takes about half a minute to compile.
+// project is in CgalMesher.cpp (plugin `meshing`, see Meshing.h for a build
+// without it).
 #include <functional>
 #include <numbers>
 

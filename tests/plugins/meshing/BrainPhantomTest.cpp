@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "plugins/tetra_brain/BrainPhantom.h"
-#include "plugins/tetra_brain/ImplicitMesher.h"
+#include "plugins/meshing/BrainPhantom.h"
+#include "plugins/meshing/ImplicitMesher.h"
 
 namespace trephine::tetra {
 namespace {

@@ -1,5 +1,5 @@
-// The brain phantom's shape; ImplicitMesher.cpp meshes it.
-#include "plugins/tetra_brain/BrainPhantom.h"
+// The brain phantom's shape; CgalMesher.cpp meshes it (ImplicitMesher.h).
+#include "plugins/meshing/BrainPhantom.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "plugins/tetra_brain/ImplicitMesher.h"
+#include "plugins/meshing/ImplicitMesher.h"
 
 namespace trephine::tetra {
 
