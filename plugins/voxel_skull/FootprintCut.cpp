@@ -26,7 +26,7 @@ CutSetup setupOf(const SolidGrid& grid, const FootprintCut& cut) {
   s.inner = cut.radius + 0.5 * h;
   s.outer = cut.radius + h;
   s.advance = cut.advance;
-  s.floorCode = static_cast<int32_t>(std::ceil(grid.outsideCode));
+  s.floorCode = static_cast<int32_t>(std::ceil(grid.emptyCode));
   s.slices = std::max(1, cut.slices);
   s.slice = ((cut.slice % s.slices) + s.slices) % s.slices;
   // Index bounds, clamped as doubles first: a burr far outside the grid must
@@ -60,9 +60,14 @@ inline double weightOf(const CutSetup& s, double ox, double alongYZ, double acro
 
 // |gradient| in codes per mm from a voxel's code and its six neighbours, per
 // axis the larger one-sided difference: a last layer of bone with air on both
-// sides has no central difference at all.
-inline double slopeOf(const SolidGrid& g, double c, double xm, double xp, double ym, double yp, double zm,
-                      double zp) {
+// sides has no central difference at all. Neighbours below the floor count
+// as the floor: the cut moves the surface by the contrast between bone and
+// what drilling leaves, however deep the air around it (-1000 HU).
+inline double slopeOf(const SolidGrid& g, const CutSetup& s, double c, double xm, double xp, double ym, double yp,
+                      double zm, double zp) {
+  const double floor = s.floorCode;
+  xm = std::max(xm, floor), xp = std::max(xp, floor), ym = std::max(ym, floor);
+  yp = std::max(yp, floor), zm = std::max(zm, floor), zp = std::max(zp, floor);
   const double gx = std::max(std::abs(c - xm), std::abs(c - xp)) * g.inverseSpacing.x();
   const double gy = std::max(std::abs(c - ym), std::abs(c - yp)) * g.inverseSpacing.y();
   const double gz = std::max(std::abs(c - zm), std::abs(c - zp)) * g.inverseSpacing.z();
@@ -96,7 +101,7 @@ inline double exactOf(const SolidGrid& g, const CutSetup& s, int64_t i, int64_t 
   const double x = g.corner.x() + (double(i) + 0.5) * g.spacing.x();
   const double weight = weightOf(s, x - s.center.x(), alongYZ, acrossYZ);
   if (!(weight > 0)) return 0;
-  const double slope = slopeOf(g, c, g.codeAtCell(i - 1, j, k), g.codeAtCell(i + 1, j, k), g.codeAtCell(i, j - 1, k),
+  const double slope = slopeOf(g, s, c, g.codeAtCell(i - 1, j, k), g.codeAtCell(i + 1, j, k), g.codeAtCell(i, j - 1, k),
                                g.codeAtCell(i, j + 1, k), g.codeAtCell(i, j, k - 1), g.codeAtCell(i, j, k + 1));
   return weight * s.advance * slope;
 }
@@ -121,7 +126,7 @@ inline void rowExactsInterior(const SolidGrid& g, const CutSetup& s, int64_t i0,
     const double ox = (g.corner.x() + ((double(i0) + double(m)) + 0.5) * g.spacing.x()) - s.center.x();
     const double weight = weightOf(s, ox, alongYZ, acrossYZ);
     if (!(weight > 0)) continue;
-    const double slope = slopeOf(g, c, row[m - 1], row[m + 1], row[m - sy], row[m + sy], row[m - sz], row[m + sz]);
+    const double slope = slopeOf(g, s, c, row[m - 1], row[m + 1], row[m - sy], row[m + sy], row[m - sz], row[m + sz]);
     exact[m] = weight * s.advance * slope;
   }
 }

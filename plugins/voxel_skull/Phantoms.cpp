@@ -61,6 +61,13 @@ double cubeLevel(const Vec3& p) { return (p.cwiseAbs() - Vec3::Constant(80.0)).m
 const Vec3 kSkullExtent(212.5, 201.5, 141.5);                           // mm
 const Vec3 kSkullOuterAxes = 0.5 * kSkullExtent - Vec3::Constant(1.5);  // mm, semi-axes of the outer surface
 constexpr double kSkullOpeningRadius = 16.0;                            // mm, around the -z axis
+constexpr double kAirHounsfield = -1000.0;
+// The head's segmentation: the brain fills the skull's cavity but for a
+// layer of cerebrospinal fluid, above a flat base, with white matter (label
+// 2) inside grey matter (label 1) within this fraction of the skull's axes.
+constexpr double kHeadCsfGap = 2.0;              // mm
+constexpr double kHeadBrainBaseZ = -40.0;        // mm
+constexpr double kHeadWhiteMatterRadius = 0.55;  // of the outer surface's semi-axes
 
 // Where a point sits in the skull's shell, along the ray from the centre.
 struct SkullDepth {
@@ -134,6 +141,28 @@ DensityVolume makeSkullPhantom(double voxel, double shift) {
   }, shift);
 }
 
+DensityVolume makeHeadPhantom(double voxel) {
+  const DensityVolume skull = makeSkullPhantom(voxel);
+  return fill(kSkullExtent, voxel, [&](const Vec3& p) {
+    // The skull phantom's densities are CT numbers with air at 0; a CT in
+    // Hounsfield units has air at -1000.
+    const SkullDepth s = skullDepth(p);
+    const double outside = s.atCentre ? 0.0 : 1.0 - insideFraction(-s.depth, voxel);
+    const Eigen::Vector3i index = ((p - skull.origin()).cwiseQuotient(skull.spacing())).array().round().cast<int>();
+    return skull.density(index.x(), index.y(), index.z()) + kAirHounsfield * outside;
+  });
+}
+
+DensityVolume makeHeadLabelsPhantom(double voxel) {
+  return fill(kSkullExtent, voxel, [&](const Vec3& p) {
+    const SkullDepth s = skullDepth(p);
+    if (!s.atCentre && s.depth < s.thickness + kHeadCsfGap) return 0.0;  // bone, CSF and outside
+    if (p.z() < kHeadBrainBaseZ) return 0.0;
+    const double rho = p.cwiseQuotient(kSkullOuterAxes).norm();
+    return rho < kHeadWhiteMatterRadius ? 2.0 : 1.0;
+  });
+}
+
 DensityVolume makeHalfSpacePhantom(double voxel, const Vec3& normal, double size, double density) {
   const Vec3 n = unitNormal(normal);
   return fill(Vec3::Constant(size), voxel, [&](const Vec3& p) {
@@ -200,7 +229,13 @@ PhantomDefinition definePhantom(const std::string& specification) {
     return {[=] { return makeChannelPhantom(voxel, width, size, density); },
             [=](const Vec3& p) { return channelLevel(p, width, size, voxel); }};
   }
-  throw std::invalid_argument("unknown phantom '" + name + "' (cube, skull, halfspace, wall, channel)");
+  if (name == "head" || name == "head-labels") {
+    const SourceSpec k(name, query, {{"voxel", 1.0}});
+    const double voxel = k.positive("voxel");
+    if (name == "head") return {[=] { return makeHeadPhantom(voxel); }, skullLevel};
+    return {[=] { return makeHeadLabelsPhantom(voxel); }, skullLevel};
+  }
+  throw std::invalid_argument("unknown phantom '" + name + "' (cube, skull, head, head-labels, halfspace, wall, channel)");
 }
 
 }  // namespace
@@ -213,6 +248,9 @@ std::string phantomHelp() {
   return "  cube?voxels=200&density=1200          160 mm solid cube in a 200 mm grid of voxels^3 (Table 3.1)\n"
          "  skull?voxel=1.0&shift=0               skull shell, 212.5 x 201.5 x 141.5 mm (Table 3.2: 1.5 .. 0.5);\n"
          "                                        shift (mm, under a voxel) moves the voxels against the shape\n"
+         "  head?voxel=1.0                        the skull as a CT in Hounsfield units (air -1000, brain 40,\n"
+         "                                        bone 700 to 1500); with --out DIR/ a DICOM series\n"
+         "  head-labels?voxel=1.0                 its brain's segmentation: grey matter 1, white matter 2, 0 else\n"
          "  halfspace?voxel=0.5&nx=0&ny=0&nz=1&size=40&density=1000   solid below a plane through the centre\n"
          "  wall?voxel=0.5&thickness=0.5&size=40&density=1000        wall across z = 0\n"
          "  channel?voxel=0.5&width=3&size=40&density=1000           block with a square channel along z\n";

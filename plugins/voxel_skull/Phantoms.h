@@ -29,6 +29,13 @@ std::array<int32_t, 3> skullPhantomDims(double voxelSize);
 // A half-space of density `density` below the plane through the grid centre
 // with unit `normal`, in a cube grid of `size` mm. Partial-volume edges make
 // the isosurface at density/2 the plane itself: the ground truth of accuracy tests.
+// The skull phantom as a head CT in Hounsfield units: air at -1000 outside
+// the skull, the cavity at 40 (brain), the bone as in makeSkullPhantom.
+DensityVolume makeHeadPhantom(double voxelSize);
+// A segmentation of that head's brain on the same grid: 1 (grey matter) in
+// the cavity 2 mm clear of the inner table and above z = -40 mm, 2 (white
+// matter) in its core, 0 elsewhere.
+DensityVolume makeHeadLabelsPhantom(double voxelSize);
 DensityVolume makeHalfSpacePhantom(double voxelSize, const Vec3& normal, double size = 40.0, double density = 1000.0);
 
 // A wall of `thickness` mm (axis-aligned, normal +z) across a cube grid of

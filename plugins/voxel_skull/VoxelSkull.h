@@ -85,7 +85,16 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
                                {.help = "Collision back-end answering the contact, sweep and overlap queries: native "
                                         "(the voxel method of the thesis) or one a plugin adds (its name; the "
                                         "scene needs that plugin's <RequiredPlugin/>)"}};
-  Field<double> d_isovalue{this, "isovalue", 400.0, {.help = "Voxels denser than this are bone", .unit = "density"}};
+  // 400: in Hounsfield units above soft tissue (20 to 80 HU) and blood, and
+  // below the skull's diploe (about 500 to 900 HU) and cortical bone (1200 to
+  // 2000 HU); the phantoms use the same scale.
+  Field<double> d_isovalue{this,
+                           "isovalue",
+                           400.0,
+                           {.help = "Voxels denser than this are bone. The default suits a CT in Hounsfield units "
+                                    "(DICOM series are rescaled to them): above soft tissue (20 to 80 HU), below "
+                                    "the diploe (about 500 to 900 HU) and cortical bone (1200 to 2000 HU)",
+                            .unit = "HU"}};
   Field<double> d_voxelSize{
       this,
       "voxelSize",
@@ -118,8 +127,8 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
                                    "referenceDensity",
                                    1500.0,
                                    {.help = "Density of the bone that has cuttingEnergy: cortical bone (about 1500 "
-                                            "in CT numbers, the phantom's outer table)",
-                                    .unit = "density",
+                                            "HU in a CT, the phantom's outer table)",
+                                    .unit = "HU",
                                     .min = 0.0,
                                     .minExclusive = true}};
   Field<double> d_hardnessExponent{this,
@@ -127,7 +136,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
                                    2.0,
                                    {.help = "Cutting energy grows as (density / referenceDensity)^e: bone strength "
                                             "grows with the square of its apparent density (Carter and Hayes 1977), "
-                                            "so diploe of 700 cuts 4.6 times faster than cortical bone of 1500",
+                                            "so diploe of 700 HU cuts 4.6 times faster than cortical bone of 1500 HU",
                                     .min = 0.0,
                                     .max = 4.0}};
   Field<double> d_thrustThreshold{

@@ -5,6 +5,7 @@
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
+#include "plugins/voxel_skull/io/DicomWriter.h"
 #include "plugins/voxel_skull/io/VolumeWriter.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
@@ -26,6 +27,22 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
                                 description << d[0] << " x " << d[1] << " x " << d[2] << " voxels of "
                                             << volume.spacing().x() << " mm, densities " << volume.minDensity()
                                             << " to " << volume.maxDensity();
+                                return description.str();
+                              }});
+  registrar.addPhantomWriter({.kind = "DICOM CT series (a new directory)",
+                              .suffixes = {"/"},
+                              .plugin = {},
+                              .help = "  (the volume phantoms above, e.g. head?voxel=1.0)\n",
+                              .canWriteRaw = false,
+                              .write = [](const std::string& specification, const std::string& directory, bool) {
+                                const trephine::voxel::DensityVolume volume =
+                                    trephine::voxel::makePhantom(specification);
+                                trephine::voxel::writeDicomSeries(volume, directory, "phantom:" + specification);
+                                std::ostringstream description;
+                                description << volume.dims()[2] << " slices of " << volume.dims()[0] << " x "
+                                            << volume.dims()[1] << ", " << volume.spacing().x()
+                                            << " mm voxels, values " << volume.minDensity() << " to "
+                                            << volume.maxDensity();
                                 return description.str();
                               }});
 }

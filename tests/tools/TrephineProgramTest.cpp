@@ -95,7 +95,8 @@ TEST(TrephineProgramTest, GeneratedSchemaAcceptsEveryShippedSceneAndRejectsMista
   ASSERT_EQ(runProgram({"components", "--xsd"}, &schema, "env -u TREPHINE_PLUGIN_PATH"), 0);
   const auto xsd = dir.write("trephine.xsd", schema);
   for (const auto& entry : std::filesystem::recursive_directory_iterator(test::sourceDir() / "scenes")) {
-    if (entry.path().extension() != ".xml") continue;
+    // The patient template leaves its input files to the command line.
+    if (entry.path().extension() != ".xml" || entry.path().parent_path().filename() == "patient") continue;
     const std::string command = "xmllint --noout --schema '" + xsd.string() + "' '" + entry.path().string() + "' 2>&1";
     EXPECT_EQ(std::system((command + " > /dev/null").c_str()), 0) << entry.path();
   }

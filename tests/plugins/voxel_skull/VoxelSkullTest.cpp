@@ -76,7 +76,7 @@ TEST(PhantomTest, BadSpecificationsSayWhatIsWrong) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("sphere"), "unknown phantom 'sphere' (cube, skull, halfspace, wall, channel)");
+  EXPECT_EQ(message("sphere"), "unknown phantom 'sphere' (cube, skull, head, head-labels, halfspace, wall, channel)");
   EXPECT_EQ(message("skull?voxels=1"), "phantom 'skull' has no key 'voxels' (keys: shift, voxel)");
   EXPECT_NE(message("skull?voxel=2&shift=2").find("'shift' must be less than a voxel"), std::string::npos);
   EXPECT_EQ(message("skull?voxel=abc"), "phantom key 'voxel': 'abc' is not a number");
