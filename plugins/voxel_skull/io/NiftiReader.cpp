@@ -16,56 +16,97 @@ namespace trephine::voxel {
 
 namespace {
 
-constexpr size_t kHeaderBytes = 348;
-constexpr int32_t kNifti2HeaderBytes = 540;
-
-// Byte offsets of the NIfTI-1 header fields used here (nifti1.h).
-enum Offset : size_t {
-  kDim = 40,  // int16[8]
-  kDatatype = 70,
-  kPixdim = 76,  // float[8]
-  kVoxOffset = 108,
-  kSclSlope = 112,
-  kSclInter = 116,
-  kXyztUnits = 123,
-  kQformCode = 252,
-  kSformCode = 254,
-  kQuaternB = 256,  // then c, d, qoffset x, y, z: six floats
-  kSrowX = 280,     // then srow_y, srow_z: three float[4]
-  kMagic = 344,
+// Where the fields read here sit in each version's header (nifti1.h,
+// nifti2.h), and how wide they are. NIfTI-2 widens dim to int64, the reals
+// to double, vox_offset to int64 and the codes to int32, and moves them.
+struct HeaderLayout {
+  int version;
+  size_t headerBytes;
+  size_t magic, magicBytes;
+  size_t dim, dimBytes;  // dim[8]
+  size_t datatype;       // int16 in both
+  size_t pixdim;         // real[8]
+  size_t voxOffset;      // float (NIfTI-1) or int64 (NIfTI-2)
+  size_t sclSlope, sclInter;
+  size_t realBytes;  // float or double
+  size_t qformCode, sformCode, codeBytes;
+  size_t quaternB;  // then c, d, qoffset x, y, z: six reals
+  size_t srowX;     // then srow_y, srow_z: three real[4]
+  size_t xyztUnits, unitsBytes;
 };
 
-// Reads header fields in the header's byte order.
-class HeaderBytes {
+constexpr HeaderLayout kNifti1{.version = 1, .headerBytes = 348, .magic = 344, .magicBytes = 4,
+                               .dim = 40, .dimBytes = 2, .datatype = 70, .pixdim = 76, .voxOffset = 108,
+                               .sclSlope = 112, .sclInter = 116, .realBytes = 4, .qformCode = 252,
+                               .sformCode = 254, .codeBytes = 2, .quaternB = 256, .srowX = 280,
+                               .xyztUnits = 123, .unitsBytes = 1};
+constexpr HeaderLayout kNifti2{.version = 2, .headerBytes = 540, .magic = 4, .magicBytes = 8,
+                               .dim = 16, .dimBytes = 8, .datatype = 12, .pixdim = 104, .voxOffset = 168,
+                               .sclSlope = 176, .sclInter = 184, .realBytes = 8, .qformCode = 344,
+                               .sformCode = 348, .codeBytes = 4, .quaternB = 352, .srowX = 400,
+                               .xyztUnits = 500, .unitsBytes = 4};
+constexpr size_t kLargestHeaderBytes = 540;
+
+template <typename Bits>
+Bits swappedBytes(Bits bits) {
+  if constexpr (sizeof bits == 2) return Bits(__builtin_bswap16(uint16_t(bits)));
+  else if constexpr (sizeof bits == 4) return Bits(__builtin_bswap32(uint32_t(bits)));
+  else return Bits(__builtin_bswap64(uint64_t(bits)));
+}
+
+// Reads header fields of either version in the header's byte order.
+class HeaderFields {
  public:
-  HeaderBytes(const std::array<uint8_t, kHeaderBytes>& bytes, bool bigEndian)
-      : m_bytes(bytes), m_swap(bigEndian != (std::endian::native == std::endian::big)) {}
-  int16_t int16(size_t offset) const { return std::bit_cast<int16_t>(load<uint16_t>(offset)); }
-  double real(size_t offset) const { return std::bit_cast<float>(load<uint32_t>(offset)); }
-  uint8_t byte(size_t offset) const { return m_bytes[offset]; }
+  HeaderFields(const std::array<uint8_t, kLargestHeaderBytes>& bytes, const HeaderLayout& layout, bool bigEndian)
+      : m_bytes(bytes), m_layout(layout), m_swap(bigEndian != (std::endian::native == std::endian::big)) {}
+
+  // A signed integer of `bytes` bytes.
+  int64_t integer(size_t offset, size_t bytes) const {
+    switch (bytes) {
+      case 1: return int8_t(m_bytes[offset]);
+      case 2: return std::bit_cast<int16_t>(load<uint16_t>(offset));
+      case 4: return std::bit_cast<int32_t>(load<uint32_t>(offset));
+      default: return std::bit_cast<int64_t>(load<uint64_t>(offset));
+    }
+  }
+  // A float (NIfTI-1) or double (NIfTI-2) field.
+  double real(size_t offset) const {
+    return m_layout.realBytes == 4 ? double(std::bit_cast<float>(load<uint32_t>(offset)))
+                                   : std::bit_cast<double>(load<uint64_t>(offset));
+  }
+  double realAt(size_t first, int index) const { return real(first + m_layout.realBytes * size_t(index)); }
+  int64_t dim(int index) const { return integer(m_layout.dim + m_layout.dimBytes * size_t(index), m_layout.dimBytes); }
+  int64_t code(size_t offset) const { return integer(offset, m_layout.codeBytes); }
+  uint8_t units() const { return uint8_t(integer(m_layout.xyztUnits, m_layout.unitsBytes) & 0xFF); }
+  double voxOffset() const {
+    return m_layout.version == 1 ? real(m_layout.voxOffset) : double(integer(m_layout.voxOffset, 8));
+  }
+  std::string_view magic() const {
+    return {reinterpret_cast<const char*>(m_bytes.data()) + m_layout.magic, m_layout.magicBytes};
+  }
 
  private:
   template <typename Bits>
   Bits load(size_t offset) const {
     Bits bits;
     std::memcpy(&bits, m_bytes.data() + offset, sizeof bits);
-    if (m_swap)
-      bits = sizeof bits == 2 ? Bits(__builtin_bswap16(uint16_t(bits))) : Bits(__builtin_bswap32(uint32_t(bits)));
+    if (m_swap) bits = swappedBytes(bits);
     return bits;
   }
-  const std::array<uint8_t, kHeaderBytes>& m_bytes;
+  const std::array<uint8_t, kLargestHeaderBytes>& m_bytes;
+  const HeaderLayout& m_layout;
   bool m_swap;
 };
 
 int32_t sizeofHdr(std::span<const uint8_t> head, bool bigEndian) {
   uint32_t bits = 0;
   std::memcpy(&bits, head.data(), 4);
-  if (bigEndian != (std::endian::native == std::endian::big)) bits = __builtin_bswap32(bits);
+  if (bigEndian != (std::endian::native == std::endian::big)) bits = swappedBytes(bits);
   return std::bit_cast<int32_t>(bits);
 }
 
-SampleType datatype(int16_t code, const std::filesystem::path& file) {
-  // nifti1.h DT_* codes; `supported` marks the ones read here.
+SampleType datatype(int64_t code, const std::filesystem::path& file) {
+  // nifti1.h DT_* codes (the same in nifti2.h); `supported` marks the ones read here.
   struct Datatype {
     int16_t code;
     const char* name;
@@ -135,66 +176,82 @@ Eigen::Matrix3d quaternionRotation(double b, double c, double d, double qfac, co
   return r;
 }
 
+// The version's single-file magic ("n+1\0", or "n+2\0" and the four bytes
+// that catch a file mangled by a text-mode transfer).
+void checkMagic(const HeaderFields& header, const HeaderLayout& layout, const std::filesystem::path& file) {
+  const std::string_view magic = header.magic();
+  const std::string name = "NIfTI-" + std::to_string(layout.version);
+  const std::string single = layout.version == 1 ? std::string("n+1\0", 4) : std::string("n+2\0\r\n\032\n", 8);
+  const std::string pair = layout.version == 1 ? std::string("ni1\0", 4) : std::string("ni2\0\r\n\032\n", 8);
+  if (magic == single) return;
+  if (magic.substr(0, 4) == std::string_view(pair).substr(0, 4))
+    throw VolumeReadError(file, "magic 'ni" + std::to_string(layout.version) +
+                                    "' marks a .hdr/.img pair, which is not supported (expected a single-file " +
+                                    name + " .nii, magic 'n+" + std::to_string(layout.version) + "')");
+  if (layout.version == 2 && magic.substr(0, 4) == std::string_view(single).substr(0, 4))
+    throw VolumeReadError(file, "magic 'n+2' is followed by " + quoteForMessage(magic.substr(4)) +
+                                    " instead of \\r\\n\\032\\n (the file was altered, perhaps by a text-mode "
+                                    "transfer)");
+  throw VolumeReadError(file, "magic " + quoteForMessage(magic.substr(0, 4)) + " is not 'n+" +
+                                  std::to_string(layout.version) + "' (expected a single-file " + name +
+                                  " .nii; Analyze 7.5 is not supported)");
+}
+
 }  // namespace
 
 bool looksLikeNifti(std::span<const uint8_t> head) {
   if (head.size() < 4) return false;
   for (bool big : {false, true}) {
     const int32_t size = sizeofHdr(head, big);
-    if (size == int32_t(kHeaderBytes) || size == kNifti2HeaderBytes) return true;
+    if (size == int32_t(kNifti1.headerBytes) || size == int32_t(kNifti2.headerBytes)) return true;
   }
   return false;
 }
 
 DensityVolume readNifti(const ByteSource& source) {
   const std::filesystem::path& file = source.path();
-  if (source.size() < kHeaderBytes)
-    throw VolumeReadError(file, "truncated: expected a " + std::to_string(kHeaderBytes) +
-                                    "-byte NIfTI-1 header, found " + std::to_string(source.size()) + " bytes");
-  std::array<uint8_t, kHeaderBytes> raw{};
-  source.read(0, raw);
+  std::array<uint8_t, kLargestHeaderBytes> raw{};
+  source.read(0, std::span(raw).first(std::min<size_t>(4, source.size())));
+  // The version and the byte order from sizeof_hdr (348 or 540).
+  const HeaderLayout* layout = &kNifti1;
   bool bigEndian = false;
-  if (sizeofHdr(raw, false) == int32_t(kHeaderBytes)) {
-    bigEndian = false;
-  } else if (sizeofHdr(raw, true) == int32_t(kHeaderBytes)) {
-    bigEndian = true;
-  } else if (sizeofHdr(raw, false) == kNifti2HeaderBytes || sizeofHdr(raw, true) == kNifti2HeaderBytes) {
-    throw VolumeReadError(file, "NIfTI-2 (sizeof_hdr 540) is not supported (expected NIfTI-1, sizeof_hdr 348)");
-  } else {
-    throw VolumeReadError(
-        file, "sizeof_hdr is " + std::to_string(sizeofHdr(raw, false)) + " (expected 348: not a NIfTI-1 file)");
+  bool known = false;
+  if (source.size() >= 4) {
+    for (const HeaderLayout* candidate : {&kNifti1, &kNifti2})
+      for (bool big : {false, true})
+        if (!known && sizeofHdr(raw, big) == int32_t(candidate->headerBytes))
+          layout = candidate, bigEndian = big, known = true;
   }
-  const HeaderBytes header(raw, bigEndian);
+  const std::string name = "NIfTI-" + std::to_string(layout->version);
+  if (source.size() < layout->headerBytes)
+    throw VolumeReadError(file, "truncated: expected a " + std::to_string(layout->headerBytes) + "-byte " + name +
+                                    " header, found " + std::to_string(source.size()) + " bytes");
+  if (!known)
+    throw VolumeReadError(file, "sizeof_hdr is " + std::to_string(sizeofHdr(raw, false)) +
+                                    " (expected 348, NIfTI-1, or 540, NIfTI-2: not a NIfTI file)");
+  source.read(0, std::span(raw).first(layout->headerBytes));
+  const HeaderFields header(raw, *layout, bigEndian);
+  checkMagic(header, *layout, file);
 
-  const std::string_view magic(reinterpret_cast<const char*>(raw.data()) + kMagic, 4);
-  if (magic == std::string_view("ni1\0", 4))
-    throw VolumeReadError(file,
-                          "magic 'ni1' marks a .hdr/.img pair, which is not supported (expected a single-file "
-                          "NIfTI-1 .nii, magic 'n+1')");
-  if (magic != std::string_view("n+1\0", 4))
-    throw VolumeReadError(file,
-                          "magic " + quoteForMessage(magic) +
-                              " is not 'n+1' (expected a single-file NIfTI-1 .nii; Analyze 7.5 is not supported)");
-
-  const int16_t rank = header.int16(kDim);
+  const int64_t rank = header.dim(0);
   if (rank < 1 || rank > 7) throw VolumeReadError(file, "dim[0] " + std::to_string(rank) + " is not 1 to 7");
   if (rank < 3)
     throw VolumeReadError(file, "dim[0] " + std::to_string(rank) + ": " + std::to_string(rank) +
                                     "D images are not supported (expected a 3D volume)");
   StoredVolume stored;
-  for (int a = 0; a < 3; ++a) stored.dims[a] = header.int16(kDim + 2 * (a + 1));
+  for (int a = 0; a < 3; ++a) stored.dims[a] = header.dim(a + 1);
   for (int a = 4; a <= rank; ++a) {
-    if (header.int16(kDim + 2 * a) != 1)
-      throw VolumeReadError(file, "dim[" + std::to_string(a) + "] " + std::to_string(header.int16(kDim + 2 * a)) +
+    if (header.dim(a) != 1)
+      throw VolumeReadError(file, "dim[" + std::to_string(a) + "] " + std::to_string(header.dim(a)) +
                                       " is not supported (expected 1: only 3D volumes, no time series)");
   }
   checkDimensions(stored.dims, "dim[1..3]", file);
-  stored.layout = {datatype(header.int16(kDatatype), file), bigEndian};
+  stored.layout = {datatype(header.integer(layout->datatype, 2), file), bigEndian};
 
-  const double unit = millimetresPerUnit(header.byte(kXyztUnits));
+  const double unit = millimetresPerUnit(header.units());
   Vec3 spacing;
   for (int a = 0; a < 3; ++a) {
-    const double pixdim = header.real(kPixdim + 4 * (a + 1));
+    const double pixdim = header.realAt(layout->pixdim, a + 1);
     if (!std::isfinite(pixdim) || pixdim == 0)
       throw VolumeReadError(file, "pixdim[" + std::to_string(a + 1) + "] " + formatDouble(pixdim) +
                                       " is not a voxel size (expected a finite, non-zero number)");
@@ -203,30 +260,31 @@ DensityVolume readNifti(const ByteSource& source) {
 
   // Orientation and origin: sform, else qform, else none (NIfTI "method 1").
   Eigen::Matrix3d direction = Eigen::Matrix3d::Identity();
-  if (header.int16(kSformCode) > 0) {
+  if (header.code(layout->sformCode) > 0) {
     for (int row = 0; row < 3; ++row) {
-      for (int column = 0; column < 3; ++column) direction(row, column) = header.real(kSrowX + 16 * row + 4 * column);
-      stored.origin[row] = header.real(kSrowX + 16 * row + 12) * unit;
+      for (int column = 0; column < 3; ++column) direction(row, column) = header.realAt(layout->srowX, 4 * row + column);
+      stored.origin[row] = header.realAt(layout->srowX, 4 * row + 3) * unit;
     }
     for (int a = 0; a < 3; ++a) {
       const double length = direction.col(a).norm();
       if (length > 0 && std::isfinite(length)) direction.col(a) /= length;
     }
-  } else if (header.int16(kQformCode) > 0) {
-    direction = quaternionRotation(header.real(kQuaternB), header.real(kQuaternB + 4), header.real(kQuaternB + 8),
-                                   header.real(kPixdim), file);
-    for (int a = 0; a < 3; ++a) stored.origin[a] = header.real(kQuaternB + 12 + 4 * a) * unit;
+  } else if (header.code(layout->qformCode) > 0) {
+    direction = quaternionRotation(header.realAt(layout->quaternB, 0), header.realAt(layout->quaternB, 1),
+                                   header.realAt(layout->quaternB, 2), header.realAt(layout->pixdim, 0), file);
+    for (int a = 0; a < 3; ++a) stored.origin[a] = header.realAt(layout->quaternB, 3 + a) * unit;
   }
   for (int a = 0; a < 3; ++a) stored.axes.col(a) = direction.col(a) * spacing[a];
 
-  const double slope = header.real(kSclSlope);
-  const double intercept = header.real(kSclInter);
+  const double slope = header.real(layout->sclSlope);
+  const double intercept = header.real(layout->sclInter);
   if (slope != 0 && std::isfinite(slope)) stored.scaling = {slope, std::isfinite(intercept) ? intercept : 0.0};
 
-  const double voxOffset = header.real(kVoxOffset);
-  if (!std::isfinite(voxOffset) || voxOffset < double(kHeaderBytes) || voxOffset != std::floor(voxOffset) ||
+  const double voxOffset = header.voxOffset();
+  if (!std::isfinite(voxOffset) || voxOffset < double(layout->headerBytes) || voxOffset != std::floor(voxOffset) ||
       voxOffset > double(source.size()))
-    throw VolumeReadError(file, "vox_offset " + formatDouble(voxOffset) + " is not a byte offset between 348 and the " +
+    throw VolumeReadError(file, "vox_offset " + formatDouble(voxOffset) + " is not a byte offset between " +
+                                    std::to_string(layout->headerBytes) + " and the " +
                                     std::to_string(source.size()) + "-byte file size");
   std::vector<uint8_t> samples;
   appendRawSamples(source, BlockStart{uint64_t(voxOffset)}, stored.byteCount(), samples);

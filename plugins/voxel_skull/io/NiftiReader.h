@@ -1,6 +1,11 @@
 #pragma once
-// NIfTI-1 single-file volumes (.nii; .nii.gz arrive here decompressed): the
-// 348-byte binary header, in either byte order, and the samples at vox_offset.
+// NIfTI-1 and NIfTI-2 single-file volumes (.nii; .nii.gz arrive here
+// decompressed): the 348-byte (NIfTI-1) or 540-byte (NIfTI-2: 64-bit sizes,
+// double reals) binary header, in either byte order, and the samples at
+// vox_offset. Written here rather than taken from nifticlib, whose reader
+// prints its errors and opens files itself: this one reads through the
+// ByteSource of the other formats (gzip, the fuzzer's memory files) and
+// says which field is wrong.
 #include <span>
 
 #include "plugins/voxel_skull/DensityVolume.h"
@@ -10,7 +15,7 @@ namespace trephine::voxel {
 
 DensityVolume readNifti(const ByteSource& source);
 
-// True when `head` starts with sizeof_hdr 348 (NIfTI-1) or 540 (NIfTI-2, refused by readNifti) in either byte order.
+// True when `head` starts with sizeof_hdr 348 (NIfTI-1) or 540 (NIfTI-2) in either byte order.
 bool looksLikeNifti(std::span<const uint8_t> head);
 
 }  // namespace trephine::voxel

@@ -59,7 +59,7 @@ DensityVolume readFormat(Format format, const ByteSource& source) {
   }
   throw VolumeReadError(source.path(),
                         "not a recognised volume file (expected MetaImage .mha/.mhd, NRRD .nrrd/.nhdr "
-                        "or NIfTI-1 .nii/.nii.gz)");
+                        "or NIfTI .nii/.nii.gz)");
 }
 
 }  // namespace
@@ -76,7 +76,7 @@ DensityVolume readVolume(const std::filesystem::path& file) {
   if (std::filesystem::is_directory(file, ec)) return readDicom(file);
   const FileByteSource source(file);
   if (source.size() == 0)
-    throw VolumeReadError(file, "the file is empty (expected a MetaImage, NRRD or NIfTI-1 volume)");
+    throw VolumeReadError(file, "the file is empty (expected a MetaImage, NRRD or NIfTI volume)");
   const std::vector<uint8_t> head = source.readClipped(0, kDetectionBytes);
   if (looksLikeDicom(head)) return readDicom(file);  // one slice, or a multi-frame image
   if (!isGzip(head)) {

@@ -1,7 +1,7 @@
 #pragma once
-// Reading CT volumes from MetaImage (.mha, .mhd), NRRD (.nrrd, .nhdr) and
-// NIfTI-1 (.nii, .nii.gz) files, and DICOM series (a directory, DIR?series=UID,
-// or one DICOM file: DicomReader.h), into a DensityVolume.
+// Reading CT volumes from MetaImage (.mha, .mhd), NRRD (.nrrd, .nhdr),
+// NIfTI-1 and NIfTI-2 (.nii, .nii.gz) files, and DICOM series (a directory,
+// DIR?series=UID, or one DICOM file: DicomReader.h), into a DensityVolume.
 //
 // World frame: the file's world frame is kept as it is. NIfTI sform/qform
 // coordinates are RAS+ (x grows towards the patient's right, y anterior,

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <numeric>
 
+#include "plugins/voxel_skull/io/DicomWriter.h"
 #include "plugins/voxel_skull/io/VolumeReader.h"
 #include "tests/plugins/voxel_skull/ResampledVolumeCheck.h"
 #include "tests/support/TestSupport.h"
@@ -110,7 +111,9 @@ void writeSeries(const std::filesystem::path& dir, int slices, double step, Slic
 
 TEST(DicomReaderTest, ASeriesIsSortedByPositionAndRescaledToHounsfieldUnits) {
   test::TempDir dir;
-  writeSeries(dir.path() / "ct", 5, 1.25, SliceSpec{.origin = Vec3(-10, 20, 30)});
+  SliceSpec spec;
+  spec.origin = Vec3(-10, 20, 30);
+  writeSeries(dir.path() / "ct", 5, 1.25, spec);
   const DensityVolume v = voxel::readVolume(dir.path() / "ct");
   ASSERT_EQ(v.dims(), (std::array<int32_t, 3>{6, 4, 5}));
   EXPECT_NEAR(v.spacing().x(), 0.5, 1e-9);
@@ -124,7 +127,10 @@ TEST(DicomReaderTest, ASeriesIsSortedByPositionAndRescaledToHounsfieldUnits) {
 
 TEST(DicomReaderTest, SlicesSteppingDownwardsAreFlippedOntoAPositiveGrid) {
   test::TempDir dir;
-  writeSeries(dir.path() / "down", 4, -2.0, SliceSpec{.slope = 2, .intercept = 5});
+  SliceSpec spec;
+  spec.slope = 2;
+  spec.intercept = 5;
+  writeSeries(dir.path() / "down", 4, -2.0, spec);
   const DensityVolume v = voxel::readVolume(dir.path() / "down");
   ASSERT_EQ(v.dims()[2], 4);
   EXPECT_NEAR(v.spacing().z(), 2.0, 1e-9);
@@ -137,7 +143,9 @@ TEST(DicomReaderTest, SlicesSteppingDownwardsAreFlippedOntoAPositiveGrid) {
 TEST(DicomReaderTest, TwoSeriesAreListedAndOneIsPickedByItsUid) {
   test::TempDir dir;
   writeSeries(dir.path() / "both", 3, 1.0);
-  SliceSpec other{.series = "1.2.826.0.1.3680043.2.1125.2", .description = "scout"};
+  SliceSpec other;
+  other.series = "1.2.826.0.1.3680043.2.1125.2";
+  other.description = "scout";
   for (int k = 0; k < 2; ++k) {
     SliceSpec s = other;
     s.origin = Vec3(0, 0, 5 * k);
@@ -298,11 +306,44 @@ TEST(DicomReaderTest, MalformedMetaInformationIsAnErrorNotAnAbort) {
   EXPECT_NE(text.find("cannot be decoded (transfer syntax 1.2.840.10008.1.2.4.50"), std::string::npos) << text;
 }
 
+// The real CT of ../shared/data (a raw NRRD) written as a DICOM series by
+// the project's writer and read back: the same grid and the same densities,
+// voxel for voxel. Writing into a directory that holds files is refused and
+// leaves them.
+TEST(DicomReaderTest, TheRealCtHeadSurvivesADicomRoundTrip) {
+  const auto nhdr = test::sourceDir() / "../shared/data/ct_head_vtk_headsq/quarter.nhdr";
+  if (!std::filesystem::exists(nhdr)) GTEST_SKIP() << nhdr << " is absent (../shared/data)";
+  const DensityVolume ct = voxel::readVolume(nhdr);
+  test::TempDir dir;
+  voxel::writeDicomSeries(ct, dir.path() / "ct", "VTK head");
+  const DensityVolume back = voxel::readVolume(dir.path() / "ct");
+  ASSERT_EQ(back.dims(), ct.dims());
+  EXPECT_LT((back.spacing() - ct.spacing()).norm(), 1e-6);
+  EXPECT_LT((back.origin() - ct.origin()).norm(), 1e-6);
+  size_t differing = 0;
+  for (int32_t k = 0; k < ct.dims()[2]; ++k)
+    for (int32_t j = 0; j < ct.dims()[1]; ++j)
+      for (int32_t i = 0; i < ct.dims()[0]; ++i) differing += back.density(i, j, k) != ct.density(i, j, k);
+  EXPECT_EQ(differing, 0u);
+  std::filesystem::create_directories(dir.path() / "full");
+  std::ofstream(dir.path() / "full" / "notes.txt") << "kept";
+  try {
+    voxel::writeDicomSeries(ct, dir.path() / "full/", "again");
+    ADD_FAILURE() << "no error for a directory that holds a file";
+  } catch (const voxel::VolumeWriteError& e) {
+    EXPECT_NE(std::string(e.what()).find("full: exists and is not an empty directory"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(test::readFile(dir.path() / "full" / "notes.txt"), "kept");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "full.writing"));
+}
+
 // In a scene: VoxelSkull's file is the series' directory, or the directory
 // and a series among several.
 TEST(DicomReaderTest, AVoxelSkullLoadsASeriesFromItsDirectory) {
   test::TempDir dir;
-  writeSeries(dir.path() / "ct", 8, 1.0, SliceSpec{.columns = 8, .rows = 8});
+  SliceSpec spec;
+  spec.columns = spec.rows = 8;
+  writeSeries(dir.path() / "ct", 8, 1.0, spec);
   auto scene = [&](const std::string& file) {
     return R"(<Node name="root">
   <RequiredPlugin name="voxel_skull"/>

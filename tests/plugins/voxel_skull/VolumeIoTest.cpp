@@ -1,4 +1,4 @@
-// Volume file input/output: MetaImage, NRRD and NIfTI-1 files written here
+// Volume file input/output: MetaImage, NRRD and NIfTI-1 files written here (NIfTI-2 files written by nibabel)
 // byte by byte from the format specifications (not by our writer), read back
 // and compared voxel by voxel, plus the errors for corrupt files, the
 // MetaImage writer round trip, resampling and the real CT data set.
@@ -647,7 +647,7 @@ TEST(NrrdReader, AxisMinsGiveTheOriginWithoutSpace) {
 }
 
 // ---------------------------------------------------------------------------
-// NIfTI-1
+// NIfTI-1 (headers written here, at nifti1.h's offsets)
 
 struct NiftiFields {
   std::array<int16_t, 8> dim{3, 3, 4, 5, 1, 1, 1, 1};
@@ -817,6 +817,74 @@ TEST(NiftiReader, ErrorsNameTheField) {
   EXPECT_CONTAINS(readError(writeFile(dir / "stub.nii", niftiFile({}, false, {}))), "truncated: expected 120 bytes");
   EXPECT_CONTAINS(readError(writeFile(dir / "tiny.nii", Bytes(100, 7))), "tiny.nii: truncated: expected a 348-byte");
   EXPECT_CONTAINS(readError(writeFile(dir / "junk.nii", Bytes(400, 7))), "sizeof_hdr is");
+}
+
+// ---------------------------------------------------------------------------
+// NIfTI-2: files written by nibabel (tests/plugins/voxel_skull/data/make_nifti2.py),
+// a writer independent of the reader, holding the ramp above.
+
+Bytes nifti2File(const std::string& name) {
+  const std::string bytes = test::readFile(test::sourceDir() / "tests/plugins/voxel_skull/data" / name);
+  return Bytes(bytes.begin(), bytes.end());
+}
+
+TEST(NiftiReader, Nifti2SformLittleEndian) {
+  TempDir dir;
+  const DensityVolume volume = readVolume(writeFile(dir / "sform2.nii", nifti2File("ramp_sform_le.nii")));
+  EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{5, 3, 4}));
+  EXPECT_EQ(volume.spacing(), Vec3(2, 0.5, 0.75));
+  expectExactEncoding(volume);
+  Eigen::Matrix3d axes;
+  axes.col(0) = Vec3(0, -0.5, 0);
+  axes.col(1) = Vec3(0, 0, 0.75);
+  axes.col(2) = Vec3(2, 0, 0);
+  expectWorldMapping(volume, kDims, axes, Vec3(10, 20, -30), rampValue);
+}
+
+// Big endian, float32 samples scaled by the double scl_slope and scl_inter,
+// a qform with qfac -1, lengths in metres.
+TEST(NiftiReader, Nifti2QformBigEndianScaledInMetres) {
+  TempDir dir;
+  const DensityVolume volume = readVolume(writeFile(dir / "qform2.nii", nifti2File("ramp_qform_be.nii")));
+  EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{3, 4, 5}));
+  EXPECT_LT((volume.spacing() - Vec3(0.5, 0.75, 2)).norm(), 1e-9);
+  EXPECT_LT((volume.origin() - Vec3(5 - 2 * 0.5, 6 - 3 * 0.75, 7 - 4 * 2)).norm(), 1e-9);
+  expectWorldMapping(volume, kDims, Vec3(-0.5, -0.75, -2).asDiagonal(), Vec3(5, 6, 7), rampValue);
+  // The same file gzipped.
+  const DensityVolume gzip = readVolume(writeFile(dir / "qform2.nii.gz", gzipped(nifti2File("ramp_qform_be.nii"))));
+  EXPECT_EQ(gzip.density(2, 3, 4), volume.density(2, 3, 4));
+}
+
+TEST(NiftiReader, Nifti2ErrorsNameTheField) {
+  TempDir dir;
+  const Bytes good = nifti2File("ramp_sform_le.nii");  // little endian
+  auto patched = [&](size_t offset, auto value) {
+    Bytes bytes = good;
+    putAt(bytes, offset, value, false);
+    return bytes;
+  };
+  // A .hdr/.img pair, and a magic whose last four bytes a text-mode transfer altered.
+  Bytes pair = good;
+  pair[5] = 'i';
+  EXPECT_CONTAINS(readError(writeFile(dir / "pair.nii", pair)), "magic 'ni2' marks a .hdr/.img pair");
+  Bytes mangled = good;
+  mangled[8] = '\n';
+  mangled[9] = '\032';
+  EXPECT_CONTAINS(readError(writeFile(dir / "text.nii", mangled)), "text-mode transfer");
+  // 64-bit sizes: one beyond the limit, one that would overflow 32 bits.
+  EXPECT_CONTAINS(readError(writeFile(dir / "huge.nii", patched(24, int64_t(1) << 40))), "voxels supported");
+  EXPECT_CONTAINS(readError(writeFile(dir / "negative.nii", patched(32, int64_t(-5)))), "dim[1..3]");
+  Bytes series = patched(16, int64_t(4));  // dim[0] 4: a time series of ...
+  putAt(series, 48, int64_t(3), false);     // ... 3 volumes
+  EXPECT_CONTAINS(readError(writeFile(dir / "time.nii", series)), "dim[4] 3 is not supported");
+  EXPECT_CONTAINS(readError(writeFile(dir / "offset.nii", patched(168, int64_t(348)))),
+                  "vox_offset 348 is not a byte offset between 540");
+  EXPECT_CONTAINS(readError(writeFile(dir / "pixdim.nii", patched(104 + 2 * 8, 0.0))), "pixdim[2] 0");
+  EXPECT_CONTAINS(readError(writeFile(dir / "type.nii", patched(12, int16_t(1280)))), "datatype 1280 (uint64)");
+  EXPECT_CONTAINS(readError(writeFile(dir / "short.nii", Bytes(good.begin(), good.begin() + 500))),
+                  "truncated: expected a 540-byte NIfTI-2 header, found 500 bytes");
+  EXPECT_CONTAINS(readError(writeFile(dir / "cut.nii", Bytes(good.begin(), good.end() - 2))),
+                  "truncated: expected 120 bytes of data, found 118");
 }
 
 // ---------------------------------------------------------------------------
