@@ -113,6 +113,9 @@ class Walker {
         "1.2.840.10008.5.1.4.1.1.2",   "1.2.840.10008.5.1.4.1.1.2.1", "1.2.840.10008.5.1.4.1.1.4",
         "1.2.840.10008.5.1.4.1.1.4.1", "1.2.840.10008.5.1.4.1.1.7",   "1.2.840.10008.5.1.4.1.1.7.2",
         "1.2.840.10008.5.1.4.1.1.7.3", "1.2.840.10008.5.1.4.1.1.7.4"};
+    if (uid == "1.2.840.10008.5.1.4.1.1.66.4")
+      fail(at, "a DICOM Segmentation (SEG, SOP class " + uid +
+                   ") is not read: convert it to a labelmap volume (dcmqi's segimage2itkimage writes NRRD)");
     if (std::find(kClasses.begin(), kClasses.end(), uid) == kClasses.end())
       fail(at, "SOP class " + uid + " (expected a CT, MR or secondary capture image)");
   }

@@ -304,6 +304,15 @@ TEST(DicomReaderTest, MalformedMetaInformationIsAnErrorNotAnAbort) {
   const std::string text = read("bad_jpeg.dcm");
   EXPECT_NE(text.find("bad_jpeg.dcm"), std::string::npos) << text;
   EXPECT_NE(text.find("cannot be decoded (transfer syntax 1.2.840.10008.1.2.4.50"), std::string::npos) << text;
+  // A DICOM Segmentation object is named as such, with what to do instead.
+  SliceSpec seg;
+  seg.sopClass = "1.2.840.10008.5.1.4.1.1.66.4";
+  seg.value = [](int c, int r) { return int16_t(c * r & 1); };
+  writeSlice(dir.path() / "labels_seg.dcm", seg);
+  const std::string segText = read("labels_seg.dcm");
+  EXPECT_NE(segText.find("labels_seg.dcm"), std::string::npos) << segText;
+  EXPECT_NE(segText.find("a DICOM Segmentation (SEG"), std::string::npos) << segText;
+  EXPECT_NE(segText.find("segimage2itkimage"), std::string::npos) << segText;
 }
 
 // The real CT of ../shared/data (a raw NRRD) written as a DICOM series by
