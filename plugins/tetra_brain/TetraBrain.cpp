@@ -309,6 +309,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
   m_nodeForceValue.t = t;
   if (m_spreadStart.empty()) {
+    m_largestNodeForceCount = std::max<uint64_t>(m_largestNodeForceCount, forces.size());
     m_nodeForces->publish(m_nodeForceValue);
     return;
   }
@@ -329,6 +330,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     }
   for (const NodeForce& f : spread) m_nodeSlot[f.node] = -1;
   m_spreadValue.t = t;
+  m_largestNodeForceCount = std::max<uint64_t>(m_largestNodeForceCount, spread.size());
   m_nodeForces->publish(m_spreadValue);
 }
 
@@ -367,6 +369,9 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
     if (m_rejectedFrames) counters.push_back({"rejected_position_frames", double(m_rejectedFrames)});
   }
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
+  // The most nodes the tool's force was shared among in a frame: what each
+  // reader of the node forces copies on the haptic thread.
+  if (!m_nodeSlot.empty()) counters.push_back({"largest_node_force_count", double(m_largestNodeForceCount)});
   if (m_bound) m_backend->reportCounters(counters);
 }
 

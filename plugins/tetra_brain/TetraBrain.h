@@ -223,6 +223,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   std::vector<double> m_spreadWeights;
   NodeForces m_spreadValue;
   uint64_t m_contactFrames = 0, m_unreservedShellCalls = 0;
+  uint64_t m_largestNodeForceCount = 0;  // entries of the largest node-force frame published
   mutable uint64_t m_queries = 0;  // counted by the const queries too
 };
 
