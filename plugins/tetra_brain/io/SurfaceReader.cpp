@@ -7,6 +7,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "framework/core/Strings.h"
 #include "plugins/tetra_brain/io/FileContent.h"
 #include "plugins/tetra_brain/io/ReadChecks.h"
 #include "plugins/tetra_brain/io/TetMeshReader.h"
@@ -361,7 +362,12 @@ TriangleSurface readPly(std::string_view text, const std::filesystem::path& file
         if (!(n >= 0 && n <= (1 << 20))) cursor.fail(owner + " has a list of " + std::to_string(n) + " items");
         for (int64_t i = 0; i < int64_t(n); ++i) {
           const double item = one(p.size, p.isReal, p.isSigned);
-          if (int(k) == list) corners.push_back(int64_t(item));
+          if (int(k) != list) continue;
+          // A whole number within int32 before it becomes one (a huge or
+          // fractional value is no index; its conversion would be undefined).
+          if (!(std::abs(item) <= 2147483647.0) || item != std::floor(item))
+            cursor.fail(owner + " lists the vertex index " + formatDouble(item) + " (expected a whole number)");
+          corners.push_back(int64_t(item));
         }
         values.push_back(n);
       }

@@ -1,7 +1,7 @@
 #include "plugins/voxel_skull/io/DicomReader.h"
 
+#include <gdcmImage.h>
 #include <gdcmImageHelper.h>
-#include <gdcmImageReader.h>
 #include <gdcmReader.h>
 #include <gdcmStringFilter.h>
 #include <gdcmTrace.h>
@@ -35,6 +35,7 @@ struct Slice {
   double frameStep = 0;                   // mm between frames (multi-frame files)
   double slope = 1, intercept = 0;
   double position = 0;                    // along the normal, mm
+  DicomPixelAttributes pixel;             // as the structure check read them
 };
 
 std::string trimmed(std::string text) {
@@ -50,24 +51,25 @@ bool hasDicomMagic(const fs::path& file) {
 }
 
 // The file's structure checked before GDCM reads it (DicomStructure.h).
-void checkStructure(const fs::path& file) {
+DicomPixelAttributes checkStructure(const fs::path& file) {
   std::ifstream in(file, std::ios::binary | std::ios::ate);
   if (!in) throw VolumeReadError(file, "cannot be read");
   const std::streamoff size = in.tellg();
   std::vector<uint8_t> bytes(size_t(std::max<std::streamoff>(size, 0)));
   in.seekg(0);
   in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
-  checkDicomStructure(file, bytes);
+  return checkDicomStructure(file, bytes);
 }
 
 Slice readHeader(const fs::path& file) {
-  checkStructure(file);
+  const DicomPixelAttributes pixel = checkStructure(file);
   gdcm::Reader reader;
   reader.SetFileName(file.c_str());
   if (!reader.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010), std::set<gdcm::Tag>{}))
     throw VolumeReadError(file, "GDCM cannot read it as DICOM (truncated, or not Part 10)");
   const gdcm::File& f = reader.GetFile();
   Slice s;
+  s.pixel = pixel;
   gdcm::StringFilter strings;
   strings.SetFile(f);
   s.file = file;
@@ -120,37 +122,55 @@ void checkPixelDataLength(const fs::path& file, uint64_t expected) {
                                     " bytes of the image's " + std::to_string(expected));
 }
 
-// The stored samples of a file, and their type.
+// The stored samples of a file, and their type. Decoded from the pixel
+// attributes the structure check read, through a gdcm::Image built here:
+// GDCM's own image reader would also parse the file's palettes, icons,
+// overlays and curves, none of which a density volume needs, and asserts on
+// malformed ones.
 std::vector<uint8_t> readPixels(const Slice& slice, SampleType& type) {
-  gdcm::ImageReader reader;
-  reader.SetFileName(slice.file.c_str());
-  if (!reader.Read()) throw VolumeReadError(slice.file, "GDCM cannot read its image");
-  const gdcm::Image& image = reader.GetImage();
-  const gdcm::PixelFormat format = image.GetPixelFormat();
-  if (format.GetSamplesPerPixel() != 1)
-    throw VolumeReadError(slice.file, "SamplesPerPixel (0028,0002) is " + std::to_string(format.GetSamplesPerPixel()) +
-                                          " (expected 1: a grey-level image)");
-  const bool isSigned = format.GetPixelRepresentation() == 1;
-  switch (format.GetBitsAllocated()) {
+  const DicomPixelAttributes& a = slice.pixel;
+  const bool isSigned = a.pixelRepresentation == 1;
+  switch (a.bitsAllocated) {
     case 8: type = isSigned ? SampleType::kInt8 : SampleType::kUInt8; break;
     case 16: type = isSigned ? SampleType::kInt16 : SampleType::kUInt16; break;
     case 32: type = isSigned ? SampleType::kInt32 : SampleType::kUInt32; break;
     default:
-      throw VolumeReadError(slice.file, "BitsAllocated (0028,0100) is " + std::to_string(format.GetBitsAllocated()) +
+      throw VolumeReadError(slice.file, "BitsAllocated (0028,0100) is " + std::to_string(a.bitsAllocated) +
                                             " (expected 8, 16 or 32)");
   }
+  gdcm::Reader reader;
+  reader.SetFileName(slice.file.c_str());
+  if (!reader.Read()) throw VolumeReadError(slice.file, "GDCM cannot read its data set");
+  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+  const gdcm::Tag pixelTag(0x7fe0, 0x0010);
+  if (!ds.FindDataElement(pixelTag)) throw VolumeReadError(slice.file, "no Pixel Data (7FE0,0010)");
+  gdcm::PixelFormat format;
+  format.SetSamplesPerPixel(1);
+  format.SetBitsAllocated(a.bitsAllocated);
+  format.SetBitsStored(a.bitsStored ? a.bitsStored : a.bitsAllocated);
+  format.SetHighBit(a.bitsStored ? a.highBit : uint16_t(a.bitsAllocated - 1));
+  format.SetPixelRepresentation(a.pixelRepresentation);
+  gdcm::Image image;
+  image.SetNumberOfDimensions(slice.dims[2] > 1 ? 3 : 2);
+  for (unsigned d = 0; d < image.GetNumberOfDimensions(); ++d) image.SetDimension(d, slice.dims[d]);
+  image.SetPixelFormat(format);
+  image.SetPhotometricInterpretation(a.photometricInterpretation == "MONOCHROME1"
+                                         ? gdcm::PhotometricInterpretation::MONOCHROME1
+                                         : gdcm::PhotometricInterpretation::MONOCHROME2);
+  const gdcm::TransferSyntax syntax = reader.GetFile().GetHeader().GetDataSetTransferSyntax();
+  image.SetTransferSyntax(syntax);
+  image.SetDataElement(ds.GetDataElement(pixelTag));
   const size_t expected = size_t(slice.dims[0]) * slice.dims[1] * slice.dims[2] * sampleBytes(type);
   if (image.GetBufferLength() != expected)
     throw VolumeReadError(slice.file, "its pixel data hold " + std::to_string(image.GetBufferLength()) +
                                           " bytes (expected " + std::to_string(expected) + ")");
   // Uncompressed data cut short: GDCM reads what is there, warns and pads.
-  if (!reader.GetFile().GetDataSet().GetDataElement(gdcm::Tag(0x7fe0, 0x0010)).GetSequenceOfFragments())
-    checkPixelDataLength(slice.file, expected);
+  if (!ds.GetDataElement(pixelTag).GetSequenceOfFragments()) checkPixelDataLength(slice.file, expected);
   std::vector<uint8_t> bytes(expected);
   if (!image.GetBuffer(reinterpret_cast<char*>(bytes.data()))) {
-    const char* syntax = reader.GetFile().GetHeader().GetDataSetTransferSyntax().GetString();
+    const char* name = syntax.GetString();
     throw VolumeReadError(slice.file, std::string("its pixel data cannot be decoded (transfer syntax ") +
-                                          (syntax ? syntax : "unknown") + ": not supported by this build)");
+                                          (name ? name : "unknown") + ": not supported by this build)");
   }
   return bytes;
 }

@@ -91,6 +91,7 @@ class Walker {
         }
         fail(at, "an item or delimiter tag out of place");
       }
+      if (explicitVr) checkTypedVr(h, at);
       if (depth == 0) checkImageAttribute(h, at);
       at = value(h, at, end, explicitVr, depth);
     }
@@ -103,6 +104,28 @@ class Walker {
     std::string t(reinterpret_cast<const char*>(m_bytes.data() + h.value), h.length);
     while (!t.empty() && (t.back() == '\0' || t.back() == ' ')) t.pop_back();
     return t;
+  }
+
+  // The elements GDCM reads through gdcm::Attribute (its image helper and
+  // pixel reader), with their standard VR: Attribute asserts that a stored
+  // VR is compatible with the dictionary's.
+  void checkTypedVr(const Header& h, uint64_t at) const {
+    struct Typed {
+      uint16_t group, element;
+      const char* vr;
+    };
+    static constexpr Typed kTyped[] = {
+        {0x0018, 0x0050, "DS"}, {0x0018, 0x0088, "DS"}, {0x0020, 0x0032, "DS"}, {0x0020, 0x0037, "DS"},
+        {0x0028, 0x0002, "US"}, {0x0028, 0x0004, "CS"}, {0x0028, 0x0006, "US"}, {0x0028, 0x0008, "IS"},
+        {0x0028, 0x0010, "US"}, {0x0028, 0x0011, "US"}, {0x0028, 0x0030, "DS"}, {0x0028, 0x0100, "US"},
+        {0x0028, 0x0101, "US"}, {0x0028, 0x0102, "US"}, {0x0028, 0x0103, "US"}, {0x0028, 0x1052, "DS"},
+        {0x0028, 0x1053, "DS"}, {0x0028, 0x2110, "CS"}, {0x0008, 0x0016, "UI"}, {0x0020, 0x000E, "UI"},
+        {0x0008, 0x103E, "LO"}, {0x0028, 0x9110, "SQ"}, {0x0020, 0x9113, "SQ"}, {0x0020, 0x9116, "SQ"},
+        {0x0028, 0x9145, "SQ"}, {0x5200, 0x9229, "SQ"}, {0x5200, 0x9230, "SQ"}};
+    for (const Typed& t : kTyped)
+      if (h.group == t.group && h.element == t.element && h.vr != t.vr)
+        fail(at, "(" + hex(h.group) + "," + hex(h.element) + ") has value representation " + h.vr + " (expected " +
+                     t.vr + ")");
   }
 
   // The image storage classes read (CT, MR and their enhanced forms,
@@ -130,6 +153,15 @@ class Walker {
     }
     if (h.group == 0x0008 && h.element == 0x0010) fail(at, "an ACR-NEMA Recognition Code (0008,0010): not read");
     if (h.group != 0x0028) return;
+    if (h.element == 0x0004) {
+      if (h.value + h.length > m_bytes.size()) fail(at, "(0028,0004) runs past the end of the file");
+      m_pixel.photometricInterpretation = text(h);
+      const std::string& pi = m_pixel.photometricInterpretation;
+      if (pi != "MONOCHROME2" && pi != "MONOCHROME1")
+        fail(at, "PhotometricInterpretation (0028,0004) is \"" + pi.substr(0, 32) +
+                     "\" (expected MONOCHROME2 or MONOCHROME1: a grey-level CT or MR image)");
+      return;
+    }
     const bool isUs = h.element == 0x0002 || h.element == 0x0100 || h.element == 0x0101 || h.element == 0x0102 ||
                       h.element == 0x0103 || h.element == 0x0010 || h.element == 0x0011;
     if (!isUs) return;
@@ -139,14 +171,19 @@ class Walker {
       if (!ok) fail(at, "(0028," + hex(h.element) + ") is " + std::to_string(v) + " (expected " + what + ")");
     };
     switch (h.element) {
-      case 0x0002: need(v == 1 || v == 3, "SamplesPerPixel 1 or 3"); break;
+      case 0x0002: need(v == 1, "SamplesPerPixel 1: a grey-level image"); m_pixel.samplesPerPixel = v; break;
+      case 0x0010: m_pixel.rows = v; break;
+      case 0x0011: m_pixel.columns = v; break;
       case 0x0100: need(v == 1 || v == 8 || v == 16 || v == 32 || v == 64, "BitsAllocated 1, 8, 16, 32 or 64"); break;
       case 0x0101: need(v >= 1 && v <= 64, "BitsStored 1 to 64"); m_bitsStored = v; break;
       case 0x0102: need(v < 64, "HighBit below 64"); m_highBit = v; break;
-      case 0x0103: need(v <= 1, "PixelRepresentation 0 or 1"); break;
-      default: break;  // Rows, Columns: any
+      case 0x0103: need(v <= 1, "PixelRepresentation 0 or 1"); m_pixel.pixelRepresentation = v; break;
+      default: break;
     }
     if (h.element == 0x0100) m_bitsAllocated = v;
+    m_pixel.bitsAllocated = uint16_t(m_bitsAllocated);
+    m_pixel.bitsStored = uint16_t(m_bitsStored);
+    m_pixel.highBit = uint16_t(std::max(m_highBit, 0));
     if (m_bitsAllocated && m_bitsStored && m_bitsStored > m_bitsAllocated) fail(at, "BitsStored above BitsAllocated");
     if (m_bitsAllocated && m_highBit >= 0 && m_highBit >= m_bitsAllocated) fail(at, "HighBit at or above BitsAllocated");
   }
@@ -226,7 +263,7 @@ class Walker {
   // asserts on a short file or an unknown syntax. So the meta group must be:
   // (0002,0000) UL first, explicit VR elements of the meta VRs, exactly as
   // long as (0002,0000) says, a syntax read here, and a data set after it.
-  void walk() {
+  DicomPixelAttributes walk() {
     if (m_bytes.size() < 132 || std::memcmp(m_bytes.data() + 128, "DICM", 4) != 0)
       fail(0, "no \"DICM\" after a 128-byte preamble");
     uint64_t at = 132;
@@ -261,18 +298,20 @@ class Walker {
                    " (expected implicit or explicit VR little endian, JPEG, JPEG-LS, JPEG 2000 or RLE)");
     if (at >= m_bytes.size()) fail(at, "the file ends after its meta information, with no data set");
     elements(at, m_bytes.size(), syntax != "1.2.840.10008.1.2", 0, 0);
+    return m_pixel;
   }
 
  private:
   const std::filesystem::path& m_file;
   std::span<const uint8_t> m_bytes;
   int m_bitsAllocated = 0, m_bitsStored = 0, m_highBit = -1;
+  DicomPixelAttributes m_pixel;
 };
 
 }  // namespace
 
-void checkDicomStructure(const std::filesystem::path& file, std::span<const uint8_t> bytes) {
-  Walker(file, bytes).walk();
+DicomPixelAttributes checkDicomStructure(const std::filesystem::path& file, std::span<const uint8_t> bytes) {
+  return Walker(file, bytes).walk();
 }
 
 }  // namespace trephine::voxel

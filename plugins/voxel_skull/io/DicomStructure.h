@@ -12,13 +12,27 @@
 //     nested at most 32 deep and closed by their delimiters, undefined lengths
 //     only on sequences, UN and encapsulated pixel data.
 // Any breach is a VolumeReadError naming the file, the byte offset and the
-// problem.
+// problem. The elements GDCM reads through its typed attributes (the image's
+// size, pixel format, position, orientation, spacing and rescale, at any
+// depth) must have their standard value representation: GDCM asserts on
+// another. The Image Pixel attributes come back, so that the pixels are
+// decoded from them (GDCM's image reader also parses palettes, icons,
+// overlays and curves, and asserts on malformed ones).
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 
 namespace trephine::voxel {
 
-void checkDicomStructure(const std::filesystem::path& file, std::span<const uint8_t> bytes);
+// The Image Pixel module (PS3.3 C.7.6.3) of the data set's top level, as
+// stored; 0 (or empty) where the element is absent.
+struct DicomPixelAttributes {
+  uint16_t rows = 0, columns = 0;
+  uint16_t samplesPerPixel = 0, bitsAllocated = 0, bitsStored = 0, highBit = 0, pixelRepresentation = 0;
+  std::string photometricInterpretation;  // trimmed; must be MONOCHROME1 or MONOCHROME2 where present
+};
+
+DicomPixelAttributes checkDicomStructure(const std::filesystem::path& file, std::span<const uint8_t> bytes);
 
 }  // namespace trephine::voxel

@@ -161,6 +161,15 @@ TEST(SurfaceReaderTest, BadFilesAreErrorsThatSayWhereAndWhat) {
   std::string ply = plyText("binary_little_endian");
   m = errorOf(dir, "cut.ply", ply.substr(0, ply.size() - 9));
   EXPECT_NE(m.find("cut.ply: the binary data ends"), std::string::npos) << m;
+  // A vertex index that is no whole number within int32 (the fuzzer's: 2e117).
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\n0 1 0\n";
+  m = errorOf(dir, "huge.ply", header + "3 0 1 2" + std::string(117, '2') + "\n");
+  EXPECT_NE(m.find("huge.ply"), std::string::npos) << m;
+  EXPECT_NE(m.find("face 0 lists the vertex index 2.2"), std::string::npos) << m;
+  m = errorOf(dir, "half.ply", header + "3 0 1 1.5\n");
+  EXPECT_NE(m.find("face 0 lists the vertex index 1.5 (expected a whole number)"), std::string::npos) << m;
   m = errorOf(dir, "what.xyz", "1 2 3\n");
   EXPECT_NE(m.find("what.xyz: not a surface this program reads"), std::string::npos) << m;
   m = errorOf(dir, "empty.obj", "# nothing\nv 0 0 0\n");

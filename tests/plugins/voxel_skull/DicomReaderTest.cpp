@@ -315,6 +315,51 @@ TEST(DicomReaderTest, MalformedMetaInformationIsAnErrorNotAnAbort) {
   EXPECT_NE(segText.find("segimage2itkimage"), std::string::npos) << segText;
 }
 
+// What GDCM asserts on rather than refuses, refused first, naming the file
+// and the element: a palette colour image (its pixel reader asserts when the
+// palette's tables are missing), an image attribute stored with another VR
+// than the standard's (its typed attributes assert), colour samples.
+TEST(DicomReaderTest, ImageAttributesGdcmWouldAssertOnAreErrors) {
+  test::TempDir dir;
+  SliceSpec spec;
+  spec.value = [](int c, int r) { return int16_t(c - r); };
+  writeSlice(dir.path() / "good.dcm", spec);
+  const std::string good = test::readFile(dir.path() / "good.dcm");
+  auto message = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir.path() / name, std::ios::binary) << bytes;
+    try {
+      voxel::readVolume(dir.path() / name);
+    } catch (const VolumeReadError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto patched = [&](const std::string& from, const std::string& to) {
+    std::string bytes = good;
+    const size_t at = bytes.find(from);
+    EXPECT_NE(at, std::string::npos) << "no " << from;
+    if (at != std::string::npos) bytes.replace(at, from.size(), to);
+    return bytes;
+  };
+  std::string text = message("palette.dcm", patched("MONOCHROME2", "PALETTE COL"));
+  EXPECT_NE(text.find("palette.dcm"), std::string::npos) << text;
+  EXPECT_NE(text.find("PhotometricInterpretation (0028,0004) is \"PALETTE COL\" (expected MONOCHROME2"),
+            std::string::npos)
+      << text;
+  // Rows (0028,0010) stored as SS.
+  text = message("rows_ss.dcm", patched(std::string("\x28\x00\x10\x00US", 6), std::string("\x28\x00\x10\x00SS", 6)));
+  EXPECT_NE(text.find("(0028,0010) has value representation SS (expected US)"), std::string::npos) << text;
+  // Three samples a pixel.
+  text = message("rgb.dcm", patched(std::string("\x28\x00\x02\x00US\x02\x00\x01\x00", 10),
+                                    std::string("\x28\x00\x02\x00US\x02\x00\x03\x00", 10)));
+  EXPECT_NE(text.find("(0028,0002) is 3 (expected SamplesPerPixel 1: a grey-level image)"), std::string::npos) << text;
+  // The unpatched file still reads, MONOCHROME1 too (the stored values, not inverted).
+  EXPECT_EQ(message("good_again.dcm", good), "no error");
+  EXPECT_EQ(message("mono1.dcm", patched("MONOCHROME2", "MONOCHROME1")), "no error");
+  const DensityVolume mono1 = voxel::readVolume(dir.path() / "mono1.dcm");
+  EXPECT_EQ(mono1.density(3, 1, 0), spec.slope * (3 - 1) + spec.intercept);
+}
+
 // The real CT of ../shared/data (a raw NRRD) written as a DICOM series by
 // the project's writer and read back: the same grid and the same densities,
 // voxel for voxel. Writing into a directory that holds files is refused and
