@@ -73,7 +73,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   FilePathField d_file{this,
                        "file",
-                       {.help = "Density volume: MetaImage (.mhd/.mha), NRRD (.nrrd/.nhdr), NIfTI-1 or NIfTI-2 (.nii/.nii.gz), "
+                       {.help = "Density volume: MetaImage (.mhd/.mha), NRRD (.nrrd/.nhdr), NIfTI-1 or NIfTI-2 (.nii/.nii.gz, or a .hdr with its .img), "
                                 "a DICOM series (its directory, DIR/?series=UID to pick one of several, or one "
                                 "DICOM file); or a generated phantom, e.g. phantom:skull?voxel=1.0",
                         .required = true},

@@ -176,25 +176,41 @@ Eigen::Matrix3d quaternionRotation(double b, double c, double d, double qfac, co
   return r;
 }
 
-// The version's single-file magic ("n+1\0", or "n+2\0" and the four bytes
-// that catch a file mangled by a text-mode transfer).
-void checkMagic(const HeaderFields& header, const HeaderLayout& layout, const std::filesystem::path& file) {
+// The version's magic: "n+1\0" or "n+2\0" and the four bytes that catch a
+// file mangled by a text-mode transfer (a single .nii), or "ni1\0" / "ni2\0"
+// (a .hdr whose samples are in the .img beside it). True for a pair.
+bool checkMagic(const HeaderFields& header, const HeaderLayout& layout, const std::filesystem::path& file) {
   const std::string_view magic = header.magic();
-  const std::string name = "NIfTI-" + std::to_string(layout.version);
-  const std::string single = layout.version == 1 ? std::string("n+1\0", 4) : std::string("n+2\0\r\n\032\n", 8);
-  const std::string pair = layout.version == 1 ? std::string("ni1\0", 4) : std::string("ni2\0\r\n\032\n", 8);
-  if (magic == single) return;
-  if (magic.substr(0, 4) == std::string_view(pair).substr(0, 4))
-    throw VolumeReadError(file, "magic 'ni" + std::to_string(layout.version) +
-                                    "' marks a .hdr/.img pair, which is not supported (expected a single-file " +
-                                    name + " .nii, magic 'n+" + std::to_string(layout.version) + "')");
-  if (layout.version == 2 && magic.substr(0, 4) == std::string_view(single).substr(0, 4))
-    throw VolumeReadError(file, "magic 'n+2' is followed by " + quoteForMessage(magic.substr(4)) +
+  const std::string version = std::to_string(layout.version);
+  const std::string tail = layout.version == 1 ? std::string() : std::string("\r\n\032\n", 4);
+  const std::string single = "n+" + version + std::string(1, '\0') + tail;
+  const std::string pair = "ni" + version + std::string(1, '\0') + tail;
+  if (magic == single) return false;
+  if (magic == pair) return true;
+  if (layout.version == 2 && (magic.substr(0, 4) == std::string_view(single).substr(0, 4) ||
+                              magic.substr(0, 4) == std::string_view(pair).substr(0, 4)))
+    throw VolumeReadError(file, "magic '" + std::string(magic.substr(0, 3)) + "' is followed by " +
+                                    quoteForMessage(magic.substr(4)) +
                                     " instead of \\r\\n\\032\\n (the file was altered, perhaps by a text-mode "
                                     "transfer)");
-  throw VolumeReadError(file, "magic " + quoteForMessage(magic.substr(0, 4)) + " is not 'n+" +
-                                  std::to_string(layout.version) + "' (expected a single-file " + name +
-                                  " .nii; Analyze 7.5 is not supported)");
+  throw VolumeReadError(file, "magic " + quoteForMessage(magic.substr(0, 4)) + " is not 'n+" + version + "' or 'ni" +
+                                  version + "' (expected a NIfTI-" + version +
+                                  " .nii, or a .hdr and its .img; Analyze 7.5 is not supported)");
+}
+
+// The image file of a .hdr/.img pair: NAME.img or NAME.img.gz beside
+// NAME.hdr (or NAME.hdr.gz).
+std::filesystem::path pairedImage(const std::filesystem::path& header) {
+  std::filesystem::path stem = header;
+  if (equalsIgnoreCase(stem.extension().string(), ".gz")) stem.replace_extension();
+  stem.replace_extension();
+  std::error_code ec;
+  for (const char* extension : {".img", ".IMG", ".img.gz"}) {
+    const std::filesystem::path image = stem.string() + extension;
+    if (std::filesystem::is_regular_file(image, ec)) return image;
+  }
+  throw VolumeReadError(header, "a .hdr/.img pair (magic 'ni1' or 'ni2') whose image file " +
+                                    (stem.string() + ".img") + " is missing");
 }
 
 }  // namespace
@@ -231,7 +247,7 @@ DensityVolume readNifti(const ByteSource& source) {
                                     " (expected 348, NIfTI-1, or 540, NIfTI-2: not a NIfTI file)");
   source.read(0, std::span(raw).first(layout->headerBytes));
   const HeaderFields header(raw, *layout, bigEndian);
-  checkMagic(header, *layout, file);
+  const bool pair = checkMagic(header, *layout, file);
 
   const int64_t rank = header.dim(0);
   if (rank < 1 || rank > 7) throw VolumeReadError(file, "dim[0] " + std::to_string(rank) + " is not 1 to 7");
@@ -281,12 +297,27 @@ DensityVolume readNifti(const ByteSource& source) {
   if (slope != 0 && std::isfinite(slope)) stored.scaling = {slope, std::isfinite(intercept) ? intercept : 0.0};
 
   const double voxOffset = header.voxOffset();
+  std::vector<uint8_t> samples;
+  if (pair) {
+    // The samples at vox_offset (usually 0) in the .img, raw or gzipped.
+    const std::filesystem::path imageFile = pairedImage(file);
+    const FileByteSource image(imageFile);
+    if (!std::isfinite(voxOffset) || voxOffset < 0 || voxOffset != std::floor(voxOffset) ||
+        voxOffset > double(image.size()))
+      throw VolumeReadError(file, "vox_offset " + formatDouble(voxOffset) + " is not a byte offset in the " +
+                                      std::to_string(image.size()) + "-byte " + imageFile.filename().string());
+    const std::vector<uint8_t> head = image.readClipped(0, 2);
+    if (head.size() == 2 && head[0] == 0x1f && head[1] == 0x8b)
+      appendCompressedSamples(image, 0, std::nullopt, BlockStart{uint64_t(voxOffset)}, stored.byteCount(), samples);
+    else
+      appendRawSamples(image, BlockStart{uint64_t(voxOffset)}, stored.byteCount(), samples);
+    return assembleVolume(stored, samples, imageFile);
+  }
   if (!std::isfinite(voxOffset) || voxOffset < double(layout->headerBytes) || voxOffset != std::floor(voxOffset) ||
       voxOffset > double(source.size()))
     throw VolumeReadError(file, "vox_offset " + formatDouble(voxOffset) + " is not a byte offset between " +
                                     std::to_string(layout->headerBytes) + " and the " +
                                     std::to_string(source.size()) + "-byte file size");
-  std::vector<uint8_t> samples;
   appendRawSamples(source, BlockStart{uint64_t(voxOffset)}, stored.byteCount(), samples);
   return assembleVolume(stored, samples, file);
 }

@@ -1,8 +1,9 @@
 #pragma once
-// NIfTI-1 and NIfTI-2 single-file volumes (.nii; .nii.gz arrive here
-// decompressed): the 348-byte (NIfTI-1) or 540-byte (NIfTI-2: 64-bit sizes,
-// double reals) binary header, in either byte order, and the samples at
-// vox_offset. Written here rather than taken from nifticlib, whose reader
+// NIfTI-1 and NIfTI-2 volumes: single files (.nii; .nii.gz arrive here
+// decompressed) and .hdr/.img pairs (the samples in NAME.img or NAME.img.gz
+// beside NAME.hdr): the 348-byte (NIfTI-1) or 540-byte (NIfTI-2: 64-bit
+// sizes, double reals) binary header, in either byte order, and the samples
+// at vox_offset. Written here rather than taken from nifticlib, whose reader
 // prints its errors and opens files itself: this one reads through the
 // ByteSource of the other formats (gzip, the fuzzer's memory files) and
 // says which field is wrong.

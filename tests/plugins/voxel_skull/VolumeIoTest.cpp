@@ -801,7 +801,9 @@ TEST(NiftiReader, ErrorsNameTheField) {
                   "dim[4] 2 is not supported");
   fields = {};
   fields.magic = std::string("ni1\0", 4);
-  EXPECT_CONTAINS(readError(writeFile(dir / "pair.nii", niftiFile(fields, false, rampInt16()))), ".hdr/.img pair");
+  EXPECT_CONTAINS(readError(writeFile(dir / "pair.hdr", niftiFile(fields, false, rampInt16()))),
+                  "a .hdr/.img pair (magic 'ni1' or 'ni2') whose image file " + (dir / "pair.img").string() +
+                      " is missing");
   fields = {};
   fields.sizeofHdr = 540;
   EXPECT_CONTAINS(readError(writeFile(dir / "two.nii", niftiFile(fields, false, rampInt16()))), "NIfTI-2");
@@ -855,6 +857,44 @@ TEST(NiftiReader, Nifti2QformBigEndianScaledInMetres) {
   EXPECT_EQ(gzip.density(2, 3, 4), volume.density(2, 3, 4));
 }
 
+// .hdr/.img pairs: the header (magic "ni1" or "ni2") and the samples at
+// vox_offset in NAME.img, raw or gzipped, beside it.
+TEST(NiftiReader, HeaderAndImagePairsOfBothVersions) {
+  TempDir dir;
+  NiftiFields fields;
+  fields.magic = std::string("ni1\0", 4);
+  fields.voxOffset = 0;
+  const Bytes header1 = niftiFile(fields, true, {});
+  writeFile(dir / "head.hdr", header1);
+  writeFile(dir / "head.img", rampInt16(true));
+  const DensityVolume one = readVolume(dir / "head.hdr");
+  expectWorldMapping(one, kDims, Vec3(0.5, 0.75, 2).asDiagonal(), Vec3::Zero(), rampValue);
+  // The samples gzipped, after 16 bytes the header skips.
+  fields.voxOffset = 16;
+  writeFile(dir / "gz.hdr", niftiFile(fields, false, {}));
+  writeFile(dir / "gz.img.gz", gzipped(Bytes(16, 9) + rampInt16()));
+  expectWorldMapping(readVolume(dir / "gz.hdr"), kDims, Vec3(0.5, 0.75, 2).asDiagonal(), Vec3::Zero(), rampValue);
+  // NIfTI-2: nibabel's single file cut in two.
+  Bytes two = nifti2File("ramp_sform_le.nii");
+  Bytes header2(two.begin(), two.begin() + 544);
+  header2[5] = 'i';                      // "ni2"
+  putAt(header2, 168, int64_t(0), false);  // vox_offset
+  writeFile(dir / "two.hdr", header2);
+  writeFile(dir / "two.img", Bytes(two.begin() + 544, two.end()));
+  const DensityVolume pair2 = readVolume(dir / "two.hdr");
+  const DensityVolume single2 = readVolume(writeFile(dir / "two.nii", two));
+  ASSERT_EQ(pair2.dims(), single2.dims());
+  EXPECT_EQ(pair2.origin(), single2.origin());
+  for (int n = 0; n < kVoxels; ++n) {
+    const int i = n % 5, j = (n / 5) % 3, k = n / 15;
+    ASSERT_EQ(pair2.density(i, j, k), single2.density(i, j, k)) << n;
+  }
+  // An image file too short for the header's grid names the image file.
+  writeFile(dir / "short.hdr", header1);
+  writeFile(dir / "short.img", Bytes(10));
+  EXPECT_CONTAINS(readError(dir / "short.hdr"), "short.img: truncated: expected 120 bytes of data, found 10");
+}
+
 TEST(NiftiReader, Nifti2ErrorsNameTheField) {
   TempDir dir;
   const Bytes good = nifti2File("ramp_sform_le.nii");  // little endian
@@ -863,10 +903,7 @@ TEST(NiftiReader, Nifti2ErrorsNameTheField) {
     putAt(bytes, offset, value, false);
     return bytes;
   };
-  // A .hdr/.img pair, and a magic whose last four bytes a text-mode transfer altered.
-  Bytes pair = good;
-  pair[5] = 'i';
-  EXPECT_CONTAINS(readError(writeFile(dir / "pair.nii", pair)), "magic 'ni2' marks a .hdr/.img pair");
+  // A magic whose last four bytes a text-mode transfer altered.
   Bytes mangled = good;
   mangled[8] = '\n';
   mangled[9] = '\032';
