@@ -35,11 +35,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr int kFramesPerBlock = 1000;  // 1 s of haptics at 1 kHz
 
+// The two channels a haptic frame publishes to, with the readers of a
+// scene (the Recorder's, the deformer's) and, in one arm, the exporter's.
 struct Channels {
   Channel<Sample> samples;
   Channel<tetra::NodeForces> nodeForces;
   ChannelReader<Sample> recorder;
   ChannelReader<tetra::NodeForces> deformer;
+  std::optional<ChannelReader<Sample>> exporterSamples;
+  std::optional<ChannelReader<tetra::NodeForces>> exporterForces;
 
   Channels(size_t nodes, bool withExporter) : recorder(samples.addReader()), deformer(nodeForces.addReader()) {
     tetra::NodeForces prototype;
@@ -50,8 +54,6 @@ struct Channels {
       exporterForces.emplace(nodeForces.addReader());
     }
   }
-  std::optional<ChannelReader<Sample>> exporterSamples;
-  std::optional<ChannelReader<tetra::NodeForces>> exporterForces;
 };
 
 void BM_HapticPublishForExporter(benchmark::State& state) {

@@ -147,8 +147,8 @@ std::vector<uint8_t> readPixels(const Slice& slice, SampleType& type) {
   gdcm::PixelFormat format;
   format.SetSamplesPerPixel(1);
   format.SetBitsAllocated(a.bitsAllocated);
-  format.SetBitsStored(a.bitsStored ? a.bitsStored : a.bitsAllocated);
-  format.SetHighBit(a.bitsStored ? a.highBit : uint16_t(a.bitsAllocated - 1));
+  format.SetBitsStored(a.bitsStored);
+  format.SetHighBit(a.highBit);
   format.SetPixelRepresentation(a.pixelRepresentation);
   gdcm::Image image;
   image.SetNumberOfDimensions(slice.dims[2] > 1 ? 3 : 2);
@@ -161,9 +161,6 @@ std::vector<uint8_t> readPixels(const Slice& slice, SampleType& type) {
   image.SetTransferSyntax(syntax);
   image.SetDataElement(ds.GetDataElement(pixelTag));
   const size_t expected = size_t(slice.dims[0]) * slice.dims[1] * slice.dims[2] * sampleBytes(type);
-  if (image.GetBufferLength() != expected)
-    throw VolumeReadError(slice.file, "its pixel data hold " + std::to_string(image.GetBufferLength()) +
-                                          " bytes (expected " + std::to_string(expected) + ")");
   // Uncompressed data cut short: GDCM reads what is there, warns and pads.
   if (!ds.GetDataElement(pixelTag).GetSequenceOfFragments()) checkPixelDataLength(slice.file, expected);
   std::vector<uint8_t> bytes(expected);

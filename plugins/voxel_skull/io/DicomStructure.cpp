@@ -171,9 +171,7 @@ class Walker {
       if (!ok) fail(at, "(0028," + hex(h.element) + ") is " + std::to_string(v) + " (expected " + what + ")");
     };
     switch (h.element) {
-      case 0x0002: need(v == 1, "SamplesPerPixel 1: a grey-level image"); m_pixel.samplesPerPixel = v; break;
-      case 0x0010: m_pixel.rows = v; break;
-      case 0x0011: m_pixel.columns = v; break;
+      case 0x0002: need(v == 1, "SamplesPerPixel 1: a grey-level image"); break;
       case 0x0100: need(v == 1 || v == 8 || v == 16 || v == 32 || v == 64, "BitsAllocated 1, 8, 16, 32 or 64"); break;
       case 0x0101: need(v >= 1 && v <= 64, "BitsStored 1 to 64"); m_bitsStored = v; break;
       case 0x0102: need(v < 64, "HighBit below 64"); m_highBit = v; break;
@@ -181,9 +179,6 @@ class Walker {
       default: break;
     }
     if (h.element == 0x0100) m_bitsAllocated = v;
-    m_pixel.bitsAllocated = uint16_t(m_bitsAllocated);
-    m_pixel.bitsStored = uint16_t(m_bitsStored);
-    m_pixel.highBit = uint16_t(std::max(m_highBit, 0));
     if (m_bitsAllocated && m_bitsStored && m_bitsStored > m_bitsAllocated) fail(at, "BitsStored above BitsAllocated");
     if (m_bitsAllocated && m_highBit >= 0 && m_highBit >= m_bitsAllocated) fail(at, "HighBit at or above BitsAllocated");
   }
@@ -298,6 +293,10 @@ class Walker {
                    " (expected implicit or explicit VR little endian, JPEG, JPEG-LS, JPEG 2000 or RLE)");
     if (at >= m_bytes.size()) fail(at, "the file ends after its meta information, with no data set");
     elements(at, m_bytes.size(), syntax != "1.2.840.10008.1.2", 0, 0);
+    // Absent BitsStored and HighBit mean all the allocated bits.
+    m_pixel.bitsAllocated = uint16_t(m_bitsAllocated);
+    m_pixel.bitsStored = uint16_t(m_bitsStored > 0 ? m_bitsStored : m_bitsAllocated);
+    m_pixel.highBit = uint16_t(m_highBit >= 0 ? m_highBit : std::max(int(m_pixel.bitsStored) - 1, 0));
     return m_pixel;
   }
 

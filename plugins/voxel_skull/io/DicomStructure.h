@@ -25,12 +25,13 @@
 
 namespace trephine::voxel {
 
-// The Image Pixel module (PS3.3 C.7.6.3) of the data set's top level, as
-// stored; 0 (or empty) where the element is absent.
+// What decoding the pixels needs of the Image Pixel module (PS3.3
+// C.7.6.3), at the data set's top level; one sample a pixel (the check
+// refuses more). BitsAllocated is 0 where absent; an absent BitsStored is
+// BitsAllocated, an absent HighBit BitsStored - 1.
 struct DicomPixelAttributes {
-  uint16_t rows = 0, columns = 0;
-  uint16_t samplesPerPixel = 0, bitsAllocated = 0, bitsStored = 0, highBit = 0, pixelRepresentation = 0;
-  std::string photometricInterpretation;  // trimmed; must be MONOCHROME1 or MONOCHROME2 where present
+  uint16_t bitsAllocated = 0, bitsStored = 0, highBit = 0, pixelRepresentation = 0;
+  std::string photometricInterpretation;  // trimmed: MONOCHROME1, MONOCHROME2, or empty (absent)
 };
 
 DicomPixelAttributes checkDicomStructure(const std::filesystem::path& file, std::span<const uint8_t> bytes);

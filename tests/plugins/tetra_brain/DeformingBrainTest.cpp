@@ -196,6 +196,8 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
     brain.applyContactForce(Vec3(0, 0, -0.3), 1.0);
     ASSERT_TRUE(reader.fetch());
     out = reader.read().forces;
+    // The counter of the largest frame, on either path (spread or not).
+    EXPECT_EQ(test::counter(brain, "largest_node_force_count"), double(out.size()));
     centre = Vec3::Zero();
     for (const NodeForce& f : out) centre += (f.force.z() / -0.3) * brain.node(f.node);
   };

@@ -109,6 +109,22 @@ void writeSeries(const std::filesystem::path& dir, int slices, double step, Slic
   }
 }
 
+// The error of reading `path` as a volume, or "no error".
+std::string readError(const std::filesystem::path& path) {
+  try {
+    voxel::readVolume(path);
+  } catch (const VolumeReadError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// The same after writing `bytes` to `file`.
+std::string readErrorOf(const std::filesystem::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary) << bytes;
+  return readError(file);
+}
+
 TEST(DicomReaderTest, ASeriesIsSortedByPositionAndRescaledToHounsfieldUnits) {
   test::TempDir dir;
   SliceSpec spec;
@@ -169,14 +185,7 @@ TEST(DicomReaderTest, TwoSeriesAreListedAndOneIsPickedByItsUid) {
 
 TEST(DicomReaderTest, BrokenSeriesAreClearErrorsNamingTheFiles) {
   test::TempDir dir;
-  auto message = [](const std::filesystem::path& path) {
-    try {
-      voxel::readVolume(path);
-    } catch (const VolumeReadError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = readError;
   writeSeries(dir.path() / "gap", 6, 1.0, {}, {3});
   EXPECT_NE(message(dir.path() / "gap").find("a slice is missing between img95.dcm and img93.dcm"), std::string::npos)
       << message(dir.path() / "gap");
@@ -272,18 +281,8 @@ TEST(DicomReaderTest, MalformedMetaInformationIsAnErrorNotAnAbort) {
   const size_t metaEnd = 144 + groupLength;
   const size_t syntaxAt = good.find("1.2.840.10008.1.2.1");
   ASSERT_LT(syntaxAt, metaEnd);
-  auto read = [&](const std::string& name) {
-    try {
-      voxel::readVolume(dir.path() / name);
-    } catch (const VolumeReadError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  auto message = [&](const std::string& name, const std::string& bytes) {
-    std::ofstream(dir.path() / name, std::ios::binary) << bytes;
-    return read(name);
-  };
+  auto read = [&](const std::string& name) { return readError(dir.path() / name); };
+  auto message = [&](const std::string& name, const std::string& bytes) { return readErrorOf(dir.path() / name, bytes); };
   auto expect = [&](const std::string& name, const std::string& bytes, const std::string& problem) {
     const std::string text = message(name, bytes);
     EXPECT_NE(text.find(name), std::string::npos) << text;
@@ -325,15 +324,7 @@ TEST(DicomReaderTest, ImageAttributesGdcmWouldAssertOnAreErrors) {
   spec.value = [](int c, int r) { return int16_t(c - r); };
   writeSlice(dir.path() / "good.dcm", spec);
   const std::string good = test::readFile(dir.path() / "good.dcm");
-  auto message = [&](const std::string& name, const std::string& bytes) {
-    std::ofstream(dir.path() / name, std::ios::binary) << bytes;
-    try {
-      voxel::readVolume(dir.path() / name);
-    } catch (const VolumeReadError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [&](const std::string& name, const std::string& bytes) { return readErrorOf(dir.path() / name, bytes); };
   auto patched = [&](const std::string& from, const std::string& to) {
     std::string bytes = good;
     const size_t at = bytes.find(from);

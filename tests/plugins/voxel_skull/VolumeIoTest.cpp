@@ -732,6 +732,19 @@ TEST(NiftiReader, SlopeAndInterceptAreApplied) {
   EXPECT_NEAR(fractional.density(1, 2, 3), 0.25 * rampValue(1, 2, 3) + double(0.1f), tolerance);
 }
 
+// The ramp under the sform of both sform tests: stored axis 0 along -y at
+// 0.5 mm, axis 1 along +z at 0.75 mm, axis 2 along +x at 2 mm, origin
+// (10, 20, -30) mm.
+void expectPermutedSform(const DensityVolume& volume) {
+  EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{5, 3, 4}));
+  EXPECT_EQ(volume.spacing(), Vec3(2, 0.5, 0.75));
+  Eigen::Matrix3d axes;
+  axes.col(0) = Vec3(0, -0.5, 0);
+  axes.col(1) = Vec3(0, 0, 0.75);
+  axes.col(2) = Vec3(2, 0, 0);
+  expectWorldMapping(volume, kDims, axes, Vec3(10, 20, -30), rampValue);
+}
+
 TEST(NiftiReader, SformPermutationAndFlipIsApplied) {
   TempDir dir;
   NiftiFields fields;
@@ -742,13 +755,7 @@ TEST(NiftiReader, SformPermutationAndFlipIsApplied) {
   fields.srow = {0,     0, 2, 10,  //
                  -0.5f, 0, 0, 20, 0, 0.75f, 0, -30};
   const DensityVolume volume = readVolume(writeFile(dir / "sform.nii", niftiFile(fields, false, rampInt16())));
-  EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{5, 3, 4}));
-  EXPECT_EQ(volume.spacing(), Vec3(2, 0.5, 0.75));
-  Eigen::Matrix3d axes;
-  axes.col(0) = Vec3(0, -0.5, 0);
-  axes.col(1) = Vec3(0, 0, 0.75);
-  axes.col(2) = Vec3(2, 0, 0);
-  expectWorldMapping(volume, kDims, axes, Vec3(10, 20, -30), rampValue);
+  expectPermutedSform(volume);
 }
 
 TEST(NiftiReader, QformRotationAndQfacAreApplied) {
@@ -833,14 +840,8 @@ Bytes nifti2File(const std::string& name) {
 TEST(NiftiReader, Nifti2SformLittleEndian) {
   TempDir dir;
   const DensityVolume volume = readVolume(writeFile(dir / "sform2.nii", nifti2File("ramp_sform_le.nii")));
-  EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{5, 3, 4}));
-  EXPECT_EQ(volume.spacing(), Vec3(2, 0.5, 0.75));
   expectExactEncoding(volume);
-  Eigen::Matrix3d axes;
-  axes.col(0) = Vec3(0, -0.5, 0);
-  axes.col(1) = Vec3(0, 0, 0.75);
-  axes.col(2) = Vec3(2, 0, 0);
-  expectWorldMapping(volume, kDims, axes, Vec3(10, 20, -30), rampValue);
+  expectPermutedSform(volume);
 }
 
 // Big endian, float32 samples scaled by the double scl_slope and scl_inter,
