@@ -31,12 +31,29 @@ void AtomicFile::write(const char* bytes, size_t size) {
 }
 
 void AtomicFile::commit() {
-  m_stream.close();
-  if (!m_stream) throw FileWriteError(m_file, std::string("write failed: ") + std::strerror(errno));
+  // A stream that failed while it was written keeps its failbit (errno is
+  // still the failed write's: formatting sets none); one whose buffered bytes
+  // cannot be written fails at the flush.
+  if (m_stream) {
+    errno = 0;
+    m_stream.flush();
+    if (m_stream) m_stream.close();
+  }
+  if (!m_stream) {
+    const int error = errno;
+    throw FileWriteError(m_file, std::string("write failed: ") +
+                                     (error ? std::strerror(error) : "the stream reports an error"));
+  }
   std::error_code error;
   std::filesystem::rename(m_temporary, m_file, error);
   if (error) throw FileWriteError(m_file, "cannot rename the written file into place: " + error.message());
   m_committed = true;
+}
+
+void writeFileAtomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& writer) {
+  AtomicFile out(file);
+  writer(out.stream());
+  out.commit();
 }
 
 }  // namespace trephine

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <ostream>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -30,6 +32,9 @@ class AtomicFile {
   void write(const char* bytes, size_t size);
   void write(std::span<const uint8_t> bytes) { write(reinterpret_cast<const char*>(bytes.data()), bytes.size()); }
   void write(const std::string& text) { write(text.data(), text.size()); }
+  // For writers that stream text: a failure shows at commit(), which flushes
+  // and checks the stream before the file takes its name.
+  std::ostream& stream() { return m_stream; }
   // Closes the temporary file and renames it to the final name.
   void commit();
   const std::filesystem::path& path() const { return m_file; }
@@ -40,5 +45,9 @@ class AtomicFile {
   std::ofstream m_stream;
   bool m_committed = false;
 };
+
+// Writes `file` through an AtomicFile: `writer` streams the contents. Throws
+// FileWriteError (no space left, no permission) and leaves no partial file.
+void writeFileAtomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& writer);
 
 }  // namespace trephine

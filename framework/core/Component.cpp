@@ -50,7 +50,7 @@ BaseLink::BaseLink(FieldOwner* owner, std::string_view name, std::string_view ta
 
 std::optional<std::string> BaseLink::parseAndStore(std::string_view text, const ParseContext&) {
   const std::string t(trim(text));
-  if (t.size() < 2 || t[0] != '@') return "expected a link '@path' to a " + m_targetType + ", got '" + t + "'";
+  if (t.size() < 2 || t[0] != '@') return "expected a link '@path' to a " + m_targetType + ", got " + visiblyQuoted(t);
   m_path = t.substr(1);
   return std::nullopt;
 }

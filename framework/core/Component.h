@@ -28,10 +28,12 @@ struct TickContext {
   EventLog* events = nullptr;
 };
 
-// A file a component will write into the run directory, and the field that names it (if any).
+// A file a component will write into the run directory, and the field that
+// names it (if any); `folder`: a folder of files the component fills as it runs.
 struct OutputFile {
   std::string name;
   const BaseField* field = nullptr;
+  bool folder = false;
 };
 
 // A named figure a component adds to its entry in summary.json ("rejected_non_finite": 3).

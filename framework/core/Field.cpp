@@ -73,8 +73,8 @@ std::optional<std::string> parseNumber(std::string_view text, double& out) {
   if (result.ec == std::errc::result_out_of_range)
     return "number '" + std::string(t) + "' is outside the range of a double (about 1e-308 to 1e308)";
   if (result.ec != std::errc() || result.ptr != t.data() + t.size())
-    return "expected a number, got '" + std::string(t) + "'";
-  if (!std::isfinite(out)) return "expected a finite number, got '" + std::string(t) + "'";
+    return "expected a number, got " + visiblyQuoted(t);
+  if (!std::isfinite(out)) return "expected a finite number, got " + visiblyQuoted(t);
   return std::nullopt;
 }
 
@@ -101,7 +101,7 @@ std::optional<std::string> FieldTraits<bool>::parse(std::string_view text, bool&
   } else if (t == "false" || t == "0") {
     out = false;
   } else {
-    return "expected true or false, got '" + std::string(t) + "'";
+    return "expected true or false, got " + visiblyQuoted(t);
   }
   return std::nullopt;
 }
@@ -115,7 +115,7 @@ std::optional<std::string> FieldTraits<int>::parse(std::string_view text, int& o
   if (!t.empty() && result.ec == std::errc::result_out_of_range)
     return "integer '" + std::string(t) + "' is outside the range of an int";
   if (t.empty() || result.ec != std::errc() || result.ptr != t.data() + t.size())
-    return "expected an integer, got '" + std::string(t) + "'";
+    return "expected an integer, got " + visiblyQuoted(t);
   return std::nullopt;
 }
 std::string FieldTraits<int>::format(int value) { return std::to_string(value); }
@@ -163,7 +163,9 @@ std::string FieldTraits<std::vector<double>>::format(const std::vector<double>& 
 
 RateField::RateField(FieldOwner* owner, double defaultHz, std::string_view help)
     : Field<double>(owner, "rate", defaultHz,
-                    {.help = help, .unit = "Hz", .min = 0.0, .max = 1.0e6, .minExclusive = true}),
+                    // 1 mHz: one call in the longest run (RunPlan::kMaxDuration) is about the least that
+                    // means anything; a rate below it is a unit slip (a period given for a rate).
+                    {.help = help, .unit = "Hz", .min = 1.0e-3, .max = 1.0e6}),
       m_group(owner,
               "group",
               "",
@@ -190,7 +192,7 @@ std::optional<std::string> EnumField::parseAndStore(std::string_view text, const
   const std::string_view t = trim(text);
   const auto it = std::find(m_options.begin(), m_options.end(), t);
   if (it == m_options.end())
-    return "expected " + rangeText() + ", got '" + std::string(t) + "'" + didYouMean(t, m_options);
+    return "expected " + rangeText() + ", got " + visiblyQuoted(t) + didYouMean(t, m_options);
   m_index = static_cast<size_t>(it - m_options.begin());
   return std::nullopt;
 }

@@ -19,7 +19,7 @@ uint64_t RunPlan::callsAt(double rateHz) const {
 }
 
 std::optional<std::string> FinishContext::checkFileName(const std::string& fileName) {
-  static const char* const reserved[] = {"summary.json", "trace.csv", "timings.csv"};
+  static const char* const reserved[] = {"summary.json", "trace.csv", "timings.csv", ".trephine-run"};
   if (fileName.empty() || fileName == "." || fileName == ".." || fileName.find('/') != std::string::npos ||
       fileName.find('\\') != std::string::npos)
     return std::string("it is not a plain file name (a name in the run directory, without directories)");
@@ -50,5 +50,7 @@ std::string FinishContext::defaultFileName(const std::string& kind, const Compon
 void FinishContext::error(const Component& component, std::string message) {
   m_errors.push_back(component.path() + ": " + message);
 }
+
+void FinishContext::runError(std::string message) { m_errors.push_back(std::move(message)); }
 
 }  // namespace trephine

@@ -94,6 +94,8 @@ class FinishContext {
   // name ...", "it is one of the run's own files"), or nothing.
   static std::optional<std::string> checkFileName(const std::string& fileName);
   void error(const Component& component, std::string message);
+  // A file of the run's own (summary.json, trace.csv, timings.csv) that could not be written.
+  void runError(std::string message);
 
   struct Output {
     std::string component;

@@ -72,4 +72,39 @@ std::string formatDouble(double value) {
   return std::string(buffer, result.ptr);
 }
 
+std::string visiblyQuoted(std::string_view text) {
+  // UTF-8 sequences of characters that show as nothing or as a plain space.
+  static constexpr struct {
+    std::string_view bytes;
+    const char* name;
+  } kInvisible[] = {
+      {"\xEF\xBB\xBF", "\\u{FEFF}"}, {"\xE2\x80\x8B", "\\u{200B}"}, {"\xE2\x80\x8C", "\\u{200C}"},
+      {"\xE2\x80\x8D", "\\u{200D}"}, {"\xE2\x81\xA0", "\\u{2060}"}, {"\xC2\xA0", "\\u{00A0}"},
+      {"\xE2\x80\xAF", "\\u{202F}"},
+  };
+  std::string out = "'";
+  for (size_t i = 0; i < text.size();) {
+    bool named = false;
+    for (const auto& invisible : kInvisible) {
+      if (text.substr(i).starts_with(invisible.bytes)) {
+        out += invisible.name;
+        i += invisible.bytes.size();
+        named = true;
+        break;
+      }
+    }
+    if (named) continue;
+    const unsigned char c = static_cast<unsigned char>(text[i++]);
+    if (c < 0x20 || c == 0x7F) {
+      static constexpr char kHex[] = "0123456789ABCDEF";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    } else {
+      out += char(c);
+    }
+  }
+  return out + "'";
+}
+
 }  // namespace trephine

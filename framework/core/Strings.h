@@ -23,4 +23,11 @@ std::vector<std::string_view> splitWhitespace(std::string_view s);
 // Shortest text that reads back to exactly the same double ("0.1", "1e-05", "nan").
 std::string formatDouble(double value);
 
+// `text` in single quotes for an error message, with what a reader cannot
+// see made visible: control bytes as \xNN, and the invisible or look-alike
+// characters editors and spreadsheets slip in (a byte order mark, zero-width
+// and non-breaking spaces) as \u{FEFF} and so on. Without it "expected a
+// number, got '2.0'" can be all a user sees of a byte order mark.
+std::string visiblyQuoted(std::string_view text);
+
 }  // namespace trephine

@@ -51,8 +51,10 @@ DeviceStreamReadResult parseDeviceStream(std::istream& in, const std::string& fi
   }
   ++lineNumber;
   if (!line.empty() && line.back() == '\r') line.pop_back();
+  // A byte order mark (a spreadsheet's UTF-8 export) shows as nothing: skipped, not reported as a header typo.
+  if (line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
   if (trim(line) != kDeviceStreamHeader)
-    return fail("expected the header " + std::string(kDeviceStreamHeader) + ", got '" + line + "'");
+    return fail("expected the header " + std::string(kDeviceStreamHeader) + ", got " + visiblyQuoted(line));
   double previousT = -std::numeric_limits<double>::infinity();
   while (std::getline(in, line)) {
     ++lineNumber;
@@ -66,8 +68,7 @@ DeviceStreamReadResult parseDeviceStream(std::istream& in, const std::string& fi
           std::string_view(line).substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       if (column >= 9) return fail("more than 9 columns");
       if (!parseValue(cell, values[column]))
-        return fail("column '" + std::string(kColumns[column]) + "': expected a number, got '" + std::string(cell) +
-                    "'");
+        return fail("column '" + std::string(kColumns[column]) + "': expected a number, got " + visiblyQuoted(cell));
       ++column;
       if (comma == std::string::npos) break;
       start = comma + 1;

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
 #include "framework/devices/DeviceStream.h"
 #include "framework/logs/EventLog.h"
@@ -53,9 +54,12 @@ void HapticDevice::finish(FinishContext& context) {
   if (!d_record.value() || context.outputDirectory().empty()) return;
   const std::string name = FinishContext::defaultFileName("device", *this);
   if (!context.claimOutput(*this, name)) return;
-  std::ofstream out(context.outputDirectory() / name);
-  writeDeviceStream(out, m_recorded, m_recordedSize);
-  if (!out) context.error(*this, "cannot write " + name);
+  try {
+    writeFileAtomically(context.outputDirectory() / name,
+                        [&](std::ostream& out) { writeDeviceStream(out, m_recorded, m_recordedSize); });
+  } catch (const FileWriteError& e) {
+    context.error(*this, e.what());
+  }
 }
 
 void HapticDevice::declareOutputs(std::vector<OutputFile>& outputs) const {

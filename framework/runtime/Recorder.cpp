@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
 #include "framework/core/Strings.h"
 
@@ -47,16 +48,20 @@ void Recorder::finish(FinishContext& context) {
   if (context.outputDirectory().empty()) return;
   const std::string name = fileName();
   if (!context.claimOutput(*this, name)) return;
-  std::ofstream out(context.outputDirectory() / name);
-  out << "t,source_t";
-  for (const std::string& c : m_columns) out << "," << c;
-  out << "\n";
-  for (size_t i = 0; i < m_size; ++i) {
-    const double* row = &m_rows[i * rowWidth()];
-    for (size_t k = 0; k < rowWidth(); ++k) out << (k ? "," : "") << formatDouble(row[k]);
-    out << "\n";
+  try {
+    writeFileAtomically(context.outputDirectory() / name, [&](std::ostream& out) {
+      out << "t,source_t";
+      for (const std::string& c : m_columns) out << "," << c;
+      out << "\n";
+      for (size_t i = 0; i < m_size; ++i) {
+        const double* row = &m_rows[i * rowWidth()];
+        for (size_t k = 0; k < rowWidth(); ++k) out << (k ? "," : "") << formatDouble(row[k]);
+        out << "\n";
+      }
+    });
+  } catch (const FileWriteError& e) {
+    context.error(*this, e.what());
   }
-  if (!out) context.error(*this, "cannot write " + (context.outputDirectory() / name).string());
 }
 
 void Recorder::reportCounters(std::vector<Counter>& counters) const {

@@ -1,12 +1,13 @@
 #include "framework/runtime/RunOutputs.h"
 
 #include <cmath>
-#include <fstream>
+#include <functional>
 #include <iomanip>
 #include <map>
 #include <ostream>
 #include <sstream>
 
+#include "framework/core/AtomicFile.h"
 #include "framework/core/Strings.h"
 #include "framework/runtime/JsonWriter.h"
 #include "framework/runtime/Simulation.h"
@@ -195,13 +196,19 @@ void writeTimingsCsv(const Simulation& simulation, std::ostream& out) {
   }
 }
 
-std::vector<std::string> writeRunOutputs(const Simulation& simulation, const FinishContext& finish,
+std::vector<std::string> writeRunOutputs(const Simulation& simulation, FinishContext& finish,
                                          const std::filesystem::path& directory) {
+  // Each file whole or not at all (a full disk leaves no file cut mid-row).
+  // summary.json comes last so that it lists the files that failed; the
+  // space a failed file took is free again by then.
   std::vector<std::string> written;
-  const auto write = [&](const char* name, auto&& writer) {
-    std::ofstream out(directory / name);
-    writer(out);
-    if (out) written.emplace_back(name);
+  const auto write = [&](const char* name, const std::function<void(std::ostream&)>& writer) {
+    try {
+      writeFileAtomically(directory / name, writer);
+      written.emplace_back(name);
+    } catch (const FileWriteError& e) {
+      finish.runError(e.what());
+    }
   };
   write("trace.csv", [&](std::ostream& o) { writeTraceCsv(simulation, o); });
   write("timings.csv", [&](std::ostream& o) { writeTimingsCsv(simulation, o); });
@@ -219,7 +226,7 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
   out << "groups    rate_hz     calls   p50_us   p99_us   max_us  misses\n";
   for (const RateGroup& g : scheduler.groups()) {
     const TimingSummary s = g.stepHistogram.summary();
-    out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(10) << g.calls
+    out << "          " << std::setw(7) << formatDouble(g.rateHz) << std::setw(10) << g.calls
         << std::setprecision(2) << std::setw(9) << s.p50 << std::setw(9) << s.p99 << std::setw(9) << s.max
         << std::setw(8) << g.deadlineMisses << (g.name.empty() ? "" : "  group " + g.name) << "\n";
   }
@@ -227,7 +234,8 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     out << "realtime  rate_hz  calls/s  wake_late_p50_us  p99_us  max_us  skipped  SCHED_FIFO\n";
     for (const RateGroup& g : scheduler.groups()) {
       const TimingSummary late = g.wakeLateness.summary();
-      out << "          " << std::setw(7) << std::setprecision(1) << g.rateHz << std::setw(9) << g.callsPerSecond()
+      out << "          " << std::setw(7) << formatDouble(g.rateHz) << std::setprecision(1) << std::setw(9)
+          << g.callsPerSecond()
           << std::setprecision(3) << std::setw(18) << late.p50 << std::setw(8) << late.p99 << std::setw(8) << late.max
           << std::setw(9) << g.skippedTicks << std::setw(12) << (g.realtimePriority ? "yes" : "no")
           << (g.name.empty() ? "" : "  group " + g.name) << "\n";

@@ -15,8 +15,10 @@ inline constexpr const char* kTraceHeader =
     "t,device_x,device_y,device_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,penetration,normal_x,normal_y,"
     "normal_z,contacts,penetration_raw,primitives,proxy_inside,removed";
 
-// Writes the three files into `directory`; returns their names.
-std::vector<std::string> writeRunOutputs(const Simulation& simulation, const FinishContext& finish,
+// Writes the three files into `directory`, each whole or not at all; returns
+// the names written. A file that cannot be written (no space left) is an
+// error in `finish`, listed in summary.json when that one can be written.
+std::vector<std::string> writeRunOutputs(const Simulation& simulation, FinishContext& finish,
                                          const std::filesystem::path& directory);
 
 void writeSummaryJson(const Simulation& simulation, const FinishContext* finish, std::ostream& out);

@@ -127,30 +127,39 @@ std::string Scheduler::describeFailure(const RateGroup& group, const char* what)
 
 void Scheduler::runVirtual(const std::atomic<bool>& stop) {
   std::vector<uint64_t> next(m_groups.size(), 0);
+  // The groups by the time of their next call, earliest on top; ties go to
+  // the higher rate (earlier in m_groups). A heap: with thousands of groups
+  // each step costs their logarithm, not their number.
+  struct Due {
+    double t;
+    size_t group;
+  };
+  const auto later = [](const Due& a, const Due& b) { return a.t > b.t || (a.t == b.t && a.group > b.group); };
+  std::vector<Due> queue;
+  queue.reserve(m_groups.size());
+  for (size_t i = 0; i < m_groups.size(); ++i)
+    if (m_groups[i].plannedCalls > 0) queue.push_back({0.0, i});
+  std::make_heap(queue.begin(), queue.end(), later);
   RateGroup* running = nullptr;
   try {
     while (!stop.load(std::memory_order_relaxed)) {
-      // The group whose next call is due first; ties go to the higher rate (earlier in m_groups).
-      size_t chosen = m_groups.size();
-      double due = 0;
-      for (size_t i = 0; i < m_groups.size(); ++i) {
-        if (next[i] >= m_groups[i].plannedCalls) continue;
-        const double t = static_cast<double>(next[i]) / m_groups[i].rateHz;
-        if (chosen == m_groups.size() || t < due) {
-          chosen = i;
-          due = t;
-        }
-      }
-      if (chosen == m_groups.size()) {
+      if (queue.empty()) {
         m_completed = true;
         break;
       }
+      std::pop_heap(queue.begin(), queue.end(), later);
+      const size_t chosen = queue.back().group;
+      queue.pop_back();
       RateGroup& g = m_groups[chosen];
       running = &g;
       const uint64_t ns = step(g, next[chosen]);
       if (ns > static_cast<uint64_t>(g.periodS * 1e9)) ++g.deadlineMisses;  // would miss in real time
       ++next[chosen];
       m_simulatedTime = std::max(m_simulatedTime, static_cast<double>(next[chosen]) / g.rateHz);
+      if (next[chosen] < g.plannedCalls) {
+        queue.push_back({static_cast<double>(next[chosen]) / g.rateHz, chosen});  // within the reserved size
+        std::push_heap(queue.begin(), queue.end(), later);
+      }
     }
   } catch (const std::exception& e) {
     m_failure = running ? describeFailure(*running, e.what()) : std::string(e.what());

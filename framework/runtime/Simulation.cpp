@@ -5,10 +5,13 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <thread>
 
+#include "framework/core/AtomicFile.h"
 #include "framework/core/CollisionBackend.h"
 #include "framework/core/Strings.h"
 #include "framework/runtime/Recorder.h"
+#include "framework/runtime/RunFolder.h"
 #include "framework/runtime/RunOutputs.h"
 #include "framework/scene/SceneLoader.h"
 
@@ -91,6 +94,27 @@ void checkDeclaredOutputs(const std::vector<Component*>& components, Diagnostics
       }
     }
   }
+}
+
+// In real time every rate group is a thread, and those of periods up to
+// 2 ms poll the clock before their deadlines (Scheduler.cpp): more of them
+// than cores take the cores from each other, and every group misses.
+void warnOfOvercommittedCores(const std::vector<Component*>& components, const RunPlan& plan,
+                              Diagnostics& diagnostics, const SourceLocation& where) {
+  if (!plan.realtime) return;
+  std::set<std::pair<double, std::string>> groups, polling;
+  for (const Component* c : components) {
+    if (!c->isTicking()) continue;
+    groups.emplace(c->rateHz(), c->rateGroup());
+    if (c->rateHz() >= 500.0) polling.emplace(c->rateHz(), c->rateGroup());
+  }
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (polling.size() > cores)
+    diagnostics.warning(where, std::to_string(polling.size()) + " rate groups of 500 Hz or more (of " +
+                                   std::to_string(groups.size()) + ") poll the clock in threads of their own on " +
+                                   std::to_string(cores) +
+                                   " cores: in real time they take the cores from each other and miss their "
+                                   "deadlines; give such components one rate and group");
 }
 
 }  // namespace
@@ -229,6 +253,19 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   checkRateGroupLinks(components, diagnostics);
   checkDeclaredOutputs(components, diagnostics);
   if (diagnostics.hasErrors()) return nullptr;
+  warnOfOvercommittedCores(components, s.m_plan, diagnostics, s.m_scene->root().location());
+
+  // The output folder becomes the run's before any component writes there
+  // (an exporter creates its folder when it prepares): what an earlier run
+  // wrote goes, and the marker says a run is writing.
+  if (!s.m_plan.outputDirectory.empty()) {
+    if (auto problem = claimRunFolder(s.m_plan.outputDirectory, s.outputNames())) {
+      diagnostics.error(s.m_scene->root().location(),
+                        "output folder " + s.m_plan.outputDirectory.string() + ": " + *problem);
+      return nullptr;
+    }
+    s.m_folderClaimed = true;
+  }
 
   // Every per-frame buffer is allocated here, before the first tick.
   const std::vector<Component*> order = initialisationOrder(components);
@@ -292,8 +329,31 @@ std::vector<std::string> Simulation::writeOutputs(const std::filesystem::path& d
   }
   std::vector<std::string> written = writeRunOutputs(*this, finish, directory);
   for (const FinishContext::Output& o : finish.outputs()) written.push_back(o.file);
-  if (errors) *errors = finish.errors();
+  std::vector<std::string> problems = finish.errors();
+  // The marker says whether the outputs are whole: finished, or why not.
+  if (m_folderClaimed && directory == m_plan.outputDirectory) {
+    const bool finished = m_complete && problems.empty();
+    const std::string reason = !m_complete        ? m_incompleteReason
+                               : problems.empty() ? std::string()
+                                                  : "an output could not be written: " + problems.front();
+    try {
+      markRunFolder(directory, outputNames(), finished ? RunState::kFinished : RunState::kIncomplete, reason);
+    } catch (const FileWriteError& e) {
+      problems.push_back(e.what());
+    }
+  }
+  if (errors) *errors = std::move(problems);
   return written;
+}
+
+std::vector<std::string> Simulation::outputNames() const {
+  std::vector<std::string> names{"summary.json", "trace.csv", "timings.csv", "force.png", "timings.png", "view/"};
+  for (const Component* c : m_scene->components()) {
+    std::vector<OutputFile> outputs;
+    c->declareOutputs(outputs);
+    for (const OutputFile& output : outputs) names.push_back(output.name + (output.folder ? "/" : ""));
+  }
+  return names;
 }
 
 }  // namespace trephine

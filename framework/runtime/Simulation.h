@@ -62,6 +62,11 @@ class Simulation {
   std::vector<std::string> writeOutputs(const std::filesystem::path& directory,
                                         std::vector<std::string>* errors = nullptr);
 
+  // Every name the run writes in its output folder: its own three files,
+  // each component's (a folder's name ends in '/'), and what the project's
+  // tools derive from a run there (plots, the viewer), which a new run makes stale.
+  std::vector<std::string> outputNames() const;
+
   Scene& scene() const { return *m_scene; }
   const RunPlan& plan() const { return m_plan; }
   const Scheduler& scheduler() const { return *m_scheduler; }
@@ -92,6 +97,7 @@ class Simulation {
   const Component* m_hapticLogOwner = nullptr;
   RunPlan m_plan;
   std::unique_ptr<Scheduler> m_scheduler;
+  bool m_folderClaimed = false;  // plan.outputDirectory holds this run's marker
   bool m_ran = false;
   bool m_complete = false;
   std::string m_incompleteReason = "not run";

@@ -1,8 +1,10 @@
 #include "plugins/haptics/ReplayDevice.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "framework/core/Lifecycle.h"
+#include "framework/core/Strings.h"
 #include "framework/devices/DeviceStream.h"
 
 namespace trephine::haptics {
@@ -15,6 +17,31 @@ void ReplayDevice::init(InitContext& context) {
   }
   m_samples = std::move(read.samples);
   for (DeviceSample& s : m_samples) s.position += d_offset.value();
+  if (auto problem = timesProblem()) context.error(d_file, d_file.path().string() + ": " + *problem);
+}
+
+std::optional<std::string> ReplayDevice::timesProblem() const {
+  // Times are seconds from the run's start. A recording in other units, or
+  // in a clock of its own, would otherwise replay as no motion at all (all
+  // before the start, or after the longest run) or crushed into a few frames.
+  const double first = m_samples.front().t, last = m_samples.back().t;
+  const std::string units = " (the column t is in seconds from the start of the run)";
+  if (last < 0) return "every sample is before the run starts at t = 0 (the last at " + formatDouble(last) + " s)" + units;
+  if (first > RunPlan::kMaxDuration)
+    return "the first sample is at " + formatDouble(first) + " s, after the longest run (" +
+           formatDouble(RunPlan::kMaxDuration) + " s)" + units;
+  if (m_samples.size() < 2) return std::nullopt;
+  const double period = 1.0 / rateHz();
+  const double spacing = (last - first) / double(m_samples.size() - 1);  // s, mean between samples
+  if (spacing < 0.01 * period) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%zu samples over %.3g s are %.3g s apart", m_samples.size(), last - first,
+                  spacing);
+    return text + (", a hundredth of the device's period (" + formatDouble(period) +
+                   " s) or less: are the times in milliseconds, microseconds or nanoseconds?") +
+           units;
+  }
+  return std::nullopt;
 }
 
 void ReplayDevice::prepare(const RunPlan& plan) {

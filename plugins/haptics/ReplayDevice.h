@@ -3,6 +3,9 @@
 // the device.*.csv every run records. At a recorded time it returns exactly the
 // recorded sample, so a run replayed at the same rate reproduces its trace;
 // between samples it interpolates (linear position, spherical orientation).
+#include <optional>
+#include <string>
+
 #include "framework/devices/HapticDevice.h"
 
 namespace trephine::haptics {
@@ -19,6 +22,8 @@ class ReplayDevice final : public HapticDevice {
   DeviceSample readSample(double scheduledT) override;
 
  private:
+  // Why the recording's times cannot be seconds from the run's start, if they cannot.
+  std::optional<std::string> timesProblem() const;
   FilePathField d_file{this, "file", {.help = "Device stream CSV (t,x,y,z,qw,qx,qy,qz,buttons)", .required = true}};
   Field<bool> d_loop{this, "loop", false, {.help = "Start again from the beginning after the last sample"}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Added to every recorded position", .unit = "mm"}};

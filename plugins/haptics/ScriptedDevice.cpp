@@ -87,7 +87,8 @@ const std::map<std::string, std::set<std::string>>& fieldsOfPath() {
 }
 
 void ScriptedDevice::init(InitContext& context) {
-  static const std::set<std::string> common = {"name", "rate", "maxSpeed", "record", "path", "nanTimes", "buttonTimes"};
+  static const std::set<std::string> common = {"name",     "rate",     "group",      "maxSpeed",
+                                                "record",   "path",     "nanTimes",   "buttonTimes"};
   const std::set<std::string>& used = fieldsOfPath().at(d_path.value());
   for (const BaseField* field : fields()) {
     if (!field->isSet() || common.count(field->name()) || used.count(field->name())) continue;

@@ -275,7 +275,9 @@ void VtkExporter::startLiveView(const RunPlan& plan) {
 std::string VtkExporter::pvdName() const { return d_directory.value() + ".pvd"; }
 
 void VtkExporter::declareOutputs(std::vector<OutputFile>& outputs) const {
-  outputs.push_back({pvdName(), d_directory.isSet() ? &d_directory : nullptr});
+  const BaseField* named = d_directory.isSet() ? &d_directory : nullptr;
+  outputs.push_back({pvdName(), named});
+  outputs.push_back({d_directory.value(), named, /*folder=*/true});
 }
 
 void VtkExporter::finish(FinishContext& context) {

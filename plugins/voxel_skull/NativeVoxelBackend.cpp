@@ -55,7 +55,7 @@ void NativeVoxelBackend::reserveProbeLines() {
   double radius = 0;
   for (const ReservedShell& s : m_shells) radius = std::max(radius, s.radius);
   if (!m_data.grid || !(radius > 0) || !(grid().smallestSide() > 0)) return;
-  const size_t lines = 1 + size_t(frontRingPointCount(radius, grid().smallestSide()));
+  const size_t lines = 1 + size_t(frontRingPointCount(radius, resolvedFeature(radius)));
   if (lines <= m_probeLines.size()) return;
   m_probeLines.resize(lines);
   m_probePoints.x.reserve(lines);
@@ -75,6 +75,7 @@ void NativeVoxelBackend::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"contact_frames", double(m_contactFrames)});
   counters.push_back({"max_colliding_voxels", double(m_maxCollidingVoxels)});
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
+  counters.push_back({"most_sweep_steps", double(m_mostSweepSteps)});
 }
 
 }  // namespace trephine::voxel

@@ -34,6 +34,18 @@ class NativeVoxelBackend final : public VoxelBackend {
   SweepResult sweepSmoothLines(const SweepQuery& query, bool buried) const;
   // Sizes the smooth sweep's working memory for the reserved shells' radii.
   void reserveProbeLines();
+  // The finest feature the sweeps resolve for a tool of radius R (mm): a
+  // voxel, but no finer than R / kToolResolution. With voxels far finer than
+  // the tool (1e-6 mm from a unit slip, a micro-CT under a 2.5 mm burr) the
+  // rings' lines and the steps along a path stay bounded by the tool's size,
+  // not by the voxels it spans. At CT resolutions the voxel decides (0.02 mm
+  // for a 2.5 mm burr is below any clinical CT's voxel).
+  static constexpr double kToolResolution = 128;
+  double resolvedFeature(double R) const;
+  // The fractions [t0, t1] of the path from -> to where a tool reaching
+  // `reach` mm from its reference point can meet the grid's interpolated
+  // field; false when it stays clear of it all the way.
+  bool clipPathToGrid(const Vec3& from, const Vec3& to, double reach, double& t0, double& t1) const;
 
   VoxelData m_data;
   struct ReservedShell {
@@ -75,6 +87,9 @@ class NativeVoxelBackend final : public VoxelBackend {
   mutable std::vector<int64_t> m_probeVoxels;
   mutable std::vector<uint8_t> m_probeSolid;
   uint64_t m_contactFrames = 0, m_maxCollidingVoxels = 0, m_unreservedShellCalls = 0;
+  // The most steps one smooth or shell sweep took: bounded by the tool's and
+  // the grid's sizes (resolvedFeature, clipPathToGrid), whatever the voxels.
+  mutable uint64_t m_mostSweepSteps = 0;
 };
 
 }  // namespace trephine::voxel

@@ -10,6 +10,33 @@
 
 namespace trephine::voxel {
 
+double NativeVoxelBackend::resolvedFeature(double R) const {
+  return std::max(grid().smallestSide(), R / kToolResolution);
+}
+
+bool NativeVoxelBackend::clipPathToGrid(const Vec3& from, const Vec3& to, double reach, double& t0,
+                                        double& t1) const {
+  t0 = 0, t1 = 1;
+  // Outside a volume is its lowest density: never bone unless the isovalue
+  // lies below it, when everything is bone and nothing can be clipped.
+  if (grid().smooth ? grid().outsideCode > grid().isoCode : grid().threshold <= grid().outsideCode) return true;
+  const Vec3 pad = Vec3::Constant(reach) + 2.0 * grid().spacing;  // the interpolation reaches 1.5 voxels out
+  const Vec3 lo = grid().corner - pad;
+  const Vec3 hi = grid().corner + Vec3(grid().nx, grid().ny, grid().nz).cwiseProduct(grid().spacing) + pad;
+  const Vec3 d = to - from;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (d[axis] == 0) {
+      if (from[axis] < lo[axis] || from[axis] > hi[axis]) return false;
+      continue;
+    }
+    double ta = (lo[axis] - from[axis]) / d[axis], tb = (hi[axis] - from[axis]) / d[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
 SweepResult NativeVoxelBackend::sweep(const SweepQuery& query) const {
   SweepResult result;
   const Vec3 path = query.to - query.from;
@@ -25,11 +52,16 @@ SweepResult NativeVoxelBackend::sweep(const SweepQuery& query) const {
     // A string of spheres: the whole shell at steps of the smallest voxel side.
     const ReservedShell* reserved = findShell(query.shell);
     if (!reserved) return result;
-    const double step = grid().smallestSide();
-    const int steps = static_cast<int>(std::ceil(length / step));
+    // Only the part of the path where the shell can meet the grid is stepped.
+    double t0 = 0, t1 = 1;
+    if (!clipPathToGrid(query.from, query.to, reserved->radius, t0, t1)) return result;
+    const double first = t0 * length, last = t1 * length;
+    const double step = resolvedFeature(reserved->radius);
+    const int steps = static_cast<int>(std::ceil((last - first) / step));
+    m_mostSweepSteps = std::max<uint64_t>(m_mostSweepSteps, uint64_t(steps) + 1);
     const Eigen::Matrix3d Rm = query.orientation.toRotationMatrix();
     for (int k = 0; k <= steps; ++k) {
-      const Vec3 offset = query.from + std::min(k * step, length) * u;
+      const Vec3 offset = query.from + std::min(first + k * step, last) * u;
       // The whole shell at once (the vectorised point test of the detection,
       // the same flags as solidAt point by point).
       m_pointTest(grid(), reserved->arrays, Pose{offset, query.orientation}, {m_voxels.data(), m_solid.data()});
@@ -46,7 +78,7 @@ SweepResult NativeVoxelBackend::sweep(const SweepQuery& query) const {
           }
         } else if (solid && !m_wasSolid[i]) {
           result.blocked = true;
-          result.freeFraction = std::max(0.0, (k - 1) * step / length);
+          result.freeFraction = std::max(0.0, (first + (k - 1) * step) / length);
           result.contactPoint = Rm * point.position + offset;
           return result;
         }
@@ -58,7 +90,7 @@ SweepResult NativeVoxelBackend::sweep(const SweepQuery& query) const {
 
   if (grid().smooth && R >= 0 && (query.probe == SweepProbe::Line || query.probe == SweepProbe::Cylinder)) {
     const int lines = 1 + (query.probe == SweepProbe::Cylinder && R > 0
-                               ? frontRingPointCount(R, grid().smallestSide())
+                               ? frontRingPointCount(R, resolvedFeature(R))
                                : 0);
     if (lines <= int(m_probeLines.size())) return sweepSmoothLines(query, buried);
   }
@@ -87,7 +119,7 @@ SweepResult NativeVoxelBackend::sweep(const SweepQuery& query) const {
     // Each line is traversed only as far as the nearest block found so far: a
     // hit beyond it could not move the stop (same result, and a tool pressed
     // deep into bone no longer traverses the whole path from every ring point).
-    const bool stopped = forEachFrontRingPoint(u, R, grid().smallestSide(), [&](const Vec3& offset, bool front) {
+    const bool stopped = forEachFrontRingPoint(u, R, resolvedFeature(R), [&](const Vec3& offset, bool front) {
       const double reach = first > 0 ? std::min(first, 1.0) : 1.0;
       SegmentHit ring = firstSolidOnSegment(grid(), query.from + offset, query.from + offset + reach * path,
                                             buried || !front);
@@ -135,7 +167,7 @@ SweepResult NativeVoxelBackend::sweepSmoothLines(const SweepQuery& query, bool b
   int lines = 0;
   m_probeLines[lines++] = {R * u, true, false};
   if (query.probe == SweepProbe::Cylinder && R > 0)
-    forEachFrontRingPoint(u, R, grid().smallestSide(), [&](const Vec3& offset, bool front) {
+    forEachFrontRingPoint(u, R, resolvedFeature(R), [&](const Vec3& offset, bool front) {
       m_probeLines[lines++] = {offset, front, false};
       return false;
     });
@@ -144,9 +176,15 @@ SweepResult NativeVoxelBackend::sweepSmoothLines(const SweepQuery& query, bool b
   points.y.resize(size_t(lines));
   points.z.resize(size_t(lines));
   const Pose identity{Vec3::Zero(), Quat::Identity()};
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * grid().smallestSide()))));
+  // Only the part of the path where a line can meet the grid is stepped.
+  double t0 = 0, t1 = 1;
+  if (!clipPathToGrid(query.from, query.to, R, t0, t1)) return result;
+  const int steps =
+      std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / (0.5 * resolvedFeature(R)))));
+  m_mostSweepSteps = std::max<uint64_t>(m_mostSweepSteps, uint64_t(steps) + 1);
+  const auto fractionAt = [&](int k) { return t0 + (t1 - t0) * double(k) / steps; };
   for (int k = 0; k <= steps; ++k) {
-    const double t = double(k) / steps;
+    const double t = fractionAt(k);
     for (int j = 0; j < lines; ++j) {
       const Vec3 p = query.from + m_probeLines[j].offset + t * path;
       points.x[size_t(j)] = p.x(), points.y[size_t(j)] = p.y(), points.z[size_t(j)] = p.z();
@@ -167,7 +205,7 @@ SweepResult NativeVoxelBackend::sweepSmoothLines(const SweepQuery& query, bool b
       continue;
     }
     // Lines that enter bone at this step: the nearest crossing blocks.
-    const double previous = double(k - 1) / steps;
+    const double previous = fractionAt(k - 1);
     double nearest = 2.0;
     int nearestLine = -1;
     for (int j = 0; j < lines; ++j) {

@@ -111,6 +111,29 @@ double refineCrossing(double lo, double hi, double tolerance, Inside&& inside, V
   return hi;
 }
 
+// The fractions [t0, t1] of a -> b within two voxels of the grid, where the
+// trilinear interpolation can differ from the space around it; false when
+// the segment stays away from the grid.
+bool clipToInterpolatedBox(const SolidGrid& grid, const Vec3& a, const Vec3& b, double& t0, double& t1) {
+  const Vec3 ga = (a - grid.corner).cwiseProduct(grid.inverseSpacing);
+  const Vec3 gd = (b - a).cwiseProduct(grid.inverseSpacing);
+  if (!ga.allFinite() || !gd.allFinite()) return true;  // left to the samples, which see NaN as outside
+  const double n[3] = {double(grid.nx), double(grid.ny), double(grid.nz)};
+  constexpr double kPad = 2.0;  // voxels
+  for (int axis = 0; axis < 3; ++axis) {
+    const double lo = -kPad, hi = n[axis] + kPad;
+    if (gd[axis] == 0) {
+      if (ga[axis] < lo || ga[axis] > hi) return false;
+      continue;
+    }
+    double ta = (lo - ga[axis]) / gd[axis], tb = (hi - ga[axis]) / gd[axis];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
 // Smooth surface: samples at half the smallest voxel side (a one-voxel wall is
 // at least one voxel wide at the isovalue, so no wall fits between two
 // samples), then the crossing between the last sample outside and the first
@@ -123,14 +146,21 @@ double marchSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, bool sk
                     Value&& value) {
   const double length = (b - a).norm();
   if (!std::isfinite(length)) return 2.0;
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * grid.smallestSide()))));
-  bool skipping = skipInitial;
-  double previous = 0;
+  // Beyond the interpolation's reach around the grid every point is outside
+  // (the space around a volume is its lowest density): only the part of the
+  // segment near the grid is sampled, so the samples are bounded by the
+  // grid's size in voxels, whatever the segment's length in voxels (a ray
+  // from 50 mm away onto a volume of 1e-6 mm voxels).
+  double t0 = 0, t1 = 1;
+  if (grid.outsideCode <= grid.isoCode && !clipToInterpolatedBox(grid, a, b, t0, t1)) return 2.0;
+  const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) * length / (0.5 * grid.smallestSide()))));
+  bool skipping = skipInitial && t0 == 0;
+  double previous = t0;
   for (int k = 0; k <= steps; ++k) {
-    const double t = double(k) / steps;
+    const double t = t0 + (t1 - t0) * double(k) / steps;
     if (inside(a + t * (b - a))) {
       if (skipping) continue;
-      if (k == 0) return 0.0;
+      if (k == 0) return t0;
       const auto at = [&](double f) { return a + f * (b - a); };
       return refineCrossing(
           previous, t, length > 0 ? kCrossingTolerance / length : 1.0, [&](double f) { return inside(at(f)); },

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <regex>
+#include <thread>
 #include <sstream>
 
 #include "framework/devices/DeviceStream.h"
@@ -279,6 +280,36 @@ TEST(SimulationRulesTest, ALoopingReplayKeepsTimeMovingAndIsNotAJump) {
   const auto recorded = readDeviceStream(dir / "run/device.device.csv");
   EXPECT_TRUE(recorded.error.empty()) << recorded.error << ": the recording of a looping replay replays";
   EXPECT_EQ(recorded.samples.size(), 350u);
+}
+
+}  // namespace
+}  // namespace trephine
+
+namespace trephine {
+namespace {
+
+// In real time each rate group of 500 Hz or more is a thread that polls the
+// clock: one more of them than cores is warned of at load.
+TEST(SimulationRulesTest, MorePollingRealTimeGroupsThanCoresIsWarnedOf) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const auto scene = [](unsigned groups) {
+    std::string xml = "<Node name=\"root\">\n  <RequiredPlugin name=\"haptics\"/>\n";
+    for (unsigned g = 0; g < groups; ++g)
+      xml += "  <ScriptedDevice name=\"d" + std::to_string(g) + "\" rate=\"1000\" group=\"g" + std::to_string(g) +
+             "\"/>\n";
+    return xml + "</Node>";
+  };
+  SimulationOptions options;
+  options.realtime = true;
+  for (const unsigned groups : {cores, cores + 1}) {
+    Diagnostics d;
+    ASSERT_TRUE(test::loadScene(scene(groups), d, options)) << test::messages(d);
+    const bool warned = test::messages(d).find("rate groups of 500 Hz or more") != std::string::npos;
+    EXPECT_EQ(warned, groups > cores) << groups << " groups on " << cores << " cores: " << test::messages(d);
+  }
+  Diagnostics virtualTime;
+  ASSERT_TRUE(test::loadScene(scene(cores + 1), virtualTime)) << "one thread in virtual time: nothing to warn of";
+  EXPECT_TRUE(virtualTime.all().empty()) << test::messages(virtualTime);
 }
 
 }  // namespace

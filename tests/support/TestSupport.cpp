@@ -74,6 +74,11 @@ int runProgram(const std::vector<std::string>& arguments, std::string* output, c
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+FakeViewerAssets::FakeViewerAssets() {
+  std::ofstream(dir.path() / "index.html") << "<html></html>";
+  std::ofstream(dir.path() / "viewer.js") << "// viewer";
+}
+
 std::string readFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream s;

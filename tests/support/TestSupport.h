@@ -45,6 +45,14 @@ int runProgram(const std::vector<std::string>& arguments, std::string* output = 
 
 std::string readFile(const std::filesystem::path& file);
 
+// A stand-in for the browser viewer's assets, so that tests of `trephine
+// view` do not need the bundle built: pass environment() to runProgram.
+struct FakeViewerAssets {
+  TempDir dir{"trephine-viewer-assets"};
+  FakeViewerAssets();
+  std::string environment() const { return "TREPHINE_VIEWER_ASSETS=" + dir.path().string(); }
+};
+
 // The counter `name` that `component` reports. A counter the component does
 // not report is a test failure (and NaN, so that no comparison passes on it).
 double counter(const Component& component, const std::string& name);

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <vector>
 #include <map>
 #include <regex>
 #include <set>
@@ -53,15 +54,7 @@ TEST(ViewCommandTest, Base64MatchesTheStandardForEveryRemainder) {
   EXPECT_EQ(decodeBase64(cli::base64(bytes)), bytes);
 }
 
-// A viewer's assets stand-in, so these tests do not need the bundle built.
-struct FakeAssets {
-  test::TempDir dir{"trephine-viewer-assets"};
-  FakeAssets() {
-    std::ofstream(dir.path() / "index.html") << "<html></html>";
-    std::ofstream(dir.path() / "viewer.js") << "// viewer";
-  }
-  std::string environment() const { return "TREPHINE_VIEWER_ASSETS=" + dir.path().string(); }
-};
+using FakeAssets = test::FakeViewerAssets;
 
 TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   test::TempDir dir;
@@ -144,6 +137,25 @@ TEST(ViewCommandTest, RunsItCannotShowAreClearErrors) {
   std::ofstream(dir.path() / "vtk.pvd") << "<VTKFile type=\"Collection\"><Collection><DataSet timestep=";
   EXPECT_EQ(runProgram({"view", dir.path().string()}, &out, assets.environment()), 1);
   EXPECT_NE(out.find("vtk.pvd:1: not XML"), std::string::npos) << out;
+  // Files outside the run's folder are never read into the viewer's data.
+  std::ofstream(dir.path() / "outside.vtp") << "<VTKFile/>";
+  fs::create_directories(dir.path() / "run");
+  for (const std::string& file :
+       std::vector<std::string>{"../outside.vtp", (dir.path() / "outside.vtp").string(), "vtk/../../outside.vtp"}) {
+    std::ofstream(dir.path() / "run/vtk.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n<Collection>\n"
+                                                 "<DataSet timestep=\"0\" part=\"0\" file=\"" + file + "\"/>\n"
+                                                 "</Collection>\n</VTKFile>\n";
+    EXPECT_EQ(runProgram({"view", (dir.path() / "run").string()}, &out, assets.environment()), 1) << file;
+    EXPECT_NE(out.find("run/vtk.pvd:4: '" + file + "' is outside the run's folder"), std::string::npos) << out;
+  }
+  // A file the viewer cannot draw is named with what it is, to the end of the message.
+  fs::create_directories(dir.path() / "run/vtk");
+  std::ofstream(dir.path() / "run/vtk/plain") << "x";
+  std::ofstream(dir.path() / "run/vtk.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n<Collection>\n"
+                                               "<DataSet timestep=\"0\" part=\"0\" file=\"vtk/plain\"/>\n"
+                                               "</Collection>\n</VTKFile>\n";
+  EXPECT_EQ(runProgram({"view", (dir.path() / "run").string()}, &out, assets.environment()), 1);
+  EXPECT_NE(out.find("not a file without an extension"), std::string::npos) << out;
 }
 
 TEST(ViewCommandTest, TheLiveViewNeedsRealTimeAnExporterAndAPort) {

@@ -3,7 +3,6 @@
 #include <charconv>
 #include <csignal>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <optional>
 
@@ -49,30 +48,6 @@ std::optional<SimulationOptions> readSimulationOptions(const Arguments& a, std::
   }
   return options;
 }
-
-namespace {
-
-// Creates `directory` if needed and removes what an earlier run wrote there
-// (its three files, device and recording streams, plots), so that a reused
-// directory never mixes two runs. Other files are left alone.
-std::optional<std::string> prepareOutputDirectory(const std::filesystem::path& directory) {
-  std::error_code ec;
-  std::filesystem::create_directories(directory, ec);
-  if (ec || !std::filesystem::is_directory(directory)) return "cannot create a directory there";
-  for (const auto& entry : std::filesystem::directory_iterator(directory, ec)) {
-    const std::string name = entry.path().filename().string();
-    const bool runFile = name == "summary.json" || name == "trace.csv" || name == "timings.csv" ||
-                         ((name.starts_with("device.") || name.starts_with("recording.")) && name.ends_with(".csv")) ||
-                         name == "force.png" || name == "timings.png";
-    if (runFile && entry.is_regular_file()) std::filesystem::remove(entry.path(), ec);
-  }
-  const auto probe = directory / ".trephine-write-test";
-  if (!std::ofstream(probe)) return "cannot write there";
-  std::filesystem::remove(probe, ec);
-  return std::nullopt;
-}
-
-}  // namespace
 
 int validateCommand(const Arguments& a) {
   if (a.positional.size() != 1) {
@@ -141,11 +116,6 @@ int runCommand(const Arguments& a) {
                 << scene.string() << " has none; add one (see scenes/integrated.xml)\n";
       return kSceneError;
     }
-  }
-  // The output directory must be usable before anything is simulated.
-  if (auto problem = prepareOutputDirectory(out)) {
-    std::cerr << "trephine: --out " << out.string() << ": " << *problem << "\n";
-    return kSceneError;
   }
 
   // Ctrl-C stops the run between steps; everything measured so far is written.

@@ -80,6 +80,11 @@ std::vector<IndexEntry> readCollection(const fs::path& pvd, const fs::path& run)
       throw ViewerDataError(pvd.string() + ":" + std::to_string(e->GetLineNum()) +
                             ": a DataSet needs a file and a finite timestep");
     const fs::path relative = (pvd.parent_path().lexically_relative(run) / file).lexically_normal();
+    // The viewer reads the run's folder only: an index naming a file outside
+    // it (an absolute path, "../") would copy that file into the viewer's data.
+    if (fs::path(file).is_absolute() || relative.empty() || *relative.begin() == "..")
+      throw ViewerDataError(pvd.string() + ":" + std::to_string(e->GetLineNum()) + ": '" + file +
+                            "' is outside the run's folder (expected a path relative to it, inside it)");
     entries.push_back({time, relative.generic_string()});
   }
   return entries;
@@ -97,8 +102,11 @@ std::map<int, std::string> readBlocks(const fs::path& vtm, const fs::path& run) 
     if (!file || e->QueryIntAttribute("index", &index) != tinyxml2::XML_SUCCESS || index < 0)
       throw ViewerDataError(vtm.string() + ":" + std::to_string(e->GetLineNum()) +
                             ": a DataSet needs an index (0 or more) and a file");
-    blocks[index] =
-        *file ? (vtm.parent_path().lexically_relative(run) / file).lexically_normal().generic_string() : "";
+    const fs::path relative = (vtm.parent_path().lexically_relative(run) / file).lexically_normal();
+    if (*file && (fs::path(file).is_absolute() || relative.empty() || *relative.begin() == ".."))
+      throw ViewerDataError(vtm.string() + ":" + std::to_string(e->GetLineNum()) + ": '" + file +
+                            "' is outside the run's folder (expected a path relative to it, inside it)");
+    blocks[index] = *file ? relative.generic_string() : "";
   }
   return blocks;
 }
@@ -108,7 +116,8 @@ std::string kindOf(const std::string& file, const std::string& series) {
   if (extension == ".vtu") return "mesh";
   if (extension == ".vtm") return "blocks";
   if (extension == ".vtp") return series == "tool" ? "tool" : "polydata";
-  throw ViewerDataError(file + ": the viewer draws .vtu, .vtp and .vtm files, not " + extension);
+  throw ViewerDataError(file + ": the viewer draws .vtu, .vtp and .vtm files, not " +
+                        (extension.empty() ? std::string("a file without an extension") : "'" + extension + "'"));
 }
 
 struct Plots {

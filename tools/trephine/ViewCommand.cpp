@@ -3,7 +3,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
+#include "framework/runtime/RunFolder.h"
 #include "plugins/viewer/ViewerAssets.h"
 #include "tools/trephine/RunViewerData.h"
 
@@ -11,10 +13,42 @@ namespace trephine::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Whether the folder's outputs are whole. A run that is still writing, or was
+// killed while writing, left files of one moment each (and, before markers,
+// of two runs mixed): viewed only when asked, with a warning.
+bool runOutputsUsable(const fs::path& run, bool partialAsked) {
+  std::optional<RunMarker> marker;
+  try {
+    marker = readRunMarker(run);
+  } catch (const RunFolderError& e) {
+    std::cerr << "trephine view: " << e.what() << "\n";
+    return false;
+  }
+  const RunFolderStatus status = runFolderStatus(marker);
+  if (status == RunFolderStatus::kIncomplete)
+    std::cerr << "trephine view: note: the run stopped early or lost an output (" << marker->reason
+              << "); its files are whole\n";
+  if (status != RunFolderStatus::kWriting && status != RunFolderStatus::kKilled) return true;
+  const std::string what = status == RunFolderStatus::kWriting
+                               ? "a run (process " + std::to_string(marker->pid) + ") is still writing it"
+                               : "the run writing it (process " + std::to_string(marker->pid) +
+                                     ") stopped without finishing (killed or crashed)";
+  if (!partialAsked) {
+    std::cerr << "trephine view: " << run.string() << ": " << what
+              << ", so its files may be cut off or missing; --partial builds the viewer anyway\n";
+    return false;
+  }
+  std::cerr << "trephine view: warning: " << run.string() << ": " << what << "; viewing what is there\n";
+  return true;
+}
+
+}  // namespace
 
 int viewCommand(const Arguments& arguments) {
   if (arguments.positional.size() != 1) {
-    std::cerr << "usage: trephine view RUN_DIR [--triangles N]\n";
+    std::cerr << "usage: trephine view RUN_DIR [--triangles N] [--partial]\n";
     return kUsage;
   }
   const fs::path run = arguments.positional[0];
@@ -23,6 +57,7 @@ int viewCommand(const Arguments& arguments) {
     std::cerr << "trephine view: " << run.string() << ": not a directory (the output directory of trephine run)\n";
     return kSceneError;
   }
+  if (!runOutputsUsable(run, arguments.has("--partial"))) return kSceneError;
   const fs::path assets = viewer::findViewerAssets();
   if (assets.empty()) {
     std::cerr << "trephine view: the browser viewer was not built: it needs Node.js and npm (tools/setup installs "

@@ -85,7 +85,7 @@ usage:
       proxy holds the tool), fits a polynomial in log(delta), and writes tool_cellsize.csv, .json and .png; --calibrate
       fits the model's weights to those times. --deforming: the grids of a
       deforming mesh (boxes grown by the displacement margin).
-  trephine view RUN_DIR [--triangles N]
+  trephine view RUN_DIR [--triangles N] [--partial]
       Write the browser viewer of a run whose scene has a VtkExporter:
       RUN_DIR/view/index.html opens from the disk in a browser (nothing to
       install, no network) and shows the skull, the brain, the tool, the
@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
       return ok ? kOk : kSceneError;
     }
   } else if (command == "view") {
-    error = parseArguments(argc, argv, {"--triangles"}, {}, arguments);
+    error = parseArguments(argc, argv, {"--triangles"}, {"--partial"}, arguments);
     if (!error) return viewCommand(arguments);
   } else if (command == "phantom") {
     error = parseArguments(argc, argv, {"--out"}, {"--raw"}, arguments);

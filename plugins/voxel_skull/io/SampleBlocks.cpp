@@ -56,10 +56,13 @@ void appendCompressedSamples(const ByteSource& source, uint64_t streamOffset, st
                                              std::to_string(byteCount) + " bytes");
   }
   const std::vector<uint8_t> compressed = source.readClipped(streamOffset, available);
-  // With a skip from the end the whole stream is needed; otherwise stop once the samples are complete.
+  // The whole stream is inflated, to its checksum: with a skip from the end
+  // it may hold anything before the samples; otherwise exactly the skipped
+  // bytes and the samples.
   const uint64_t limit = start.fromEnd ? maxInflatedSize(available) : needed;
-  const InflatedBytes inflated = inflateBytes(compressed, limit, source.path());
-  const std::vector<uint8_t>& bytes = inflated.bytes;
+  const std::vector<uint8_t> bytes =
+      inflateWhole(compressed, limit, source.path(), start.fromEnd ? "deflate can hold" : "the samples the header describes",
+                   byteCount, skipped);
   uint64_t first = skipped;
   if (start.fromEnd) {
     if (bytes.size() < start.trailingBytes || bytes.size() - start.trailingBytes < byteCount)

@@ -86,9 +86,10 @@ DensityVolume readVolume(const std::filesystem::path& file) {
   // A gzip-wrapped file (.nii.gz): decompress it whole, then look inside. The
   // output is capped at the largest volume a header could describe.
   const std::vector<uint8_t> compressed = source.readClipped(0, source.size());
-  InflatedBytes inflated = inflateBytes(compressed, kMaxHeaderBytes + kMaxVoxels * 8, file);
-  if (inflated.bytes.empty()) throw VolumeReadError(file, "the gzip stream holds no data");
-  const MemoryByteSource content(file, std::move(inflated.bytes));
+  std::vector<uint8_t> inflated =
+      inflateWhole(compressed, kMaxHeaderBytes + kMaxVoxels * 8, file, "the largest volume a header can describe");
+  if (inflated.empty()) throw VolumeReadError(file, "the gzip stream holds no data");
+  const MemoryByteSource content(file, std::move(inflated));
   const std::vector<uint8_t> innerHead = content.readClipped(0, kDetectionBytes);
   if (isGzip(innerHead)) throw VolumeReadError(file, "gzip inside gzip is not supported (expected one gzip layer)");
   const Format format = formatFromContent(innerHead);

@@ -94,9 +94,9 @@ TEST(FieldParsingTest, ExclusiveMinimumRejectsTheLimitItself) {
 TEST(FieldParsingTest, RateMustBePositiveAndAtMostAMegahertz) {
   FieldZoo zoo;
   EXPECT_EQ(zoo.rate.typeName(), "rate");
-  EXPECT_EQ(assign(zoo.rate, "0"), "value 0 is out of range (0, 1e+06] Hz");
-  EXPECT_EQ(assign(zoo.rate, "-60"), "value -60 is out of range (0, 1e+06] Hz");
-  EXPECT_EQ(assign(zoo.rate, "1000001"), "value 1000001 is out of range (0, 1e+06] Hz");
+  EXPECT_EQ(assign(zoo.rate, "0"), "value 0 is out of range [0.001, 1e+06] Hz");
+  EXPECT_EQ(assign(zoo.rate, "-60"), "value -60 is out of range [0.001, 1e+06] Hz");
+  EXPECT_EQ(assign(zoo.rate, "1000001"), "value 1000001 is out of range [0.001, 1e+06] Hz");
   EXPECT_EQ(assign(zoo.rate, "1e6"), "");
   EXPECT_EQ(assign(zoo.rate, "0.5"), "");
   EXPECT_EQ(zoo.rateHz(), 0.5);

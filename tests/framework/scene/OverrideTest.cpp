@@ -73,7 +73,7 @@ TEST(OverrideTest, BadValueIsReportedLikeABadAttribute) {
 
 TEST(OverrideTest, OutOfRangeValueIsReported) {
   const Diagnostics d = loadFailure(kScene, withOverrides({"tool/force.rate=0"}));
-  EXPECT_TRUE(hasError(d, "--set tool/force.rate=0", "value 0 is out of range (0, 1e+06] Hz"));
+  EXPECT_TRUE(hasError(d, "--set tool/force.rate=0", "value 0 is out of range [0.001, 1e+06] Hz"));
 }
 
 TEST(OverrideTest, TextWithoutFieldAndValueShowsTheExpectedForm) {

@@ -170,8 +170,27 @@ TEST(SceneLoaderErrorTest, RateZeroIsOutOfRange) {
   <ScriptedDevice name="device" rate="0"/>
 </Node>)");
   EXPECT_TRUE(
-      hasError(d, "inline.xml:3:39", "invalid rate of ScriptedDevice 'device': value 0 is out of range (0, 1e+06] Hz"));
+      hasError(d, "inline.xml:3:39", "invalid rate of ScriptedDevice 'device': value 0 is out of range [0.001, 1e+06] Hz"));
   EXPECT_EQ(d.errorCount(), 1);
+}
+
+TEST(SceneLoaderErrorTest, RateBelowOneMillihertzIsAUnitSlip) {
+  // A period in seconds given for a rate: one call in 30 years.
+  const Diagnostics d = loadFailure(R"(<Node name="root">
+  <RequiredPlugin name="haptics"/>
+  <ScriptedDevice name="device" rate="1e-9"/>
+</Node>)");
+  EXPECT_TRUE(hasError(d, "inline.xml:3:39",
+                       "invalid rate of ScriptedDevice 'device': value 1e-09 is out of range [0.001, 1e+06] Hz"));
+}
+
+TEST(SceneLoaderErrorTest, InvisibleCharactersInAValueAreShown) {
+  // A byte order mark and a non-breaking space, pasted from elsewhere, look like nothing.
+  const Diagnostics d = loadFailure("<Node name=\"root\">\n  <RequiredPlugin name=\"haptics\"/>\n"
+                                    "  <SphereTool name=\"burr\" radius=\"\xEF\xBB\xBF"
+                                    "2.5\"/>\n  <SphereTool name=\"probe\" radius=\"2\xC2\xA0\"/>\n</Node>");
+  EXPECT_NE(messages(d).find("expected a number, got '\\u{FEFF}2.5'"), std::string::npos) << messages(d);
+  EXPECT_NE(messages(d).find("expected a number, got '2\\u{00A0}'"), std::string::npos) << messages(d);
 }
 
 TEST(SceneLoaderErrorTest, InvalidComponentNameIsReportedAtTheValue) {

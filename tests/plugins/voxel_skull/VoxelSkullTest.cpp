@@ -279,6 +279,41 @@ TEST(VoxelSkullTest, TouchPathOnTheSkullMeetsTheForceTargets) {
   EXPECT_LE(s.forceStepMax, 0.1);
 }
 
+// A volume of 1e-6 mm voxels (a unit slip: metres read as millimetres, then
+// some) under a 2.5 mm burr: loading aims the path by rays and the run sweeps
+// the tool, both bounded by the scene's size in tool radii, not by the
+// millions of voxels the tool spans.
+TEST(VoxelSkullTest, VoxelsFarFinerThanTheToolKeepTheWorkBounded) {
+  test::TempDir dir;
+  std::string samples;
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i)
+        samples += char((i - 9.5) * (i - 9.5) + (j - 9.5) * (j - 9.5) + (k - 9.5) * (k - 9.5) < 64 ? 200 : 0);
+  const auto file = dir.write("tiny.mha", "ObjectType = Image\nNDims = 3\nDimSize = 20 20 20\n"
+                                          "ElementSpacing = 1e-6 1e-6 1e-6\nElementType = MET_UCHAR\n"
+                                          "ElementDataFile = LOCAL\n" + samples);
+  for (const char* sweep : {"cylinder", "line", "spheres"}) {
+    SCOPED_TRACE(sweep);
+    Diagnostics d;
+    std::string scene = skullScene("file=\"" + file.string() + "\" isovalue=\"100\"",
+                                   R"(path="approach-press-slide" depth="1" standoff="5")");
+    scene.replace(scene.find("target=\"@skull\"/>"), 17, "target=\"@skull\" sweep=\"" + std::string(sweep) + "\"/>");
+    SimulationOptions options;
+    options.duration = 1.0;
+    auto simulation = test::loadScene(scene, d, options);
+    ASSERT_TRUE(simulation) << test::messages(d);
+    simulation->run();
+    ASSERT_TRUE(simulation->complete());
+    EXPECT_EQ(simulation->hapticLog().stats().nanFrames, 0u);
+    // Half a step of R / 128 over a frame's move and the tool's width: hundreds
+    // of steps; at half a voxel, a 1 mm move alone took two million.
+    const double steps = test::componentCounter(*simulation, "VoxelSkull", "most_sweep_steps");
+    EXPECT_GT(steps, 0);
+    EXPECT_LE(steps, 2000);
+  }
+}
+
 TEST(PointshellTest, CountsOfTheAngleStepSchemeAndEvenShells) {
   // The angle-step grid of Eq. 3.1 with the pole duplicates merged (the thesis
   // reports 466 and 211 for its own variant of the scheme).
