@@ -41,8 +41,14 @@ void TLEDForceField::init(InitContext& context) {
   }
   m_frame.positions = mesh.nodes;
   m_frame.allMoved = true;
+  // The size of the body: the nodes its elements hold. A node no element
+  // holds (a stray vertex left in a file) does not move and is not part of
+  // it; counted, one at 1 m would make the divergence bound below a metre
+  // for a 20 mm brain, and shapes torn apart by a diverging step would
+  // reach the collision as if they were valid.
   Box3 box;
-  for (const Vec3& p : mesh.nodes) box.extend(p);
+  for (const tetra::TetIndices& tet : mesh.tets)
+    for (int32_t node : tet) box.extend(mesh.nodes[node]);
   m_meshSize = box.diagonal().norm();
   m_channel->reserve(m_frame);  // slots as large as a frame: publishing never allocates
   m_forces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);

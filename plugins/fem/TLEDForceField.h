@@ -146,7 +146,7 @@ class TLEDForceField final : public Component {
   uint64_t m_mostInverted = 0, m_droppedSteps = 0;
   size_t m_massScaledElements = 0;
   double m_largestDisplacement = 0;  // mm
-  double m_meshSize = 0;             // mm, the diagonal of the rest mesh's box: no node moves farther
+  double m_meshSize = 0;             // mm, the diagonal of the box of the nodes elements hold: no node moves farther
 };
 
 }  // namespace trephine::fem
