@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "framework/core/BackendBinding.h"
@@ -31,6 +32,7 @@ void TetraBrain::init(InitContext& context) {
   }
   for (Vec3& p : m_mesh.nodes) p = d_scale.value() * p + d_translation.value();
   const MeshReport report = inspectMesh(m_mesh, TetTopology(m_mesh));
+  if (report.unusedNodes > 0) warnUnusedNodes(context, report);
   if (report.invertedTets > 0 && d_inverted.is("refuse")) {
     context.error(d_inverted, report.describe() + "(inverted=\"reorient\" swaps two nodes of each)");
     return;
@@ -50,6 +52,22 @@ void TetraBrain::init(InitContext& context) {
     context.error(d_boxRefresh,
                   "boxRefresh applies to the thesis's searches (search=\"first-tetrahedron\" or "
                   "\"previous-contact\"); the grid search refreshes no boxes");
+}
+
+void TetraBrain::warnUnusedNodes(InitContext& context, const MeshReport& report) const {
+  // A node no tetrahedron holds is no part of the body: it neither collides
+  // nor deforms. Usually a stray vertex of an export (a point at the origin,
+  // or far away) that the author did not mean to keep: name it, where it is.
+  std::ostringstream s;
+  s << report.unusedNodes << (report.unusedNodes == 1 ? " node is" : " nodes are")
+    << " used by no tetrahedron and ignored:";
+  for (size_t i = 0; i < report.firstUnused.size(); ++i) {
+    const Vec3& p = m_mesh.nodes[size_t(report.firstUnused[i])];
+    s << (i ? "," : "") << " node " << report.firstUnused[i] << " (counted from 0) at (" << p.x() << ", " << p.y()
+      << ", " << p.z() << ") mm";
+  }
+  if (report.unusedNodes > report.firstUnused.size()) s << ", ...";
+  context.warning(d_file, s.str());
 }
 
 void TetraBrain::checkNativeOnlyFields(InitContext& context) {

@@ -83,6 +83,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
  private:
   TetQueryOptions queryOptions() const;
   void bindBackend();
+  void warnUnusedNodes(InitContext& context, const MeshReport& report) const;
   void checkNativeOnlyFields(InitContext& context);
   void reserveNodeForces(size_t entries);
   void buildForceSpread();
