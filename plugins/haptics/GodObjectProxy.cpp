@@ -61,6 +61,16 @@ int GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) {
   return removed;
 }
 
+double GodObjectProxy::slideAllowance(const Vec3& device) const {
+  // The device's own move, but no more than the tool's leading radius: the
+  // constraint plane stands for the surface only over the contact patch, so a
+  // longer slide along it (a device that jumped far beneath a tilted plane
+  // projects onto it metres away) would leave the surface it was measured
+  // on. The proxy covers a longer way over several frames, its contact
+  // measured anew after each step.
+  return std::min((device - m_lastDevice).norm(), m_tool->leadingRadius()) + kCatchUp;
+}
+
 SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const {
   SweepQuery query;
   query.from = from;
@@ -118,7 +128,7 @@ void GodObjectProxy::tick(const TickContext& context) {
     const Vec3 toDevice = D - P;
     const double into = toDevice.dot(m_lastNormal);  // < 0: the device is beneath the plane
     const Vec3 along = toDevice - into * m_lastNormal;
-    const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
+    const double slideLimit = slideAllowance(D);
     // Also while the device rises off the plane, when the proxy was held back
     // and pulled on the device last frame: it lifts with the device at once
     // but closes the lag along the plane at the same pace, so a drag of
@@ -208,7 +218,7 @@ void GodObjectProxy::tick(const TickContext& context) {
     // jumping, so the force it renders changes by at most k kCatchUp beyond
     // what the hand's motion explains.
     Vec3 slide = kProxyRelaxation * (step - lift);
-    const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
+    const double slideLimit = slideAllowance(D);
     if (m_hadDevice && slide.norm() > slideLimit) slide *= slideLimit / slide.norm();
     goal = P1 + lift + slide;
     // 4. Rectifying sweep of the slide. The lift out along the contact normal
@@ -219,9 +229,13 @@ void GodObjectProxy::tick(const TickContext& context) {
     P2 = goal;
     const Vec3 move = goal - lifted;
     const double moveLength = move.norm();
+    bool heldByTarget = false;  // the target stops the proxy short of its goal
     if (d_rectify.value() && m_sweeps && moveLength > kSamePlace) {
       const SweepResult r = sweepPath(lifted, goal, q);
-      if (r.blocked) P2 = lifted + r.freeFraction * move;
+      if (r.blocked) {
+        P2 = lifted + r.freeFraction * move;
+        heldByTarget = (goal - P2).norm() > kSamePlace;
+      }
     }
     // 5. Rendered penetration: the spring from the device to the proxy lifted
     // out by its skin, P2 + skin n - D, in its own direction. The proxy and the
@@ -237,8 +251,15 @@ void GodObjectProxy::tick(const TickContext& context) {
     if (crease) ++m_creaseFrames;
     // The device presses when the spring points out along this contact's
     // normal or the last frame's (a normal that swings for a frame in a
-    // drilled pit must not drop the force for that frame).
-    const bool pressing = spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace);
+    // drilled pit must not drop the force for that frame), or when the target
+    // holds the proxy back from the device: the proxy is then constrained and
+    // the spring acts whatever the normal says. On a vertex or an edge (the
+    // apex of a tetrahedron, the rim of a crack) the nearest face of a point
+    // on it may be a side face, and its horizontal normal is orthogonal to a
+    // device pressing straight down: judged by the normal alone, the proxy
+    // would be held with no force.
+    const bool pressing = spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace) ||
+                          (heldByTarget && spring.norm() > kSamePlace);
     if (pressing) {
       s.penetration = spring.norm();
       s.normal = spring / s.penetration;

@@ -62,6 +62,8 @@ class GodObjectProxy final : public Component {
   int applyForce(const Vec3& forceOnTool_N, double t);
 
  private:
+  // mm: how far the proxy may slide along its constraint plane this frame.
+  double slideAllowance(const Vec3& device) const;
   SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
   void changeTools(const TickContext& context);
 
