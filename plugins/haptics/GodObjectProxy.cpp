@@ -71,6 +71,11 @@ double GodObjectProxy::slideAllowance(const Vec3& device) const {
   return std::min((device - m_lastDevice).norm(), m_tool->leadingRadius()) + kCatchUp;
 }
 
+bool GodObjectProxy::nothingBetween(const Vec3& from, const Vec3& device, const Quat& orientation) const {
+  if (m_sweeps && sweepPath(from, device, orientation).blocked) return false;
+  return !m_target->overlaps({device, orientation}, m_tool->shellPoints());
+}
+
 SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const {
   SweepQuery query;
   query.from = from;
@@ -124,6 +129,7 @@ void GodObjectProxy::tick(const TickContext& context) {
   // carry the proxy across a groove in one frame wherever the probe sees no
   // bone, and the spring's direction would jump with it.
   Vec3 sweepEnd = D;
+  bool beneathPlane = false;  // held because the device is beneath last frame's plane
   if (m_hadPlane && m_hadDevice) {
     const Vec3 toDevice = D - P;
     const double into = toDevice.dot(m_lastNormal);  // < 0: the device is beneath the plane
@@ -135,8 +141,10 @@ void GodObjectProxy::tick(const TickContext& context) {
     // millimetres built up while sliding (at the force limit) fades instead
     // of dropping in one frame.
     const bool dragging = m_heldBack && m_state.penetration > 0;
-    if ((into < 0 || dragging) && along.norm() > slideLimit)
+    if ((into < 0 || dragging) && along.norm() > slideLimit) {
       sweepEnd = P + into * m_lastNormal + slideLimit / along.norm() * along;
+      beneathPlane = into < 0;
+    }
   }
   const bool heldBack = (D - sweepEnd).norm() > kSamePlace;
   m_heldBack = heldBack;
@@ -271,6 +279,15 @@ void GodObjectProxy::tick(const TickContext& context) {
     m_planePoint = onPlane;
     m_planeNormal = normal;
     m_hasPlane = true;
+  } else if (heldBack && !blocked && beneathPlane && nothingBetween(P1, D, q)) {
+    // Held to last frame's plane, but no surface is there any more: the proxy
+    // slid off the edge the plane came from (a device far beneath a tilted
+    // plane, after a jump), and neither the way to the device nor the device
+    // itself meets the target. Nothing holds the proxy: it joins the device,
+    // and nothing is rendered (a plane kept here would pull the hand
+    // sideways from wherever the proxy is, in free space).
+    ++m_releasedHolds;
+    P2 = D;
   } else if (blocked || heldBack) {
     // Conflicting case: the proxy is free where the sweep stopped it, or where
     // its slide along last frame's plane was held, but the device is beyond:
@@ -315,6 +332,7 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"conflict_frames", double(m_conflictFrames)});
   counters.push_back({"degenerate_normals", double(m_degenerateNormals)});
   counters.push_back({"crease_frames", double(m_creaseFrames)});
+  counters.push_back({"released_holds", double(m_releasedHolds)});
   if (m_nonFiniteFrames) counters.push_back({"non_finite_frames", double(m_nonFiniteFrames)});
 }
 

@@ -64,6 +64,8 @@ class GodObjectProxy final : public Component {
  private:
   // mm: how far the proxy may slide along its constraint plane this frame.
   double slideAllowance(const Vec3& device) const;
+  // Neither the sweep from `from` to the device nor the tool at the device meets the target.
+  bool nothingBetween(const Vec3& from, const Vec3& device, const Quat& orientation) const;
   SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
   void changeTools(const TickContext& context);
 
@@ -117,6 +119,7 @@ class GodObjectProxy final : public Component {
   bool m_started = false;
   uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0, m_creaseFrames = 0,
            m_nonFiniteFrames = 0;
+  uint64_t m_releasedHolds = 0;  // frames a hold to last frame's plane found no surface and let the proxy go
 };
 
 }  // namespace trephine::haptics
