@@ -130,6 +130,9 @@ class TLEDForceField final : public Component {
                "elements. The added mass is reported (added_mass_fraction)"}};
   RateField d_rate{this, 1000.0, "Rate of the FEM's group: each tick advances the model by one period"};
 
+  // After a divergence: the tool's forces, fetched and applied, are dropped.
+  void dropToolLoad();
+
   std::unique_ptr<TledModel> m_model;
   std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
   std::optional<ChannelReader<tetra::NodeForces>> m_forces;

@@ -218,7 +218,10 @@ void TetraBrain::refresh() {
   if (frame.positions.size() != m_mesh.nodeCount()) {
     // Not this mesh's nodes (a faulty deformation). The slot of the last good
     // shape went back to the writer with this fetch, so the rest shape it is.
-    if (newShape) ++m_rejectedFrames;
+    if (newShape) {
+      ++m_rejectedFrames;
+      ++m_shapeFailures;
+    }
     m_nodes = m_mesh.nodes.data();
     m_bounds = m_restBounds;
     askBackend(*this, d_backend, [&] { m_backend->moveNodes({m_mesh.nodes, 0.0, {}, true}); });
@@ -229,6 +232,10 @@ void TetraBrain::refresh() {
   if (newShape) {
     m_lastStep = frame.step;
     ++m_deformationFrames;
+    if (frame.resets != m_deformationResets) {
+      ++m_shapeFailures;
+      m_deformationResets = frame.resets;
+    }
   }
   m_nodes = frame.positions.data();
   m_largestBound = std::max(m_largestBound, frame.displacementBound);
@@ -302,6 +309,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     if (m_nodeForceValue.forces.empty()) return;
     m_nodeForceValue.forces.clear();
     m_nodeForceValue.t = t;
+    m_nodeForceValue.resetsSeen = m_deformationResets;
     m_nodeForces->publish(m_nodeForceValue);
     return;
   }
@@ -326,6 +334,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   forces.resize(count);
   for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
   m_nodeForceValue.t = t;
+  m_nodeForceValue.resetsSeen = m_deformationResets;
   if (m_spreadStart.empty()) {
     m_largestNodeForceCount = std::max<uint64_t>(m_largestNodeForceCount, forces.size());
     m_nodeForces->publish(m_nodeForceValue);
@@ -348,6 +357,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     }
   for (const NodeForce& f : spread) m_nodeSlot[f.node] = -1;
   m_spreadValue.t = t;
+  m_spreadValue.resetsSeen = m_deformationResets;
   m_largestNodeForceCount = std::max<uint64_t>(m_largestNodeForceCount, spread.size());
   m_nodeForces->publish(m_spreadValue);
 }
@@ -385,6 +395,7 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
     counters.push_back({"deformation_frames", double(m_deformationFrames)});
     counters.push_back({"largest_displacement_bound_mm", m_largestBound});
     if (m_rejectedFrames) counters.push_back({"rejected_position_frames", double(m_rejectedFrames)});
+    if (m_shapeFailures) counters.push_back({"shape_failures", double(m_shapeFailures)});
   }
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
   // The most nodes the tool's force was shared among in a frame: what each
