@@ -37,6 +37,7 @@ void GodObjectProxy::init(InitContext& context) {
     if (l_nextTool) context.error(l_nextTool, "has no effect without a toolChange");
     if (l_nextTarget) context.error(l_nextTarget, "has no effect without a toolChange");
   }
+  m_seenShapeFailures = m_target->shapeFailures();
   m_sweeps = !d_sweep.is("none");
   m_probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
             : d_sweep.is("spheres") ? SweepProbe::Spheres
@@ -87,6 +88,30 @@ SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Qu
   return m_target->sweep(query);
 }
 
+void GodObjectProxy::letGo(const TickContext& context) {
+  // What shapes the target failed and its shape jumped: the proxy's place
+  // and its constraint plane belong to a shape that is gone, and the spring
+  // to them may point anywhere, into the target or away from the tool. The
+  // proxy goes to the device and renders nothing (ForceFeedback takes the
+  // force it rendered to zero along its ramp) until the tool is clear of the
+  // target; then it starts again there.
+  ++m_releases;
+  m_released = true;
+  m_lastNormal = Vec3::Zero();
+  m_hadDevice = m_heldBack = m_hasPlane = m_hadPlane = false;
+  if (context.events)
+    context.events->log(context.t, "haptic_released", "the target's shape failed: proxy released to the device",
+                        this);
+}
+
+void GodObjectProxy::followDevice(ProxyState& s, const Vec3& device, const Quat& orientation) {
+  s.device = s.proxy = device;
+  s.released = true;
+  // Clear of the target: from the next frame the proxy works from here again.
+  if (!m_target->overlaps({device, orientation}, m_tool->shellPoints())) m_released = false;
+  m_state = s;
+}
+
 void GodObjectProxy::changeTools(const TickContext& context) {
   // The first target hears that the contact ended; the proxy starts again
   // where the device is, with no plane and no history of the old contact.
@@ -97,6 +122,8 @@ void GodObjectProxy::changeTools(const TickContext& context) {
   m_lastNormal = Vec3::Zero();
   m_hadDevice = m_heldBack = m_hasPlane = m_hadPlane = m_started = false;
   m_changedTools = true;
+  m_seenShapeFailures = m_target->shapeFailures();
+  m_released = false;
 }
 
 void GodObjectProxy::tick(const TickContext& context) {
@@ -118,6 +145,14 @@ void GodObjectProxy::tick(const TickContext& context) {
   if (!m_started) {
     m_state.proxy = D;  // the proxy starts with the device, wherever that is
     m_started = true;
+  }
+  if (target.shapeFailures() != m_seenShapeFailures) {
+    m_seenShapeFailures = target.shapeFailures();
+    letGo(context);
+  }
+  if (m_released) {
+    followDevice(s, D, q);
+    return;
   }
   const Vec3 P = m_state.proxy;
   s.device = D;
@@ -333,6 +368,7 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"degenerate_normals", double(m_degenerateNormals)});
   counters.push_back({"crease_frames", double(m_creaseFrames)});
   counters.push_back({"released_holds", double(m_releasedHolds)});
+  counters.push_back({"releases", double(m_releases)});
   if (m_nonFiniteFrames) counters.push_back({"non_finite_frames", double(m_nonFiniteFrames)});
 }
 
