@@ -94,7 +94,9 @@ void GodObjectProxy::letGo(const TickContext& context) {
   // to them may point anywhere, into the target or away from the tool. The
   // proxy goes to the device and renders nothing (ForceFeedback takes the
   // force it rendered to zero along its ramp) until the tool is clear of the
-  // target; then it starts again there.
+  // target; then it starts again there. Already let go, it stays so (one
+  // event, however many failures follow before the tool is clear).
+  if (m_released) return;
   ++m_releases;
   m_released = true;
   m_lastNormal = Vec3::Zero();
