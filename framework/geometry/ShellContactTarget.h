@@ -110,6 +110,12 @@ class ShellContactTarget : public SurfaceTarget {
   // for a deformable target to pass on to its deformation model. Called every
   // haptic frame, with zero when the tool touches nothing.
   virtual void applyContactForce(const Vec3& forceOnTarget_N, double t) {}
+  // How many times what shapes this target has failed so far, its shape
+  // jumping (a deformation model that diverged and restarted from rest, a
+  // frame of positions that was not this target's). Read after refresh(): a
+  // tool that sees the count grow lets go of its contact, whose proxy and
+  // constraint plane belong to a shape that is gone.
+  virtual uint64_t shapeFailures() const { return 0; }
 };
 
 }  // namespace trephine

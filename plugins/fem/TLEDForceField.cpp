@@ -41,8 +41,14 @@ void TLEDForceField::init(InitContext& context) {
   }
   m_frame.positions = mesh.nodes;
   m_frame.allMoved = true;
+  // The size of the body: the nodes its elements hold. A node no element
+  // holds (a stray vertex left in a file) does not move and is not part of
+  // it; counted, one at 1 m would make the divergence bound below a metre
+  // for a 20 mm brain, and shapes torn apart by a diverging step would
+  // reach the collision as if they were valid.
   Box3 box;
-  for (const Vec3& p : mesh.nodes) box.extend(p);
+  for (const tetra::TetIndices& tet : mesh.tets)
+    for (int32_t node : tet) box.extend(mesh.nodes[node]);
   m_meshSize = box.diagonal().norm();
   m_channel->reserve(m_frame);  // slots as large as a frame: publishing never allocates
   m_forces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
@@ -88,7 +94,9 @@ void TLEDForceField::prepare(const RunPlan&) {
 
 void TLEDForceField::tick(const TickContext& context) {
   ++m_ticks;
-  if (m_forces->fetch()) {
+  // Forces measured on a shape from before the last reset belong to a contact
+  // that is gone (the haptic side lets go when it sees the reset): dropped.
+  if (m_forces->fetch() && m_forces->read().resetsSeen == m_frame.resets) {
     // The tool's latest reaction replaces the previous one as the target.
     for (int32_t node : m_targetNodes) m_target[node] = Vec3::Zero();
     m_targetNodes.clear();
@@ -161,8 +169,10 @@ void TLEDForceField::tick(const TickContext& context) {
     // and explicit steps blow up there). The collision keeps the last finite
     // shape; the model starts again from rest, and the event says when.
     ++m_nonFinite;
+    ++m_frame.resets;  // carried by the rest shape published next: the haptic side lets go
     if (context.events) context.events->log(context.t, "fem_diverged", "reset to rest", this);
     m_model->resetToRest();
+    dropToolLoad();
     m_movesKnown = false;  // the shape held is not the one last published
     m_publishedRest = false;
     return;
@@ -174,6 +184,21 @@ void TLEDForceField::tick(const TickContext& context) {
   ++m_frame.step;
   m_channel->publish(m_frame);
   m_publishedRest = m_model->resting();
+}
+
+void TLEDForceField::dropToolLoad() {
+  // The load the mesh could not carry goes with the shape it tore: applied
+  // again at once, it would tear the rest shape within a tick, again and
+  // again, before the haptic side ever saw the reset.
+  for (int32_t node : m_targetNodes) m_target[node] = Vec3::Zero();
+  m_targetNodes.clear();
+  for (int32_t node : m_appliedNodes) {
+    m_applied[node] = Vec3::Zero();
+    m_applying[node] = 0;
+    m_model->setExternalForce(node, Vec3::Zero());
+    m_model->setNodeDamping(node, 0);
+  }
+  m_appliedNodes.clear();
 }
 
 void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {

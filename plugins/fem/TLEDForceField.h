@@ -130,6 +130,9 @@ class TLEDForceField final : public Component {
                "elements. The added mass is reported (added_mass_fraction)"}};
   RateField d_rate{this, 1000.0, "Rate of the FEM's group: each tick advances the model by one period"};
 
+  // After a divergence: the tool's forces, fetched and applied, are dropped.
+  void dropToolLoad();
+
   std::unique_ptr<TledModel> m_model;
   std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
   std::optional<ChannelReader<tetra::NodeForces>> m_forces;
@@ -146,7 +149,7 @@ class TLEDForceField final : public Component {
   uint64_t m_mostInverted = 0, m_droppedSteps = 0;
   size_t m_massScaledElements = 0;
   double m_largestDisplacement = 0;  // mm
-  double m_meshSize = 0;             // mm, the diagonal of the rest mesh's box: no node moves farther
+  double m_meshSize = 0;             // mm, the diagonal of the box of the nodes elements hold: no node moves farther
 };
 
 }  // namespace trephine::fem

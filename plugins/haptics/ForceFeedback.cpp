@@ -1,6 +1,7 @@
 #include "plugins/haptics/ForceFeedback.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "framework/core/Lifecycle.h"
 #include "plugins/haptics/SampledDataPassivity.h"
@@ -47,8 +48,21 @@ void ForceFeedback::tick(const TickContext& context) {
   const ProxyState& s = proxy.state();
   HapticDevice& device = proxy.tool().device();
 
+  if (s.released && !m_wasReleased) {
+    // The proxy was let go (what shapes its target failed): the force it
+    // rendered fades to zero along a ramp, a step would kick the hand.
+    m_rampFrom = m_force;
+    m_rampFrames = std::max<uint64_t>(1, uint64_t(std::lround(d_releaseRamp.value() * rateHz())));
+    m_rampFrame = 0;
+    ++m_releaseRamps;
+  }
+  m_wasReleased = s.released;
   Vec3 force = Vec3::Zero();
-  if (s.contact) {
+  const bool fading = m_rampFrame < m_rampFrames;
+  if (fading) {
+    ++m_rampFrame;
+    force = (1.0 - double(m_rampFrame) / double(m_rampFrames)) * m_rampFrom;
+  } else if (s.contact) {
     // The spring's share is capped at maxForce, as if the device-proxy gap were
     // at most maxForce / k: a device pushed far past the clamp stores no force
     // that pulling back would first have to undo, and the damping keeps acting
@@ -74,7 +88,8 @@ void ForceFeedback::tick(const TickContext& context) {
   m_force = force;
   device.applyForce(force);
   // The load of this force on the target (drilling under load happens here).
-  proxy.applyForce(force, context.t);
+  // A fading force belongs to the contact that was let go, not to the target.
+  proxy.applyForce(fading ? Vec3::Zero() : force, context.t);
 
   HapticFrame frame;
   frame.t = context.t;
@@ -106,6 +121,7 @@ void ForceFeedback::tick(const TickContext& context) {
 void ForceFeedback::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"saturated_frames", double(m_saturatedFrames)});
   counters.push_back({"step_limited_frames", double(m_stepLimitedFrames)});
+  counters.push_back({"release_ramps", double(m_releaseRamps)});
 }
 
 }  // namespace trephine::haptics

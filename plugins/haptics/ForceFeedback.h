@@ -10,6 +10,8 @@
 // the damping still acts at the clamp); |F| is then clamped to maxForce in the
 // direction n, and, when maxForceStep > 0, the change of F between frames to
 // maxForceStep (a last guard, counted as step_limited_frames when it acts).
+// When the proxy is let go (what shapes its target failed, ProxyState::released),
+// the force rendered then fades linearly to zero over releaseRamp.
 // The force also loads the proxy's burr against the target (drilling).
 // Writes the haptic trace and publishes its values for a Recorder.
 #include "framework/channels/Channel.h"
@@ -62,12 +64,26 @@ class ForceFeedback final : public Component, public SampleSource {
       "maxForceStep",
       0.0,
       {.help = "Largest change of the force vector between two frames; 0 for no limit", .unit = "N", .min = 0.0}};
+  Field<double> d_releaseRamp{
+      this,
+      "releaseRamp",
+      0.05,
+      {.help = "When the proxy is let go because what shapes its target failed (a diverged FEM), the force "
+               "rendered then fades to zero over this time, and no contact is rendered until the tool is clear "
+               "of the target",
+       .unit = "s",
+       .min = 0.0}};
   RateField d_rate{this, 1000.0, "Haptic rate"};
 
   HapticFrameLog* m_log = nullptr;
   Channel<Sample>* m_samples = nullptr;
   Vec3 m_force = Vec3::Zero();
   uint64_t m_saturatedFrames = 0, m_stepLimitedFrames = 0;
+  // The fade of the force after the proxy was let go: from m_rampFrom, frame
+  // m_rampFrame of m_rampFrames (none running when they are equal).
+  Vec3 m_rampFrom = Vec3::Zero();
+  uint64_t m_rampFrames = 0, m_rampFrame = 0, m_releaseRamps = 0;
+  bool m_wasReleased = false;
 };
 
 }  // namespace trephine::haptics

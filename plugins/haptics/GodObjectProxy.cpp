@@ -37,6 +37,7 @@ void GodObjectProxy::init(InitContext& context) {
     if (l_nextTool) context.error(l_nextTool, "has no effect without a toolChange");
     if (l_nextTarget) context.error(l_nextTarget, "has no effect without a toolChange");
   }
+  m_seenShapeFailures = m_target->shapeFailures();
   m_sweeps = !d_sweep.is("none");
   m_probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
             : d_sweep.is("spheres") ? SweepProbe::Spheres
@@ -61,6 +62,21 @@ int GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) {
   return removed;
 }
 
+double GodObjectProxy::slideAllowance(const Vec3& device) const {
+  // The device's own move, but no more than the tool's leading radius: the
+  // constraint plane stands for the surface only over the contact patch, so a
+  // longer slide along it (a device that jumped far beneath a tilted plane
+  // projects onto it metres away) would leave the surface it was measured
+  // on. The proxy covers a longer way over several frames, its contact
+  // measured anew after each step.
+  return std::min((device - m_lastDevice).norm(), m_tool->leadingRadius()) + kCatchUp;
+}
+
+bool GodObjectProxy::nothingBetween(const Vec3& from, const Vec3& device, const Quat& orientation) const {
+  if (m_sweeps && sweepPath(from, device, orientation).blocked) return false;
+  return !m_target->overlaps({device, orientation}, m_tool->shellPoints());
+}
+
 SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const {
   SweepQuery query;
   query.from = from;
@@ -70,6 +86,32 @@ SweepResult GodObjectProxy::sweepPath(const Vec3& from, const Vec3& to, const Qu
   query.leadingRadius = m_tool->leadingRadius();
   query.shell = m_tool->shellPoints();
   return m_target->sweep(query);
+}
+
+void GodObjectProxy::letGo(const TickContext& context) {
+  // What shapes the target failed and its shape jumped: the proxy's place
+  // and its constraint plane belong to a shape that is gone, and the spring
+  // to them may point anywhere, into the target or away from the tool. The
+  // proxy goes to the device and renders nothing (ForceFeedback takes the
+  // force it rendered to zero along its ramp) until the tool is clear of the
+  // target; then it starts again there. Already let go, it stays so (one
+  // event, however many failures follow before the tool is clear).
+  if (m_released) return;
+  ++m_releases;
+  m_released = true;
+  m_lastNormal = Vec3::Zero();
+  m_hadDevice = m_heldBack = m_hasPlane = m_hadPlane = false;
+  if (context.events)
+    context.events->log(context.t, "haptic_released", "the target's shape failed: proxy released to the device",
+                        this);
+}
+
+void GodObjectProxy::followDevice(ProxyState& s, const Vec3& device, const Quat& orientation) {
+  s.device = s.proxy = device;
+  s.released = true;
+  // Clear of the target: from the next frame the proxy works from here again.
+  if (!m_target->overlaps({device, orientation}, m_tool->shellPoints())) m_released = false;
+  m_state = s;
 }
 
 void GodObjectProxy::changeTools(const TickContext& context) {
@@ -82,6 +124,8 @@ void GodObjectProxy::changeTools(const TickContext& context) {
   m_lastNormal = Vec3::Zero();
   m_hadDevice = m_heldBack = m_hasPlane = m_hadPlane = m_started = false;
   m_changedTools = true;
+  m_seenShapeFailures = m_target->shapeFailures();
+  m_released = false;
 }
 
 void GodObjectProxy::tick(const TickContext& context) {
@@ -104,6 +148,14 @@ void GodObjectProxy::tick(const TickContext& context) {
     m_state.proxy = D;  // the proxy starts with the device, wherever that is
     m_started = true;
   }
+  if (target.shapeFailures() != m_seenShapeFailures) {
+    m_seenShapeFailures = target.shapeFailures();
+    letGo(context);
+  }
+  if (m_released) {
+    followDevice(s, D, q);
+    return;
+  }
   const Vec3 P = m_state.proxy;
   s.device = D;
 
@@ -114,19 +166,22 @@ void GodObjectProxy::tick(const TickContext& context) {
   // carry the proxy across a groove in one frame wherever the probe sees no
   // bone, and the spring's direction would jump with it.
   Vec3 sweepEnd = D;
+  bool beneathPlane = false;  // held because the device is beneath last frame's plane
   if (m_hadPlane && m_hadDevice) {
     const Vec3 toDevice = D - P;
     const double into = toDevice.dot(m_lastNormal);  // < 0: the device is beneath the plane
     const Vec3 along = toDevice - into * m_lastNormal;
-    const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
+    const double slideLimit = slideAllowance(D);
     // Also while the device rises off the plane, when the proxy was held back
     // and pulled on the device last frame: it lifts with the device at once
     // but closes the lag along the plane at the same pace, so a drag of
     // millimetres built up while sliding (at the force limit) fades instead
     // of dropping in one frame.
     const bool dragging = m_heldBack && m_state.penetration > 0;
-    if ((into < 0 || dragging) && along.norm() > slideLimit)
+    if ((into < 0 || dragging) && along.norm() > slideLimit) {
       sweepEnd = P + into * m_lastNormal + slideLimit / along.norm() * along;
+      beneathPlane = into < 0;
+    }
   }
   const bool heldBack = (D - sweepEnd).norm() > kSamePlace;
   m_heldBack = heldBack;
@@ -208,7 +263,7 @@ void GodObjectProxy::tick(const TickContext& context) {
     // jumping, so the force it renders changes by at most k kCatchUp beyond
     // what the hand's motion explains.
     Vec3 slide = kProxyRelaxation * (step - lift);
-    const double slideLimit = (D - m_lastDevice).norm() + kCatchUp;
+    const double slideLimit = slideAllowance(D);
     if (m_hadDevice && slide.norm() > slideLimit) slide *= slideLimit / slide.norm();
     goal = P1 + lift + slide;
     // 4. Rectifying sweep of the slide. The lift out along the contact normal
@@ -219,9 +274,13 @@ void GodObjectProxy::tick(const TickContext& context) {
     P2 = goal;
     const Vec3 move = goal - lifted;
     const double moveLength = move.norm();
+    bool heldByTarget = false;  // the target stops the proxy short of its goal
     if (d_rectify.value() && m_sweeps && moveLength > kSamePlace) {
       const SweepResult r = sweepPath(lifted, goal, q);
-      if (r.blocked) P2 = lifted + r.freeFraction * move;
+      if (r.blocked) {
+        P2 = lifted + r.freeFraction * move;
+        heldByTarget = (goal - P2).norm() > kSamePlace;
+      }
     }
     // 5. Rendered penetration: the spring from the device to the proxy lifted
     // out by its skin, P2 + skin n - D, in its own direction. The proxy and the
@@ -237,8 +296,15 @@ void GodObjectProxy::tick(const TickContext& context) {
     if (crease) ++m_creaseFrames;
     // The device presses when the spring points out along this contact's
     // normal or the last frame's (a normal that swings for a frame in a
-    // drilled pit must not drop the force for that frame).
-    const bool pressing = spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace);
+    // drilled pit must not drop the force for that frame), or when the target
+    // holds the proxy back from the device: the proxy is then constrained and
+    // the spring acts whatever the normal says. On a vertex or an edge (the
+    // apex of a tetrahedron, the rim of a crack) the nearest face of a point
+    // on it may be a side face, and its horizontal normal is orthogonal to a
+    // device pressing straight down: judged by the normal alone, the proxy
+    // would be held with no force.
+    const bool pressing = spring.dot(normal) > kSamePlace || (m_hadPlane && spring.dot(m_lastNormal) > kSamePlace) ||
+                          (heldByTarget && spring.norm() > kSamePlace);
     if (pressing) {
       s.penetration = spring.norm();
       s.normal = spring / s.penetration;
@@ -250,6 +316,15 @@ void GodObjectProxy::tick(const TickContext& context) {
     m_planePoint = onPlane;
     m_planeNormal = normal;
     m_hasPlane = true;
+  } else if (heldBack && !blocked && beneathPlane && nothingBetween(P1, D, q)) {
+    // Held to last frame's plane, but no surface is there any more: the proxy
+    // slid off the edge the plane came from (a device far beneath a tilted
+    // plane, after a jump), and neither the way to the device nor the device
+    // itself meets the target. Nothing holds the proxy: it joins the device,
+    // and nothing is rendered (a plane kept here would pull the hand
+    // sideways from wherever the proxy is, in free space).
+    ++m_releasedHolds;
+    P2 = D;
   } else if (blocked || heldBack) {
     // Conflicting case: the proxy is free where the sweep stopped it, or where
     // its slide along last frame's plane was held, but the device is beyond:
@@ -294,6 +369,8 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"conflict_frames", double(m_conflictFrames)});
   counters.push_back({"degenerate_normals", double(m_degenerateNormals)});
   counters.push_back({"crease_frames", double(m_creaseFrames)});
+  counters.push_back({"released_holds", double(m_releasedHolds)});
+  counters.push_back({"releases", double(m_releases)});
   if (m_nonFiniteFrames) counters.push_back({"non_finite_frames", double(m_nonFiniteFrames)});
 }
 

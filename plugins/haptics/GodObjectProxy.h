@@ -40,6 +40,9 @@ struct ProxyState {
   bool cutting = false;      // the drill runs this frame (pedal held, or no pedal)
   bool proxyInside = false;  // the displayed proxy visibly overlaps the target
   bool deviceValid = false;
+  // Let go after what shapes the target failed: the proxy is at the device and
+  // no contact is rendered until the tool is clear of the target.
+  bool released = false;
 };
 
 class GodObjectProxy final : public Component {
@@ -62,8 +65,15 @@ class GodObjectProxy final : public Component {
   int applyForce(const Vec3& forceOnTool_N, double t);
 
  private:
+  // mm: how far the proxy may slide along its constraint plane this frame.
+  double slideAllowance(const Vec3& device) const;
+  // Neither the sweep from `from` to the device nor the tool at the device meets the target.
+  bool nothingBetween(const Vec3& from, const Vec3& device, const Quat& orientation) const;
   SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
   void changeTools(const TickContext& context);
+  void letGo(const TickContext& context);
+  // While let go: the proxy at the device, until the tool is clear of the target.
+  void followDevice(ProxyState& s, const Vec3& device, const Quat& orientation);
 
   Link<PointShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
   Link<ShellContactTarget> l_target{this, "target", {.help = "What the tool collides with", .required = true}};
@@ -115,6 +125,10 @@ class GodObjectProxy final : public Component {
   bool m_started = false;
   uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0, m_creaseFrames = 0,
            m_nonFiniteFrames = 0;
+  uint64_t m_releasedHolds = 0;
+  uint64_t m_seenShapeFailures = 0;  // the target's shapeFailures() last seen
+  bool m_released = false;           // let go after a shape failure, until the tool is clear
+  uint64_t m_releases = 0;  // frames a hold to last frame's plane found no surface and let the proxy go
 };
 
 }  // namespace trephine::haptics

@@ -31,6 +31,10 @@ struct NodePositions {
   // for the thesis's refresh of only the moved tetrahedra's boxes.
   bool allMoved = true;
   std::vector<int32_t> movedNodes;
+  // Times the producer gave up its shape and started again from rest (a
+  // diverged FEM reset): a reader that sees it grow knows the shape jumped,
+  // and a tool on it lets go of its contact.
+  uint64_t resets = 0;
 };
 
 struct NodeForce {
@@ -40,6 +44,10 @@ struct NodeForce {
 
 struct NodeForces {
   double t = 0;                // s, haptic frame that produced them
+  // The deformation's reset count (NodePositions::resets) the contact was
+  // measured after: forces measured on a shape from before a reset belong to
+  // a contact that is gone, and the deformation drops them.
+  uint64_t resetsSeen = 0;
   // One entry per node the contact touches. The publisher's channel slots are
   // reserved at 4 nodes per shell point, so a copy never allocates and costs
   // only the entries in use.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "framework/core/BackendBinding.h"
@@ -31,6 +32,7 @@ void TetraBrain::init(InitContext& context) {
   }
   for (Vec3& p : m_mesh.nodes) p = d_scale.value() * p + d_translation.value();
   const MeshReport report = inspectMesh(m_mesh, TetTopology(m_mesh));
+  if (report.unusedNodes > 0) warnUnusedNodes(context, report);
   if (report.invertedTets > 0 && d_inverted.is("refuse")) {
     context.error(d_inverted, report.describe() + "(inverted=\"reorient\" swaps two nodes of each)");
     return;
@@ -50,6 +52,22 @@ void TetraBrain::init(InitContext& context) {
     context.error(d_boxRefresh,
                   "boxRefresh applies to the thesis's searches (search=\"first-tetrahedron\" or "
                   "\"previous-contact\"); the grid search refreshes no boxes");
+}
+
+void TetraBrain::warnUnusedNodes(InitContext& context, const MeshReport& report) const {
+  // A node no tetrahedron holds is no part of the body: it neither collides
+  // nor deforms. Usually a stray vertex of an export (a point at the origin,
+  // or far away) that the author did not mean to keep: name it, where it is.
+  std::ostringstream s;
+  s << report.unusedNodes << (report.unusedNodes == 1 ? " node is" : " nodes are")
+    << " used by no tetrahedron and ignored:";
+  for (size_t i = 0; i < report.firstUnused.size(); ++i) {
+    const Vec3& p = m_mesh.nodes[size_t(report.firstUnused[i])];
+    s << (i ? "," : "") << " node " << report.firstUnused[i] << " (counted from 0) at (" << p.x() << ", " << p.y()
+      << ", " << p.z() << ") mm";
+  }
+  if (report.unusedNodes > report.firstUnused.size()) s << ", ...";
+  context.warning(d_file, s.str());
 }
 
 void TetraBrain::checkNativeOnlyFields(InitContext& context) {
@@ -200,7 +218,10 @@ void TetraBrain::refresh() {
   if (frame.positions.size() != m_mesh.nodeCount()) {
     // Not this mesh's nodes (a faulty deformation). The slot of the last good
     // shape went back to the writer with this fetch, so the rest shape it is.
-    if (newShape) ++m_rejectedFrames;
+    if (newShape) {
+      ++m_rejectedFrames;
+      ++m_shapeFailures;
+    }
     m_nodes = m_mesh.nodes.data();
     m_bounds = m_restBounds;
     askBackend(*this, d_backend, [&] { m_backend->moveNodes({m_mesh.nodes, 0.0, {}, true}); });
@@ -211,6 +232,10 @@ void TetraBrain::refresh() {
   if (newShape) {
     m_lastStep = frame.step;
     ++m_deformationFrames;
+    if (frame.resets != m_deformationResets) {
+      ++m_shapeFailures;
+      m_deformationResets = frame.resets;
+    }
   }
   m_nodes = frame.positions.data();
   m_largestBound = std::max(m_largestBound, frame.displacementBound);
@@ -284,6 +309,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     if (m_nodeForceValue.forces.empty()) return;
     m_nodeForceValue.forces.clear();
     m_nodeForceValue.t = t;
+    m_nodeForceValue.resetsSeen = m_deformationResets;
     m_nodeForces->publish(m_nodeForceValue);
     return;
   }
@@ -308,6 +334,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
   forces.resize(count);
   for (const NodeForce& f : forces) m_nodeSlot[f.node] = -1;
   m_nodeForceValue.t = t;
+  m_nodeForceValue.resetsSeen = m_deformationResets;
   if (m_spreadStart.empty()) {
     m_largestNodeForceCount = std::max<uint64_t>(m_largestNodeForceCount, forces.size());
     m_nodeForces->publish(m_nodeForceValue);
@@ -330,6 +357,7 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     }
   for (const NodeForce& f : spread) m_nodeSlot[f.node] = -1;
   m_spreadValue.t = t;
+  m_spreadValue.resetsSeen = m_deformationResets;
   m_largestNodeForceCount = std::max<uint64_t>(m_largestNodeForceCount, spread.size());
   m_nodeForces->publish(m_spreadValue);
 }
@@ -367,6 +395,7 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
     counters.push_back({"deformation_frames", double(m_deformationFrames)});
     counters.push_back({"largest_displacement_bound_mm", m_largestBound});
     if (m_rejectedFrames) counters.push_back({"rejected_position_frames", double(m_rejectedFrames)});
+    if (m_shapeFailures) counters.push_back({"shape_failures", double(m_shapeFailures)});
   }
   if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
   // The most nodes the tool's force was shared among in a frame: what each

@@ -46,6 +46,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return d_contactDepth.value(); }
   void refresh() override;
+  uint64_t shapeFailures() const override { return m_shapeFailures; }
   void applyContactForce(const Vec3& forceOnTarget_N, double t) override;
   void reportFacts(std::vector<Fact>& facts) const override;
 
@@ -83,6 +84,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
  private:
   TetQueryOptions queryOptions() const;
   void bindBackend();
+  void warnUnusedNodes(InitContext& context, const MeshReport& report) const;
   void checkNativeOnlyFields(InitContext& context);
   void reserveNodeForces(size_t entries);
   void buildForceSpread();
@@ -209,6 +211,8 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   uint64_t m_lastStep = 0;
   double m_largestBound = 0;  // mm
   uint64_t m_deformationFrames = 0, m_rejectedFrames = 0;
+  uint64_t m_deformationResets = 0;  // the deformation's reset count last seen
+  uint64_t m_shapeFailures = 0;      // resets seen and frames rejected (shapeFailures())
 
   // Reaction forces on the nodes (computed only when a component reads them):
   // from the sites of the last contact, kept here until the force is known.
