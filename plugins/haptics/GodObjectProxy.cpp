@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "framework/core/Lifecycle.h"
+#include "plugins/haptics/PassiveAnchor.h"
 
 namespace trephine::haptics {
 
@@ -268,6 +269,19 @@ void GodObjectProxy::tick(const TickContext& context) {
       m_hasPlane = true;
     }
   }
+  // 6. The spring's anchor (the proxy lifted by its skin) moves no farther from
+  // the device than last frame's anchor now is (PassiveAnchor.h): a re-projection
+  // on a drilled surface never pushes harder than the device's own move explains.
+  if (s.contact && s.penetration > 0 && m_hadDevice) {
+    const Vec3 wanted = D + s.penetration * s.normal;
+    const Vec3 anchor = passiveAnchor(m_lastDevice + m_state.penetration * m_state.normal, wanted, D);
+    if (anchor != wanted) {
+      ++m_heldAnchors;
+      P2 += anchor - wanted;
+      s.penetration = (anchor - D).norm();
+      if (s.penetration > 0) s.normal = (anchor - D) / s.penetration;
+    }
+  }
   if (s.contact) ++m_contactFrames;
   // The constraint plane of this frame, for the next one.
   m_hadPlane = m_hasPlane;
@@ -294,6 +308,7 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"conflict_frames", double(m_conflictFrames)});
   counters.push_back({"degenerate_normals", double(m_degenerateNormals)});
   counters.push_back({"crease_frames", double(m_creaseFrames)});
+  counters.push_back({"held_anchor_frames", double(m_heldAnchors)});
   if (m_nonFiniteFrames) counters.push_back({"non_finite_frames", double(m_nonFiniteFrames)});
 }
 

@@ -11,7 +11,10 @@
 //  4. rectifying sweep from the proxy to that projection, so the new position
 //     never crosses another part of the target;
 //  5. penetration = the depth of the device below the constraint plane (the
-//     device-proxy distance along the normal) plus the proxy's own contact depth.
+//     device-proxy distance along the normal) plus the proxy's own contact depth;
+//  6. the spring's anchor (the proxy lifted by that depth) ends no farther from
+//     the device than last frame's anchor now is, so the proxy's own moves
+//     never stretch the spring (PassiveAnchor.h: passive at the sampled-data bound).
 // In a crease, where this frame's projection would cross the last frame's
 // constraint plane, the proxy goes to the nearest point on both planes (the
 // god-object with two constraints, Zilles and Salisbury) and the force points
@@ -115,6 +118,7 @@ class GodObjectProxy final : public Component {
   bool m_started = false;
   uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0, m_creaseFrames = 0,
            m_nonFiniteFrames = 0;
+  uint64_t m_heldAnchors = 0;  // frames whose anchor was held to the last one's distance from the device
 };
 
 }  // namespace trephine::haptics
