@@ -276,7 +276,7 @@ void GodObjectProxy::tick(const TickContext& context) {
     const Vec3 wanted = D + s.penetration * s.normal;
     const Vec3 anchor = passiveAnchor(m_lastDevice + m_state.penetration * m_state.normal, wanted, D);
     if (anchor != wanted) {
-      ++m_heldAnchors;
+      if ((anchor - wanted).norm() > kSamePlace) ++m_heldAnchors;  // not a rounding
       P2 += anchor - wanted;
       s.penetration = (anchor - D).norm();
       if (s.penetration > 0) s.normal = (anchor - D) / s.penetration;
