@@ -269,10 +269,13 @@ void GodObjectProxy::tick(const TickContext& context) {
       m_hasPlane = true;
     }
   }
-  // 6. The spring's anchor (the proxy lifted by its skin) moves no farther from
-  // the device than last frame's anchor now is (PassiveAnchor.h): a re-projection
-  // on a drilled surface never pushes harder than the device's own move explains.
-  if (s.contact && s.penetration > 0 && m_hadDevice) {
+  // 6. On a target being drilled, the spring's anchor (the proxy lifted by its
+  // skin) moves no farther from the device than last frame's anchor now is
+  // (PassiveAnchor.h): a re-projection on the cut surface never pushes harder
+  // than the device's own move explains. Elsewhere the anchor may have to
+  // move out: a deforming target pushes the tool, and a proxy that a sweep
+  // left inside a rigid target is lifted out of it.
+  if (s.contact && s.penetration > 0 && m_hadDevice && target.drills()) {
     const Vec3 wanted = D + s.penetration * s.normal;
     const Vec3 anchor = passiveAnchor(m_lastDevice + m_state.penetration * m_state.normal, wanted, D);
     if (anchor != wanted) {

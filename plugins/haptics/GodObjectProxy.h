@@ -12,9 +12,10 @@
 //     never crosses another part of the target;
 //  5. penetration = the depth of the device below the constraint plane (the
 //     device-proxy distance along the normal) plus the proxy's own contact depth;
-//  6. the spring's anchor (the proxy lifted by that depth) ends no farther from
-//     the device than last frame's anchor now is, so the proxy's own moves
-//     never stretch the spring (PassiveAnchor.h: passive at the sampled-data bound).
+//  6. on a target being drilled, the spring's anchor (the proxy lifted by that
+//     depth) ends no farther from the device than last frame's anchor now is,
+//     so the proxy's own moves never stretch the spring (PassiveAnchor.h:
+//     passive at the sampled-data bound).
 // In a crease, where this frame's projection would cross the last frame's
 // constraint plane, the proxy goes to the nearest point on both planes (the
 // god-object with two constraints, Zilles and Salisbury) and the force points
