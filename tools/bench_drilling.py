@@ -21,7 +21,8 @@ hand   scenes/bench/hand_drill.xml: a simulated hand (HandDevice) pressing and
        drilling over the skull phantom for a minute, closed loop, with k = 0.5,
        1, 2 and 3 N/mm (b = 0.002 N s/mm) and, for contrast, k = 20 N/mm with
        no damping (which the load-time check calls non-passive): the passivity
-       observer, force steps, reversals and what was drilled. DIR/hand.csv.
+       observer (alone and with the device's damping, and what the proxy
+       generated), force steps, reversals and what was drilled. DIR/hand.csv.
 --quick runs one short case of each (a smoke test).
 """
 import argparse
@@ -157,6 +158,8 @@ def hand_experiment(out, quick):
             "k_N_mm": k, "b_Ns_mm": b, "force_max_N": h["force_N"]["max"],
             "energy_in_mJ": p["energy_in_mJ"], "min_energy_in_mJ": p["min_energy_in_mJ"],
             "max_generated_mJ_per_100ms": p["max_generated_mJ_per_100ms"],
+            "min_energy_in_with_device_mJ": p["min_energy_in_with_device_mJ"],
+            "proxy_generated_mJ": p["proxy_generated_mJ"],
             "unexplained_step_p99_N": h["force_step_unexplained_N"]["p99"],
             "unexplained_step_max_N": h["force_step_unexplained_N"]["max"],
             "reversals": h["force_reversals"], "proxy_inside_frames": h["proxy_inside_frames"],
@@ -164,7 +167,9 @@ def hand_experiment(out, quick):
             "step_p99_us": percentile(r["step_us"], 0.99),
         })
         print(f"hand k {k} b {b}: energy in {p['energy_in_mJ']:.2f} mJ, min {p['min_energy_in_mJ']:.3f}, "
-              f"generated {p['max_generated_mJ_per_100ms']:.3f} mJ/100 ms")
+              f"generated {p['max_generated_mJ_per_100ms']:.3f} mJ/100 ms, "
+              f"min with the device's damping {p['min_energy_in_with_device_mJ']:.3f}, "
+              f"proxy generated {p['proxy_generated_mJ']:.3f} mJ")
     write_rows(out / "hand.csv", rows)
     return rows
 

@@ -98,6 +98,10 @@ class ShellContactTarget : public SurfaceTarget {
   // the next frame's shape. A target that cannot be cut, or is not set to,
   // does nothing.
   virtual int cutUnderLoad(const CuttingLoad& load) { return 0; }
+  // Whether tools cut this target (it is set to be drilled): material only
+  // ever leaves it, so the space free of it only grows, and its cut surface is
+  // rough at the scale of its primitives.
+  virtual bool drills() const { return false; }
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;

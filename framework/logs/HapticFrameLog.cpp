@@ -24,18 +24,31 @@ double percentile(std::vector<double>& values, double q) {
 }
 
 // Passivity observer: E after each frame, the force of frame k held while the
-// device moved from x_k to x_{k+1}. Pairs with a non-finite value add nothing.
-void observePassivity(const HapticFrame* frames, size_t n, HapticStats& s) {
+// device moved from x_k to x_{k+1}; with the device's damping b, also E_b.
+// Pairs with a non-finite value add nothing.
+void observePassivity(const HapticFrame* frames, size_t n, std::optional<double> deviceDamping, HapticStats& s) {
   if (n == 0) return;
   std::vector<double> energy(n, 0.0);  // mJ
+  double withDevice = 0;               // mJ, E_b
   for (size_t k = 1; k < n; ++k) {
     const HapticFrame& a = frames[k - 1];
     const HapticFrame& b = frames[k];
     const bool finite = a.force.allFinite() && a.device.allFinite() && b.device.allFinite();
-    energy[k] = energy[k - 1] - (finite ? a.force.dot(b.device - a.device) : 0.0);
+    const Vec3 dx = finite ? Vec3(b.device - a.device) : Vec3::Zero();  // mm
+    energy[k] = energy[k - 1] - (finite ? a.force.dot(dx) : 0.0);
+    if (deviceDamping) {
+      const double dt = b.t - a.t;  // s
+      withDevice += -(finite ? a.force.dot(dx) : 0.0) + (dt > 0 ? *deviceDamping * dx.squaredNorm() / dt : 0.0);
+      s.minEnergyInWithDevice_mJ = std::min(s.minEnergyInWithDevice_mJ, withDevice);
+    }
   }
   s.energyIn_mJ = energy.back();
   s.minEnergyIn_mJ = *std::min_element(energy.begin(), energy.end());
+  if (deviceDamping) {
+    s.hasDeviceDamping = true;
+    s.deviceDamping = *deviceDamping;
+    s.energyInWithDevice_mJ = withDevice;
+  }
   // The largest fall of E within the window: for each frame, the highest E of
   // the frames at most 100 ms before it (a deque of indices of falling E).
   std::deque<size_t> highest;
@@ -44,6 +57,19 @@ void observePassivity(const HapticFrame* frames, size_t n, HapticStats& s) {
     while (!highest.empty() && energy[highest.back()] <= energy[j]) highest.pop_back();
     highest.push_back(j);
     s.maxGeneratedPer100ms_mJ = std::max(s.maxGeneratedPer100ms_mJ, energy[highest.front()] - energy[j]);
+  }
+}
+
+// The spring energy its anchor's moves added beyond the device's own motion:
+// the spring of frame k, s_k, held while the device moved dx would be s_k - dx.
+void proxyGenerated(const HapticFrame* frames, size_t n, const RenderingGains& gains, HapticStats& s) {
+  for (size_t k = 1; k < n; ++k) {
+    const HapticFrame& a = frames[k - 1];
+    const HapticFrame& b = frames[k];
+    if (frameHasNaN(a) || frameHasNaN(b)) continue;
+    const Vec3 held = a.penetration * a.normal - (b.device - a.device);  // mm
+    const Vec3 spring = b.penetration * b.normal;                        // mm
+    s.proxyGenerated_mJ += std::max(0.0, 0.5 * gains.stiffness * (spring.squaredNorm() - held.squaredNorm()));
   }
 }
 
@@ -110,8 +136,11 @@ HapticStats HapticFrameLog::stats() const {
     s.forceStepP99 = percentile(steps, 0.99);
     s.forceStepMax = steps.back();
   }
-  observePassivity(m_frames.data(), m_size, s);
-  if (m_gains) unexplainedSteps(m_frames.data(), m_size, *m_gains, s);
+  observePassivity(m_frames.data(), m_size, m_deviceDamping, s);
+  if (m_gains) {
+    unexplainedSteps(m_frames.data(), m_size, *m_gains, s);
+    proxyGenerated(m_frames.data(), m_size, *m_gains, s);
+  }
   return s;
 }
 

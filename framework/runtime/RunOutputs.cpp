@@ -45,6 +45,12 @@ void writeHaptics(JsonWriter& json, const Simulation& simulation) {
   json.key("passivity").beginObject();
   json.field("energy_in_mJ", s.energyIn_mJ).field("min_energy_in_mJ", s.minEnergyIn_mJ);
   json.field("max_generated_mJ_per_100ms", s.maxGeneratedPer100ms_mJ);
+  if (s.hasDeviceDamping) {
+    json.field("device_damping_N_s_per_mm", s.deviceDamping);
+    json.field("energy_in_with_device_mJ", s.energyInWithDevice_mJ);
+    json.field("min_energy_in_with_device_mJ", s.minEnergyInWithDevice_mJ);
+  }
+  if (s.hasUnexplainedSteps) json.field("proxy_generated_mJ", s.proxyGenerated_mJ);
   json.endObject();
   if (s.hasUnexplainedSteps) {
     json.key("force_step_unexplained_N").beginObject();
@@ -249,7 +255,11 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     out << "passivity energy in " << h.energyIn_mJ << " mJ, min " << h.minEnergyIn_mJ << " mJ, generated max "
         << h.maxGeneratedPer100ms_mJ << " mJ per 100 ms, " << h.forceReversals << " force reversals";
     if (h.hasUnexplainedSteps)
-      out << ", unexplained step max " << h.unexplainedStepMax << " N (p99 " << h.unexplainedStepP99 << ")";
+      out << ", unexplained step max " << h.unexplainedStepMax << " N (p99 " << h.unexplainedStepP99
+          << "), proxy generated " << h.proxyGenerated_mJ << " mJ";
+    if (h.hasDeviceDamping)
+      out << "\n          with the device's damping " << std::defaultfloat << h.deviceDamping << std::fixed
+          << " N s/mm: energy in " << h.energyInWithDevice_mJ << " mJ, min " << h.minEnergyInWithDevice_mJ << " mJ";
     out << "\n";
   }
   out.unsetf(std::ios::fixed);

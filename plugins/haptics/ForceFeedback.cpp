@@ -15,6 +15,9 @@ void ForceFeedback::init(InitContext& context) {
   if (m_log)
     m_log->setRenderingGains(std::max(d_stiffness.value(), d_nextStiffness.value()),
                              std::max(d_damping.value(), d_nextDamping.value()));
+  // The observer counts the device's own damping too, as the check below does.
+  if (m_log)
+    if (const std::optional<double> b = l_proxy->tool().device().physicalDamping()) m_log->setDeviceDamping(*b);
   if ((d_nextStiffness.isSet() || d_nextDamping.isSet()) && !l_proxy->hasToolChange())
     context.error(d_nextStiffness.isSet() ? static_cast<const BaseField&>(d_nextStiffness) : d_nextDamping,
                   "has no effect: the proxy " + l_proxy->path() + " has no toolChange");

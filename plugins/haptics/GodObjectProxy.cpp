@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "framework/core/Lifecycle.h"
+#include "plugins/haptics/PassiveAnchor.h"
 
 namespace trephine::haptics {
 
@@ -343,6 +344,22 @@ void GodObjectProxy::tick(const TickContext& context) {
       m_hasPlane = true;
     }
   }
+  // 6. On a target being drilled, the spring's anchor (the proxy lifted by its
+  // skin) moves no farther from the device than last frame's anchor now is
+  // (PassiveAnchor.h): a re-projection on the cut surface never pushes harder
+  // than the device's own move explains. Elsewhere the anchor may have to
+  // move out: a deforming target pushes the tool, and a proxy that a sweep
+  // left inside a rigid target is lifted out of it.
+  if (s.contact && s.penetration > 0 && m_hadDevice && target.drills()) {
+    const Vec3 wanted = D + s.penetration * s.normal;
+    const Vec3 anchor = passiveAnchor(m_lastDevice + m_state.penetration * m_state.normal, wanted, D);
+    if (anchor != wanted) {
+      if ((anchor - wanted).norm() > kSamePlace) ++m_heldAnchors;  // not a rounding
+      P2 += anchor - wanted;
+      s.penetration = (anchor - D).norm();
+      if (s.penetration > 0) s.normal = (anchor - D) / s.penetration;
+    }
+  }
   if (s.contact) ++m_contactFrames;
   // The constraint plane of this frame, for the next one.
   m_hadPlane = m_hasPlane;
@@ -371,6 +388,7 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"crease_frames", double(m_creaseFrames)});
   counters.push_back({"released_holds", double(m_releasedHolds)});
   counters.push_back({"releases", double(m_releases)});
+  counters.push_back({"held_anchor_frames", double(m_heldAnchors)});
   if (m_nonFiniteFrames) counters.push_back({"non_finite_frames", double(m_nonFiniteFrames)});
 }
 

@@ -11,7 +11,11 @@
 //  4. rectifying sweep from the proxy to that projection, so the new position
 //     never crosses another part of the target;
 //  5. penetration = the depth of the device below the constraint plane (the
-//     device-proxy distance along the normal) plus the proxy's own contact depth.
+//     device-proxy distance along the normal) plus the proxy's own contact depth;
+//  6. on a target being drilled, the spring's anchor (the proxy lifted by that
+//     depth) ends no farther from the device than last frame's anchor now is,
+//     so the proxy's own moves never stretch the spring (PassiveAnchor.h:
+//     passive at the sampled-data bound).
 // In a crease, where this frame's projection would cross the last frame's
 // constraint plane, the proxy goes to the nearest point on both planes (the
 // god-object with two constraints, Zilles and Salisbury) and the force points
@@ -125,10 +129,11 @@ class GodObjectProxy final : public Component {
   bool m_started = false;
   uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0, m_creaseFrames = 0,
            m_nonFiniteFrames = 0;
-  uint64_t m_releasedHolds = 0;
+  uint64_t m_releasedHolds = 0;      // frames a hold to last frame's plane found no surface and let the proxy go
   uint64_t m_seenShapeFailures = 0;  // the target's shapeFailures() last seen
   bool m_released = false;           // let go after a shape failure, until the tool is clear
-  uint64_t m_releases = 0;  // frames a hold to last frame's plane found no surface and let the proxy go
+  uint64_t m_releases = 0;           // times the proxy was let go after a shape failure
+  uint64_t m_heldAnchors = 0;        // frames whose anchor was held to the last one's distance from the device
 };
 
 }  // namespace trephine::haptics

@@ -8,6 +8,9 @@ namespace trephine::haptics {
 
 void SpringForce::init(InitContext& context) {
   m_log = context.claimHapticLog(*this);
+  // The passivity observer counts the device's own damping too (a device with dynamics).
+  if (m_log)
+    if (const std::optional<double> b = l_tool->device().physicalDamping()) m_log->setDeviceDamping(*b);
   m_samples = &context.channels().publish<Sample>(*this, kSampleChannel);
 }
 

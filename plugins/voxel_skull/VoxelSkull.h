@@ -54,7 +54,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   const DensityVolume& volume() const { return m_volume; }
   const SolidGrid& grid() const { return m_grid; }
-  bool drills() const { return d_drill.value(); }
+  bool drills() const override { return d_drill.value(); }
   // Every code change from now on goes to `edits` as well (initialisation
   // only: a reader on another thread that keeps its own copy of the codes).
   void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) { m_grid.edits = std::move(edits); }

@@ -45,6 +45,60 @@ TEST(HapticStabilityFiguresTest, SpringLoadedAndUnloadedOnOnePathReturnsItsEnerg
   EXPECT_NEAR(s.maxGeneratedPer100ms_mJ, k * d * d * (100.0 * N - 4950.0), 1e-9);
 }
 
+TEST(HapticStabilityFiguresTest, TheDevicesDampingPaysForTheHoldExactlyBelowTheSampledDataBound) {
+  // The press and release above, counted with a device damping b: each frame's
+  // move d dissipates at least b d^2 / T, 2 N frames of it, against the
+  // k d^2 N the hold generates: E_b ends at (2 b / T - k) N d^2. Colgate and
+  // Schenkelberg's b > k T / 2 is where it turns negative.
+  constexpr double b = 0.00645, d = 0.001;  // N*s/mm (HandDevice's grip), mm
+  constexpr size_t N = 1000;
+  const double bound = 2.0 * b / kT;  // N/mm, 12.9
+  const auto depth = [&](size_t i) { return d * static_cast<double>(i <= N ? i : 2 * N - i); };
+  for (const double k : {0.99 * bound, 1.01 * bound}) {
+    HapticFrameLog log = makeLog(
+        2 * N + 1, [&](size_t i) { return Vec3(0, 0, -depth(i)); }, [&](size_t i) { return Vec3(0, 0, k * depth(i)); });
+    EXPECT_FALSE(log.stats().hasDeviceDamping) << "no damping handed: no figure";
+    log.setDeviceDamping(b);
+    const HapticStats s = log.stats();
+    ASSERT_TRUE(s.hasDeviceDamping);
+    EXPECT_EQ(s.deviceDamping, b);
+    EXPECT_NEAR(s.energyIn_mJ, -k * d * d * N, 1e-12) << "the environment alone is not passive";
+    EXPECT_NEAR(s.energyInWithDevice_mJ, (bound - k) * N * d * d, 1e-12);
+    if (k < bound)
+      EXPECT_EQ(s.minEnergyInWithDevice_mJ, 0.0) << k;
+    else
+      EXPECT_NEAR(s.minEnergyInWithDevice_mJ, (bound - k) * N * d * d, 1e-12) << k << ": lowest at the end";
+  }
+}
+
+TEST(HapticStabilityFiguresTest, ProxyGeneratedIsWhatTheSpringGainsBeyondTheDevicesMove) {
+  // The device still, the spring's anchor lifted by h a frame for M frames
+  // from a depth p0: the spring gains k ((p0 + M h)^2 - p0^2) / 2 that no
+  // motion of the device explains. Pressed in by the device against an anchor
+  // that stays, it gains as much and none of it counts.
+  constexpr double k = 8.0, p0 = 0.1, h = 0.002;  // N/mm, mm, mm
+  constexpr size_t M = 50;
+  const auto frames = [&](bool deviceMoves) {
+    HapticFrameLog log(M + 1);
+    for (size_t i = 0; i <= M; ++i) {
+      const double p = p0 + h * static_cast<double>(i);
+      HapticFrame f;
+      f.t = static_cast<double>(i) * kT;
+      f.device = deviceMoves ? Vec3(0, 0, p0 - p) : Vec3::Zero();
+      f.penetration = p;
+      f.normal = Vec3(0, 0, 1);
+      f.force = k * p * f.normal;
+      f.contacts = 1;
+      log.record(f);
+    }
+    log.setRenderingGains(k, 0.0);
+    return log.stats();
+  };
+  const double gained = 0.5 * k * (std::pow(p0 + M * h, 2) - p0 * p0);  // mJ
+  EXPECT_NEAR(frames(false).proxyGenerated_mJ, gained, 1e-12);
+  EXPECT_NEAR(frames(true).proxyGenerated_mJ, 0.0, 1e-12);
+}
+
 TEST(HapticStabilityFiguresTest, OneSidedDamperDissipatesItsIntegral) {
   // Down at v for 0.5 s against F = b v (a damper that acts only pressing in),
   // back up at v freely: E = b v^2 * 0.5 s, and never below 0.
