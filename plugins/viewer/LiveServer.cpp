@@ -267,6 +267,8 @@ struct LiveServer::Impl {
       response->result(status);
       response->set(http::field::cache_control, "no-store");
       response->set(http::field::content_type, type);
+      // A refusal or a 404 repeats what the client sent: plain text it stays.
+      response->set("X-Content-Type-Options", "nosniff");
       response->body() = std::move(body);
       response->prepare_payload();
       m_stream.expires_after(m_server.limits.requestTimeout);

@@ -305,6 +305,7 @@ TEST(LiveServerTest, OtherSitesPagesAndReboundNamesAreRefused) {
     c.write(request);
     const std::string answer = c.readAll();
     EXPECT_NE(answer.find("403 Forbidden"), std::string::npos) << request << "\n--\n" << answer;
+    EXPECT_NE(answer.find("X-Content-Type-Options: nosniff"), std::string::npos) << "it echoes the request";
     EXPECT_EQ(answer.find("101"), std::string::npos) << request;
     EXPECT_EQ(answer.find("viewer"), std::string::npos) << request;
     EXPECT_EQ(answer.find("trephineRun"), std::string::npos) << request;
