@@ -7,6 +7,7 @@
 #include <boost/asio/ip/address.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
@@ -14,10 +15,14 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
+#include <stdexcept>
 #include <sstream>
 #include <thread>
 #include <vector>
+
+#include "plugins/viewer/LiveOrigin.h"
 
 namespace trephine::viewer {
 
@@ -35,6 +40,9 @@ struct Message {
 };
 using MessagePtr = std::shared_ptr<const Message>;
 
+// Boost 1.74's Beast has a string_view of its own.
+std::string_view standard(beast::string_view text) { return {text.data(), text.size()}; }
+
 std::string contentType(const std::string& file) {
   if (file.ends_with(".html")) return "text/html; charset=utf-8";
   if (file.ends_with(".js")) return "text/javascript; charset=utf-8";
@@ -48,9 +56,18 @@ std::string contentType(const std::string& file) {
 // io_context would keep both alive forever.
 struct LiveServer::Impl {
   class Stream;
+  class Request;
+
+  // Declared before the io_context: connections still queued in it when it
+  // is destroyed give their slots back here.
+  Limits limits;
+  std::atomic<int> open{0};
+  std::atomic<uint64_t> clientCount{0}, coalescedCount{0}, refusedCount{0}, overLimitCount{0}, timedOutCount{0},
+      acceptErrorCount{0};
 
   asio::io_context io;
   tcp::acceptor acceptor{io};
+  asio::steady_timer acceptPause{io};
   std::thread thread;
   std::filesystem::path assets;
   std::string manifest;
@@ -61,15 +78,38 @@ struct LiveServer::Impl {
   std::vector<std::pair<std::string, MessagePtr>> kept;
   std::map<std::string, size_t> keptIndex;
   std::set<std::shared_ptr<Stream>> streams;  // the io thread's only
-  std::atomic<uint64_t> clientCount{0}, coalescedCount{0};
+
+  // One of the `limits.maxConnections` a connection holds while open.
+  class Slot {
+   public:
+    explicit Slot(std::atomic<int>& open) : m_open(&open) { ++*m_open; }
+    Slot(Slot&& other) noexcept : m_open(std::exchange(other.m_open, nullptr)) {}
+    Slot& operator=(Slot&&) = delete;
+    ~Slot() {
+      if (m_open) --*m_open;
+    }
+
+   private:
+    std::atomic<int>* m_open;
+  };
 
   // One WebSocket client: its keys waiting to be written (each once, with its
   // latest message).
   class Stream : public std::enable_shared_from_this<Stream> {
    public:
-    Stream(tcp::socket socket, Impl& server) : m_ws(std::move(socket)), m_server(server) {}
+    Stream(beast::tcp_stream stream, Impl& server, Slot slot)
+        : m_ws(std::move(stream)), m_server(server), m_slot(std::move(slot)) {}
 
     void start(http::request<http::string_body> request) {
+      // A client must answer the pings that go out after half the idle time,
+      // which it cannot do while it does not read what is sent: either way
+      // it is closed, and its pending write with it.
+      websocket::stream_base::timeout timeout{};
+      timeout.handshake_timeout = m_server.limits.requestTimeout;
+      timeout.idle_timeout = m_server.limits.streamIdleTimeout;
+      timeout.keep_alive_pings = true;
+      m_ws.set_option(timeout);
+      m_ws.read_message_max(kIncomingMessageLimit);
       m_ws.binary(true);
       m_ws.auto_fragment(false);  // a message is one frame: a block's surface is sent whole
       m_ws.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
@@ -98,20 +138,32 @@ struct LiveServer::Impl {
 
     void close() {
       beast::error_code ignored;
-      m_ws.next_layer().close(ignored);
+      beast::get_lowest_layer(m_ws).socket().close(ignored);
     }
 
    private:
-    // Reads (and ignores) what the browser sends, to see it leave.
+    // The browser sends nothing but pongs: anything larger than this (bytes)
+    // closes the connection.
+    static constexpr size_t kIncomingMessageLimit = 4096;
+
+    // Reads (and ignores) what the browser sends, to see it leave; the pongs
+    // that keep it open come through here too.
     void read() {
       m_ws.async_read(m_incoming, [self = shared_from_this()](beast::error_code ec, size_t) {
         if (ec) {
-          self->m_server.streams.erase(self);
+          self->leave(ec);
           return;
         }
         self->m_incoming.consume(self->m_incoming.size());
         self->read();
       });
+    }
+
+    // The connection failed, closed or timed out (the timeout goes to the
+    // read or the write, whichever finishes first).
+    void leave(beast::error_code ec) {
+      if (ec == beast::error::timeout) ++m_server.timedOutCount;
+      m_server.streams.erase(shared_from_this());
     }
 
     void writeNext() {
@@ -126,15 +178,16 @@ struct LiveServer::Impl {
                        [self = shared_from_this(), message](beast::error_code ec, size_t) {
                          self->m_writing = false;
                          if (ec) {
-                           self->m_server.streams.erase(self);
+                           self->leave(ec);
                            return;
                          }
                          self->writeNext();
                        });
     }
 
-    websocket::stream<tcp::socket> m_ws;
+    websocket::stream<beast::tcp_stream> m_ws;
     Impl& m_server;
+    Slot m_slot;
     beast::flat_buffer m_incoming;
     std::deque<std::string> m_order;
     std::map<std::string, MessagePtr> m_pending;
@@ -144,70 +197,126 @@ struct LiveServer::Impl {
   // One HTTP connection: a file, the manifest, or the upgrade to /stream.
   class Request : public std::enable_shared_from_this<Request> {
    public:
-    Request(tcp::socket socket, Impl& server) : m_socket(std::move(socket)), m_server(server) {}
+    Request(tcp::socket socket, Impl& server, Slot slot)
+        : m_stream(std::move(socket)), m_server(server), m_slot(std::move(slot)) {}
 
     void start() {
-      http::async_read(m_socket, m_buffer, m_request, [self = shared_from_this()](beast::error_code ec, size_t) {
+      m_parser.header_limit(kHeaderLimit);
+      m_parser.body_limit(kBodyLimit);
+      m_stream.expires_after(m_server.limits.requestTimeout);
+      http::async_read(m_stream, m_buffer, m_parser, [self = shared_from_this()](beast::error_code ec, size_t) {
+        if (ec == beast::error::timeout) ++self->m_server.timedOutCount;
         if (!ec) self->answer();
       });
     }
 
    private:
+    // A GET has no body, and a browser's headers take a few hundred bytes.
+    static constexpr uint32_t kHeaderLimit = 8192;  // bytes
+    static constexpr uint64_t kBodyLimit = 1024;    // bytes
+
     void answer() {
-      const std::string target(m_request.target());
-      if (websocket::is_upgrade(m_request)) {
-        if (target == "/stream") {
-          ++m_server.clientCount;
-          std::make_shared<Stream>(std::move(m_socket), m_server)->start(std::move(m_request));
-        }
+      const http::request<http::string_body>& request = m_parser.get();
+      const auto hosts = request.equal_range(http::field::host);
+      const auto originAt = request.find(http::field::origin);
+      const std::optional<std::string_view> origin =
+          originAt == request.end() ? std::nullopt : std::optional<std::string_view>(standard(originAt->value()));
+      const std::string refusal = liveRequestRefusal(int(std::distance(hosts.first, hosts.second)),
+                                                     standard(request[http::field::host]), origin, m_server.port);
+      if (!refusal.empty()) {
+        ++m_server.refusedCount;
+        respond(http::status::forbidden, "text/plain", refusal + "\n");
         return;
       }
-      auto response = std::make_shared<http::response<http::string_body>>();
-      response->version(m_request.version());
-      response->keep_alive(false);
-      response->set(http::field::cache_control, "no-store");
+      if (request.method() != http::verb::get) {
+        respond(http::status::method_not_allowed, "text/plain", "the live view answers GET only\n");
+        return;
+      }
+      const std::string target(request.target());
+      if (websocket::is_upgrade(request)) {
+        if (target != "/stream") {
+          respond(http::status::not_found, "text/plain", target + ": the WebSocket is at /stream\n");
+          return;
+        }
+        ++m_server.clientCount;
+        m_stream.expires_never();  // the WebSocket keeps its own time (Stream::start)
+        std::make_shared<Stream>(std::move(m_stream), m_server, std::move(m_slot))->start(m_parser.release());
+        return;
+      }
       std::string path = target.substr(0, target.find('?'));
       if (path == "/") path = "/index.html";
       if (path == "/data/manifest.js") {
-        response->result(http::status::ok);
-        response->set(http::field::content_type, contentType(path));
-        response->body() = m_server.manifest;
+        respond(http::status::ok, contentType(path), m_server.manifest);
       } else if (path == "/index.html" || path == "/viewer.js") {
         std::ifstream in(m_server.assets / path.substr(1), std::ios::binary);
         std::ostringstream bytes;
         bytes << in.rdbuf();
-        response->result(in ? http::status::ok : http::status::internal_server_error);
-        response->set(http::field::content_type, contentType(path));
-        response->body() = bytes.str();
+        respond(in ? http::status::ok : http::status::internal_server_error, contentType(path), bytes.str());
       } else {
-        response->result(http::status::not_found);
-        response->set(http::field::content_type, "text/plain");
-        response->body() = path + ": not here (the live view serves /, /viewer.js, /data/manifest.js, /stream)\n";
+        respond(http::status::not_found, "text/plain",
+                path + ": not here (the live view serves /, /viewer.js, /data/manifest.js, /stream)\n");
       }
+    }
+
+    // Answers and closes; a client that does not take the answer within the
+    // request timeout is closed too.
+    void respond(http::status status, const std::string& type, std::string body) {
+      auto response = std::make_shared<http::response<http::string_body>>();
+      response->version(m_parser.get().version());
+      response->keep_alive(false);
+      response->result(status);
+      response->set(http::field::cache_control, "no-store");
+      response->set(http::field::content_type, type);
+      // A refusal or a 404 repeats what the client sent: plain text it stays.
+      response->set("X-Content-Type-Options", "nosniff");
+      response->body() = std::move(body);
       response->prepare_payload();
-      http::async_write(m_socket, *response, [self = shared_from_this(), response](beast::error_code, size_t) {
+      m_stream.expires_after(m_server.limits.requestTimeout);
+      http::async_write(m_stream, *response, [self = shared_from_this(), response](beast::error_code ec, size_t) {
+        if (ec == beast::error::timeout) ++self->m_server.timedOutCount;
         beast::error_code ignored;
-        self->m_socket.shutdown(tcp::socket::shutdown_send, ignored);
+        self->m_stream.socket().shutdown(tcp::socket::shutdown_send, ignored);
       });
     }
 
-    tcp::socket m_socket;
+    beast::tcp_stream m_stream;
     Impl& m_server;
+    Slot m_slot;
     beast::flat_buffer m_buffer;
-    http::request<http::string_body> m_request;
+    http::request_parser<http::string_body> m_parser;
   };
 
   void accept() {
     acceptor.async_accept([this](beast::error_code ec, tcp::socket socket) {
-      if (ec) return;  // closed
-      std::make_shared<Request>(std::move(socket), *this)->start();
+      if (!acceptor.is_open()) return;  // the server is closing
+      if (ec) {
+        // No descriptor left (EMFILE, ENFILE) or a connection gone before it
+        // was taken: accepting again at once would fail again at once.
+        ++acceptErrorCount;
+        acceptPause.expires_after(limits.acceptRetry);
+        acceptPause.async_wait([this](beast::error_code waitError) {
+          if (!waitError) accept();
+        });
+        return;
+      }
+      if (open.load() >= limits.maxConnections) {
+        ++overLimitCount;
+        beast::error_code ignored;
+        socket.close(ignored);
+      } else {
+        std::make_shared<Request>(std::move(socket), *this, Slot(open))->start();
+      }
       accept();
     });
   }
 };
 
-LiveServer::LiveServer(int port, std::filesystem::path assets, std::string manifest)
+LiveServer::LiveServer(int port, std::filesystem::path assets, std::string manifest, Limits limits)
     : m_impl(std::make_unique<Impl>()) {
+  if (limits.maxConnections < 1 || limits.requestTimeout.count() <= 0 || limits.streamIdleTimeout.count() <= 0 ||
+      limits.acceptRetry.count() <= 0)
+    throw std::invalid_argument("the live view's limits must be positive (connections, timeouts and retry pause)");
+  m_impl->limits = limits;
   m_impl->assets = std::move(assets);
   m_impl->manifest = std::move(manifest);
   beast::error_code ec;
@@ -227,6 +336,7 @@ LiveServer::~LiveServer() {
   asio::post(m_impl->io, [impl = m_impl.get()] {
     beast::error_code ignored;
     impl->acceptor.close(ignored);
+    impl->acceptPause.cancel();
     for (const auto& stream : impl->streams) stream->close();
     impl->streams.clear();
     impl->io.stop();
@@ -237,6 +347,11 @@ LiveServer::~LiveServer() {
 int LiveServer::port() const { return m_impl->port; }
 uint64_t LiveServer::clients() const { return m_impl->clientCount; }
 uint64_t LiveServer::coalesced() const { return m_impl->coalescedCount; }
+uint64_t LiveServer::refused() const { return m_impl->refusedCount; }
+uint64_t LiveServer::overLimit() const { return m_impl->overLimitCount; }
+uint64_t LiveServer::timedOut() const { return m_impl->timedOutCount; }
+uint64_t LiveServer::acceptErrors() const { return m_impl->acceptErrorCount; }
+int LiveServer::openConnections() const { return m_impl->open; }
 
 void LiveServer::send(const std::string& key, std::string bytes, bool binary) {
   auto message = std::make_shared<const Message>(Message{std::move(bytes), binary});

@@ -10,6 +10,15 @@
 // Boost.Beast stays inside LiveServer.cpp; the server has a thread of its
 // own, and send() only takes a lock and posts to it (from the exporter's
 // group, never from the haptic thread).
+//
+// It answers only its own pages (LiveOrigin.h): a request whose Host is not
+// this server by a loopback name, or a WebSocket upgrade from a page of
+// another origin, gets 403. It survives misbehaving clients within Limits:
+// a bounded number of connections (the rest are closed at once, so the
+// server never takes the descriptors the exporter writes its files with),
+// requests that must arrive whole in time, WebSocket clients that must keep
+// reading, and accept() failures that only pause accepting.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -19,9 +28,24 @@ namespace trephine::viewer {
 
 class LiveServer {
  public:
-  // Listens on `port` (0: any free port). Throws std::runtime_error when it
-  // cannot (the port taken, say), saying so.
-  LiveServer(int port, std::filesystem::path assets, std::string manifest);
+  struct Limits {
+    // Connections open at once (HTTP and WebSocket); one more is closed as
+    // soon as it is accepted. Each costs one file descriptor.
+    int maxConnections = 16;
+    // An HTTP request must arrive whole, and its answer be taken, within this.
+    std::chrono::milliseconds requestTimeout{5000};
+    // A WebSocket client that neither reads what is sent nor answers a ping
+    // for this long is closed (a ping goes out after half of it).
+    std::chrono::milliseconds streamIdleTimeout{20000};
+    // After accept() fails (no descriptor left, say), accepting resumes after this.
+    std::chrono::milliseconds acceptRetry{100};
+  };
+
+  // Listens on 127.0.0.1:`port` (0: any free port). Throws std::runtime_error
+  // when it cannot (the port taken, say), saying so.
+  LiveServer(int port, std::filesystem::path assets, std::string manifest, Limits limits);
+  LiveServer(int port, std::filesystem::path assets, std::string manifest)
+      : LiveServer(port, std::move(assets), std::move(manifest), Limits{}) {}
   ~LiveServer();
   LiveServer(const LiveServer&) = delete;
   LiveServer& operator=(const LiveServer&) = delete;
@@ -30,6 +54,11 @@ class LiveServer {
   void send(const std::string& key, std::string bytes, bool binary);
   uint64_t clients() const;    // connections to /stream so far
   uint64_t coalesced() const;  // messages a slow client skipped (a newer one of the same key went instead)
+  uint64_t refused() const;    // requests answered 403: a foreign Host or Origin
+  uint64_t overLimit() const;  // connections closed at once: maxConnections were open
+  uint64_t timedOut() const;   // connections closed for a request too slow or a client not reading
+  uint64_t acceptErrors() const;  // accept() failures (each followed by a pause of acceptRetry)
+  int openConnections() const;
 
  private:
   struct Impl;

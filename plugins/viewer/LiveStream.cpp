@@ -59,8 +59,6 @@ LiveStream::LiveStream(int port, const std::string& name, double duration, const
 LiveStream::~LiveStream() = default;
 
 int LiveStream::port() const { return m_server->port(); }
-uint64_t LiveStream::clients() const { return m_server->clients(); }
-uint64_t LiveStream::coalesced() const { return m_server->coalesced(); }
 
 void LiveStream::sendCells(std::span<const std::array<int32_t, 4>> tets) {
   std::string out;

@@ -38,8 +38,8 @@ class LiveStream {
   ~LiveStream();
 
   int port() const;
-  uint64_t clients() const;
-  uint64_t coalesced() const;
+  // Its counters: clients, messages skipped, requests refused, timeouts.
+  const LiveServer& server() const { return *m_server; }
 
   void sendCells(std::span<const std::array<int32_t, 4>> tets);
   void sendNodes(double t, std::span<const Vec3> nodes);

@@ -6,6 +6,7 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
+#include "plugins/viewer/LiveServer.h"
 
 namespace trephine::viewer {
 
@@ -303,8 +304,14 @@ VtkExporter::~VtkExporter() = default;
 
 void VtkExporter::reportCounters(std::vector<Counter>& counters) const {
   if (m_live) {
-    counters.push_back({"view_clients", double(m_live->clients())});
-    counters.push_back({"view_skipped_messages", double(m_live->coalesced())});  // a slow browser got newer ones
+    const LiveServer& server = m_live->server();
+    counters.push_back({"view_clients", double(server.clients())});
+    counters.push_back({"view_skipped_messages", double(server.coalesced())});  // a slow browser got newer ones
+    // Misbehaving clients the server refused or closed.
+    counters.push_back({"view_refused_requests", double(server.refused())});
+    counters.push_back({"view_connections_over_limit", double(server.overLimit())});
+    counters.push_back({"view_timeouts", double(server.timedOut())});
+    counters.push_back({"view_accept_errors", double(server.acceptErrors())});
   }
   counters.push_back({"frames", double(m_frames)});
   counters.push_back({"files", double(m_files)});

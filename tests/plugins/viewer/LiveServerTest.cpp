@@ -1,16 +1,26 @@
 // The live view's server over plain sockets: the files it serves, its
 // refusals, and the WebSocket's messages: a browser that connects late gets
 // the latest message of every key in the order the keys came, and messages
-// sent from another thread while it listens arrive whole. Labelled threaded
-// (the server has its own thread): it runs under ThreadSanitizer too.
+// sent from another thread while it listens arrive whole. Then misbehaving
+// clients: other sites' pages and rebound names are refused, slow and silent
+// connections are closed, connections beyond the limit are turned away, and
+// running out of descriptors only pauses accepting. Labelled threaded (the
+// server has its own thread): it runs under ThreadSanitizer too.
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
+#include <atomic>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <set>
 #include <string>
 #include <thread>
@@ -24,20 +34,58 @@ namespace {
 
 using viewer::LiveServer;
 
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// Whether `condition` holds within `limit`, looking every 10 ms.
+bool eventually(const std::function<bool()>& condition, milliseconds limit = milliseconds(3000)) {
+  for (const auto end = Clock::now() + limit; Clock::now() < end; std::this_thread::sleep_for(milliseconds(10)))
+    if (condition()) return true;
+  return condition();
+}
+
 class Connection {
  public:
-  explicit Connection(int port) {
+  // A socket not yet connected: connect() needs no new descriptor.
+  Connection() {
     m_fd = socket(AF_INET, SOCK_STREAM, 0);
     timeval timeout{5, 0};  // a server that stops answering fails the test, not hangs it
     setsockopt(m_fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  }
+  explicit Connection(int port) : Connection() { connectTo(port); }
+  ~Connection() { close(m_fd); }
+  bool connectTo(int port) {
     sockaddr_in address{};
     address.sin_family = AF_INET;
     address.sin_port = htons(uint16_t(port));
     address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     m_connected = connect(m_fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+    return m_connected;
   }
-  ~Connection() { close(m_fd); }
+  // A small receive buffer (bytes), set before connecting: a client that
+  // does not read holds up the server's writes sooner.
+  void receiveBuffer(int bytes) { setsockopt(m_fd, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes); }
   bool connected() const { return m_connected; }
+  // True when the server closed the connection (end of stream or reset),
+  // false when it was still open after the 5 s receive timeout; what was
+  // still buffered is read and dropped.
+  bool closedByServer() {
+    char buffer[65536];
+    for (;;) {
+      const ssize_t n = recv(m_fd, buffer, sizeof buffer, 0);
+      if (n > 0) continue;
+      return n == 0 || errno == ECONNRESET;
+    }
+  }
+  // A masked pong frame (RFC 6455: a client masks what it sends) carrying `payload`.
+  void pong(const std::string& payload) {
+    ASSERT_LT(payload.size(), 126u);
+    const uint8_t mask[4] = {1, 2, 3, 4};
+    std::string frame{char(0x8a), char(0x80 | payload.size())};
+    frame.append(reinterpret_cast<const char*>(mask), 4);
+    for (size_t i = 0; i < payload.size(); ++i) frame += char(payload[i] ^ mask[i % 4]);
+    write(frame);
+  }
   void write(const std::string& bytes) { ASSERT_EQ(::send(m_fd, bytes.data(), bytes.size(), 0), ssize_t(bytes.size())); }
   // Everything until the server closes (an HTTP answer).
   std::string readAll() {
@@ -112,16 +160,50 @@ struct Assets {
   }
 };
 
+std::string getRequest(int port, const std::string& target) {
+  return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n";
+}
+
 std::string get(int port, const std::string& target) {
   Connection c(port);
   EXPECT_TRUE(c.connected());
-  c.write("GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  c.write(getRequest(port, target));
   return c.readAll();
 }
 
-const char* kUpgrade =
-    "GET /stream HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
-    "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+// The upgrade to the WebSocket, as a browser at `host` on a page of `origin`
+// (none: a program) sends it.
+std::string upgrade(const std::string& host, const std::string& origin = "") {
+  return "GET /stream HTTP/1.1\r\nHost: " + host + "\r\n" + (origin.empty() ? "" : "Origin: " + origin + "\r\n") +
+         "Upgrade: websocket\r\nConnection: Upgrade\r\n"
+         "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+}
+
+std::string loopback(int port) { return "127.0.0.1:" + std::to_string(port); }
+
+// Opens descriptors until there are none left (the soft limit lowered to 256
+// first, so that it takes few), and gives them all back when it goes.
+class DescriptorsExhausted {
+ public:
+  DescriptorsExhausted() {
+    getrlimit(RLIMIT_NOFILE, &m_saved);
+    rlimit lowered = m_saved;
+    lowered.rlim_cur = std::min<rlim_t>(m_saved.rlim_cur, 256);
+    setrlimit(RLIMIT_NOFILE, &lowered);
+    for (int fd; (fd = open("/dev/null", O_RDONLY)) >= 0;) m_held.push_back(fd);
+    m_error = errno;
+  }
+  ~DescriptorsExhausted() {
+    for (int fd : m_held) close(fd);
+    setrlimit(RLIMIT_NOFILE, &m_saved);
+  }
+  bool exhausted() const { return m_error == EMFILE && !m_held.empty(); }
+
+ private:
+  rlimit m_saved{};
+  std::vector<int> m_held;
+  int m_error = 0;
+};
 
 TEST(LiveServerTest, ServesTheViewerTheManifestAndNothingElse) {
   Assets assets;
@@ -154,7 +236,7 @@ TEST(LiveServerTest, ALateBrowserGetsTheLatestOfEachKeyInOrderThenWhatFollows) {
   server.send("tool", "T2", true);  // replaces T1, keeps its place
   Connection c(server.port());
   ASSERT_TRUE(c.connected());
-  c.write(kUpgrade);
+  c.write(upgrade(loopback(server.port())));
   const std::string header = c.readHeader();
   ASSERT_NE(header.find("101"), std::string::npos) << header;
   // RFC 6455's example key and its answer.
@@ -187,6 +269,192 @@ TEST(LiveServerTest, ALateBrowserGetsTheLatestOfEachKeyInOrderThenWhatFollows) {
   EXPECT_EQ(received, 50);
   EXPECT_EQ(letters.size(), 26u);
   EXPECT_EQ(server.clients(), 1u);
+}
+
+
+// Limits that make the tests quick: timeouts of a few hundred milliseconds.
+LiveServer::Limits quickLimits() {
+  LiveServer::Limits limits;
+  limits.maxConnections = 4;
+  limits.requestTimeout = milliseconds(300);
+  limits.streamIdleTimeout = milliseconds(400);
+  limits.acceptRetry = milliseconds(50);
+  return limits;
+}
+
+TEST(LiveServerTest, OtherSitesPagesAndReboundNamesAreRefused) {
+  Assets assets;
+  LiveServer server(0, assets.dir.path(), "window.trephineRun = {};");
+  const int port = server.port();
+  // Each refused with 403 and no upgrade, and nothing of the stream or the
+  // viewer in the answer.
+  const std::vector<std::string> refused = {
+      upgrade(loopback(port), "http://evil.example"),                          // another site's page
+      upgrade(loopback(port), "http://127.0.0.1:" + std::to_string(port + 1)),  // another local server's page
+      upgrade(loopback(port), "null"),                                         // a page from the disk
+      upgrade("evil.example:" + std::to_string(port)),                         // a name rebound to 127.0.0.1
+      upgrade("evil.example:" + std::to_string(port), "http://evil.example:" + std::to_string(port)),
+      "GET / HTTP/1.1\r\nHost: evil.example:" + std::to_string(port) + "\r\n\r\n",
+      "GET /data/manifest.js HTTP/1.1\r\nHost: evil.example\r\n\r\n",
+      "GET / HTTP/1.1\r\n\r\n",                                                // no Host at all
+      "GET / HTTP/1.1\r\nHost: " + loopback(port) + "\r\nOrigin: http://evil.example\r\n\r\n",
+  };
+  for (const std::string& request : refused) {
+    Connection c(port);
+    ASSERT_TRUE(c.connected());
+    c.write(request);
+    const std::string answer = c.readAll();
+    EXPECT_NE(answer.find("403 Forbidden"), std::string::npos) << request << "\n--\n" << answer;
+    EXPECT_NE(answer.find("X-Content-Type-Options: nosniff"), std::string::npos) << "it echoes the request";
+    EXPECT_EQ(answer.find("101"), std::string::npos) << request;
+    EXPECT_EQ(answer.find("viewer"), std::string::npos) << request;
+    EXPECT_EQ(answer.find("trephineRun"), std::string::npos) << request;
+  }
+  EXPECT_EQ(server.refused(), refused.size());
+  EXPECT_EQ(server.clients(), 0u);
+  // Its own pages, by any loopback name, and programs without an Origin.
+  const std::vector<std::string> accepted = {
+      upgrade(loopback(port), "http://127.0.0.1:" + std::to_string(port)),
+      upgrade("localhost:" + std::to_string(port), "http://localhost:" + std::to_string(port)),
+      upgrade("[::1]:" + std::to_string(port), "http://[::1]:" + std::to_string(port)),
+      upgrade(loopback(port)),
+  };
+  for (const std::string& request : accepted) {
+    Connection c(port);
+    ASSERT_TRUE(c.connected());
+    c.write(request);
+    const std::string header = c.readHeader();
+    EXPECT_NE(header.find("101 Switching Protocols"), std::string::npos) << request << "\n--\n" << header;
+  }
+  EXPECT_EQ(server.clients(), accepted.size());
+  EXPECT_EQ(server.refused(), refused.size());
+  EXPECT_NE(get(port, "/").find("<html>viewer</html>"), std::string::npos);
+}
+
+TEST(LiveServerTest, ARequestThatDoesNotArriveInTimeIsClosed) {
+  Assets assets;
+  LiveServer server(0, assets.dir.path(), "", quickLimits());
+  Connection silent(server.port());
+  Connection partial(server.port());
+  ASSERT_TRUE(silent.connected());
+  ASSERT_TRUE(partial.connected());
+  partial.write("GET / HTTP/1.1\r\nHost: " + loopback(server.port()) + "\r\n");  // never finished
+  const auto start = Clock::now();
+  EXPECT_TRUE(silent.closedByServer()) << "still open after 5 s";
+  EXPECT_TRUE(partial.closedByServer()) << "still open after 5 s";
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  EXPECT_GE(seconds, 0.25) << "closed before the request timeout (0.3 s)";
+  EXPECT_LT(seconds, 2.0) << "closed long after the request timeout (0.3 s)";
+  // Counted once the server's read has ended, which may be just after the client sees the close.
+  EXPECT_TRUE(eventually([&] { return server.timedOut() == 2; })) << server.timedOut();
+  EXPECT_TRUE(eventually([&] { return server.openConnections() == 0; })) << server.openConnections();
+  // And the server still answers.
+  EXPECT_NE(get(server.port(), "/").find("<html>viewer</html>"), std::string::npos);
+}
+
+TEST(LiveServerTest, AWebSocketClientThatStopsReadingIsClosed) {
+  Assets assets;
+  LiveServer server(0, assets.dir.path(), "", quickLimits());
+  Connection c;
+  c.receiveBuffer(4096);
+  ASSERT_TRUE(c.connectTo(server.port()));
+  c.write(upgrade(loopback(server.port())));
+  ASSERT_NE(c.readHeader().find("101"), std::string::npos);
+  // More than the socket buffers on both sides hold (bytes), then not a byte read.
+  const size_t message = 1 << 20;
+  for (int i = 0; i < 16; ++i) server.send("block/" + std::to_string(i), std::string(message, 'x'), true);
+  EXPECT_TRUE(eventually([&] { return server.timedOut() == 1; })) << "no timeout within 3 s of a 0.4 s idle limit";
+  EXPECT_TRUE(eventually([&] { return server.openConnections() == 0; })) << server.openConnections();
+  EXPECT_TRUE(c.closedByServer()) << "still open";
+}
+
+TEST(LiveServerTest, AWebSocketClientThatAnswersPingsStaysOpen) {
+  Assets assets;
+  LiveServer server(0, assets.dir.path(), "", quickLimits());
+  Connection c(server.port());
+  ASSERT_TRUE(c.connected());
+  c.write(upgrade(loopback(server.port())));
+  ASSERT_NE(c.readHeader().find("101"), std::string::npos);
+  // Four idle timeouts (0.4 s) long, with the tool's pose every 50 ms.
+  std::atomic<bool> sending{true};
+  std::thread sender([&] {
+    for (int i = 0; sending; ++i) {
+      server.send("tool", "T" + std::to_string(i), true);
+      std::this_thread::sleep_for(milliseconds(50));
+    }
+  });
+  int pings = 0, messages = 0;
+  for (const auto end = Clock::now() + milliseconds(1600); Clock::now() < end;) {
+    int opcode = -1;
+    const std::string payload = c.readFrame(&opcode);
+    if (opcode == 9) {
+      ++pings;
+      c.pong(payload);
+    } else if (opcode == 2) {
+      ++messages;
+    } else {
+      ADD_FAILURE() << "opcode " << opcode << " (8: the server closed)";
+      break;
+    }
+  }
+  sending = false;
+  sender.join();
+  EXPECT_GE(pings, 2) << "a ping after each half idle timeout (0.2 s) without a message read from the client";
+  EXPECT_GE(messages, 10);
+  EXPECT_EQ(server.timedOut(), 0u);
+  EXPECT_EQ(server.openConnections(), 1);
+}
+
+TEST(LiveServerTest, ConnectionsBeyondTheLimitAreClosedAtOnce) {
+  Assets assets;
+  LiveServer::Limits limits = quickLimits();
+  limits.requestTimeout = milliseconds(10000);  // the idle ones stay while the test looks
+  LiveServer server(0, assets.dir.path(), "", limits);
+  std::vector<std::unique_ptr<Connection>> idle;
+  for (int i = 0; i < limits.maxConnections; ++i) {
+    idle.push_back(std::make_unique<Connection>(server.port()));
+    ASSERT_TRUE(idle.back()->connected());
+  }
+  ASSERT_TRUE(eventually([&] { return server.openConnections() == limits.maxConnections; }))
+      << server.openConnections();
+  {
+    Connection extra(server.port());
+    ASSERT_TRUE(extra.connected()) << "the kernel completes the handshake; the server then closes it";
+    extra.write(getRequest(server.port(), "/"));
+    const auto start = Clock::now();
+    EXPECT_TRUE(extra.closedByServer()) << "one over the limit still open after 5 s";
+    EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 1.0);
+    EXPECT_EQ(server.overLimit(), 1u);
+  }
+  EXPECT_EQ(server.openConnections(), limits.maxConnections);
+  idle.clear();  // they leave: there is room again
+  ASSERT_TRUE(eventually([&] { return server.openConnections() == 0; })) << server.openConnections();
+  EXPECT_NE(get(server.port(), "/").find("<html>viewer</html>"), std::string::npos);
+  EXPECT_EQ(server.overLimit(), 1u);
+}
+
+TEST(LiveServerTest, RunningOutOfDescriptorsOnlyPausesAccepting) {
+  Assets assets;
+  LiveServer server(0, assets.dir.path(), "", quickLimits());
+  Connection client;  // its descriptor taken while there are some left
+  {
+    DescriptorsExhausted exhausted;
+    ASSERT_TRUE(exhausted.exhausted());
+    const auto start = Clock::now();
+    ASSERT_TRUE(client.connectTo(server.port()));
+    // accept() fails with EMFILE, again after each pause (50 ms), and not
+    // more often: at most one more than the pauses that fit.
+    EXPECT_TRUE(eventually([&] { return server.acceptErrors() >= 3; })) << server.acceptErrors();
+    std::this_thread::sleep_until(start + milliseconds(500));
+    const double pauses = std::chrono::duration<double>(Clock::now() - start).count() / 0.050;
+    EXPECT_LE(double(server.acceptErrors()), pauses + 1) << "accept() tried again without pausing";
+  }
+  client.write(getRequest(server.port(), "/"));
+  const std::string answer = client.readAll();
+  EXPECT_NE(answer.find("200 OK"), std::string::npos) << "not served after the descriptors came back: " << answer;
+  EXPECT_NE(answer.find("<html>viewer</html>"), std::string::npos) << answer;
+  // And the ones after it.
+  EXPECT_NE(get(server.port(), "/viewer.js").find("// bundle"), std::string::npos);
 }
 
 }  // namespace

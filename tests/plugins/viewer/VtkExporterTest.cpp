@@ -1,7 +1,7 @@
 // VtkExporter through `trephine run`: the files a run leaves and their index,
 // read back by the project's VTU reader and as XML; nothing written when the
 // run writes no files; clear errors for scenes that name nothing or order the
-// deformation after the exporter.
+// deformation after the exporter; a file that cannot be written reported.
 #include <gtest/gtest.h>
 #include <tinyxml2.h>
 
@@ -233,6 +233,30 @@ TEST(VtkExporterTest, ASkullNotDrilledIsWrittenOnce) {
   for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk"))
     skulls += entry.path().filename().string().starts_with("skull_");
   EXPECT_EQ(skulls, 1);
+}
+
+// A file the exporter cannot write (here a folder stands at its name; a
+// process out of descriptors fails the same way) does not stop the run, and
+// is not lost in silence: it is counted, the run ends with a run-time
+// failure, and summary.json says which file and why.
+TEST(VtkExporterTest, AFileThatCannotBeWrittenIsCountedAndReported) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "run" / "vtk" / "tool_00002.vtp");
+  dir.write("scene.xml", scene(kExporter));
+  std::string output;
+  EXPECT_EQ(test::runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--duration", "0.5", "--out",
+                              (dir / "run").string()},
+                             &output),
+            3)
+      << output;
+  EXPECT_NE(output.find("1 files could not be written; the first: "), std::string::npos) << output;
+  EXPECT_NE(output.find("tool_00002.vtp"), std::string::npos) << output;
+  const std::string summary = test::readFile(dir / "run" / "summary.json");
+  EXPECT_NE(summary.find("\"failed_files\": 1"), std::string::npos) << summary;
+  const size_t errors = summary.find("\"output_errors\"");
+  ASSERT_NE(errors, std::string::npos) << summary;
+  EXPECT_NE(summary.find("tool_00002.vtp", errors), std::string::npos) << summary;
+  EXPECT_TRUE(std::filesystem::exists(dir / "run" / "vtk" / "tool_00003.vtp")) << "the frames after it were written";
 }
 
 }  // namespace
