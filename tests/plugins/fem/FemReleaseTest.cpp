@@ -89,13 +89,27 @@ TEST(FemReleaseTest, TheForceNeverPullsTheHandIntoTheBrainAndTheProxyStaysAboveI
   auto simulation = runPress(dir, &stray);
   ASSERT_TRUE(simulation);
   const HapticFrameLog& log = simulation->hapticLog();
-  size_t pulling = 0;
+  const std::vector<double> released = eventTimes(*simulation, "haptic_released");
+  // A force with a downward part is allowed only around a release: in the
+  // few frames before it, while the diverging shape pushes the proxy aside
+  // (a tenth of a millimetre down, hundredths of a newton, which rounding in
+  // other builds may or may not give), and along the fade of that force.
+  // Before the release was made, the hand was pulled at up to 3.3 N for as
+  // long as it stayed (1,429 frames here).
+  size_t pulling = 0, unexplained = 0;
+  double mostDown = 0;  // N
   double proxyLowest = INFINITY;
   for (size_t i = 0; i < log.size(); ++i) {
-    pulling += log[i].force.z() < -1e-6;
     proxyLowest = std::min(proxyLowest, log[i].proxy.z());
+    if (!(log[i].force.z() < -1e-6)) continue;
+    ++pulling;
+    mostDown = std::min(mostDown, log[i].force.z());
+    bool nearRelease = false;
+    for (double r : released) nearRelease = nearRelease || (log[i].t >= r - 0.005 && log[i].t <= r + kRamp + 1e-9);
+    if (!nearRelease) ++unexplained;
   }
-  EXPECT_EQ(pulling, 0u);
+  EXPECT_EQ(unexplained, 0u) << pulling << " frames pull the hand down";
+  EXPECT_GT(mostDown, -0.1) << "N";
   // The device goes down to 5 mm below the top (z = 10) plus the probe's radius.
   EXPECT_GT(proxyLowest, 10.0 - 5.0);
 }
