@@ -8,14 +8,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/data/TriangleMesh.h"
 #include "framework/math/Math.h"
 
 namespace trephine {
-
-struct TriangleMesh {
-  std::vector<Vec3> vertices;                     // mm, world
-  std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside the solid
-};
 
 class TriangleBlocks {
  public:

@@ -39,7 +39,7 @@ void FixedConstraint::init(InitContext& context) {
     const Box3 box(Vec3(b[0], b[1], b[2]), Vec3(b[3], b[4], b[5]));
     for (size_t i = 0; i < n; ++i) selected[i] = box.contains(model.restNodes()[i]) ? 1 : 0;
   } else {
-    const tetra::TetMesh& mesh = fem.brain().mesh();
+    const TetMesh& mesh = fem.brain().mesh();
     if (mesh.labels.empty()) {
       context.error(d_label, "the mesh " + fem.brain().path() + " carries no tissue labels");
       return;

@@ -21,7 +21,7 @@ std::string seconds(double s) {
 
 void TLEDForceField::init(InitContext& context) {
   tetra::TetraBrain& brain = *l_mesh;
-  const tetra::TetMesh& mesh = brain.mesh();
+  const TetMesh& mesh = brain.mesh();
   const ElementMaterial material = this->material();
   try {
     m_model = std::make_unique<TledModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
@@ -47,7 +47,7 @@ void TLEDForceField::init(InitContext& context) {
   // for a 20 mm brain, and shapes torn apart by a diverging step would
   // reach the collision as if they were valid.
   Box3 box;
-  for (const tetra::TetIndices& tet : mesh.tets)
+  for (const TetIndices& tet : mesh.tets)
     for (int32_t node : tet) box.extend(mesh.nodes[node]);
   m_meshSize = box.diagonal().norm();
   m_channel->reserve(m_frame);  // slots as large as a frame: publishing never allocates

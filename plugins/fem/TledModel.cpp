@@ -49,7 +49,7 @@ std::vector<int32_t> zOrder(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::TetIndices> tets,
+TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const TetIndices> tets,
                      std::span<const ElementMaterial> materials)
     : m_rest(restNodes.begin(), restNodes.end()) {
   if (materials.size() != 1 && materials.size() != tets.size())
@@ -100,7 +100,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const tetra::Tet
   m_mass.assign(n, 0.0);
   for (size_t k = 0; k < el.count; ++k) {
     const size_t e = size_t(elementOrder[k]);  // the mesh's index
-    const tetra::TetIndices& t = tets[e];
+    const TetIndices& t = tets[e];
     for (int a = 0; a < 4; ++a) el.nodeOffset[a][k] = int32_t(kNodeStride) * m_internal[t[a]];
     const Vec3 &X0 = m_rest[t[0]], &X1 = m_rest[t[1]], &X2 = m_rest[t[2]], &X3 = m_rest[t[3]];
     Mat3 D;

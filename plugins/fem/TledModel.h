@@ -23,7 +23,7 @@
 
 #include "framework/math/Math.h"
 #include "plugins/fem/NeoHookean.h"
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::fem {
 
@@ -100,7 +100,7 @@ class TledModel {
   // one entry per tetrahedron, or one for all. Throws std::invalid_argument
   // for an element of non-positive rest volume (its index), or a material out
   // of range. Node and element indices in this interface are the mesh's.
-  TledModel(std::span<const Vec3> restNodes, std::span<const tetra::TetIndices> tets,
+  TledModel(std::span<const Vec3> restNodes, std::span<const TetIndices> tets,
             std::span<const ElementMaterial> materials);
 
   size_t nodeCount() const { return m_rest.size(); }

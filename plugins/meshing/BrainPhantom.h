@@ -10,7 +10,7 @@
 // the top down to kBrainFissureBottomZ, so the hemispheres stay joined below
 // it), and gyri/sulci as a smooth sinusoidal modulation of the surface of up
 // to kBrainGyriAmplitude.
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

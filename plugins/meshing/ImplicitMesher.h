@@ -14,7 +14,7 @@
 #include <functional>
 #include <numbers>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

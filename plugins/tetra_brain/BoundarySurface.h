@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "framework/geometry/TriangleBlocks.h"
-#include "plugins/tetra_brain/TetMesh.h"
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetMesh.h"
+#include "framework/data/TetTopology.h"
 
 namespace trephine::tetra {
 

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetTopology.h"
 
 namespace trephine::tetra {
 

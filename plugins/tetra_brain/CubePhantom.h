@@ -5,7 +5,7 @@
 // tetrahedra; 60 cells: 1,080,000).
 #include <array>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

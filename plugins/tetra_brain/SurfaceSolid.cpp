@@ -20,7 +20,7 @@ bool ownsEdge(double dx, double dy) { return dy > 0 || (dy == 0 && dx < 0); }
 
 }  // namespace
 
-SurfaceSolid::SurfaceSolid(TriangleSurface surface) : m_surface(std::move(surface)) {
+SurfaceSolid::SurfaceSolid(TriangleMesh surface) : m_surface(std::move(surface)) {
   const auto& v = m_surface.vertices;
   for (const Vec3& p : v) m_bounds.extend(p);
   for (const auto& t : m_surface.triangles) {

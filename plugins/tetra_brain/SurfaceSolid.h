@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "plugins/meshing/ImplicitMesher.h"
-#include "plugins/tetra_brain/io/SurfaceReader.h"
+#include "framework/formats/surface/SurfaceReader.h"
 
 namespace trephine::tetra {
 
 class SurfaceSolid {
  public:
   // Throws std::invalid_argument for a surface with no area.
-  explicit SurfaceSolid(TriangleSurface surface);
+  explicit SurfaceSolid(TriangleMesh surface);
 
   int windingNumber(const Vec3& p) const;
   // The solid for the mesher: its distance is -1 inside (a non-zero winding
@@ -35,7 +35,7 @@ class SurfaceSolid {
   size_t triangleCount() const { return m_surface.triangles.size(); }
 
  private:
-  TriangleSurface m_surface;
+  TriangleMesh m_surface;
   Box3 m_bounds;
   double m_area = 0, m_volume = 0;
   // Columns over the xy extent, each listing the triangles whose projection's box overlaps it.

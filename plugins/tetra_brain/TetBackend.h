@@ -12,8 +12,8 @@
 #include "framework/core/CollisionBackend.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/tetra_brain/TetGridSet.h"
-#include "plugins/tetra_brain/TetMesh.h"
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetMesh.h"
+#include "framework/data/TetTopology.h"
 
 namespace trephine::tetra {
 

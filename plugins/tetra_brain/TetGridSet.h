@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetTopology.h"
 #include "plugins/tetra_brain/UniformGrid.h"
 
 namespace trephine::tetra {

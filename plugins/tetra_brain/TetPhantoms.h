@@ -4,7 +4,7 @@
 #include <string>
 
 #include "framework/geometry/ExactShape.h"
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

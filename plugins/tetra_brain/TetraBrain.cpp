@@ -9,8 +9,8 @@
 #include "framework/core/Lifecycle.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
-#include "plugins/tetra_brain/io/VtuWriter.h"
+#include "framework/formats/mesh/TetMeshReader.h"
+#include "framework/formats/mesh/VtuWriter.h"
 
 namespace trephine::tetra {
 
@@ -18,10 +18,10 @@ void TetraBrain::init(InitContext& context) {
   // The collision back-end first: an unknown one is reported with any error of the mesh.
   m_backend = createBackendAt<TetBackend>(context, d_backend, kTypeName);
   checkNativeOnlyFields(context);
-  if (!d_saveDeformed.value().empty() && !isWritableTetMeshName(d_saveDeformed.value()))
+  if (!d_saveDeformed.value().empty() && !formats::isWritableTetMeshName(d_saveDeformed.value()))
     context.error(d_saveDeformed, "expected a mesh file name ending in .vtu, .mesh or .mesh.gz");
   try {
-    m_mesh = d_file.isScheme() ? makeTetPhantom(std::string(d_file.schemeBody())) : readTetMesh(d_file.path());
+    m_mesh = d_file.isScheme() ? makeTetPhantom(std::string(d_file.schemeBody())) : formats::readTetMesh(d_file.path());
   } catch (const std::exception& e) {
     context.error(d_file, e.what());
     return;
@@ -375,7 +375,7 @@ void TetraBrain::finish(FinishContext& context) {
   deformed.tets = m_mesh.tets;
   deformed.labels = m_mesh.labels;
   try {
-    writeTetMeshFile(deformed, context.outputDirectory() / d_saveDeformed.value());
+    formats::writeTetMeshFile(deformed, context.outputDirectory() / d_saveDeformed.value());
   } catch (const std::exception& e) {
     context.error(*this, e.what());
   }

@@ -17,8 +17,8 @@
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/tetra_brain/MeshDeformation.h"
 #include "plugins/tetra_brain/TetBackend.h"
-#include "plugins/tetra_brain/TetMesh.h"
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetMesh.h"
+#include "framework/data/TetTopology.h"
 
 namespace trephine::tetra {
 

@@ -7,7 +7,7 @@
 #include "plugins/tetra_brain/TetGridRebuild.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
-#include "plugins/tetra_brain/io/MeditWriter.h"
+#include "framework/formats/mesh/MeditWriter.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<trephine::tetra::TetraBrain>(
@@ -28,8 +28,8 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
                               .help = trephine::tetra::tetPhantomHelp(),
                               .canWriteRaw = false,
                               .write = [](const std::string& specification, const std::string& file, bool) {
-                                const trephine::tetra::TetMesh mesh = trephine::tetra::makeTetPhantom(specification);
-                                trephine::tetra::writeMeditMesh(mesh, file);
+                                const trephine::TetMesh mesh = trephine::tetra::makeTetPhantom(specification);
+                                trephine::formats::writeMeditMesh(mesh, file);
                                 return std::to_string(mesh.nodeCount()) + " nodes, " + std::to_string(mesh.tetCount()) +
                                        " tetrahedra";
                               }});

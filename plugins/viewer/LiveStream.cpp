@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "framework/runtime/JsonWriter.h"
-#include "framework/vtk/VertexClustering.h"
+#include "framework/data/VertexClustering.h"
 #include "plugins/viewer/LiveServer.h"
 #include "plugins/viewer/ViewerAssets.h"
 
@@ -94,27 +94,27 @@ void LiveStream::sendTool(double t, const Vec3& device, const Vec3& proxy, const
 }
 
 void LiveStream::sendSkullClustered(const TriangleBlocks& blocks, size_t triangles) {
-  std::vector<vtk::TriangleSurface> surfaces(blocks.blockCount());
-  std::vector<const vtk::TriangleSurface*> all;
+  std::vector<TriangleMesh> surfaces(blocks.blockCount());
+  std::vector<const TriangleMesh*> all;
   for (size_t b = 0; b < blocks.blockCount(); ++b) {
-    surfaces[b].points = blocks.block(b).vertices;
+    surfaces[b].vertices = blocks.block(b).vertices;
     surfaces[b].triangles = blocks.block(b).triangles;
     if (!surfaces[b].triangles.empty()) all.push_back(&surfaces[b]);
   }
   double cell = 0;
-  vtk::simplifyToBudget(all, triangles, 0, &cell);
+  simplifyToBudget(all, triangles, 0, &cell);
   if (cell <= 0) {
     for (size_t b = 0; b < surfaces.size(); ++b)
       if (!surfaces[b].triangles.empty()) sendSkullBlock(b, blocks.block(b));
     return;
   }
-  vtk::VertexClustering clustering(cell);
+  VertexClustering clustering(cell);
   std::vector<std::pair<size_t, size_t>> pieces(surfaces.size());
   for (size_t b = 0; b < surfaces.size(); ++b) pieces[b] = clustering.add(surfaces[b]);
   for (size_t b = 0; b < surfaces.size(); ++b) {
     if (surfaces[b].triangles.empty()) continue;
-    const vtk::TriangleSurface piece = clustering.piece(pieces[b]);
-    m_server->send("block/" + std::to_string(b), blockMessage(b, piece.points, piece.triangles), true);
+    const TriangleMesh piece = clustering.piece(pieces[b]);
+    m_server->send("block/" + std::to_string(b), blockMessage(b, piece.vertices, piece.triangles), true);
   }
 }
 

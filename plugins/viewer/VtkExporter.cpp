@@ -49,7 +49,7 @@ void VtkExporter::init(InitContext& context) {
   }
   if (l_brain) {
     const tetra::TetraBrain& brain = *l_brain;
-    const tetra::TetMesh& mesh = brain.mesh();
+    const TetMesh& mesh = brain.mesh();
     m_cells.emplace(std::span<const std::array<int32_t, 4>>(mesh.tets), std::span<const int32_t>(mesh.labels),
                     mesh.nodeCount());
     m_displacement.values.assign(3 * brain.mesh().nodeCount(), 0.0f);

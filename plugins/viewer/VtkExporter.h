@@ -34,7 +34,7 @@
 #include "framework/core/Component.h"
 #include "framework/core/Link.h"
 #include "framework/core/SampleSource.h"
-#include "framework/vtk/VtkXml.h"
+#include "framework/formats/vtk/VtkXml.h"
 #include "plugins/viewer/LiveStream.h"
 #include "plugins/tetra_brain/MeshDeformation.h"
 #include "plugins/tetra_brain/TetraBrain.h"
@@ -120,7 +120,7 @@ class VtkExporter final : public Component {
   // Skull: a copy of its codes, kept current from the drill's changes (the
   // haptic thread pushes them into m_edits), and its surface in blocks.
   std::shared_ptr<ChangeQueue<voxel::VoxelEdit>> m_edits;
-  std::vector<voxel::VoxelCode> m_skullCodes;
+  std::vector<VoxelCode> m_skullCodes;
   voxel::SolidGrid m_skullGrid;
   voxel::BlockedIsoSurface m_skullSurface;
   std::vector<uint8_t> m_blockChanged;       // per block: to write at the next skull frame

@@ -30,7 +30,7 @@
 #include <memory>
 #include <vector>
 
-#include "plugins/voxel_skull/DensityVolume.h"
+#include "framework/data/DensityVolume.h"
 
 namespace trephine::voxel {
 

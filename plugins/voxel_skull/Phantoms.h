@@ -7,7 +7,7 @@
 #include <string>
 
 #include "framework/geometry/ExactShape.h"
-#include "plugins/voxel_skull/DensityVolume.h"
+#include "framework/data/DensityVolume.h"
 
 namespace trephine::voxel {
 

@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "framework/channels/ChangeQueue.h"
-#include "plugins/voxel_skull/DensityVolume.h"
+#include "framework/data/DensityVolume.h"
 #include "plugins/voxel_skull/OccupancyCells.h"
 
 namespace trephine::voxel {

@@ -10,7 +10,7 @@
 
 #include "framework/core/CollisionBackend.h"
 #include "framework/geometry/ShellContactTarget.h"
-#include "plugins/voxel_skull/DensityVolume.h"
+#include "framework/data/DensityVolume.h"
 #include "plugins/voxel_skull/SolidGrid.h"
 
 namespace trephine::voxel {

@@ -9,9 +9,9 @@
 #include "framework/core/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
 #include "plugins/voxel_skull/Phantoms.h"
-#include "plugins/voxel_skull/io/Resample.h"
-#include "plugins/voxel_skull/io/VolumeReader.h"
-#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "framework/formats/volume/Resample.h"
+#include "framework/formats/volume/VolumeReader.h"
+#include "framework/formats/volume/VolumeWriter.h"
 
 namespace trephine::voxel {
 
@@ -42,8 +42,8 @@ void VoxelSkull::init(InitContext& context) {
   m_backend = createBackendAt<VoxelBackend>(context, d_backend, kTypeName);
   DensityVolume volume;
   try {
-    volume = d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : readVolume(d_file.path());
-    if (d_voxelSize.value() > 0) volume = resampleToVoxelSize(volume, d_voxelSize.value());
+    volume = d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : formats::readVolume(d_file.path());
+    if (d_voxelSize.value() > 0) volume = formats::resampleToVoxelSize(volume, d_voxelSize.value());
   } catch (const std::exception& e) {
     context.error(d_file, e.what());
     return;
@@ -160,7 +160,7 @@ void VoxelSkull::finish(FinishContext& context) {
   if (!context.claimOutput(*this, d_saveDrilled.value())) return;
   const std::string& name = d_saveDrilled.value();
   try {
-    writeMetaImage(m_volume, context.outputDirectory() / name, /*compress=*/true);
+    formats::writeMetaImage(m_volume, context.outputDirectory() / name, /*compress=*/true);
   } catch (const std::exception& e) {
     context.error(*this, e.what());
   }

@@ -18,7 +18,7 @@
 #include "framework/core/Component.h"
 #include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
-#include "plugins/voxel_skull/DensityVolume.h"
+#include "framework/data/DensityVolume.h"
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/RemovalLaw.h"
 #include "plugins/voxel_skull/SolidGrid.h"

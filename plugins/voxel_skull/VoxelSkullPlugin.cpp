@@ -5,8 +5,8 @@
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
-#include "plugins/voxel_skull/io/DicomWriter.h"
-#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "framework/formats/volume/DicomWriter.h"
+#include "framework/formats/volume/VolumeWriter.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<trephine::voxel::VoxelSkull>(
@@ -19,9 +19,9 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
                               .help = trephine::voxel::phantomHelp(),
                               .canWriteRaw = true,
                               .write = [](const std::string& specification, const std::string& file, bool raw) {
-                                const trephine::voxel::DensityVolume volume =
+                                const trephine::DensityVolume volume =
                                     trephine::voxel::makePhantom(specification);
-                                trephine::voxel::writeMetaImage(volume, file, !raw);
+                                trephine::formats::writeMetaImage(volume, file, !raw);
                                 const auto& d = volume.dims();
                                 std::ostringstream description;
                                 description << d[0] << " x " << d[1] << " x " << d[2] << " voxels of "
@@ -35,9 +35,9 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
                               .help = "  (the volume phantoms above, e.g. head?voxel=1.0)\n",
                               .canWriteRaw = false,
                               .write = [](const std::string& specification, const std::string& directory, bool) {
-                                const trephine::voxel::DensityVolume volume =
+                                const trephine::DensityVolume volume =
                                     trephine::voxel::makePhantom(specification);
-                                trephine::voxel::writeDicomSeries(volume, directory, "phantom:" + specification);
+                                trephine::formats::writeDicomSeries(volume, directory, "phantom:" + specification);
                                 std::ostringstream description;
                                 description << volume.dims()[2] << " slices of " << volume.dims()[0] << " x "
                                             << volume.dims()[1] << ", " << volume.spacing().x()

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "plugins/voxel_skull/io/VolumeReader.h"
+#include "framework/formats/volume/VolumeReader.h"
 
 namespace {
 
@@ -77,7 +77,7 @@ void BM_ReadCtSeries(benchmark::State& state) {
   const int side = smoke() ? 64 : 512, slices = smoke() ? 8 : int(state.range(0));
   const fs::path dir = series(side, slices);
   for (auto _ : state) {
-    const trephine::voxel::DensityVolume volume = trephine::voxel::readVolume(dir);
+    const trephine::DensityVolume volume = trephine::formats::readVolume(dir);
     benchmark::DoNotOptimize(volume.codes());
   }
   state.SetBytesProcessed(int64_t(state.iterations()) * side * side * slices * 2);
@@ -92,7 +92,7 @@ void BM_ReadTiltedCtSeries(benchmark::State& state) {
   const fs::path dir = series(side, slices, 15);
   std::array<int32_t, 3> dims{};
   for (auto _ : state) {
-    const trephine::voxel::DensityVolume volume = trephine::voxel::readVolume(dir);
+    const trephine::DensityVolume volume = trephine::formats::readVolume(dir);
     dims = volume.dims();
     benchmark::DoNotOptimize(volume.codes());
   }

@@ -41,7 +41,7 @@ void BM_MeshLabelledImage(benchmark::State& state) {
   const trephine::tetra::LabelledImage image = segmentation(side, smoke() ? 4.0 : 0.8);
   size_t tets = 0;
   for (auto _ : state) {
-    const trephine::tetra::TetMesh mesh = trephine::tetra::meshLabelledImage(image, target);
+    const trephine::TetMesh mesh = trephine::tetra::meshLabelledImage(image, target);
     tets = mesh.tetCount();
   }
   state.counters["voxels"] = double(image.labels.size());

@@ -52,7 +52,7 @@ Model& modelFor(int index) {
   static Model models[std::size(kMeshes)];
   Model& m = models[index];
   if (!m.model) {
-    const tetra::TetMesh mesh = tetra::makeTetPhantom(kMeshes[index].spec);
+    const TetMesh mesh = tetra::makeTetPhantom(kMeshes[index].spec);
     const fem::ElementMaterial material{};  // Table 6.1
     m.model = std::make_unique<fem::TledModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
     // A dent: the nodes within 15 mm of the top pushed 3 mm down, held.

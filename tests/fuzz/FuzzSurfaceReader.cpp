@@ -4,15 +4,15 @@
 // trephine view reads with vtk::readTriangleSurface); the rest is the file.
 // Any crash, sanitizer report, hang or exception other than TetMeshReadError
 // (VtkReadError for .vtp) is a reader bug; so is a surface that breaks the
-// TriangleSurface contract.
+// trephine::TriangleMesh contract.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 
-#include "framework/vtk/VtkSurfaceReader.h"
-#include "plugins/tetra_brain/io/SurfaceReader.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/vtk/VtkSurfaceReader.h"
+#include "framework/formats/surface/SurfaceReader.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/fuzz/FuzzInputFiles.h"
 
 namespace {
@@ -26,10 +26,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   trephine::fuzz::writeInputFile(file, data + 1, size - 1);
   if (data[0] % 5 == 4) {
     try {
-      const trephine::vtk::TriangleSurface surface = trephine::vtk::readTriangleSurface(file);
+      const trephine::TriangleMesh surface = trephine::vtk::readTriangleSurface(file);
       for (const auto& triangle : surface.triangles)
         for (const int32_t index : triangle)
-          if (index < 0 || size_t(index) >= surface.points.size()) __builtin_trap();
+          if (index < 0 || size_t(index) >= surface.vertices.size()) __builtin_trap();
     } catch (const trephine::vtk::VtkReadError& error) {
       if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
     }
@@ -38,14 +38,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;
   }
   try {
-    const trephine::tetra::TriangleSurface surface = trephine::tetra::readSurface(file);
+    const trephine::TriangleMesh surface = trephine::formats::readSurface(file);
     if (surface.triangles.empty()) __builtin_trap();
     for (const auto& triangle : surface.triangles)
       for (const int32_t index : triangle)
         if (index < 0 || size_t(index) >= surface.vertices.size()) __builtin_trap();
     for (const trephine::Vec3& vertex : surface.vertices)
       if (!vertex.allFinite()) __builtin_trap();
-  } catch (const trephine::tetra::TetMeshReadError& error) {
+  } catch (const trephine::formats::TetMeshReadError& error) {
     if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
   }
   std::error_code ignored;

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <string>
 
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/fuzz/FuzzInputFiles.h"
 
 namespace {
@@ -34,16 +34,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     trephine::fuzz::writeInputFile(file, content, contentSize);
   }
   try {
-    const trephine::tetra::TetMesh mesh = trephine::tetra::readTetMesh(file);
+    const trephine::TetMesh mesh = trephine::formats::readTetMesh(file);
     // A mesh that was read is usable: tetrahedra, in-range indices, finite nodes, a label per tetrahedron or none.
     if (mesh.tets.empty()) __builtin_trap();
     if (!mesh.labels.empty() && mesh.labels.size() != mesh.tets.size()) __builtin_trap();
-    for (const trephine::tetra::TetIndices& tet : mesh.tets)
+    for (const trephine::TetIndices& tet : mesh.tets)
       for (const int32_t index : tet)
         if (index < 0 || size_t(index) >= mesh.nodes.size()) __builtin_trap();
     for (const trephine::Vec3& node : mesh.nodes)
       if (!node.allFinite()) __builtin_trap();
-  } catch (const trephine::tetra::TetMeshReadError& error) {
+  } catch (const trephine::formats::TetMeshReadError& error) {
     // The message names the file before the problem.
     if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
   }

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <string>
 
-#include "plugins/voxel_skull/io/VolumeReader.h"
+#include "framework/formats/volume/VolumeReader.h"
 #include "tests/fuzz/FuzzInputFiles.h"
 
 namespace {
@@ -25,14 +25,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::filesystem::path file = inputDirectory() / (std::string("input") + kExtensions[data[0] % 3]);
   trephine::fuzz::writeInputFile(file, data + 1, size - 1);
   try {
-    const trephine::voxel::DensityVolume volume = trephine::voxel::readVolume(file);
+    const trephine::DensityVolume volume = trephine::formats::readVolume(file);
     // A volume that was read is usable: codes for every voxel, positive spacing, finite bounds.
     const auto& dims = volume.dims();
     if (volume.voxelCount() != size_t(dims[0]) * size_t(dims[1]) * size_t(dims[2])) __builtin_trap();
     if (!(volume.spacing().minCoeff() > 0) || !volume.bounds().min().allFinite() || !volume.bounds().max().allFinite())
       __builtin_trap();
     if (!(volume.encoding().scale > 0) || !std::isfinite(volume.encoding().offset)) __builtin_trap();
-  } catch (const trephine::voxel::VolumeReadError& error) {
+  } catch (const trephine::formats::VolumeReadError& error) {
     // The message names a file (this one or a data file it refers to) before the problem.
     if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
   }

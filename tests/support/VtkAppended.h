@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "framework/compression/Inflate.h"
+#include "framework/formats/encoding/Inflate.h"
 
 namespace trephine::test {
 
@@ -31,7 +31,7 @@ inline std::vector<T> appendedArray(const std::string& file, uint64_t offset) {
   for (uint64_t b = 0; b < blocks; ++b) {
     const uint64_t size = header(3 + b);
     const std::span<uint8_t> out(bytes.data() + b * blockBytes, b + 1 == blocks ? last : blockBytes);
-    EXPECT_FALSE(inflateExactly({block, size}, out)) << "block " << b;
+    EXPECT_FALSE(formats::inflateExactly({block, size}, out)) << "block " << b;
     block += size;
   }
   std::vector<T> values(bytes.size() / sizeof(T));

@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -22,17 +22,17 @@ TEST(MeshCommandTest, ASurfaceAndABallMeshToTheCountAsked) {
   ASSERT_EQ(runProgram({"mesh", (dir / "tet.off").string(), "--tets", "2000", "--out", (dir / "tet.mesh").string()}, &out),
             0)
       << out;
-  const tetra::TetMesh fromSurface = tetra::readTetMesh(dir / "tet.mesh");
+  const TetMesh fromSurface = formats::readTetMesh(dir / "tet.mesh");
   EXPECT_NEAR(double(fromSurface.tetCount()), 2000.0, 0.05 * 2000) << out;
   ASSERT_EQ(runProgram({"mesh", "phantom:sphere?radius=10", "--tets", "3000", "--out", (dir / "ball.vtu").string()}, &out),
             0)
       << out;
-  EXPECT_NEAR(double(tetra::readTetMesh(dir / "ball.vtu").tetCount()), 3000.0, 0.03 * 3000) << out;
+  EXPECT_NEAR(double(formats::readTetMesh(dir / "ball.vtu").tetCount()), 3000.0, 0.03 * 3000) << out;
   // At a size instead of a count: larger cells, fewer tetrahedra.
   ASSERT_EQ(runProgram({"mesh", "phantom:sphere?radius=10", "--size", "4", "--out", (dir / "coarse.mesh").string()}, &out),
             0)
       << out;
-  EXPECT_LT(tetra::readTetMesh(dir / "coarse.mesh").tetCount(), 3000u) << out;
+  EXPECT_LT(formats::readTetMesh(dir / "coarse.mesh").tetCount(), 3000u) << out;
 }
 
 TEST(MeshCommandTest, TheSameSurfaceGivesTheSameFile) {
@@ -78,7 +78,7 @@ TEST(MeshCommandTest, ALabelledImageMeshesWithItsLabels) {
                        &out),
             0)
       << out;
-  const tetra::TetMesh mesh = tetra::readTetMesh(dir / "head.mesh");
+  const TetMesh mesh = formats::readTetMesh(dir / "head.mesh");
   EXPECT_NEAR(double(mesh.tetCount()), 3000.0, 0.05 * 3000) << out;
   std::set<int32_t> labels(mesh.labels.begin(), mesh.labels.end());
   EXPECT_EQ(labels, (std::set<int32_t>{3, 42})) << out;
@@ -88,7 +88,7 @@ TEST(MeshCommandTest, ALabelledImageMeshesWithItsLabels) {
                        &out),
             0)
       << out;
-  const tetra::TetMesh all = tetra::readTetMesh(dir / "all.vtu");
+  const TetMesh all = formats::readTetMesh(dir / "all.vtu");
   labels = std::set<int32_t>(all.labels.begin(), all.labels.end());
   EXPECT_EQ(labels, (std::set<int32_t>{3, 7, 42})) << out;
   // Errors: a label no voxel holds, values that are no labels, a bad list,

@@ -12,8 +12,9 @@
 #include <set>
 
 #include "tests/support/TestSupport.h"
+#include "framework/formats/encoding/Base64.h"
 #include "tools/trephine/RunViewerData.h"
-#include "framework/vtk/VertexClustering.h"
+#include "framework/data/VertexClustering.h"
 
 namespace trephine {
 namespace {
@@ -44,14 +45,14 @@ std::string decodeBase64(const std::string& text) {
 }
 
 TEST(ViewCommandTest, Base64MatchesTheStandardForEveryRemainder) {
-  EXPECT_EQ(cli::base64(""), "");
-  EXPECT_EQ(cli::base64("f"), "Zg==");
-  EXPECT_EQ(cli::base64("fo"), "Zm8=");
-  EXPECT_EQ(cli::base64("foo"), "Zm9v");
-  EXPECT_EQ(cli::base64("foobar"), "Zm9vYmFy");  // RFC 4648's test vectors
+  EXPECT_EQ(formats::encodeBase64(""), "");
+  EXPECT_EQ(formats::encodeBase64("f"), "Zg==");
+  EXPECT_EQ(formats::encodeBase64("fo"), "Zm8=");
+  EXPECT_EQ(formats::encodeBase64("foo"), "Zm9v");
+  EXPECT_EQ(formats::encodeBase64("foobar"), "Zm9vYmFy");  // RFC 4648's test vectors
   std::string bytes;
   for (int i = 0; i < 1000; ++i) bytes += char(i * 37 + 11);
-  EXPECT_EQ(decodeBase64(cli::base64(bytes)), bytes);
+  EXPECT_EQ(decodeBase64(formats::encodeBase64(bytes)), bytes);
 }
 
 using FakeAssets = test::FakeViewerAssets;
@@ -172,12 +173,12 @@ TEST(ViewCommandTest, TheLiveViewNeedsRealTimeAnExporterAndAPort) {
 }
 
 // A sphere of radius 50 mm as a UV grid of about 2 x n^2 triangles.
-vtk::TriangleSurface sphere(int n) {
-  vtk::TriangleSurface s;
+TriangleMesh sphere(int n) {
+  TriangleMesh s;
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j < 2 * n; ++j) {
       const double theta = M_PI * i / n, phi = M_PI * j / n;
-      s.points.push_back(50 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+      s.vertices.push_back(50 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
     }
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < 2 * n; ++j) {
@@ -189,22 +190,22 @@ vtk::TriangleSurface sphere(int n) {
 }
 
 TEST(VertexClusteringTest, MeetsTheBudgetAndKeepsTheShape) {
-  const vtk::TriangleSurface fine = sphere(150);  // 89,400 triangles, 1 mm edges
+  const TriangleMesh fine = sphere(150);  // 89,400 triangles, 1 mm edges
   ASSERT_GT(fine.triangles.size(), 80000u);
   double cell = 0;
-  const vtk::TriangleSurface coarse = vtk::simplifyToBudget({&fine}, 3000, 0, &cell);
+  const TriangleMesh coarse = simplifyToBudget({&fine}, 3000, 0, &cell);
   EXPECT_LE(coarse.triangles.size(), 3000u);
   EXPECT_GT(coarse.triangles.size(), 1500u) << "the cell grows by 1.25 a try: not far under the budget";
   EXPECT_GT(cell, 1.0);
   // The cluster means stay near the sphere (within a cell of it) and cover
   // it: the clustered surface's area is the sphere's within 10%.
   double area = 0;
-  for (const Vec3& p : coarse.points) EXPECT_NEAR(p.norm(), 50.0, cell);
+  for (const Vec3& p : coarse.vertices) EXPECT_NEAR(p.norm(), 50.0, cell);
   for (const auto& t : coarse.triangles)
-    area += 0.5 * (coarse.points[t[1]] - coarse.points[t[0]]).cross(coarse.points[t[2]] - coarse.points[t[0]]).norm();
+    area += 0.5 * (coarse.vertices[t[1]] - coarse.vertices[t[0]]).cross(coarse.vertices[t[2]] - coarse.vertices[t[0]]).norm();
   EXPECT_NEAR(area, 4 * M_PI * 50 * 50, 0.1 * 4 * M_PI * 50 * 50);
   // Within the budget: unchanged.
-  const vtk::TriangleSurface same = vtk::simplifyToBudget({&fine}, 100000, 0, &cell);
+  const TriangleMesh same = simplifyToBudget({&fine}, 100000, 0, &cell);
   EXPECT_EQ(same.triangles.size(), fine.triangles.size());
   EXPECT_EQ(cell, 0.0);
 }
@@ -213,12 +214,12 @@ TEST(VertexClusteringTest, PiecesAddedApartJoinWithoutCracks) {
   // A sphere cut in two halves and clustered piece by piece gives the
   // clustering of the whole sphere: the same triangles on the same points,
   // no crack along the cut.
-  const vtk::TriangleSurface whole = sphere(60);
-  vtk::TriangleSurface top = whole, bottom = whole;
+  const TriangleMesh whole = sphere(60);
+  TriangleMesh top = whole, bottom = whole;
   top.triangles.clear();
   bottom.triangles.clear();
-  for (const auto& t : whole.triangles) (whole.points[t[0]].z() > 0 ? top : bottom).triangles.push_back(t);
-  auto openEdges = [](const vtk::TriangleSurface& s) {
+  for (const auto& t : whole.triangles) (whole.vertices[t[0]].z() > 0 ? top : bottom).triangles.push_back(t);
+  auto openEdges = [](const TriangleMesh& s) {
     std::map<std::pair<int, int>, int> edges;
     for (const auto& t : s.triangles)
       for (int k = 0; k < 3; ++k) ++edges[std::minmax(t[k], t[(k + 1) % 3])];
@@ -226,15 +227,15 @@ TEST(VertexClusteringTest, PiecesAddedApartJoinWithoutCracks) {
     for (const auto& [edge, n] : edges) open += n == 1;
     return open;
   };
-  vtk::VertexClustering pieces(7.0), one(7.0);
+  VertexClustering pieces(7.0), one(7.0);
   pieces.add(top);
   pieces.add(bottom);
   one.add(whole);
-  const vtk::TriangleSurface joined = pieces.result(), reference = one.result();
+  const TriangleMesh joined = pieces.result(), reference = one.result();
   EXPECT_GT(joined.triangles.size(), 100u);
   EXPECT_EQ(joined.triangles.size(), reference.triangles.size());
   EXPECT_EQ(openEdges(joined), openEdges(reference));
-  EXPECT_EQ(joined.points.size(), reference.points.size());
+  EXPECT_EQ(joined.vertices.size(), reference.vertices.size());
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ int cellSizeCommand(const Arguments& a) {
     return kUsage;
   }
   const std::string meshName = a.positional[0];
-  tetra::TetMesh mesh;
+  TetMesh mesh;
   tetra::CellSizeInputs inputs;
   try {
     mesh = loadTetMesh(meshName);

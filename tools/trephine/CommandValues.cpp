@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "plugins/tetra_brain/TetPhantoms.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 
 namespace trephine::cli {
 
@@ -20,10 +20,10 @@ std::optional<double> numberOption(const Arguments& a, const std::string& name, 
   return value;
 }
 
-tetra::TetMesh loadTetMesh(const std::string& name) {
+TetMesh loadTetMesh(const std::string& name) {
   constexpr std::string_view kPhantom = "phantom:";
   if (name.rfind(kPhantom, 0) == 0) return tetra::makeTetPhantom(name.substr(kPhantom.size()));
-  return tetra::readTetMesh(name);
+  return formats::readTetMesh(name);
 }
 
 }  // namespace trephine::cli

@@ -3,7 +3,7 @@
 #include <optional>
 #include <string>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 #include "tools/trephine/CommandLine.h"
 
 namespace trephine::cli {
@@ -13,6 +13,6 @@ namespace trephine::cli {
 std::optional<double> numberOption(const Arguments& a, const std::string& name, double fallback, std::string& error);
 
 // A tetrahedral mesh file (.mesh, .vtu, .vtk, .msh, .node/.ele) or phantom:SPEC. Throws with the reason.
-tetra::TetMesh loadTetMesh(const std::string& name);
+TetMesh loadTetMesh(const std::string& name);
 
 }  // namespace trephine::cli

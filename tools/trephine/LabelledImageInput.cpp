@@ -6,7 +6,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "plugins/voxel_skull/io/VolumeReader.h"
+#include "framework/formats/volume/VolumeReader.h"
 
 namespace trephine::cli {
 
@@ -29,7 +29,7 @@ std::vector<int32_t> parseLabelList(const std::string& text) {
 }
 
 LabelledImageInput readLabelledImage(const std::filesystem::path& file, const std::vector<int32_t>& keep) {
-  const voxel::DensityVolume volume = voxel::readVolume(file);
+  const DensityVolume volume = formats::readVolume(file);
   LabelledImageInput input;
   tetra::LabelledImage& image = input.image;
   image.dims = volume.dims();

@@ -11,8 +11,8 @@
 #include "plugins/meshing/ImplicitMesher.h"
 #include "plugins/meshing/LabelledImageMesher.h"
 #include "plugins/tetra_brain/SurfaceSolid.h"
-#include "plugins/tetra_brain/io/SurfaceReader.h"
-#include "plugins/tetra_brain/io/VtuWriter.h"
+#include "framework/formats/surface/SurfaceReader.h"
+#include "framework/formats/mesh/VtuWriter.h"
 #include "tools/trephine/LabelledImageInput.h"
 
 namespace trephine::cli {
@@ -49,7 +49,7 @@ Solid solidOf(const std::string& name) {
     const tetra::ImplicitSolid s = tetra::ballSolid(r);
     return {s, "a ball of radius " + std::to_string(r) + " mm"};
   }
-  tetra::SurfaceSolid surface(tetra::readSurface(name));
+  tetra::SurfaceSolid surface(formats::readSurface(name));
   return {surface.solid(), std::to_string(surface.triangleCount()) + " triangles, enclosing " +
                                std::to_string(std::abs(surface.volume())) + " mm^3 (inside: the winding number)"};
 }
@@ -59,10 +59,10 @@ int meshLabelledImageFile(const std::string& input, const std::string& out, cons
   try {
     const LabelledImageInput labelled = readLabelledImage(input, keep);
     const auto start = std::chrono::steady_clock::now();
-    const tetra::TetMesh mesh = tets > 0 ? tetra::meshLabelledImage(labelled.image, tets)
+    const TetMesh mesh = tets > 0 ? tetra::meshLabelledImage(labelled.image, tets)
                                          : tetra::meshLabelledImageAtSize(labelled.image, size);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    tetra::writeTetMeshFile(mesh, out);
+    formats::writeTetMeshFile(mesh, out);
     std::map<int32_t, size_t> perLabel;
     for (int32_t label : mesh.labels) ++perLabel[label];
     std::cout << out << ": " << mesh.tetCount() << " tetrahedra, " << mesh.nodeCount() << " nodes";
@@ -87,7 +87,7 @@ int meshCommand(const Arguments& a) {
   if (a.positional.size() != 1) error = "one input expected";
   else if (!a.get("--out")) error = "--out OUT is required";
   else if (a.has("--tets") == a.has("--size")) error = "give --tets N or --size S (one of them)";
-  else if (!tetra::isWritableTetMeshName(*a.get("--out"))) error = "--out must end in .mesh, .mesh.gz or .vtu";
+  else if (!formats::isWritableTetMeshName(*a.get("--out"))) error = "--out must end in .mesh, .mesh.gz or .vtu";
   long tets = 0;
   double size = 0;
   if (error.empty() && a.has("--tets")) {
@@ -120,9 +120,9 @@ int meshCommand(const Arguments& a) {
   if (isImage) return meshLabelledImageFile(input, out, keep, int(tets), size);
   try {
     const Solid solid = solidOf(input);
-    const tetra::TetMesh mesh =
+    const TetMesh mesh =
         tets > 0 ? tetra::meshImplicitSolid(solid.implicit, int(tets)) : tetra::meshImplicitSolidAtSize(solid.implicit, size);
-    tetra::writeTetMeshFile(mesh, out);
+    formats::writeTetMeshFile(mesh, out);
     std::cout << out << ": " << mesh.tetCount() << " tetrahedra, " << mesh.nodeCount() << " nodes";
     if (tets > 0)
       std::cout << " (" << std::showpos << 100.0 * (double(mesh.tetCount()) / double(tets) - 1) << std::noshowpos

@@ -9,9 +9,10 @@
 #include <set>
 #include <sstream>
 
+#include "framework/formats/encoding/Base64.h"
 #include "framework/runtime/JsonWriter.h"
-#include "framework/vtk/VtkSurfaceReader.h"
-#include "framework/vtk/VertexClustering.h"
+#include "framework/formats/vtk/VtkSurfaceReader.h"
+#include "framework/data/VertexClustering.h"
 
 namespace trephine::cli {
 
@@ -171,12 +172,12 @@ void writeText(const fs::path& file, const std::string& text) {
 }
 
 // The .tri bytes of a surface (see the header).
-std::string triBytes(const vtk::TriangleSurface& surface) {
+std::string triBytes(const TriangleMesh& surface) {
   std::string out = "TRI1";
   auto put = [&](const void* data, size_t size) { out.append(static_cast<const char*>(data), size); };
-  const uint32_t counts[2] = {uint32_t(surface.points.size()), uint32_t(surface.triangles.size())};
+  const uint32_t counts[2] = {uint32_t(surface.vertices.size()), uint32_t(surface.triangles.size())};
   put(counts, sizeof counts);
-  for (const Vec3& p : surface.points) {
+  for (const Vec3& p : surface.vertices) {
     const float xyz[3] = {float(p.x()), float(p.y()), float(p.z())};
     put(xyz, sizeof xyz);
   }
@@ -201,12 +202,12 @@ struct BlockLevel {
 // and 1, the blocks the drill changed, at that state (a file for each state
 // whose drilled blocks differ). The files are named after the part and
 // `level`; their bytes go to `generated`.
-using SurfaceCache = std::map<std::string, vtk::TriangleSurface>;  // block file -> its surface, read once
+using SurfaceCache = std::map<std::string, TriangleMesh>;  // block file -> its surface, read once
 
 BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, const std::string& level,
                           SurfaceCache& surfaces, std::map<std::string, std::string>& generated) {
   BlockLevel out;
-  auto surfaceOf = [&](const std::string& file) -> const vtk::TriangleSurface& {
+  auto surfaceOf = [&](const std::string& file) -> const TriangleMesh& {
     auto [at, added] = surfaces.try_emplace(file);
     if (added) {
       try {
@@ -230,12 +231,12 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     blocks.push_back(current);
   }
   auto drilledSurfaces = [&](size_t s) {
-    std::vector<const vtk::TriangleSurface*> list;
+    std::vector<const TriangleMesh*> list;
     for (const auto& [block, file] : blocks[s])
       if (drilled.count(block)) list.push_back(&surfaceOf(file));
     return list;
   };
-  auto count = [](const std::vector<const vtk::TriangleSurface*>& list) {
+  auto count = [](const std::vector<const TriangleMesh*>& list) {
     size_t n = 0;
     for (const auto* s : list) n += s->triangles.size();
     return n;
@@ -246,14 +247,14 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     if (const size_t n = count(drilledSurfaces(s)); n > drilledMost) drilledMost = n, widest = s;
   size_t drilledBudget = drilledMost;
   if (drilledMost > budget / 2)
-    drilledBudget = vtk::simplifyToBudget(drilledSurfaces(widest), budget / 2, 0, &out.drilledCell).triangles.size();
+    drilledBudget = simplifyToBudget(drilledSurfaces(widest), budget / 2, 0, &out.drilledCell).triangles.size();
   // The untouched blocks: the rest of the budget, never finer than the drilled ones.
-  std::vector<const vtk::TriangleSurface*> untouched;
+  std::vector<const TriangleMesh*> untouched;
   for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
     if (!drilled.count(block)) untouched.push_back(&surfaceOf(file));
   out.surfaceTriangles = count(untouched) + drilledMost;
-  const vtk::TriangleSurface coarse =
-      vtk::simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
+  const TriangleMesh coarse =
+      simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
                        out.drilledCell, &out.coarseCell);
   const std::string coarseName = part.name + "/" + level + "_untouched.tri";
   generated[coarseName] = triBytes(coarse);
@@ -269,13 +270,13 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     if (s > 0 && key == previous) continue;
     previous = key;
     const auto list = drilledSurfaces(s);
-    vtk::TriangleSurface surface;
+    TriangleMesh surface;
     if (out.drilledCell > 0) {
-      vtk::VertexClustering clustering(out.drilledCell);
+      VertexClustering clustering(out.drilledCell);
       for (const auto* piece : list) clustering.add(*piece);
       surface = clustering.result();
     } else {
-      surface = vtk::simplifyToBudget(list, SIZE_MAX, 0);
+      surface = simplifyToBudget(list, SIZE_MAX, 0);
     }
     drawnMost = std::max(drawnMost, surface.triangles.size());
     if (surface.triangles.empty()) {
@@ -293,28 +294,6 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
 }
 
 }  // namespace
-
-std::string base64(std::string_view bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  size_t i = 0;
-  for (; i + 3 <= bytes.size(); i += 3) {
-    const uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8) | uint8_t(bytes[i + 2]);
-    out += kAlphabet[v >> 18];
-    out += kAlphabet[(v >> 12) & 63];
-    out += kAlphabet[(v >> 6) & 63];
-    out += kAlphabet[v & 63];
-  }
-  if (const size_t rest = bytes.size() - i; rest > 0) {
-    const uint32_t v = (uint8_t(bytes[i]) << 16) | (rest == 2 ? uint8_t(bytes[i + 1]) << 8 : 0);
-    out += kAlphabet[v >> 18];
-    out += kAlphabet[(v >> 12) & 63];
-    out += rest == 2 ? kAlphabet[(v >> 6) & 63] : '=';
-    out += '=';
-  }
-  return out;
-}
 
 ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, size_t blockTriangles,
                                   uint64_t chunkBytes) {
@@ -419,7 +398,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
     auto made = generated.find(file);
     const std::string bytes = made != generated.end() ? made->second : readBytes(run / file);
     if (chunkEmpty) chunk << "trephineChunk(" << summary.chunks << ", {\n";
-    chunk << (chunkEmpty ? "" : ",\n") << '"' << JsonWriter::escape(file) << "\": \"" << base64(bytes) << '"';
+    chunk << (chunkEmpty ? "" : ",\n") << '"' << JsonWriter::escape(file) << "\": \"" << formats::encodeBase64(bytes) << '"';
     chunkEmpty = false;
     chunkSize += bytes.size();
     summary.bytes += bytes.size();

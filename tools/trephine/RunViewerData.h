@@ -48,7 +48,5 @@ ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
                                   const std::filesystem::path& dataDirectory, size_t blockTriangles = 8000,
                                   uint64_t chunkBytes = 4u << 20);
 
-// Standard base64 (RFC 4648, padded).
-std::string base64(std::string_view bytes);
 
 }  // namespace trephine::cli

@@ -50,7 +50,7 @@ int toolCellSizeCommand(const Arguments& a) {
     return kUsage;
   }
   const std::string meshName = a.positional[0];
-  tetra::TetMesh mesh;
+  TetMesh mesh;
   try {
     mesh = loadTetMesh(meshName);
     if (mesh.tetCount() == 0) throw std::invalid_argument("the mesh has no tetrahedra");
@@ -64,7 +64,7 @@ int toolCellSizeCommand(const Arguments& a) {
   const bool deforming = a.has("--deforming"), experiment = a.has("--experiment"), calibrate = a.has("--calibrate");
 
   // The back-end's own figures: the average edge and margin it uses.
-  const tetra::TetTopology topology(mesh);
+  const TetTopology topology(mesh);
   tetra::TetQueryOptions query;
   query.deformable = deforming;
   tetra::NativeTetBackend backend;

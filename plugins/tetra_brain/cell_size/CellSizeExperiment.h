@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 #include "plugins/tetra_brain/cell_size/CellSizeModel.h"
 #include "plugins/tetra_brain/cell_size/TetPairCollision.h"
 

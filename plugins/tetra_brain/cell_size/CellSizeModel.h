@@ -20,7 +20,7 @@
 // cell twice as large.
 #include <cstddef>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "framework/math/Math.h"
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

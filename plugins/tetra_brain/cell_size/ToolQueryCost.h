@@ -26,7 +26,7 @@
 #include <span>
 #include <vector>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::tetra {
 

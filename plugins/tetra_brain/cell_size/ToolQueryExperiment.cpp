@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "plugins/tetra_brain/NativeTetBackend.h"
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetTopology.h"
 #include "plugins/tetra_brain/cell_size/CurveMinimum.h"
 
 namespace trephine::tetra {

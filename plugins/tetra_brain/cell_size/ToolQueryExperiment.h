@@ -9,7 +9,7 @@
 // (ToolQueryCost.h) on this machine.
 #include <vector>
 
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 #include "plugins/tetra_brain/cell_size/ToolQueryCost.h"
 
 namespace trephine::tetra {

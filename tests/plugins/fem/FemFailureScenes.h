@@ -8,7 +8,7 @@
 #include <string>
 
 #include "plugins/tetra_brain/CubePhantom.h"
-#include "plugins/tetra_brain/io/MeditWriter.h"
+#include "framework/formats/mesh/MeditWriter.h"
 
 namespace trephine::fem::scenes {
 
@@ -16,9 +16,9 @@ inline constexpr double kCubeSize = 20.0;  // mm, centred on the origin: its top
 
 // The cube as a Medit file, with one node no element holds at `stray` when asked.
 inline std::filesystem::path writeCube(const std::filesystem::path& file, const Vec3* stray = nullptr) {
-  tetra::TetMesh mesh = tetra::makeCubeMesh(6, kCubeSize);
+  TetMesh mesh = tetra::makeCubeMesh(6, kCubeSize);
   if (stray) mesh.nodes.push_back(*stray);
-  tetra::writeMeditMesh(mesh, file);
+  formats::writeMeditMesh(mesh, file);
   return file;
 }
 

@@ -11,8 +11,8 @@
 #include "plugins/fem/TledModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
-#include "plugins/tetra_brain/io/MeditWriter.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/mesh/MeditWriter.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/plugins/fem/FemScenes.h"
 #include "tests/support/TestSupport.h"
 
@@ -42,10 +42,10 @@ TEST(FemSceneTest, TheComponentStepsTheModelExactlyAsTheModelAlone) {
   ASSERT_TRUE(simulation);
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "steps"), 3000);
   EXPECT_EQ(test::componentCounter(*simulation, "FixedConstraint", "fixed_nodes"), 9);
-  const tetra::TetMesh saved = tetra::readTetMesh(out / "bar.vtu");
+  const TetMesh saved = formats::readTetMesh(out / "bar.vtu");
 
   // The same by hand: 3000 steps of 0.1 ms.
-  const tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  const TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
   const ElementMaterial material{};
   TledModel model(bar.nodes, bar.tets, std::span(&material, 1));
   for (size_t i = 0; i < bar.nodeCount(); ++i)
@@ -69,8 +69,8 @@ TEST(FemSceneTest, WithoutGravityNothingMoves) {
   ASSERT_TRUE(simulation);
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "steps"), 1000);
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "largest_displacement_mm"), 0.0);
-  const tetra::TetMesh saved = tetra::readTetMesh(out / "bar.vtu");
-  const tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  const TetMesh saved = formats::readTetMesh(out / "bar.vtu");
+  const TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
   for (size_t i = 0; i < bar.nodeCount(); ++i) EXPECT_EQ(saved.nodes[i], bar.nodes[i]);
 }
 
@@ -88,7 +88,7 @@ TEST(FemSceneTest, ATimeStepAboveTheCriticalOneIsALoadErrorGivingBoth) {
   auto accepted = runFor(barScene("", -10, R"(dt="1e-3" acceptUnstableTimeStep="true")"), 0.5, out.path());
   ASSERT_TRUE(accepted);
   EXPECT_GT(test::componentCounter(*accepted, "TLEDForceField", "non_finite_ticks"), 0);
-  for (const Vec3& p : tetra::readTetMesh(out / "bar.vtu").nodes) EXPECT_TRUE(p.allFinite());
+  for (const Vec3& p : formats::readTetMesh(out / "bar.vtu").nodes) EXPECT_TRUE(p.allFinite());
 }
 
 TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {
@@ -97,13 +97,13 @@ TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {
   ASSERT_TRUE(simulation);
   // Each element whose L / c is below dt (aimed 1 + damping dt above it) gets
   // its density raised by (dt / (L / c))^2, L = 1 / |grad N|.
-  const tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  const TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
   const ElementMaterial material{};
   const double c = ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio)
                        .dilatationalWaveSpeed(material.density);
   const double target = 0.5e-3 * (1 + 11 * 0.5e-3);
   double mass = 0, added = 0;
-  for (const tetra::TetIndices& t : bar.tets) {
+  for (const TetIndices& t : bar.tets) {
     Mat3 D;
     for (int a = 0; a < 3; ++a) D.col(a) = bar.nodes[t[a + 1]] - bar.nodes[t[0]];
     const Mat3 G = D.inverse();
@@ -146,13 +146,13 @@ TEST(FemSceneTest, ALabelsMaterialGoesToItsElementsOnly) {
   // A bar of two tissues: label 1 for x < 50 mm, label 2 beyond. Label 2 ten
   // times stiffer: its waves are sqrt(10) times faster, so the critical step
   // (set by the same element shapes on both sides) falls by sqrt(10).
-  tetra::TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
-  for (const tetra::TetIndices& t : bar.tets) {
+  TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
+  for (const TetIndices& t : bar.tets) {
     const double x = 0.25 * (bar.nodes[t[0]].x() + bar.nodes[t[1]].x() + bar.nodes[t[2]].x() + bar.nodes[t[3]].x());
     bar.labels.push_back(x < 50 ? 1 : 2);
   }
   test::TempDir dir;
-  tetra::writeMeditMesh(bar, dir / "bar.mesh");
+  formats::writeMeditMesh(bar, dir / "bar.mesh");
   const auto scene = [&](const std::string& material) {
     return dir.write("scene.xml", R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
@@ -193,9 +193,9 @@ TEST(FemSceneTest, TheToolsForceDeformsTheBrainWhichComesBackWhenReleased) {
   EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 500);
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "inverted_element_steps"), 0);
   // Released at the end, it has come back (damping 50 /s: a time constant of 40 ms).
-  const tetra::TetMesh rest = tetra::readTetMesh(out / "brain_final.mesh");
+  const TetMesh rest = formats::readTetMesh(out / "brain_final.mesh");
   double remaining = 0;
-  const tetra::TetMesh start = tetra::makeTetPhantom("brain?tets=1200");
+  const TetMesh start = tetra::makeTetPhantom("brain?tets=1200");
   for (size_t i = 0; i < start.nodeCount(); ++i) remaining = std::max(remaining, (rest.nodes[i] - start.nodes[i]).norm());
   EXPECT_LT(remaining, 0.05 * largest) << remaining << " mm left of " << largest << " mm";
 }

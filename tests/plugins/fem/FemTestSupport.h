@@ -3,13 +3,13 @@
 #include <span>
 
 #include "plugins/fem/TledModel.h"
-#include "plugins/tetra_brain/TetMesh.h"
+#include "framework/data/TetMesh.h"
 
 namespace trephine::fem::test {
 
 inline constexpr ElementMaterial kBrain{1e-6, 30.0, 0.3};  // Table 6.1
 
-inline TledModel modelOf(const tetra::TetMesh& mesh, const ElementMaterial& material = kBrain) {
+inline TledModel modelOf(const TetMesh& mesh, const ElementMaterial& material = kBrain) {
   return TledModel(mesh.nodes, mesh.tets, std::span(&material, 1));
 }
 

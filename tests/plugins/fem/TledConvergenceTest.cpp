@@ -18,8 +18,6 @@ namespace trephine::fem {
 namespace {
 
 using tetra::makeBoxMesh;
-using tetra::TetIndices;
-using tetra::TetMesh;
 
 using test::kBrain;
 using test::modelOf;

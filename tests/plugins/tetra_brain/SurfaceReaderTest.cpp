@@ -9,11 +9,11 @@
 
 #include "plugins/meshing/ImplicitMesher.h"
 #include "plugins/tetra_brain/SurfaceSolid.h"
-#include "plugins/tetra_brain/io/SurfaceReader.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/surface/SurfaceReader.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
 
-namespace trephine::tetra {
+namespace trephine::formats {
 namespace {
 
 // A box [0, 2] x [0, 3] x [0, 4] as 8 corners and 6 quads, normals out.
@@ -110,10 +110,10 @@ std::string plyText(const std::string& format) {
 }
 
 // The box as read: 8 vertices, 12 triangles, volume 24 with normals out.
-void expectBox(const TriangleSurface& s, const std::string& what) {
+void expectBox(const TriangleMesh& s, const std::string& what) {
   EXPECT_EQ(s.vertices.size(), 8u) << what;
   EXPECT_EQ(s.triangles.size(), 12u) << what;
-  const SurfaceSolid solid(s);
+  const tetra::SurfaceSolid solid(s);
   EXPECT_NEAR(solid.volume(), 24.0, 1e-9) << what;
   EXPECT_NEAR(solid.area(), 2 * (6 + 8 + 12), 1e-9) << what;
 }
@@ -128,13 +128,13 @@ TEST(SurfaceReaderTest, EachFormatGivesTheSameBox) {
   dir.write("box_little.ply", plyText("binary_little_endian"));
   dir.write("box_big.ply", plyText("binary_big_endian"));
   for (const char* name : {"box.off", "box.obj", "box.stl", "box_binary.stl", "box_ascii.ply", "box_little.ply", "box_big.ply"})
-    expectBox(readSurface(dir / name), name);
+    expectBox(formats::readSurface(dir / name), name);
 }
 
 std::string errorOf(const test::TempDir& dir, const std::string& name, const std::string& content) {
   dir.write(name, content);
   try {
-    readSurface(dir / name);
+    formats::readSurface(dir / name);
   } catch (const TetMeshReadError& e) {
     return e.what();
   }
@@ -179,7 +179,7 @@ TEST(SurfaceReaderTest, BadFilesAreErrorsThatSayWhereAndWhat) {
 TEST(SurfaceSolidTest, TheWindingNumberIsOneInsideAndZeroOutsideOnEdgesAndCornersToo) {
   test::TempDir dir;
   dir.write("box.off", offText());
-  const SurfaceSolid solid(readSurface(dir / "box.off"));
+  const tetra::SurfaceSolid solid(formats::readSurface(dir / "box.off"));
   EXPECT_EQ(solid.windingNumber(Vec3(1, 1.5, 2)), 1);
   EXPECT_EQ(solid.windingNumber(Vec3(3, 1.5, 2)), 0);
   EXPECT_EQ(solid.windingNumber(Vec3(1, 1.5, 5)), 0);
@@ -195,7 +195,7 @@ TEST(SurfaceSolidTest, TheWindingNumberIsOneInsideAndZeroOutsideOnEdgesAndCorner
 
 TEST(SurfaceSolidTest, APartThroughAnotherCountsTwiceAndAnOpenSurfaceIsRefused) {
   // Two boxes, the second shifted into the first: one surface passing through itself.
-  TriangleSurface two;
+  TriangleMesh two;
   for (int copy = 0; copy < 2; ++copy) {
     const int32_t base = int32_t(two.vertices.size());
     for (const Vec3& p : kCorners) two.vertices.push_back(p + Vec3(copy, 0, 0));
@@ -204,14 +204,14 @@ TEST(SurfaceSolidTest, APartThroughAnotherCountsTwiceAndAnOpenSurfaceIsRefused) 
       two.triangles.push_back({base + q[0], base + q[2], base + q[3]});
     }
   }
-  const SurfaceSolid solid(two);
+  const tetra::SurfaceSolid solid(two);
   EXPECT_EQ(solid.windingNumber(Vec3(0.5, 1, 1)), 1);
   EXPECT_EQ(solid.windingNumber(Vec3(1.5, 1, 1)), 2);
   EXPECT_EQ(solid.windingNumber(Vec3(2.5, 1, 1)), 1);
-  TriangleSurface open = two;
+  TriangleMesh open = two;
   open.triangles.pop_back();
   try {
-    SurfaceSolid refused(open);
+    tetra::SurfaceSolid refused(open);
     ADD_FAILURE() << "an open surface was taken";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("not closed: 3 edges"), std::string::npos) << e.what();
@@ -221,8 +221,8 @@ TEST(SurfaceSolidTest, APartThroughAnotherCountsTwiceAndAnOpenSurfaceIsRefused) 
 TEST(SurfaceSolidTest, ABoxSurfaceMeshesToTheCountAndFillsTheBox) {
   test::TempDir dir;
   dir.write("box.obj", objText());
-  const SurfaceSolid surface(readSurface(dir / "box.obj"));
-  const TetMesh mesh = meshImplicitSolid(surface.solid(), 3000);
+  const tetra::SurfaceSolid surface(formats::readSurface(dir / "box.obj"));
+  const TetMesh mesh = tetra::meshImplicitSolid(surface.solid(), 3000);
   EXPECT_NEAR(double(mesh.tetCount()), 3000.0, 0.03 * 3000) << mesh.tetCount();
   double volume = 0;
   for (const TetIndices& t : mesh.tets)
@@ -237,4 +237,4 @@ TEST(SurfaceSolidTest, ABoxSurfaceMeshesToTheCountAndFillsTheBox) {
 }
 
 }  // namespace
-}  // namespace trephine::tetra
+}  // namespace trephine::formats

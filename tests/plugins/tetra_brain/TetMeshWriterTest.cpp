@@ -14,18 +14,18 @@
 #include <vector>
 
 #include "plugins/tetra_brain/TetPhantoms.h"
-#include "plugins/tetra_brain/io/MeditWriter.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/mesh/MeditWriter.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
 
-namespace trephine::tetra {
+namespace trephine::formats {
 namespace {
 
 using test::runProgram;
 using test::TempDir;
 
 // The cube's 200 / 7 mm spacing is not a short decimal: a lossy number format would show.
-TetMesh cubePhantom() { return makeTetPhantom("cube?cells=7"); }
+TetMesh cubePhantom() { return tetra::makeTetPhantom("cube?cells=7"); }
 
 std::vector<std::string> directoryEntries(const std::filesystem::path& directory) {
   std::vector<std::string> names;
@@ -54,7 +54,7 @@ void expectSameMesh(const TetMesh& read, const TetMesh& written) {
 void expectWriteError(const TetMesh& mesh, const std::filesystem::path& file,
                       std::initializer_list<std::string> parts) {
   try {
-    writeMeditMesh(mesh, file);
+    formats::writeMeditMesh(mesh, file);
     ADD_FAILURE() << file << " was written, expected an error";
   } catch (const TetMeshWriteError& error) {
     const std::string message = error.what();
@@ -67,25 +67,25 @@ TEST(MeditWriter, CubePhantomReadsBackBitIdentical) {
   const TempDir dir;
   const TetMesh cube = cubePhantom();
   ASSERT_EQ(cube.tetCount(), 1715u);
-  writeMeditMesh(cube, dir / "cube.mesh");
+  formats::writeMeditMesh(cube, dir / "cube.mesh");
   const std::string text = test::readFile(dir / "cube.mesh");
   EXPECT_EQ(text.substr(0, 48), "MeshVersionFormatted 2\nDimension 3\nVertices 512\n") << text.substr(0, 60);
   EXPECT_TRUE(text.ends_with("\nEnd\n"));
-  expectSameMesh(readTetMesh(dir / "cube.mesh"), cube);
+  expectSameMesh(formats::readTetMesh(dir / "cube.mesh"), cube);
   EXPECT_EQ(directoryEntries(dir.path()), std::vector<std::string>{"cube.mesh"}) << "a temporary file was left";
 }
 
 TEST(MeditWriter, GzippedWhenTheNameEndsInGz) {
   const TempDir dir;
   const TetMesh cube = cubePhantom();
-  writeMeditMesh(cube, dir / "cube.mesh");
-  writeMeditMesh(cube, dir / "cube.mesh.gz");
+  formats::writeMeditMesh(cube, dir / "cube.mesh");
+  formats::writeMeditMesh(cube, dir / "cube.mesh.gz");
   const std::string compressed = test::readFile(dir / "cube.mesh.gz");
   ASSERT_GE(compressed.size(), 2u);
   EXPECT_EQ(uint8_t(compressed[0]), 0x1f);
   EXPECT_EQ(uint8_t(compressed[1]), 0x8b);
   EXPECT_LT(compressed.size(), std::filesystem::file_size(dir / "cube.mesh") / 2);
-  expectSameMesh(readTetMesh(dir / "cube.mesh.gz"), cube);
+  expectSameMesh(formats::readTetMesh(dir / "cube.mesh.gz"), cube);
 }
 
 TEST(MeditWriter, LabelsBecomeReferencesAndExtremeValuesSurvive) {
@@ -94,8 +94,8 @@ TEST(MeditWriter, LabelsBecomeReferencesAndExtremeValuesSurvive) {
   for (size_t t = 0; t < mesh.tetCount(); ++t) mesh.labels.push_back(int32_t(t % 3) - 1);
   mesh.nodes[0] = Vec3(-0.0, std::numeric_limits<double>::denorm_min(), 0.1);
   mesh.nodes[1] = Vec3(std::numeric_limits<double>::max(), -std::numeric_limits<double>::min(), 1.0 / 3.0);
-  writeMeditMesh(mesh, dir / "labelled.mesh");
-  expectSameMesh(readTetMesh(dir / "labelled.mesh"), mesh);
+  formats::writeMeditMesh(mesh, dir / "labelled.mesh");
+  expectSameMesh(formats::readTetMesh(dir / "labelled.mesh"), mesh);
 }
 
 TEST(MeditWriter, MissingDirectoryNamesThePathAndLeavesNothing) {
@@ -135,9 +135,9 @@ TEST(TrephinePhantomMesh, WritesAMeshTheReaderLoads) {
   std::string out;
   ASSERT_EQ(runProgram({"phantom", "cube?cells=7", "--out", (dir / "cube.mesh").string()}, &out), 0) << out;
   EXPECT_NE(out.find("512 nodes, 1715 tetrahedra"), std::string::npos) << out;
-  EXPECT_EQ(readTetMesh(dir / "cube.mesh").tetCount(), 1715u);
+  EXPECT_EQ(formats::readTetMesh(dir / "cube.mesh").tetCount(), 1715u);
   ASSERT_EQ(runProgram({"phantom", "cube?cells=7&size=50", "--out", (dir / "small.mesh.gz").string()}, &out), 0) << out;
-  const TetMesh small = readTetMesh(dir / "small.mesh.gz");
+  const TetMesh small = formats::readTetMesh(dir / "small.mesh.gz");
   EXPECT_EQ(small.tetCount(), 1715u);
   EXPECT_EQ(small.nodes.front(), Vec3(-25, -25, -25));
 }
@@ -167,4 +167,4 @@ TEST(TrephinePhantomMesh, WithoutArgumentsListsBothKinds) {
 }
 
 }  // namespace
-}  // namespace trephine::tetra
+}  // namespace trephine::formats

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "plugins/tetra_brain/CubePhantom.h"
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetTopology.h"
 #include "plugins/tetra_brain/UniformGrid.h"
 
 namespace trephine::tetra {

@@ -8,7 +8,7 @@
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
-#include "plugins/tetra_brain/TetTopology.h"
+#include "framework/data/TetTopology.h"
 #include "plugins/tetra_brain/cell_size/ToolQueryCost.h"
 #include "plugins/haptics/ShellSampling.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"

@@ -9,9 +9,9 @@
 #include <regex>
 
 #include "plugins/tetra_brain/CubePhantom.h"
-#include "plugins/tetra_brain/io/TetMeshReader.h"
+#include "framework/formats/mesh/TetMeshReader.h"
 #include "plugins/voxel_skull/IsoSurface.h"
-#include "plugins/voxel_skull/io/VolumeReader.h"
+#include "framework/formats/volume/VolumeReader.h"
 #include "tests/support/TestSupport.h"
 #include "tests/support/VtkAppended.h"
 
@@ -80,8 +80,8 @@ TEST(VtkExporterTest, ARunLeavesItsFilesAndAnIndexInTime) {
   EXPECT_NEAR(lastTime, 1.0, 1.0 / 30 + 1e-9);
   // The brain read back: the phantom's mesh, its nodes where the wave put them
   // (within its 0.5 mm amplitude of rest, and not all at rest).
-  const tetra::TetMesh rest = tetra::makeCubeMesh(6);
-  const tetra::TetMesh brain = tetra::readTetMesh(dir / "run" / lastBrain);
+  const TetMesh rest = tetra::makeCubeMesh(6);
+  const TetMesh brain = formats::readTetMesh(dir / "run" / lastBrain);
   ASSERT_EQ(brain.nodeCount(), rest.nodeCount());
   ASSERT_EQ(brain.tetCount(), rest.tetCount());
   double largest = 0;
@@ -214,7 +214,7 @@ TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
     ++firstBlocks;
   EXPECT_GT(blockFiles, firstBlocks) << "drilled blocks were written again";
   EXPECT_LT(blockFiles, firstBlocks + firstBlocks / 4) << "only the drilled ones";
-  voxel::DensityVolume drilled = voxel::readVolume(dir / "run" / "drilled.mha");
+  DensityVolume drilled = formats::readVolume(dir / "run" / "drilled.mha");
   voxel::BlockedIsoSurface expected;
   expected.build(voxel::SolidGrid::of(drilled, 600.0, true));
   const voxel::TriangleMesh merged = expected.merged();

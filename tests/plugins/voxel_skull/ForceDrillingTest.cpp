@@ -11,8 +11,8 @@
 #include "framework/logs/EventLog.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/RemovalLaw.h"
-#include "plugins/voxel_skull/io/VolumeReader.h"
-#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "framework/formats/volume/VolumeReader.h"
+#include "framework/formats/volume/VolumeWriter.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -123,14 +123,14 @@ TEST(ForceDrillingTest, ThrustRisesWithTheFeedAndFollowsTheLaw) {
 // times as deep; on the head phantom the force stepped by 1.8 N.)
 TEST(ForceDrillingTest, TheAirOfACtInHounsfieldUnitsDoesNotChangeTheCut) {
   test::TempDir dir;
-  const voxel::DensityVolume zeroAir = voxel::makePhantom("halfspace?voxel=0.5&density=1500&size=30");
-  voxel::DensityVolume hounsfield(zeroAir.dims(), zeroAir.spacing(), zeroAir.origin(),
-                                  voxel::DensityEncoding::fit(-1000, 1500, false));
+  const DensityVolume zeroAir = voxel::makePhantom("halfspace?voxel=0.5&density=1500&size=30");
+  DensityVolume hounsfield(zeroAir.dims(), zeroAir.spacing(), zeroAir.origin(),
+                                  DensityEncoding::fit(-1000, 1500, false));
   for (int32_t k = 0; k < zeroAir.dims()[2]; ++k)
     for (int32_t j = 0; j < zeroAir.dims()[1]; ++j)
       for (int32_t i = 0; i < zeroAir.dims()[0]; ++i)
         hounsfield.setDensity(i, j, k, zeroAir.density(i, j, k) * 2500.0 / 1500.0 - 1000.0);  // same partial volumes
-  voxel::writeMetaImage(hounsfield, dir / "hu.mha", false);
+  formats::writeMetaImage(hounsfield, dir / "hu.mha", false);
   double thrust[2] = {0, 0}, largestStep[2] = {0, 0};
   for (int air = 0; air < 2; ++air) {
     auto simulation = drill(air == 0 ? kCortical : (dir / "hu.mha").string(), vertical({{0, 5}, {0.2, 2.5}, {2.2, 0.5}}));
@@ -263,8 +263,8 @@ TEST(ForceDrillingTest, OnlyTheBurrsFootprintChanges) {
     proxies.emplace_back(v[4], v[5], v[6]);
   }
   ASSERT_GT(proxies.size(), 1000u);
-  const voxel::DensityVolume original = voxel::makePhantom("halfspace?voxel=0.5&density=1500&size=30");
-  const voxel::DensityVolume drilled = voxel::readVolume(dir / "run/drilled.mha");
+  const DensityVolume original = voxel::makePhantom("halfspace?voxel=0.5&density=1500&size=30");
+  const DensityVolume drilled = formats::readVolume(dir / "run/drilled.mha");
   int changed = 0;
   for (int32_t k = 0; k < original.dims()[2]; ++k)
     for (int32_t j = 0; j < original.dims()[1]; ++j)

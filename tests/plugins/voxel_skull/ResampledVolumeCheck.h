@@ -9,13 +9,13 @@
 #include <array>
 #include <functional>
 
-#include "plugins/voxel_skull/DensityVolume.h"
+#include "framework/data/DensityVolume.h"
 
 namespace trephine::test {
 
 // Returns the number of voxels found inside the hull (so a caller can
 // require that the check saw the volume).
-inline size_t expectResampledLinear(const voxel::DensityVolume& volume, const std::array<int64_t, 3>& storedDims,
+inline size_t expectResampledLinear(const DensityVolume& volume, const std::array<int64_t, 3>& storedDims,
                                     const Eigen::Matrix3d& axes, const Vec3& storedOrigin,
                                     const std::function<double(const Vec3&)>& densityAtIndex, double air) {
   const Eigen::Matrix3d toIndex = axes.inverse();

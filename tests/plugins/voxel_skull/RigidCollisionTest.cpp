@@ -10,7 +10,7 @@
 #include <functional>
 
 #include "framework/core/Node.h"
-#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "framework/formats/volume/VolumeWriter.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -195,12 +195,12 @@ TEST(RigidCollisionTest, ShellPointsExactlyOnVoxelFacesAndCorners) {
 TEST(RigidCollisionTest, AnisotropicSpacingOfTheOriginalSkull) {
   // A half-space written with the thesis's original spacing 0.984 x 1.584 x 0.997 mm.
   test::TempDir dir;
-  voxel::DensityVolume volume({60, 40, 40}, Vec3(0.984, 1.584, 0.997),
+  DensityVolume volume({60, 40, 40}, Vec3(0.984, 1.584, 0.997),
                               Vec3(-29.5 * 0.984, -19.5 * 1.584, -19.5 * 0.997));
   for (int k = 0; k < 40; ++k)
     for (int j = 0; j < 40; ++j)
       for (int i = 0; i < 60; ++i) volume.setDensity(i, j, k, volume.voxelCenter(i, j, k).z() < 0 ? 1000.0 : 0.0);
-  voxel::writeMetaImage(volume, dir / "anisotropic.mha", false);
+  formats::writeMetaImage(volume, dir / "anisotropic.mha", false);
   const double surface = -19.5 * 0.997 + 20 * 0.997 - 0.5 * 0.997;  // top face of the last solid layer
   SceneParts p;
   p.skull = R"(file="anisotropic.mha" isovalue="500")";

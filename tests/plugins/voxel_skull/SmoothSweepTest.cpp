@@ -132,7 +132,7 @@ TEST_P(SmoothSweepTest, AgreesWithFineSamplingOfEveryProbeLine) {
   ASSERT_NE(skull, nullptr);
   const std::vector<ShellPoint>& shell = loaded.shell;
 
-  voxel::DensityVolume volume = voxel::makeSkullPhantom(kVoxel);
+  DensityVolume volume = voxel::makeSkullPhantom(kVoxel);
   const voxel::SolidGrid grid = voxel::SolidGrid::of(volume, 400.0, true);  // no cells: the plain interpolation
 
   std::mt19937_64 rng(5);

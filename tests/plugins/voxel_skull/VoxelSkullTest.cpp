@@ -6,14 +6,13 @@
 
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
-#include "plugins/voxel_skull/io/VolumeReader.h"
-#include "plugins/voxel_skull/io/VolumeWriter.h"
+#include "framework/formats/volume/VolumeReader.h"
+#include "framework/formats/volume/VolumeWriter.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
 namespace {
 
-using voxel::DensityVolume;
 
 std::string skullScene(const std::string& skullAttributes, const std::string& extra = "") {
   return R"(<Node name="root">
@@ -162,7 +161,7 @@ TEST(VoxelSkullTest, DrillingOnlyWhenTheSceneAsksAndTheDrilledVolumeIsSaved) {
     // 1500 at 1 mm^3 per voxel), and nothing changed outside the burr's path
     // (a vertical line through the aim point) plus its radius and one voxel.
     const DensityVolume original = voxel::makePhantom("skull?voxel=1");
-    const DensityVolume drilled = voxel::readVolume(out / "drilled.mha");
+    const DensityVolume drilled = formats::readVolume(out / "drilled.mha");
     ASSERT_EQ(drilled.dims(), original.dims());
     double lost = 0, farthest = 0;
     for (int32_t k = 0; k < original.dims()[2]; ++k)
@@ -224,11 +223,11 @@ TEST(VoxelSkullTest, TheDrillCutsOnlyWhileItsPedalIsHeld) {
 TEST(VoxelSkullTest, ADrillRateThatCutsBoneAtOnceIsReported) {
   // A volume normalised to [0, 1] (float samples) with the CT-unit default drillRate of 10.
   test::TempDir dir;
-  DensityVolume volume({20, 20, 20}, Vec3::Constant(1.0), Vec3::Zero(), voxel::DensityEncoding::fit(0, 1, false));
+  DensityVolume volume({20, 20, 20}, Vec3::Constant(1.0), Vec3::Zero(), DensityEncoding::fit(0, 1, false));
   for (int k = 0; k < 20; ++k)
     for (int j = 0; j < 20; ++j)
       for (int i = 0; i < 20; ++i) volume.setDensity(i, j, k, k < 10 ? 1.0 : 0.0);
-  voxel::writeMetaImage(volume, dir / "normalised.mha", false);
+  formats::writeMetaImage(volume, dir / "normalised.mha", false);
   dir.write("scene.xml", skullScene(R"(file="normalised.mha" isovalue="0.5" drill="true" removal="thesis")"));
   std::string output;
   ASSERT_EQ(

@@ -1,0 +1,31 @@
+#include "framework/formats/mesh/VtuWriter.h"
+
+#include <string>
+
+#include "framework/formats/mesh/MeditWriter.h"
+#include "framework/formats/vtk/VtkXml.h"
+
+namespace trephine::formats {
+
+void writeVtuMesh(const TetMesh& mesh, const std::filesystem::path& file) {
+  if (mesh.tets.empty()) throw FileWriteError(file, "the mesh has no tetrahedra");
+  vtk::TetGrid grid;
+  grid.points = mesh.nodes;
+  grid.tets = mesh.tets;
+  grid.labels = mesh.labels;
+  grid.precision = vtk::PointPrecision::kFloat64;
+  vtk::writeTetGrid(grid, file);
+}
+
+bool isWritableTetMeshName(const std::string& name) {
+  return name.ends_with(".vtu") || name.ends_with(".mesh") || name.ends_with(".mesh.gz");
+}
+
+void writeTetMeshFile(const TetMesh& mesh, const std::filesystem::path& file) {
+  const std::string name = file.filename().string();
+  if (name.ends_with(".vtu")) return writeVtuMesh(mesh, file);
+  if (name.ends_with(".mesh") || name.ends_with(".mesh.gz")) return writeMeditMesh(mesh, file);
+  throw FileWriteError(file, "unknown mesh format: expected a name ending in .vtu, .mesh or .mesh.gz");
+}
+
+}  // namespace trephine::formats

@@ -1,0 +1,294 @@
+#include "framework/formats/volume/DicomReader.h"
+
+#include <gdcmImage.h>
+#include <gdcmImageHelper.h>
+#include <gdcmReader.h>
+#include <gdcmStringFilter.h>
+#include <gdcmTrace.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "framework/formats/volume/DicomStructure.h"
+#include "framework/formats/volume/StoredVolume.h"
+#include "framework/formats/volume/VolumeReader.h"
+
+namespace trephine::formats {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// What the reader needs of one file's header.
+struct Slice {
+  fs::path file;
+  std::string series, description;
+  std::array<uint32_t, 3> dims{0, 0, 0};  // columns, rows, frames
+  Vec3 origin = Vec3::Zero();             // mm, centre of the first pixel
+  Vec3 rowDirection = Vec3::UnitX();      // of increasing column index
+  Vec3 columnDirection = Vec3::UnitY();   // of increasing row index
+  Eigen::Vector2d pixelSpacing = Eigen::Vector2d::Ones();  // mm: between columns, between rows
+  double frameStep = 0;                   // mm between frames (multi-frame files)
+  double slope = 1, intercept = 0;
+  double position = 0;                    // along the normal, mm
+  DicomPixelAttributes pixel;             // as the structure check read them
+};
+
+std::string trimmed(std::string text) {
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\0')) text.pop_back();
+  return text;
+}
+
+bool hasDicomMagic(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char head[132] = {};
+  in.read(head, sizeof head);
+  return in.gcount() == 132 && std::string(head + 128, 4) == "DICM";
+}
+
+// The file's structure checked before GDCM reads it (DicomStructure.h).
+DicomPixelAttributes checkStructure(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) throw VolumeReadError(file, "cannot be read");
+  const std::streamoff size = in.tellg();
+  std::vector<uint8_t> bytes(size_t(std::max<std::streamoff>(size, 0)));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+  return checkDicomStructure(file, bytes);
+}
+
+Slice readHeader(const fs::path& file) {
+  const DicomPixelAttributes pixel = checkStructure(file);
+  gdcm::Reader reader;
+  reader.SetFileName(file.c_str());
+  if (!reader.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010), std::set<gdcm::Tag>{}))
+    throw VolumeReadError(file, "GDCM cannot read it as DICOM (truncated, or not Part 10)");
+  const gdcm::File& f = reader.GetFile();
+  Slice s;
+  s.pixel = pixel;
+  gdcm::StringFilter strings;
+  strings.SetFile(f);
+  s.file = file;
+  s.series = trimmed(strings.ToString(gdcm::Tag(0x0020, 0x000e)));
+  s.description = trimmed(strings.ToString(gdcm::Tag(0x0008, 0x103e)));
+  const std::vector<unsigned int> dims = gdcm::ImageHelper::GetDimensionsValue(f);
+  if (dims.size() < 2 || dims[0] == 0 || dims[1] == 0)
+    throw VolumeReadError(file, "no image: Rows (0028,0010) or Columns (0028,0011) missing or zero");
+  s.dims = {dims[0], dims[1], dims.size() > 2 && dims[2] > 0 ? dims[2] : 1u};
+  const std::vector<double> origin = gdcm::ImageHelper::GetOriginValue(f);
+  const std::vector<double> cosines = gdcm::ImageHelper::GetDirectionCosinesValue(f);
+  const std::vector<double> spacing = gdcm::ImageHelper::GetSpacingValue(f);
+  const std::vector<double> rescale = gdcm::ImageHelper::GetRescaleInterceptSlopeValue(f);
+  if (origin.size() != 3 || cosines.size() != 6 || spacing.size() < 2)
+    throw VolumeReadError(file, "ImagePositionPatient (0020,0032), ImageOrientationPatient (0020,0037) or "
+                                "PixelSpacing (0028,0030) missing");
+  s.origin = Vec3(origin[0], origin[1], origin[2]);
+  s.rowDirection = Vec3(cosines[0], cosines[1], cosines[2]);
+  s.columnDirection = Vec3(cosines[3], cosines[4], cosines[5]);
+  if (std::abs(s.rowDirection.norm() - 1) > 1e-3 || std::abs(s.columnDirection.norm() - 1) > 1e-3 ||
+      std::abs(s.rowDirection.dot(s.columnDirection)) > 1e-3)
+    throw VolumeReadError(file, "ImageOrientationPatient (0020,0037) is not two orthogonal unit vectors");
+  s.pixelSpacing = Eigen::Vector2d(spacing[0], spacing[1]);
+  if (!(s.pixelSpacing.minCoeff() > 0) || !s.pixelSpacing.allFinite())
+    throw VolumeReadError(file, "PixelSpacing (0028,0030) is not positive");
+  s.frameStep = spacing.size() > 2 ? spacing[2] : 0;
+  if (rescale.size() == 2) s.intercept = rescale[0], s.slope = rescale[1];
+  if (!(s.slope != 0) || !std::isfinite(s.slope) || !std::isfinite(s.intercept))
+    throw VolumeReadError(file, "RescaleSlope (0028,1053) is zero or not finite");
+  return s;
+}
+
+// That the file holds the `expected` bytes of its (uncompressed, little
+// endian) Pixel Data: the element is the last (7FE0,0010) tag in the last
+// expected + 4 KiB of the file, its value starting 8 (implicit VR) or 12
+// (explicit VR) bytes after the tag.
+void checkPixelDataLength(const fs::path& file, uint64_t expected) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  const uint64_t size = uint64_t(in.tellg());
+  const uint64_t tail = std::min<uint64_t>(size, expected + 4096);
+  std::string bytes(tail, '\0');
+  in.seekg(std::streamoff(size - tail));
+  in.read(bytes.data(), std::streamsize(tail));
+  const size_t tag = bytes.rfind(std::string("\xE0\x7F\x10\x00", 4));
+  if (tag == std::string::npos) throw VolumeReadError(file, "no Pixel Data (7FE0,0010) near the end of the file");
+  const bool explicitVr = tag + 6 <= bytes.size() && (bytes.compare(tag + 4, 2, "OW") == 0 || bytes.compare(tag + 4, 2, "OB") == 0);
+  const uint64_t start = (size - tail) + tag + (explicitVr ? 12 : 8);
+  if (size < start + expected)
+    throw VolumeReadError(file, "its pixel data are cut short: " + std::to_string(size > start ? size - start : 0) +
+                                    " bytes of the image's " + std::to_string(expected));
+}
+
+// The stored samples of a file, and their type. Decoded from the pixel
+// attributes the structure check read, through a gdcm::Image built here:
+// GDCM's own image reader would also parse the file's palettes, icons,
+// overlays and curves, none of which a density volume needs, and asserts on
+// malformed ones.
+std::vector<uint8_t> readPixels(const Slice& slice, NumberType& type) {
+  const DicomPixelAttributes& a = slice.pixel;
+  const bool isSigned = a.pixelRepresentation == 1;
+  switch (a.bitsAllocated) {
+    case 8: type = isSigned ? NumberType::kInt8 : NumberType::kUInt8; break;
+    case 16: type = isSigned ? NumberType::kInt16 : NumberType::kUInt16; break;
+    case 32: type = isSigned ? NumberType::kInt32 : NumberType::kUInt32; break;
+    default:
+      throw VolumeReadError(slice.file, "BitsAllocated (0028,0100) is " + std::to_string(a.bitsAllocated) +
+                                            " (expected 8, 16 or 32)");
+  }
+  gdcm::Reader reader;
+  reader.SetFileName(slice.file.c_str());
+  if (!reader.Read()) throw VolumeReadError(slice.file, "GDCM cannot read its data set");
+  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+  const gdcm::Tag pixelTag(0x7fe0, 0x0010);
+  if (!ds.FindDataElement(pixelTag)) throw VolumeReadError(slice.file, "no Pixel Data (7FE0,0010)");
+  gdcm::PixelFormat format;
+  format.SetSamplesPerPixel(1);
+  format.SetBitsAllocated(a.bitsAllocated);
+  format.SetBitsStored(a.bitsStored);
+  format.SetHighBit(a.highBit);
+  format.SetPixelRepresentation(a.pixelRepresentation);
+  gdcm::Image image;
+  image.SetNumberOfDimensions(slice.dims[2] > 1 ? 3 : 2);
+  for (unsigned d = 0; d < image.GetNumberOfDimensions(); ++d) image.SetDimension(d, slice.dims[d]);
+  image.SetPixelFormat(format);
+  image.SetPhotometricInterpretation(a.photometricInterpretation == "MONOCHROME1"
+                                         ? gdcm::PhotometricInterpretation::MONOCHROME1
+                                         : gdcm::PhotometricInterpretation::MONOCHROME2);
+  const gdcm::TransferSyntax syntax = reader.GetFile().GetHeader().GetDataSetTransferSyntax();
+  image.SetTransferSyntax(syntax);
+  image.SetDataElement(ds.GetDataElement(pixelTag));
+  const size_t expected = size_t(slice.dims[0]) * slice.dims[1] * slice.dims[2] * byteSize(type);
+  // Uncompressed data cut short: GDCM reads what is there, warns and pads.
+  if (!ds.GetDataElement(pixelTag).GetSequenceOfFragments()) checkPixelDataLength(slice.file, expected);
+  std::vector<uint8_t> bytes(expected);
+  if (!image.GetBuffer(reinterpret_cast<char*>(bytes.data()))) {
+    const char* name = syntax.GetString();
+    throw VolumeReadError(slice.file, std::string("its pixel data cannot be decoded (transfer syntax ") +
+                                          (name ? name : "unknown") + ": not supported by this build)");
+  }
+  return bytes;
+}
+
+}  // namespace
+
+bool looksLikeDicom(std::span<const uint8_t> head) {
+  return head.size() >= 132 && std::equal(head.begin() + 128, head.begin() + 132, "DICM");
+}
+
+DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
+  // GDCM's own warnings go to stderr; what matters comes back as errors here.
+  gdcm::Trace::SetWarning(false);
+  gdcm::Trace::SetDebug(false);
+  gdcm::Trace::SetError(false);  // the reader reports its own errors, naming the file
+  // The files: the one given, or the directory's DICOM files.
+  std::vector<fs::path> files;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    for (const auto& entry : fs::directory_iterator(path, ec))
+      if (entry.is_regular_file() && hasDicomMagic(entry.path())) files.push_back(entry.path());
+    if (files.empty()) throw VolumeReadError(path, "a directory with no DICOM file in it (expected one series)");
+  } else {
+    files.push_back(path);
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<Slice> slices;
+  for (const fs::path& file : files) slices.push_back(readHeader(file));
+
+  // One series: the only one, or the one asked for.
+  std::map<std::string, std::pair<std::string, size_t>> series;  // uid -> description, files
+  for (const Slice& s : slices) {
+    auto& entry = series[s.series];
+    entry.first = s.description;
+    ++entry.second;
+  }
+  if (!seriesUid.empty()) {
+    if (!series.count(seriesUid)) {
+      std::string known;
+      for (const auto& [uid, info] : series) known += (known.empty() ? "" : ", ") + uid;
+      throw VolumeReadError(path, "no series " + seriesUid + " here (its series: " + known + ")");
+    }
+    std::erase_if(slices, [&](const Slice& s) { return s.series != seriesUid; });
+  } else if (series.size() > 1) {
+    std::string list;
+    for (const auto& [uid, info] : series)
+      list += "\n  " + uid + " (" + (info.first.empty() ? "no description" : "\"" + info.first + "\"") + ", " +
+              std::to_string(info.second) + " files)";
+    throw VolumeReadError(path, std::to_string(series.size()) + " series in one directory; pick one with " +
+                                    "file=\"" + path.string() + "?series=UID\":" + list);
+  }
+
+  // One grid: same size and orientation; sorted along the normal.
+  const Slice& first = slices.front();
+  const Vec3 normal = first.rowDirection.cross(first.columnDirection);
+  for (Slice& s : slices) {
+    if (s.dims[0] != first.dims[0] || s.dims[1] != first.dims[1])
+      throw VolumeReadError(s.file, "an image of " + std::to_string(s.dims[0]) + " x " + std::to_string(s.dims[1]) +
+                                        " in a series of " + std::to_string(first.dims[0]) + " x " +
+                                        std::to_string(first.dims[1]));
+    if ((s.rowDirection - first.rowDirection).norm() > 1e-4 || (s.columnDirection - first.columnDirection).norm() > 1e-4)
+      throw VolumeReadError(s.file, "an orientation unlike the series' first file's " + first.file.filename().string());
+    if ((s.pixelSpacing - first.pixelSpacing).norm() > 1e-4)
+      throw VolumeReadError(s.file, "a PixelSpacing unlike the series' first file's " + first.file.filename().string());
+    if (s.slope != first.slope || s.intercept != first.intercept)
+      throw VolumeReadError(s.file, "a rescale unlike the series' first file's (one slope and intercept per series "
+                                    "is read)");
+    s.position = s.origin.dot(normal);
+  }
+  std::sort(slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.position < b.position; });
+
+  StoredVolume stored;
+  Vec3 sliceStep = normal;  // mm from one slice to the next
+  if (slices.size() == 1) {
+    stored.dims = {first.dims[0], first.dims[1], first.dims[2]};
+    sliceStep = normal * (first.frameStep > 0 ? first.frameStep : 1.0);
+  } else {
+    if (first.dims[2] != 1) throw VolumeReadError(path, "multi-frame files in a series of several files");
+    std::vector<double> steps;
+    for (size_t k = 1; k < slices.size(); ++k) steps.push_back(slices[k].position - slices[k - 1].position);
+    std::vector<double> sorted = steps;
+    std::sort(sorted.begin(), sorted.end());
+    const double step = sorted[sorted.size() / 2];
+    for (size_t k = 0; k < steps.size(); ++k) {
+      const std::string pair = slices[k].file.filename().string() + " and " + slices[k + 1].file.filename().string();
+      if (steps[k] < 1e-3 * step || steps[k] < 1e-6)
+        throw VolumeReadError(path, "two slices at one position: " + pair);
+      if (steps[k] > 1.5 * step)
+        throw VolumeReadError(path, "a slice is missing between " + pair + " (" + std::to_string(steps[k]) +
+                                        " mm apart, the series' step is " + std::to_string(step) + " mm)");
+      if (std::abs(steps[k] - step) > 0.01 * step)
+        throw VolumeReadError(path, "uneven slice steps: " + pair + " are " + std::to_string(steps[k]) +
+                                        " mm apart, the series' step is " + std::to_string(step) + " mm");
+    }
+    stored.dims = {first.dims[0], first.dims[1], int64_t(slices.size())};
+    // From the first slice to the last, the mean step. A tilted gantry makes
+    // it leave the normal: the grid is sheared, and assembleVolume resamples
+    // it onto an axis-aligned one (as it does an oblique plane).
+    sliceStep = (slices.back().origin - slices.front().origin) / double(slices.size() - 1);
+  }
+  checkDimensions(stored.dims, "the series' Rows, Columns and slices", path);
+  stored.axes.col(0) = first.rowDirection * first.pixelSpacing.x();
+  stored.axes.col(1) = first.columnDirection * first.pixelSpacing.y();
+  stored.axes.col(2) = sliceStep;
+  stored.origin = slices.front().origin;
+  stored.scaling = {first.slope, first.intercept};
+
+  std::vector<uint8_t> samples;
+  samples.reserve(stored.voxelCount() * 4);
+  NumberType type = NumberType::kInt16;
+  for (size_t k = 0; k < slices.size(); ++k) {
+    NumberType sliceType = NumberType::kInt16;
+    const std::vector<uint8_t> pixels = readPixels(slices[k], sliceType);
+    if (k > 0 && sliceType != type)
+      throw VolumeReadError(slices[k].file, "samples of " + numberTypeName(sliceType) + " in a series of " +
+                                                numberTypeName(type));
+    type = sliceType;
+    samples.insert(samples.end(), pixels.begin(), pixels.end());
+  }
+  stored.layout = {type, false};
+  return assembleVolume(stored, samples, path);
+}
+
+}  // namespace trephine::formats

@@ -1,0 +1,99 @@
+#include "framework/formats/volume/VolumeReader.h"
+
+#include <algorithm>
+#include <string>
+
+#include "framework/formats/volume/ByteSource.h"
+#include "framework/formats/volume/Decompress.h"
+#include "framework/formats/volume/DicomReader.h"
+#include "framework/formats/volume/HeaderText.h"
+#include "framework/formats/volume/MetaImageReader.h"
+#include "framework/formats/volume/NiftiReader.h"
+#include "framework/formats/volume/NrrdReader.h"
+#include "framework/formats/volume/StoredVolume.h"
+
+namespace trephine::formats {
+
+namespace {
+
+// The message as C text: a NUL (from a corrupt file name) would cut what() short.
+std::string withoutNul(std::string message) {
+  std::replace(message.begin(), message.end(), '\0', '?');
+  return message;
+}
+
+enum class Format { kUnknown, kMetaImage, kNrrd, kNifti };
+
+// Enough of the start of a file to recognise every supported format.
+constexpr uint64_t kDetectionBytes = 4096;
+
+bool isGzip(std::span<const uint8_t> head) { return head.size() >= 2 && head[0] == 0x1f && head[1] == 0x8b; }
+
+Format formatFromContent(std::span<const uint8_t> head) {
+  if (looksLikeNrrd(head)) return Format::kNrrd;
+  if (looksLikeNifti(head)) return Format::kNifti;
+  if (looksLikeMetaImage(head)) return Format::kMetaImage;
+  return Format::kUnknown;
+}
+
+// The format the extension promises (".nii.gz" counts as ".nii").
+Format formatFromExtension(std::filesystem::path file) {
+  std::string extension = file.extension().string();
+  if (equalsIgnoreCase(extension, ".gz")) extension = file.stem().extension().string();
+  if (equalsIgnoreCase(extension, ".mha") || equalsIgnoreCase(extension, ".mhd")) return Format::kMetaImage;
+  if (equalsIgnoreCase(extension, ".nrrd") || equalsIgnoreCase(extension, ".nhdr")) return Format::kNrrd;
+  if (equalsIgnoreCase(extension, ".nii")) return Format::kNifti;
+  return Format::kUnknown;
+}
+
+DensityVolume readFormat(Format format, const ByteSource& source) {
+  switch (format) {
+    case Format::kMetaImage:
+      return readMetaImage(source);
+    case Format::kNrrd:
+      return readNrrd(source);
+    case Format::kNifti:
+      return readNifti(source);
+    case Format::kUnknown:
+      break;
+  }
+  throw VolumeReadError(source.path(),
+                        "not a recognised volume file (expected MetaImage .mha/.mhd, NRRD .nrrd/.nhdr "
+                        "or NIfTI .nii/.nii.gz)");
+}
+
+}  // namespace
+
+VolumeReadError::VolumeReadError(const std::filesystem::path& file, const std::string& problem)
+    : std::runtime_error(withoutNul(file.string() + ": " + problem)) {}
+
+DensityVolume readVolume(const std::filesystem::path& file) {
+  // A DICOM series: a directory (of one series, or DIR?series=UID to pick one).
+  const std::string text = file.string();
+  if (const size_t query = text.find("?series="); query != std::string::npos)
+    return readDicom(text.substr(0, query), text.substr(query + 8));
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) return readDicom(file);
+  const FileByteSource source(file);
+  if (source.size() == 0)
+    throw VolumeReadError(file, "the file is empty (expected a MetaImage, NRRD or NIfTI volume)");
+  const std::vector<uint8_t> head = source.readClipped(0, kDetectionBytes);
+  if (looksLikeDicom(head)) return readDicom(file);  // one slice, or a multi-frame image
+  if (!isGzip(head)) {
+    const Format format = formatFromContent(head);
+    return readFormat(format != Format::kUnknown ? format : formatFromExtension(file), source);
+  }
+  // A gzip-wrapped file (.nii.gz): decompress it whole, then look inside. The
+  // output is capped at the largest volume a header could describe.
+  const std::vector<uint8_t> compressed = source.readClipped(0, source.size());
+  std::vector<uint8_t> inflated =
+      inflateVolumeData(compressed, kMaxHeaderBytes + kMaxVoxels * 8, file, "the largest volume a header can describe");
+  if (inflated.empty()) throw VolumeReadError(file, "the gzip stream holds no data");
+  const MemoryByteSource content(file, std::move(inflated));
+  const std::vector<uint8_t> innerHead = content.readClipped(0, kDetectionBytes);
+  if (isGzip(innerHead)) throw VolumeReadError(file, "gzip inside gzip is not supported (expected one gzip layer)");
+  const Format format = formatFromContent(innerHead);
+  return readFormat(format != Format::kUnknown ? format : formatFromExtension(file), content);
+}
+
+}  // namespace trephine::formats
