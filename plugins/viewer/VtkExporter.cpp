@@ -126,7 +126,7 @@ bool VtkExporter::updateBrain() {
 
 void VtkExporter::writeBrain(double t) {
   attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const std::filesystem::path& f) {
-    vtk::writeTetGrid(m_writtenNodes, *m_cells, {m_displacement, m_force}, {}, f);
+    formats::writeTetGrid(m_writtenNodes, *m_cells, {m_displacement, m_force}, {}, f);
   });
 }
 
@@ -141,7 +141,7 @@ std::optional<Vec3> VtkExporter::contactPoint(const Sample& s) const {
 void VtkExporter::writeTool(double t) {
   const Sample& s = m_samples->read();
   auto vec = [&](int column) { return column < 0 ? Vec3::Zero() : Vec3(s.values[column], s.values[column + 1], s.values[column + 2]); };
-  vtk::PolyData tool;
+  formats::VtkPolyData tool;
   tool.points = {vec(m_device), vec(m_proxy)};
   const std::optional<Vec3> contact = contactPoint(s);
   if (contact) tool.points.push_back(*contact);
@@ -150,7 +150,7 @@ void VtkExporter::writeTool(double t) {
   tool.lines = {{0, 1}};
   // Each array holds one value for every point: the frame's value.
   auto perPoint = [n](std::string name, std::initializer_list<float> value) {
-    vtk::DataArray array{std::move(name), int(value.size()), {}};
+    formats::VtkDataArray array{std::move(name), int(value.size()), {}};
     for (size_t i = 0; i < n; ++i) array.values.insert(array.values.end(), value);
     return array;
   };
@@ -160,7 +160,7 @@ void VtkExporter::writeTool(double t) {
                     perPoint("normal", {float(normal.x()), float(normal.y()), float(normal.z())}),
                     perPoint("penetration", {penetration})};
   if (m_toolRadius >= 0) tool.pointData.push_back(perPoint("radius", {float(s.values[m_toolRadius])}));  // mm
-  attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { vtk::writePolyData(tool, f); });
+  attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { formats::writePolyData(tool, f); });
 }
 
 bool VtkExporter::applySkullEdits() {
@@ -198,12 +198,12 @@ void VtkExporter::writeSkull(double t) {
       m_blockFiles[b].clear();
       continue;
     }
-    vtk::PolyData surface;
+    formats::VtkPolyData surface;
     surface.points = mesh.vertices;
     surface.triangles = mesh.triangles;
     const std::string name = numbered("b" + std::to_string(b), m_frames, ".vtp");
     try {
-      vtk::writePolyData(surface, m_root / folder / name);
+      formats::writePolyData(surface, m_root / folder / name);
       m_blockFiles[b] = "skull/" + name;
       ++m_files;
     } catch (const std::exception& e) {
@@ -214,7 +214,7 @@ void VtkExporter::writeSkull(double t) {
   for (const std::string& f : m_blockFiles)
     if (!f.empty()) files.push_back(f);
   attempt(numbered("skull", m_frames, ".vtm"), t, 2, [&](const std::filesystem::path& f) {
-    vtk::writeMultiBlock(files, f);
+    formats::writeMultiBlock(files, f);
   });
   ++m_skullFiles;
   m_skullChanged = false;

@@ -109,8 +109,8 @@ class VtkExporter final : public Component {
   // Brain.
   std::optional<ChannelReader<tetra::NodePositions>> m_positions;  // none: a rigid brain
   std::optional<ChannelReader<tetra::NodeForces>> m_nodeForces;
-  std::optional<vtk::TetCells> m_cells;  // compressed once
-  vtk::DataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
+  std::optional<formats::VtkTetCells> m_cells;  // compressed once
+  formats::VtkDataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
   bool m_brainWritten = false;
   std::vector<Vec3> m_writtenNodes;  // the positions of the last file
   // Tool: the source's columns, by name.
@@ -135,7 +135,7 @@ class VtkExporter final : public Component {
   std::vector<uint8_t> m_liveBlockChanged;
 
   std::filesystem::path m_root;  // the run directory, empty: write nothing
-  vtk::Collection m_collection;
+  formats::PvdCollection m_collection;
   uint64_t m_frames = 0, m_files = 0, m_failed = 0;
   std::string m_firstFailure;
 };

@@ -1,7 +1,7 @@
 // libFuzzer target: arbitrary bytes as a triangle surface file. The first
 // byte picks the extension (.off, .obj, .stl or .ply: the reader takes OBJ
 // and binary STL by their extension; or .vtp, VTK XML poly data, which
-// trephine view reads with vtk::readTriangleSurface); the rest is the file.
+// trephine view reads with trephine::formats::readVtkPolyDataSurface); the rest is the file.
 // Any crash, sanitizer report, hang or exception other than TetMeshReadError
 // (VtkReadError for .vtp) is a reader bug; so is a surface that breaks the
 // trephine::TriangleMesh contract.
@@ -26,11 +26,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   trephine::fuzz::writeInputFile(file, data + 1, size - 1);
   if (data[0] % 5 == 4) {
     try {
-      const trephine::TriangleMesh surface = trephine::vtk::readTriangleSurface(file);
+      const trephine::TriangleMesh surface = trephine::formats::readVtkPolyDataSurface(file);
       for (const auto& triangle : surface.triangles)
         for (const int32_t index : triangle)
           if (index < 0 || size_t(index) >= surface.vertices.size()) __builtin_trap();
-    } catch (const trephine::vtk::VtkReadError& error) {
+    } catch (const trephine::formats::FileReadError& error) {
       if (std::string(error.what()).find(": ") == std::string::npos) __builtin_trap();
     }
     std::error_code ignored;

@@ -211,8 +211,8 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     auto [at, added] = surfaces.try_emplace(file);
     if (added) {
       try {
-        at->second = vtk::readTriangleSurface(run / file);
-      } catch (const vtk::VtkReadError& e) {
+        at->second = formats::readVtkPolyDataSurface(run / file);
+      } catch (const formats::FileReadError& e) {
         throw ViewerDataError(e.what());
       }
     }

@@ -16,12 +16,6 @@ namespace trephine::formats {
 
 namespace {
 
-// The message as C text: a NUL (from a corrupt file name) would cut what() short.
-std::string withoutNul(std::string message) {
-  std::replace(message.begin(), message.end(), '\0', '?');
-  return message;
-}
-
 TetMesh readContent(const std::filesystem::path& file, std::string content) {
   switch (detectMeshFormat(content)) {
     case MeshFormat::kTetGen:
@@ -46,13 +40,6 @@ TetMesh readContent(const std::filesystem::path& file, std::string content) {
 }
 
 }  // namespace
-
-TetMeshReadError::TetMeshReadError(const std::filesystem::path& file, const std::string& problem)
-    : std::runtime_error(withoutNul(file.string() + ": " + problem)) {}
-
-TetMeshReadError::TetMeshReadError(const std::filesystem::path& file, size_t line, const std::string& problem)
-    : std::runtime_error(
-          withoutNul(file.string() + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + problem)) {}
 
 TetMesh readTetMesh(const std::filesystem::path& file) {
   std::error_code error;

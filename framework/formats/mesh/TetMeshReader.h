@@ -17,18 +17,12 @@
 #include <string>
 
 #include "framework/data/TetMesh.h"
+#include "framework/formats/FileReadError.h"
 
 namespace trephine::formats {
 
-// A file that cannot be read as a tetrahedral mesh. The message starts with
-// the file (and the line when there is one, "liver.msh:1234: "), then says
-// what was wrong and what was expected.
-class TetMeshReadError : public std::runtime_error {
- public:
-  TetMeshReadError(const std::filesystem::path& file, const std::string& problem);
-  // line: 1-based line of the file (of its decompressed text for a .gz file).
-  TetMeshReadError(const std::filesystem::path& file, size_t line, const std::string& problem);
-};
+// A file that cannot be read as a tetrahedral mesh.
+using TetMeshReadError = FileReadError;
 
 // Reads a tetrahedral mesh. For TetGen, `file` may be the .node file, the
 // .ele file (each possibly .gz) or their common base name without extension:

@@ -9,12 +9,12 @@ namespace trephine::formats {
 
 void writeVtuMesh(const TetMesh& mesh, const std::filesystem::path& file) {
   if (mesh.tets.empty()) throw FileWriteError(file, "the mesh has no tetrahedra");
-  vtk::TetGrid grid;
+  VtkTetGrid grid;
   grid.points = mesh.nodes;
   grid.tets = mesh.tets;
   grid.labels = mesh.labels;
-  grid.precision = vtk::PointPrecision::kFloat64;
-  vtk::writeTetGrid(grid, file);
+  grid.precision = PointPrecision::kFloat64;
+  writeTetGrid(grid, file);
 }
 
 bool isWritableTetMeshName(const std::string& name) {

@@ -12,6 +12,7 @@
 #include "framework/formats/mesh/ReadChecks.h"
 #include "framework/formats/mesh/TetMeshReader.h"
 #include "framework/formats/mesh/TextCursor.h"
+#include "framework/formats/vtk/VtkSurfaceReader.h"
 
 namespace trephine::formats {
 
@@ -403,8 +404,11 @@ TriangleMesh readSurface(const std::filesystem::path& file) {
     s = readBinaryStl(text, file);
   } else if (extension == ".obj") {
     s = readObj(text, file);
+  } else if (text.substr(0, 512).find("<VTKFile") != std::string_view::npos) {
+    s = readVtkPolyData(file, text);
   } else {
-    throw TetMeshReadError(file, "not a surface this program reads: expected OFF, PLY or ASCII STL content, or a .obj or binary .stl file");
+    throw TetMeshReadError(file, "not a surface this program reads: expected OFF, PLY, ASCII STL or VTK XML poly data "
+                                 "content, or a .obj or binary .stl file");
   }
   if (s.triangles.empty()) throw TetMeshReadError(file, "the surface has no triangle");
   return s;

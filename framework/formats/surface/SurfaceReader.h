@@ -1,7 +1,7 @@
 #pragma once
 // Reading closed triangle surfaces, the input of tetrahedral meshing
 // (`trephine mesh`): OFF, Wavefront OBJ, STL (ASCII or binary) and PLY
-// (ASCII, binary little- or big-endian). Polygons of more than three corners
+// (ASCII, binary little- or big-endian) and VTK XML poly data (.vtp). Polygons of more than three corners
 // are split into triangles as a fan. The format is told by the content
 // (OFF, ply and ASCII STL say what they are) and, for OBJ and binary STL,
 // by the extension. gzip-wrapped files are read too. Coordinates are kept

@@ -16,12 +16,6 @@ namespace trephine::formats {
 
 namespace {
 
-// The message as C text: a NUL (from a corrupt file name) would cut what() short.
-std::string withoutNul(std::string message) {
-  std::replace(message.begin(), message.end(), '\0', '?');
-  return message;
-}
-
 enum class Format { kUnknown, kMetaImage, kNrrd, kNifti };
 
 // Enough of the start of a file to recognise every supported format.
@@ -63,9 +57,6 @@ DensityVolume readFormat(Format format, const ByteSource& source) {
 }
 
 }  // namespace
-
-VolumeReadError::VolumeReadError(const std::filesystem::path& file, const std::string& problem)
-    : std::runtime_error(withoutNul(file.string() + ": " + problem)) {}
 
 DensityVolume readVolume(const std::filesystem::path& file) {
   // A DICOM series: a directory (of one series, or DIR?series=UID to pick one).

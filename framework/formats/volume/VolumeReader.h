@@ -20,15 +20,12 @@
 #include <string>
 
 #include "framework/data/DensityVolume.h"
+#include "framework/formats/FileReadError.h"
 
 namespace trephine::formats {
 
-// A file that cannot be read as a volume. The message starts with the file
-// and says which field or what was wrong and what was expected.
-class VolumeReadError : public std::runtime_error {
- public:
-  VolumeReadError(const std::filesystem::path& file, const std::string& problem);
-};
+// A file that cannot be read as a volume.
+using VolumeReadError = FileReadError;
 
 // Reads a volume, detecting the format from the file content (falling back
 // to the extension). Throws VolumeReadError for anything it cannot read.

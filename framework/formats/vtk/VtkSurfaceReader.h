@@ -1,26 +1,23 @@
 #pragma once
-// Reading back the triangles of a VTK XML poly data file (.vtp) whose arrays
-// are appended raw: zlib blocks or not, UInt32 or UInt64 headers, Float32 or
-// Float64 points, Int32 or Int64 connectivity (what this project and VTK's
-// own writers produce by default). For `trephine view`, which simplifies a
-// skull's surface blocks before a browser draws them. Polygons of other than
-// three corners, vertices, lines and strips are skipped.
-#include <array>
+// The triangles of a VTK XML poly data file (.vtp), in any encoding VTK
+// writes (ascii, inline base64, appended raw or base64, zlib-compressed or
+// not, either byte order, 32- or 64-bit headers): what `trephine view`
+// simplifies before a browser draws a skull's surface blocks, and a surface
+// `trephine mesh` reads. Polygons of other than three corners, vertices,
+// lines and strips are skipped.
 #include <filesystem>
-#include <stdexcept>
-#include <vector>
+#include <string_view>
 
 #include "framework/data/TriangleMesh.h"
+#include "framework/formats/FileReadError.h"
 
-namespace trephine::vtk {
+namespace trephine::formats {
 
-// A file that is not such poly data; the message names the file and what was
-// expected there.
-class VtkReadError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using VtkReadError = FileReadError;
 
-TriangleMesh readTriangleSurface(const std::filesystem::path& file);
+// The surface of `content`, the text of `file`; it may hold no triangle.
+TriangleMesh readVtkPolyData(const std::filesystem::path& file, std::string_view content);
+// The same, read from the file.
+TriangleMesh readVtkPolyDataSurface(const std::filesystem::path& file);
 
-}  // namespace trephine::vtk
+}  // namespace trephine::formats

@@ -8,7 +8,7 @@
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Strings.h"
 
-namespace trephine::vtk {
+namespace trephine::formats {
 
 namespace {
 
@@ -94,10 +94,10 @@ std::vector<Real> coordinates(std::span<const Vec3> points, const std::filesyste
   return out;
 }
 
-std::string arrays(const std::vector<DataArray>& data, size_t tuples, Appended& appended,
+std::string arrays(const std::vector<VtkDataArray>& data, size_t tuples, Appended& appended,
                    const std::filesystem::path& file) {
   std::string xml;
-  for (const DataArray& a : data) {
+  for (const VtkDataArray& a : data) {
     if (a.components < 1 || a.values.size() != tuples * size_t(a.components))
       throw FileWriteError(file, "array \"" + a.name + "\" holds " + std::to_string(a.values.size()) +
                                      " values, expected " + std::to_string(tuples) + " x " +
@@ -140,7 +140,7 @@ void writeFile(const std::string& type, const std::string& body, const Appended&
 
 }  // namespace
 
-void writePolyData(const PolyData& data, const std::filesystem::path& file) {
+void writePolyData(const VtkPolyData& data, const std::filesystem::path& file) {
   Appended appended;
   const size_t n = data.points.size();
   std::string body = "<Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfVerts=\"" +
@@ -157,7 +157,7 @@ void writePolyData(const PolyData& data, const std::filesystem::path& file) {
   writeFile("PolyData", body, appended, file);
 }
 
-TetCells::TetCells(std::span<const std::array<int32_t, 4>> tets, std::span<const int32_t> labels, size_t points)
+VtkTetCells::VtkTetCells(std::span<const std::array<int32_t, 4>> tets, std::span<const int32_t> labels, size_t points)
     : m_tets(tets.size()), m_points(points) {
   std::vector<int32_t> connectivity, offsets;
   connectivity.reserve(4 * tets.size());
@@ -180,17 +180,17 @@ TetCells::TetCells(std::span<const std::array<int32_t, 4>> tets, std::span<const
     m_labels = packed({reinterpret_cast<const uint8_t*>(labels.data()), labels.size() * sizeof(int32_t)});
 }
 
-void writeTetGrid(const TetGrid& grid, const std::filesystem::path& file) {
+void writeTetGrid(const VtkTetGrid& grid, const std::filesystem::path& file) {
   try {
-    const TetCells cells(grid.tets, grid.labels, grid.points.size());
+    const VtkTetCells cells(grid.tets, grid.labels, grid.points.size());
     writeTetGrid(grid.points, cells, grid.pointData, grid.cellData, file, grid.precision);
   } catch (const std::invalid_argument& e) {
     throw FileWriteError(file, e.what());
   }
 }
 
-void writeTetGrid(std::span<const Vec3> points, const TetCells& cells, const std::vector<DataArray>& pointData,
-                  const std::vector<DataArray>& cellData, const std::filesystem::path& file,
+void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const std::vector<VtkDataArray>& pointData,
+                  const std::vector<VtkDataArray>& cellData, const std::filesystem::path& file,
                   PointPrecision precision) {
   if (points.size() != cells.m_points)
     throw FileWriteError(file, std::to_string(points.size()) + " points for cells of " +
@@ -225,9 +225,9 @@ void writeMultiBlock(const std::vector<std::string>& files, const std::filesyste
   out.commit();
 }
 
-void Collection::add(double time, const std::string& file, int part) { m_entries.push_back({time, file, part}); }
+void PvdCollection::add(double time, const std::string& file, int part) { m_entries.push_back({time, file, part}); }
 
-void Collection::write(const std::filesystem::path& file) const {
+void PvdCollection::write(const std::filesystem::path& file) const {
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const Entry& e : m_entries) {
     if (!std::isfinite(e.time)) throw FileWriteError(file, "a dataset of " + e.file + " has a non-finite time");
@@ -240,4 +240,4 @@ void Collection::write(const std::filesystem::path& file) const {
   out.commit();
 }
 
-}  // namespace trephine::vtk
+}  // namespace trephine::formats

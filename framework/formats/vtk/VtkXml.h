@@ -16,32 +16,32 @@
 
 #include "framework/math/Math.h"
 
-namespace trephine::vtk {
+namespace trephine::formats {
 
 // `components` values per point (or per cell), point after point.
-struct DataArray {
+struct VtkDataArray {
   std::string name;
   int components = 1;
   std::vector<float> values;
 };
 
-struct PolyData {
+struct VtkPolyData {
   std::vector<Vec3> points;                       // mm
   std::vector<int32_t> vertices;                  // one vertex cell per listed point
   std::vector<std::array<int32_t, 2>> lines;
   std::vector<std::array<int32_t, 3>> triangles;
-  std::vector<DataArray> pointData;
+  std::vector<VtkDataArray> pointData;
 };
 
 // Float32 coordinates are a viewer's (7 digits of mm); Float64 a mesh file's,
 // read back exactly.
 enum class PointPrecision { kFloat32, kFloat64 };
 
-struct TetGrid {
+struct VtkTetGrid {
   std::span<const Vec3> points;                   // mm
   std::span<const std::array<int32_t, 4>> tets;   // VTK_TETRA, positively oriented
-  std::vector<DataArray> pointData;
-  std::vector<DataArray> cellData;                // one tuple per tetrahedron
+  std::vector<VtkDataArray> pointData;
+  std::vector<VtkDataArray> cellData;                // one tuple per tetrahedron
   std::span<const int32_t> labels;                // tissue labels (Int32 cell array "label"), or none
   PointPrecision precision = PointPrecision::kFloat32;
 };
@@ -49,27 +49,27 @@ struct TetGrid {
 // The cells (and labels) of a tetrahedral grid, compressed once: a series of
 // files of one mesh whose nodes move (a deforming brain) then compresses only
 // the points and point data of each frame, a fifth of the bytes.
-class TetCells {
+class VtkTetCells {
  public:
   // Throws std::invalid_argument for an index outside [0, points) or labels
   // of another count than the tetrahedra.
-  TetCells(std::span<const std::array<int32_t, 4>> tets, std::span<const int32_t> labels, size_t points);
+  VtkTetCells(std::span<const std::array<int32_t, 4>> tets, std::span<const int32_t> labels, size_t points);
   size_t tetCount() const { return m_tets; }
   size_t pointCount() const { return m_points; }
 
  private:
-  friend void writeTetGrid(std::span<const Vec3>, const TetCells&, const std::vector<DataArray>&,
-                           const std::vector<DataArray>&, const std::filesystem::path&, PointPrecision);
+  friend void writeTetGrid(std::span<const Vec3>, const VtkTetCells&, const std::vector<VtkDataArray>&,
+                           const std::vector<VtkDataArray>&, const std::filesystem::path&, PointPrecision);
   size_t m_tets = 0, m_points = 0;
   std::string m_connectivity, m_offsets, m_types, m_labels;  // header and zlib blocks each
 };
 
 // Throws FileWriteError (the file and what failed: an index out of range, an
 // array of the wrong length, a non-finite coordinate, the disk).
-void writePolyData(const PolyData& data, const std::filesystem::path& file);
-void writeTetGrid(const TetGrid& grid, const std::filesystem::path& file);
-void writeTetGrid(std::span<const Vec3> points, const TetCells& cells, const std::vector<DataArray>& pointData,
-                  const std::vector<DataArray>& cellData, const std::filesystem::path& file,
+void writePolyData(const VtkPolyData& data, const std::filesystem::path& file);
+void writeTetGrid(const VtkTetGrid& grid, const std::filesystem::path& file);
+void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const std::vector<VtkDataArray>& pointData,
+                  const std::vector<VtkDataArray>& cellData, const std::filesystem::path& file,
                   PointPrecision precision = PointPrecision::kFloat32);
 
 // A .vtm multiblock index: one dataset made of the files listed (relative to
@@ -78,7 +78,7 @@ void writeTetGrid(std::span<const Vec3> points, const TetCells& cells, const std
 void writeMultiBlock(const std::vector<std::string>& files, const std::filesystem::path& file);
 
 // A .pvd collection: ParaView plays its datasets in time order, parts drawn together.
-class Collection {
+class PvdCollection {
  public:
   // `file` relative to the .pvd's directory; `time` in s.
   void add(double time, const std::string& file, int part = 0);
@@ -94,4 +94,4 @@ class Collection {
   std::vector<Entry> m_entries;
 };
 
-}  // namespace trephine::vtk
+}  // namespace trephine::formats

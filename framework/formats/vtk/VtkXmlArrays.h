@@ -4,7 +4,7 @@
 // zlib-compressed blocks), either inline as base64 or in the file's
 // <AppendedData> at the array's offset, raw or base64. The array is
 // described by plain strings so that the XML parser stays inside
-// VtuReader.cpp.
+// VtkXmlFile.cpp.
 #include <cstdint>
 #include <filesystem>
 #include <string_view>
@@ -13,7 +13,7 @@
 namespace trephine::formats {
 
 // How the file encodes binary arrays (attributes of <VTKFile>).
-struct VtuEncoding {
+struct VtkXmlEncoding {
   bool bigEndian = false;  // byte_order="BigEndian"
   bool header64 = false;   // header_type="UInt64" (default UInt32)
   bool zlib = false;       // compressor="vtkZLibDataCompressor"
@@ -24,22 +24,22 @@ struct VtuEncoding {
   std::string_view appended;
 };
 
-struct VtuArray {
+struct VtkXmlArray {
   std::string_view name;    // Name attribute, for messages
   std::string_view type;    // "Float32", "Int64", ...
   std::string_view format;  // "ascii", "binary" or "appended"
   std::string_view text;    // the element's text
-  uint64_t offset = 0;      // format="appended": where its data starts in VtuEncoding::appended
+  uint64_t offset = 0;      // format="appended": where its data starts in VtkXmlEncoding::appended
   size_t line = 0;          // line of the <DataArray> tag
 };
 
 // Exactly `count` values of the array, or a TetMeshReadError naming the file,
 // the line and the array. Counts come from the caller (NumberOfPoints, ...)
 // and are checked against the data before anything is allocated for them.
-std::vector<double> readVtuReals(const VtuArray& array, int64_t count, const VtuEncoding& encoding,
+std::vector<double> readVtkXmlReals(const VtkXmlArray& array, int64_t count, const VtkXmlEncoding& encoding,
                                  const std::filesystem::path& file);
 // Integer-typed arrays only (connectivity, offsets, types, labels).
-std::vector<int64_t> readVtuIntegers(const VtuArray& array, int64_t count, const VtuEncoding& encoding,
+std::vector<int64_t> readVtkXmlIntegers(const VtkXmlArray& array, int64_t count, const VtkXmlEncoding& encoding,
                                      const std::filesystem::path& file);
 
 }  // namespace trephine::formats

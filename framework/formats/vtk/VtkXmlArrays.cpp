@@ -1,4 +1,4 @@
-#include "framework/formats/mesh/VtuDataArray.h"
+#include "framework/formats/vtk/VtkXmlArrays.h"
 
 #include <algorithm>
 #include <optional>
@@ -19,7 +19,7 @@ namespace {
 
 class ArrayDecoder {
  public:
-  ArrayDecoder(const VtuArray& array, const VtuEncoding& encoding, const std::filesystem::path& file)
+  ArrayDecoder(const VtkXmlArray& array, const VtkXmlEncoding& encoding, const std::filesystem::path& file)
       : m_array(array), m_encoding(encoding), m_file(file) {}
 
   template <typename Out>
@@ -204,19 +204,19 @@ class ArrayDecoder {
     return out;
   }
 
-  const VtuArray& m_array;
-  const VtuEncoding& m_encoding;
+  const VtkXmlArray& m_array;
+  const VtkXmlEncoding& m_encoding;
   const std::filesystem::path& m_file;
 };
 
 }  // namespace
 
-std::vector<double> readVtuReals(const VtuArray& array, int64_t count, const VtuEncoding& encoding,
+std::vector<double> readVtkXmlReals(const VtkXmlArray& array, int64_t count, const VtkXmlEncoding& encoding,
                                  const std::filesystem::path& file) {
   return ArrayDecoder(array, encoding, file).read<double>(count);
 }
 
-std::vector<int64_t> readVtuIntegers(const VtuArray& array, int64_t count, const VtuEncoding& encoding,
+std::vector<int64_t> readVtkXmlIntegers(const VtkXmlArray& array, int64_t count, const VtkXmlEncoding& encoding,
                                      const std::filesystem::path& file) {
   return ArrayDecoder(array, encoding, file).read<int64_t>(count);
 }
