@@ -110,4 +110,22 @@ void PluginRegistrar::addEntry(ComponentEntry entry) {
   if (auto error = m_registry.add(std::move(entry))) m_errors.push_back(*error);
 }
 
+std::optional<std::string> Registry::addService(ServiceEntry entry) {
+  if (const ServiceEntry* existing = findService(entry.interface))
+    return entry.interface + " is provided by plugin '" + existing->plugin + "' and again by plugin '" +
+           entry.plugin + "'";
+  std::string interface = entry.interface;
+  m_services.emplace(std::move(interface), std::move(entry));
+  return std::nullopt;
+}
+
+const ServiceEntry* Registry::findService(std::string_view interface) const {
+  const auto found = m_services.find(interface);
+  return found == m_services.end() ? nullptr : &found->second;
+}
+
+void PluginRegistrar::addServiceEntry(ServiceEntry entry) {
+  if (auto error = m_registry.addService(std::move(entry))) m_errors.push_back(*error);
+}
+
 }  // namespace trephine

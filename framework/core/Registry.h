@@ -47,6 +47,15 @@ struct PhantomWriterEntry {
   std::function<std::string(const std::string& specification, const std::string& file, bool raw)> write;
 };
 
+// An object one plugin provides for the others to use through an interface
+// of the framework (the tetrahedral mesher), found by the interface's name:
+// plugins never link each other's code, nor cast a type of another module.
+struct ServiceEntry {
+  std::string interface;        // T::kTypeName of the interface
+  std::string plugin;           // filled in by the registrar
+  std::shared_ptr<void> object;  // points at the T part of the object
+};
+
 class Registry {
  public:
   // Adds an entry. Returns an error naming both providers when the type is already registered.
@@ -73,10 +82,21 @@ class Registry {
   const PhantomWriterEntry* phantomWriterFor(std::string_view fileName) const;
   const std::vector<PhantomWriterEntry>& phantomWriters() const { return m_phantomWriters; }
 
+  // Returns an error naming both plugins when the interface is already provided.
+  std::optional<std::string> addService(ServiceEntry entry);
+  const ServiceEntry* findService(std::string_view interface) const;
+  // The provider of interface T (declaring kTypeName), or null.
+  template <class T>
+  T* service() const {
+    const ServiceEntry* entry = findService(T::kTypeName);
+    return entry ? static_cast<T*>(entry->object.get()) : nullptr;
+  }
+
  private:
   std::map<std::string, ComponentEntry, std::less<>> m_entries;
   std::map<std::pair<std::string, std::string>, BackendEntry> m_backends;
   std::vector<PhantomWriterEntry> m_phantomWriters;
+  std::map<std::string, ServiceEntry, std::less<>> m_services;
 };
 
 // Handed to a plugin's registration function.
@@ -98,6 +118,11 @@ class PluginRegistrar {
   }
 
   void addPhantomWriter(PhantomWriterEntry entry);
+  // `object` as the provider of interface T (T declares kTypeName).
+  template <class T, class Implementation>
+  void addService(std::shared_ptr<Implementation> object) {
+    addServiceEntry({std::string(T::kTypeName), m_plugin, std::static_pointer_cast<T>(std::move(object))});
+  }
 
   const std::string& plugin() const { return m_plugin; }
   const std::vector<std::string>& errors() const { return m_errors; }
@@ -105,6 +130,7 @@ class PluginRegistrar {
  private:
   void addEntry(ComponentEntry entry);
   void addBackendEntry(BackendEntry entry);
+  void addServiceEntry(ServiceEntry entry);
   Registry& m_registry;
   std::string m_plugin;
   std::vector<std::string> m_errors;

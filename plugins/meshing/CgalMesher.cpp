@@ -1,13 +1,11 @@
-// All CGAL Mesh_3 code of the project: the implicit solids (ImplicitMesher.h)
-// and the labelled images (LabelledImageMesher.h) share one domain type, so
+// All CGAL Mesh_3 code of the project: the implicit solids and the labelled
+// images (framework/meshing/TetMeshing.h) share one domain type, so
 // Mesh_3's templates are compiled once.
 #include <CGAL/Image_3.h>
 #include <CGAL/ImageIO.h>
 #include <CGAL/Mesh_3/initialize_triangulation_from_labeled_image.h>
 
-#include "plugins/meshing/ImplicitMesher.h"
-#include "plugins/meshing/LabelledImageMesher.h"
-#include "plugins/meshing/Meshing.h"
+#include "plugins/meshing/CgalMesher.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Labeled_mesh_domain_3.h>
@@ -30,7 +28,7 @@
 #include <unordered_map>
 #include <utility>
 
-namespace trephine::tetra {
+namespace trephine::meshing {
 
 namespace {
 
@@ -267,22 +265,22 @@ MeshingProblem labelledProblem(const LabelledImage& image) {
 
 }  // namespace
 
-bool meshingBuilt() { return true; }
+class CgalTetMesher final : public TetMesher {
+ public:
+  TetMesh meshImplicitSolid(const ImplicitSolid& solid, int targetTets) const override {
+    return meshToCount(implicitProblem(solid), targetTets);
+  }
+  TetMesh meshImplicitSolidAtSize(const ImplicitSolid& solid, double size) const override {
+    return meshAtSize(implicitProblem(solid), size);
+  }
+  TetMesh meshLabelledImage(const LabelledImage& image, int targetTets) const override {
+    return meshToCount(labelledProblem(image), targetTets);
+  }
+  TetMesh meshLabelledImageAtSize(const LabelledImage& image, double size) const override {
+    return meshAtSize(labelledProblem(image), size);
+  }
+};
 
-TetMesh meshImplicitSolid(const ImplicitSolid& solid, int targetTets) {
-  return meshToCount(implicitProblem(solid), targetTets);
-}
+std::shared_ptr<TetMesher> makeCgalTetMesher() { return std::make_shared<CgalTetMesher>(); }
 
-TetMesh meshImplicitSolidAtSize(const ImplicitSolid& solid, double size) {
-  return meshAtSize(implicitProblem(solid), size);
-}
-
-TetMesh meshLabelledImage(const LabelledImage& image, int targetTets) {
-  return meshToCount(labelledProblem(image), targetTets);
-}
-
-TetMesh meshLabelledImageAtSize(const LabelledImage& image, double size) {
-  return meshAtSize(labelledProblem(image), size);
-}
-
-}  // namespace trephine::tetra
+}  // namespace trephine::meshing

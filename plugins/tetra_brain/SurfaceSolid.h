@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "plugins/meshing/ImplicitMesher.h"
+#include "framework/meshing/TetMeshing.h"
 #include "framework/formats/surface/SurfaceReader.h"
 
 namespace trephine::tetra {

@@ -6,9 +6,9 @@
 #include <stdexcept>
 
 #include "framework/core/SourceSpec.h"
-#include "plugins/meshing/BrainPhantom.h"
+#include "plugins/tetra_brain/BrainPhantom.h"
 #include "plugins/tetra_brain/CubePhantom.h"
-#include "plugins/meshing/ImplicitMesher.h"
+#include "framework/meshing/TetMeshing.h"
 
 namespace trephine::tetra {
 

@@ -7,17 +7,19 @@
 
 #include <cstdlib>
 
-#include "plugins/meshing/BrainPhantom.h"
-#include "plugins/meshing/LabelledImageMesher.h"
+#include "plugins/tetra_brain/BrainPhantom.h"
+#include "framework/meshing/TetMeshing.h"
 
 namespace {
 
 using trephine::Vec3;
+using trephine::LabelledImage;
+using trephine::meshLabelledImage;
 
 bool smoke() { return std::getenv("TREPHINE_BENCH_LABELLED_MESH_SMOKE") != nullptr; }
 
-trephine::tetra::LabelledImage segmentation(int side, double voxel) {
-  trephine::tetra::LabelledImage image;
+LabelledImage segmentation(int side, double voxel) {
+  LabelledImage image;
   image.dims = {side, side, side};
   image.spacing = Vec3::Constant(voxel);
   image.origin = Vec3::Constant(-0.5 * (side - 1) * voxel);
@@ -38,10 +40,10 @@ trephine::tetra::LabelledImage segmentation(int side, double voxel) {
 
 void BM_MeshLabelledImage(benchmark::State& state) {
   const int side = smoke() ? 48 : 256, target = smoke() ? 2000 : int(state.range(0));
-  const trephine::tetra::LabelledImage image = segmentation(side, smoke() ? 4.0 : 0.8);
+  const LabelledImage image = segmentation(side, smoke() ? 4.0 : 0.8);
   size_t tets = 0;
   for (auto _ : state) {
-    const trephine::TetMesh mesh = trephine::tetra::meshLabelledImage(image, target);
+    const trephine::TetMesh mesh = meshLabelledImage(image, target);
     tets = mesh.tetCount();
   }
   state.counters["voxels"] = double(image.labels.size());

@@ -9,6 +9,7 @@ function(trephine_add_plugin name)
   cmake_parse_arguments(ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES;LINK" ${ARGN})
   set(target trephine_plugin_${name})
   add_library(${target} MODULE ${ARG_SOURCES})
+  set_property(GLOBAL APPEND PROPERTY TREPHINE_PLUGIN_TARGETS ${target})
   target_link_libraries(${target} PRIVATE Trephine::framework ${ARG_LINK})
   set_target_properties(${target} PROPERTIES
     PREFIX ""

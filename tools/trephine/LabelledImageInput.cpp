@@ -31,7 +31,7 @@ std::vector<int32_t> parseLabelList(const std::string& text) {
 LabelledImageInput readLabelledImage(const std::filesystem::path& file, const std::vector<int32_t>& keep) {
   const DensityVolume volume = formats::readVolume(file);
   LabelledImageInput input;
-  tetra::LabelledImage& image = input.image;
+  LabelledImage& image = input.image;
   image.dims = volume.dims();
   image.spacing = volume.spacing();
   image.origin = volume.origin();

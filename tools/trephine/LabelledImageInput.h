@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "plugins/meshing/LabelledImageMesher.h"
+#include "framework/meshing/TetMeshing.h"
 
 namespace trephine::cli {
 
 struct LabelledImageInput {
-  tetra::LabelledImage image;
+  LabelledImage image;
   std::vector<int32_t> labels;  // the labels present after selection, ascending
   size_t labelledVoxels = 0;
 };

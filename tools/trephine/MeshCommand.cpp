@@ -8,8 +8,8 @@
 #include <map>
 
 #include "framework/core/SourceSpec.h"
-#include "plugins/meshing/ImplicitMesher.h"
-#include "plugins/meshing/LabelledImageMesher.h"
+#include "framework/meshing/TetMeshing.h"
+#include "framework/meshing/TetMeshing.h"
 #include "plugins/tetra_brain/SurfaceSolid.h"
 #include "framework/formats/surface/SurfaceReader.h"
 #include "framework/formats/mesh/VtuWriter.h"
@@ -35,7 +35,7 @@ bool isSurfaceName(const std::string& name) {
 
 // The solid and what to say of it.
 struct Solid {
-  tetra::ImplicitSolid implicit;
+  ImplicitSolid implicit;
   std::string description;
 };
 
@@ -46,7 +46,7 @@ Solid solidOf(const std::string& name) {
     if (kind != "sphere") throw std::invalid_argument("the mesh command's phantom is sphere?radius=R, not '" + kind + "'");
     const SourceSpec spec(kind, query, {{"radius", 50}});
     const double r = spec.positive("radius");
-    const tetra::ImplicitSolid s = tetra::ballSolid(r);
+    const ImplicitSolid s = ballSolid(r);
     return {s, "a ball of radius " + std::to_string(r) + " mm"};
   }
   tetra::SurfaceSolid surface(formats::readSurface(name));
@@ -59,8 +59,8 @@ int meshLabelledImageFile(const std::string& input, const std::string& out, cons
   try {
     const LabelledImageInput labelled = readLabelledImage(input, keep);
     const auto start = std::chrono::steady_clock::now();
-    const TetMesh mesh = tets > 0 ? tetra::meshLabelledImage(labelled.image, tets)
-                                         : tetra::meshLabelledImageAtSize(labelled.image, size);
+    const TetMesh mesh = tets > 0 ? meshLabelledImage(labelled.image, tets)
+                                         : meshLabelledImageAtSize(labelled.image, size);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     formats::writeTetMeshFile(mesh, out);
     std::map<int32_t, size_t> perLabel;
@@ -121,7 +121,7 @@ int meshCommand(const Arguments& a) {
   try {
     const Solid solid = solidOf(input);
     const TetMesh mesh =
-        tets > 0 ? tetra::meshImplicitSolid(solid.implicit, int(tets)) : tetra::meshImplicitSolidAtSize(solid.implicit, size);
+        tets > 0 ? meshImplicitSolid(solid.implicit, int(tets)) : meshImplicitSolidAtSize(solid.implicit, size);
     formats::writeTetMeshFile(mesh, out);
     std::cout << out << ": " << mesh.tetCount() << " tetrahedra, " << mesh.nodeCount() << " nodes";
     if (tets > 0)

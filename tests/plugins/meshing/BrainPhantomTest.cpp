@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "plugins/meshing/BrainPhantom.h"
-#include "plugins/meshing/ImplicitMesher.h"
+#include "plugins/tetra_brain/BrainPhantom.h"
+#include "framework/meshing/TetMeshing.h"
 
 namespace trephine::tetra {
 namespace {

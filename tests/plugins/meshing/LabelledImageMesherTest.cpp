@@ -10,8 +10,8 @@
 #include <map>
 #include <numbers>
 
-#include "plugins/meshing/LabelledImageMesher.h"
-#include "plugins/meshing/Meshing.h"
+#include "framework/meshing/TetMeshing.h"
+#include "framework/meshing/TetMeshing.h"
 
 namespace trephine::tetra {
 namespace {
@@ -38,7 +38,7 @@ LabelledImage nestedBalls() {
 double ballVolume(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 
 TEST(LabelledImageMesher, NestedRegionsKeepTheirLabelsVolumesAndPlace) {
-  ASSERT_TRUE(meshingBuilt());
+  ASSERT_TRUE(meshingAvailable());
   const LabelledImage image = nestedBalls();
   const TetMesh mesh = meshLabelledImage(image, 6000);
   EXPECT_NEAR(double(mesh.tetCount()), 6000, 300);  // measured 6081

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "plugins/meshing/ImplicitMesher.h"
+#include "framework/meshing/TetMeshing.h"
 #include "plugins/tetra_brain/SurfaceSolid.h"
 #include "framework/formats/surface/SurfaceReader.h"
 #include "framework/formats/mesh/TetMeshReader.h"
@@ -222,7 +222,7 @@ TEST(SurfaceSolidTest, ABoxSurfaceMeshesToTheCountAndFillsTheBox) {
   test::TempDir dir;
   dir.write("box.obj", objText());
   const tetra::SurfaceSolid surface(formats::readSurface(dir / "box.obj"));
-  const TetMesh mesh = tetra::meshImplicitSolid(surface.solid(), 3000);
+  const TetMesh mesh = meshImplicitSolid(surface.solid(), 3000);
   EXPECT_NEAR(double(mesh.tetCount()), 3000.0, 0.03 * 3000) << mesh.tetCount();
   double volume = 0;
   for (const TetIndices& t : mesh.tets)

@@ -1,5 +1,5 @@
 // The brain phantom's shape; CgalMesher.cpp meshes it (ImplicitMesher.h).
-#include "plugins/meshing/BrainPhantom.h"
+#include "plugins/tetra_brain/BrainPhantom.h"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "plugins/meshing/ImplicitMesher.h"
+#include "framework/meshing/TetMeshing.h"
 
 namespace trephine::tetra {
 
