@@ -41,7 +41,7 @@ void FixedConstraint::init(InitContext& context) {
   } else {
     const TetMesh& mesh = fem.brain().mesh();
     if (mesh.labels.empty()) {
-      context.error(d_label, "the mesh " + fem.brain().path() + " carries no tissue labels");
+      context.error(d_label, "the mesh " + fem.brainPath() + " carries no tissue labels");
       return;
     }
     for (size_t e = 0; e < mesh.tetCount(); ++e)
@@ -57,7 +57,7 @@ void FixedConstraint::init(InitContext& context) {
     const BaseField& field = d_indices.isSet() ? static_cast<const BaseField&>(d_indices)
                              : d_box.isSet()   ? static_cast<const BaseField&>(d_box)
                                                : static_cast<const BaseField&>(d_label);
-    context.error(field, "selects no node of " + fem.brain().path());
+    context.error(field, "selects no node of " + fem.brainPath());
   }
 }
 

@@ -20,7 +20,7 @@ std::string seconds(double s) {
 }  // namespace
 
 void TLEDForceField::init(InitContext& context) {
-  tetra::TetraBrain& brain = *l_mesh;
+  DeformableMesh& brain = *l_mesh;
   const TetMesh& mesh = brain.mesh();
   const ElementMaterial material = this->material();
   try {
@@ -34,7 +34,7 @@ void TLEDForceField::init(InitContext& context) {
   scaleMass();
   if (auto error = checkTimeStep()) context.error(d_dt, *error);
 
-  m_channel = &context.channels().publish<tetra::NodePositions>(*this, tetra::kNodePositionsChannel);
+  m_channel = &context.channels().publish<NodePositions>(*this, kNodePositionsChannel);
   if (auto error = brain.followDeformation(*this, context.channels())) {
     context.error(l_mesh, *error);
     return;
@@ -51,7 +51,7 @@ void TLEDForceField::init(InitContext& context) {
     for (int32_t node : tet) box.extend(mesh.nodes[node]);
   m_meshSize = box.diagonal().norm();
   m_channel->reserve(m_frame);  // slots as large as a frame: publishing never allocates
-  m_forces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
+  m_forces = context.channels().subscribe<NodeForces>(*l_mesh.boundComponent(), kNodeForcesChannel);
 }
 
 void TLEDForceField::scaleMass() {
@@ -72,11 +72,11 @@ std::optional<std::string> TLEDForceField::checkTimeStep() const {
 }
 
 std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const ElementMaterial& material) {
-  if (m_labels.empty()) return "the mesh " + l_mesh->path() + " carries no tissue labels";
+  if (m_labels.empty()) return "the mesh " + brainPath() + " carries no tissue labels";
   std::vector<int32_t> elements;
   for (size_t e = 0; e < m_labels.size(); ++e)
     if (m_labels[e] == label) elements.push_back(int32_t(e));
-  if (elements.empty()) return "no element of " + l_mesh->path() + " has label " + std::to_string(label);
+  if (elements.empty()) return "no element of " + brainPath() + " has label " + std::to_string(label);
   m_model->assignMaterial(elements, material);
   scaleMass();
   return checkTimeStep();
@@ -100,8 +100,8 @@ void TLEDForceField::tick(const TickContext& context) {
     // The tool's latest reaction replaces the previous one as the target.
     for (int32_t node : m_targetNodes) m_target[node] = Vec3::Zero();
     m_targetNodes.clear();
-    const tetra::NodeForces& latest = m_forces->read();
-    for (const tetra::NodeForce& f : latest.forces) {
+    const NodeForces& latest = m_forces->read();
+    for (const NodeForce& f : latest.forces) {
       if (f.node < 0 || size_t(f.node) >= m_model->nodeCount() || !f.force.allFinite()) {
         ++m_droppedForces;
         continue;

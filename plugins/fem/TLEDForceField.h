@@ -18,9 +18,8 @@
 
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Component.h"
+#include "framework/geometry/DeformableMesh.h"
 #include "plugins/fem/TledModel.h"
-#include "plugins/tetra_brain/MeshDeformation.h"
-#include "plugins/tetra_brain/TetraBrain.h"
 
 namespace trephine::fem {
 
@@ -35,7 +34,9 @@ class TLEDForceField final : public Component {
 
   // For the components that link here, during their init() (after this one's).
   TledModel& model() { return *m_model; }
-  const tetra::TetraBrain& brain() const { return *l_mesh; }
+  const DeformableMesh& brain() const { return *l_mesh; }
+  // The deformed mesh's path, for messages.
+  std::string brainPath() const { return l_mesh.boundComponent()->path(); }
   bool hasModel() const { return m_model != nullptr; }
   // Gives the elements of tissue `label` their own material; returns why it
   // cannot (no element has the label, the time step is no longer stable).
@@ -52,7 +53,7 @@ class TLEDForceField final : public Component {
 
   // Followed at init only: the ticks exchange positions and forces with the
   // brain through channels, so the FEM may run in a rate group of its own.
-  Link<tetra::TetraBrain> l_mesh{
+  Link<DeformableMesh> l_mesh{
       this, "mesh", {.help = "The tetrahedral mesh this deforms", .required = true, .initOnly = true}};
   Field<double> d_density{this,
                           "density",
@@ -135,14 +136,14 @@ class TLEDForceField final : public Component {
 
   std::unique_ptr<TledModel> m_model;
   std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
-  std::optional<ChannelReader<tetra::NodeForces>> m_forces;
+  std::optional<ChannelReader<NodeForces>> m_forces;
   // The tool's forces (mN) per node: the last fetched (target) and those
   // applied, which follow it with the time constant forceSmoothing.
   std::vector<Vec3> m_target, m_applied;
   std::vector<char> m_applying;                    // 1: the node is in m_appliedNodes
   std::vector<int32_t> m_targetNodes, m_appliedNodes;
-  Channel<tetra::NodePositions>* m_channel = nullptr;
-  tetra::NodePositions m_frame;
+  Channel<NodePositions>* m_channel = nullptr;
+  NodePositions m_frame;
   bool m_movesKnown = true;  // m_frame.positions holds the shape last published
   bool m_publishedRest = true;  // the brain's shape is the rest shape (nothing published yet, or rest)
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;

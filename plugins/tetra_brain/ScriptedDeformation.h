@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "framework/core/Component.h"
-#include "plugins/tetra_brain/MeshDeformation.h"
+#include "framework/data/MeshDeformation.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 
 namespace trephine::tetra {

@@ -17,7 +17,7 @@
 
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Component.h"
-#include "plugins/tetra_brain/MeshDeformation.h"
+#include "framework/data/MeshDeformation.h"
 #include "plugins/tetra_brain/TetGridSet.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 

@@ -14,6 +14,9 @@
 
 namespace trephine::tetra {
 
+// A TetGridRebuild publishes the grids it builds on the deformed shape here.
+inline constexpr const char* kGridsChannelName = "grids";
+
 struct TetGridSet {
   uint64_t version = 0;          // 0: built on the rest shape by the back-end itself
   std::vector<Vec3> reference;   // mm, the node positions the grids were built on

@@ -15,14 +15,15 @@
 #include "framework/core/Component.h"
 #include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
-#include "plugins/tetra_brain/MeshDeformation.h"
+#include "framework/data/MeshDeformation.h"
+#include "framework/geometry/DeformableMesh.h"
 #include "plugins/tetra_brain/TetBackend.h"
 #include "framework/data/TetMesh.h"
 #include "framework/data/TetTopology.h"
 
 namespace trephine::tetra {
 
-class TetraBrain final : public Component, public ShellContactTarget, public ExactShapeSource {
+class TetraBrain final : public Component, public ShellContactTarget, public ExactShapeSource, public DeformableMesh {
  public:
   static constexpr std::string_view kTypeName = "TetraBrain";
 
@@ -56,10 +57,10 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   // Called by a deformation component in its init(): from then on the nodes
   // are read from its node_positions channel. Returns an error message when
   // another component already deforms this mesh.
-  std::optional<std::string> followDeformation(const Component& deformer, ChannelHub& channels);
+  std::optional<std::string> followDeformation(const Component& deformer, ChannelHub& channels) override;
   bool isDeformable() const { return m_positions.has_value(); }
   // The component that deforms this mesh (followDeformation), or null.
-  const Component* deformer() const { return m_deformer; }
+  const Component* deformer() const override { return m_deformer; }
   // Called by a TetGridRebuild in its init(): from then on the grids it
   // publishes on its "grids" channel are adopted at the start of a frame.
   std::optional<std::string> followGridRebuild(const Component& rebuilder, ChannelHub& channels);
@@ -72,7 +73,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
     m_backend = std::move(backend);
     m_bound = false;
   }
-  const TetMesh& mesh() const { return m_mesh; }
+  const TetMesh& mesh() const override { return m_mesh; }
   const TetTopology& topology() const { return m_topology; }
   const MeshReport& report() const { return m_report; }
   // The back-end answering the queries (null before init() or setMesh()).

@@ -48,15 +48,15 @@ void VtkExporter::init(InitContext& context) {
     }
   }
   if (l_brain) {
-    const tetra::TetraBrain& brain = *l_brain;
+    const DeformableMesh& brain = *l_brain;
     const TetMesh& mesh = brain.mesh();
     m_cells.emplace(std::span<const std::array<int32_t, 4>>(mesh.tets), std::span<const int32_t>(mesh.labels),
                     mesh.nodeCount());
     m_displacement.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
     m_force.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
     if (brain.deformer())
-      m_positions = context.channels().subscribe<tetra::NodePositions>(*brain.deformer(), tetra::kNodePositionsChannel);
-    m_nodeForces = context.channels().subscribe<tetra::NodeForces>(brain, tetra::kNodeForcesChannel);
+      m_positions = context.channels().subscribe<NodePositions>(*brain.deformer(), kNodePositionsChannel);
+    m_nodeForces = context.channels().subscribe<NodeForces>(*l_brain.boundComponent(), kNodeForcesChannel);
   }
   if (l_force) {
     const std::vector<std::string> columns = l_force->sampleColumns();
@@ -74,7 +74,7 @@ void VtkExporter::init(InitContext& context) {
 
 void VtkExporter::prepare(const RunPlan& plan) {
   if (l_brain && l_brain->deformer() && !m_positions)
-    throw std::runtime_error("the deformation of " + l_brain->path() + " starts after this component: place the " +
+    throw std::runtime_error("the deformation of " + l_brain.boundComponent()->path() + " starts after this component: place the " +
                              "VtkExporter after it in the scene, or its files show the brain at rest");
   m_root = plan.outputDirectory;
   m_live.reset();
@@ -105,7 +105,7 @@ void VtkExporter::attempt(const std::string& file, double t, int part, Write&& w
 }
 
 bool VtkExporter::updateBrain() {
-  const tetra::TetraBrain& brain = *l_brain;
+  const DeformableMesh& brain = *l_brain;
   const std::vector<Vec3>& rest = brain.mesh().nodes;
   const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
   const bool newForces = m_nodeForces->fetch();  // every frame: a deforming brain's files carry them too
@@ -117,7 +117,7 @@ bool VtkExporter::updateBrain() {
   for (size_t i = 0; i < nodes.size(); ++i)
     for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);
   std::fill(m_force.values.begin(), m_force.values.end(), 0.0f);
-  for (const tetra::NodeForce& f : m_nodeForces->read().forces)
+  for (const NodeForce& f : m_nodeForces->read().forces)
     if (f.node >= 0 && size_t(f.node) < nodes.size())
       for (int a = 0; a < 3; ++a) m_force.values[3 * size_t(f.node) + a] += float(f.force[a]);
   m_brainWritten = true;

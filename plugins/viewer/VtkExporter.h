@@ -36,8 +36,7 @@
 #include "framework/core/SampleSource.h"
 #include "framework/formats/vtk/VtkXml.h"
 #include "plugins/viewer/LiveStream.h"
-#include "plugins/tetra_brain/MeshDeformation.h"
-#include "plugins/tetra_brain/TetraBrain.h"
+#include "framework/geometry/DeformableMesh.h"
 #include "plugins/voxel_skull/IsoSurface.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
 
@@ -76,7 +75,7 @@ class VtkExporter final : public Component {
   template <class Write>
   void attempt(const std::string& file, double t, int part, Write&& write);
 
-  Link<tetra::TetraBrain> l_brain{
+  Link<DeformableMesh> l_brain{
       this, "brain", {.help = "Brain whose mesh is written at its current node positions", .initOnly = true}};
   Link<SampleSource> l_force{this,
                              "force",
@@ -107,8 +106,8 @@ class VtkExporter final : public Component {
       {.help = "Folder of the files in the run directory; the index is this name with .pvd beside it"}};
 
   // Brain.
-  std::optional<ChannelReader<tetra::NodePositions>> m_positions;  // none: a rigid brain
-  std::optional<ChannelReader<tetra::NodeForces>> m_nodeForces;
+  std::optional<ChannelReader<NodePositions>> m_positions;  // none: a rigid brain
+  std::optional<ChannelReader<NodeForces>> m_nodeForces;
   std::optional<formats::VtkTetCells> m_cells;  // compressed once
   formats::VtkDataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
   bool m_brainWritten = false;

@@ -27,7 +27,7 @@
 #include "framework/channels/Channel.h"
 #include "framework/core/SampleSource.h"
 #include "framework/runtime/TimingHistogram.h"
-#include "plugins/tetra_brain/MeshDeformation.h"
+#include "framework/data/MeshDeformation.h"
 
 namespace trephine::bench {
 namespace {
@@ -39,14 +39,14 @@ constexpr int kFramesPerBlock = 1000;  // 1 s of haptics at 1 kHz
 // scene (the Recorder's, the deformer's) and, in one arm, the exporter's.
 struct Channels {
   Channel<Sample> samples;
-  Channel<tetra::NodeForces> nodeForces;
+  Channel<NodeForces> nodeForces;
   ChannelReader<Sample> recorder;
-  ChannelReader<tetra::NodeForces> deformer;
+  ChannelReader<NodeForces> deformer;
   std::optional<ChannelReader<Sample>> exporterSamples;
-  std::optional<ChannelReader<tetra::NodeForces>> exporterForces;
+  std::optional<ChannelReader<NodeForces>> exporterForces;
 
   Channels(size_t nodes, bool withExporter) : recorder(samples.addReader()), deformer(nodeForces.addReader()) {
-    tetra::NodeForces prototype;
+    NodeForces prototype;
     prototype.forces.resize(nodes);
     nodeForces.reserve(prototype);
     if (withExporter) {
@@ -60,7 +60,7 @@ void BM_HapticPublishForExporter(benchmark::State& state) {
   const size_t nodes = size_t(state.range(0));
   Channels without(nodes, false), with(nodes, true);
   Sample sample;
-  tetra::NodeForces forces;
+  NodeForces forces;
   forces.forces.resize(nodes);
   for (size_t n = 0; n < nodes; ++n) forces.forces[n] = {int32_t(n * 7), Vec3(0.01 * double(n), -0.02, 0.3)};
 
@@ -73,7 +73,7 @@ void BM_HapticPublishForExporter(benchmark::State& state) {
       double sum = 0;
       if (with.exporterSamples->fetch()) sum += with.exporterSamples->read().values[0];
       if (with.exporterForces->fetch())
-        for (const tetra::NodeForce& f : with.exporterForces->read().forces) sum += f.force.x();
+        for (const NodeForce& f : with.exporterForces->read().forces) sum += f.force.x();
       sink.store(sum, std::memory_order_relaxed);
       std::this_thread::sleep_for(std::chrono::microseconds(33'333));
     }

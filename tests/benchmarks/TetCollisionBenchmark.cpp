@@ -123,10 +123,10 @@ void BM_TetCollisionStep(benchmark::State& state) {
 
   // The deformation: this benchmark publishes the node positions itself.
   Component producer;
-  Channel<tetra::NodePositions>& channel =
-      context.hub.publish<tetra::NodePositions>(producer, tetra::kNodePositionsChannel);
+  Channel<NodePositions>& channel =
+      context.hub.publish<NodePositions>(producer, kNodePositionsChannel);
   const std::vector<Vec3> rest = brain.mesh().nodes;
-  tetra::NodePositions frame;
+  NodePositions frame;
   std::vector<double> profile(rest.size());
   const Vec3 centre(30, 10, brain.bounds().max().z());
   if (motion > 0) {

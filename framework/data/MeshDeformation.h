@@ -1,9 +1,10 @@
 #pragma once
-// What crosses between a tetrahedral mesh and the component that deforms it,
-// through the scheduler's channels (never shared state):
+// What crosses between a deformable tetrahedral mesh (DeformableMesh) and
+// the component that deforms it, through the scheduler's channels (never
+// shared state):
 //  - the deformer publishes NodePositions on its "node_positions" channel,
-//    which the TetraBrain it deforms reads at the start of each haptic frame;
-//  - the TetraBrain publishes NodeForces on its "node_forces" channel: the
+//    which the mesh it deforms reads at the start of each haptic frame;
+//  - the mesh publishes NodeForces on its "node_forces" channel: the
 //    reaction of the tool's force on the mesh nodes, computed only when a
 //    component reads it.
 #include <cmath>
@@ -12,12 +13,10 @@
 
 #include "framework/math/Math.h"
 
-namespace trephine::tetra {
+namespace trephine {
 
 inline constexpr const char* kNodePositionsChannel = "node_positions";
 inline constexpr const char* kNodeForcesChannel = "node_forces";
-// A TetGridRebuild publishes the grids it builds on the deformed shape here.
-inline constexpr const char* kGridsChannelName = "grids";
 
 struct NodePositions {
   uint64_t step = 0;             // the producer's tick count; 0 before the first
@@ -54,4 +53,4 @@ struct NodeForces {
   std::vector<NodeForce> forces;
 };
 
-}  // namespace trephine::tetra
+}  // namespace trephine
