@@ -16,12 +16,14 @@
 #include "framework/core/Strings.h"
 #include "tools/trephine/PlotScript.h"
 #include "tools/trephine/RunCommand.h"
-#include "tools/trephine/StudyReport.h"
-#include "tools/trephine/StudySetting.h"
+#include "framework/study/StudyReport.h"
+#include "framework/study/StudySetting.h"
 
 extern char** environ;
 
 namespace trephine::cli {
+
+using namespace trephine::study;
 
 namespace {
 

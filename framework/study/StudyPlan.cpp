@@ -1,9 +1,9 @@
-#include "tools/trephine/StudyPlan.h"
+#include "framework/study/StudyPlan.h"
 
 #include <algorithm>
 #include <cstdio>
 
-namespace trephine::cli {
+namespace trephine::study {
 
 std::vector<std::string> StudySetting::overrides() const {
   std::vector<std::string> result;
@@ -74,4 +74,4 @@ std::vector<StudySetting> expandSettings(const std::vector<StudyVariation>& vari
   return settings;
 }
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

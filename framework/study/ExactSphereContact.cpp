@@ -1,10 +1,10 @@
-#include "tools/trephine/ExactSphereContact.h"
+#include "framework/study/ExactSphereContact.h"
 
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-namespace trephine::cli {
+namespace trephine::study {
 
 namespace {
 
@@ -107,4 +107,4 @@ ExactSphereContact exactSphereContact(const LevelSet& solid, const Vec3& center,
   return contact;
 }
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

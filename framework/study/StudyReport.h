@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "tools/trephine/StudyPlan.h"
+#include "framework/study/StudyPlan.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 
 struct StudyRow {
   StudySetting setting;
@@ -41,4 +41,4 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
 std::vector<std::string> writeStudy(const StudyReport& report, const std::filesystem::path& out,
                                     const std::string& scene);
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

@@ -5,9 +5,9 @@
 
 #include <random>
 
-#include "tools/trephine/ExactSphereContact.h"
+#include "framework/study/ExactSphereContact.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 namespace {
 
 constexpr double kRadius = 2.5;      // mm, the sphere
@@ -75,4 +75,4 @@ TEST(ExactSphereContactTest, AWallThinnerThanTheSphereIsFoundFromEitherSide) {
 }
 
 }  // namespace
-}  // namespace trephine::cli
+}  // namespace trephine::study

@@ -1,4 +1,4 @@
-#include "tools/trephine/StudySetting.h"
+#include "framework/study/StudySetting.h"
 
 #include <algorithm>
 #include <charconv>
@@ -13,9 +13,9 @@
 #include "framework/geometry/PointShellTool.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/runtime/Scheduler.h"
-#include "tools/trephine/ExactSphereContact.h"
+#include "framework/study/ExactSphereContact.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 
 namespace {
 
@@ -270,4 +270,4 @@ void writeSettingError(const std::filesystem::path& directory, const std::string
   }
 }
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

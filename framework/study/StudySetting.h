@@ -14,9 +14,9 @@
 #include <string>
 
 #include "framework/runtime/Simulation.h"
-#include "tools/trephine/StudyPlan.h"
+#include "framework/study/StudyPlan.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 
 struct StudyOptions {
   std::filesystem::path scene;
@@ -39,4 +39,4 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting);
 // Writes error.txt of a setting whole (other processes wait for it).
 void writeSettingError(const std::filesystem::path& directory, const std::string& message);
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

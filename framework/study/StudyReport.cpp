@@ -1,4 +1,4 @@
-#include "tools/trephine/StudyReport.h"
+#include "framework/study/StudyReport.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/math/Math.h"
-#include "tools/trephine/StudySetting.h"
+#include "framework/study/StudySetting.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 
 namespace {
 
@@ -296,4 +296,4 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   return {"study.csv", "study.md"};
 }
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

@@ -4,7 +4,7 @@
 // per query).
 #include "framework/geometry/ExactShape.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 
 struct ExactSphereContact {
   // mm: radius minus the distance from the centre to the solid when the
@@ -23,4 +23,4 @@ struct ExactSphereContact {
 // reach, a lower bound. Features thinner than `step` can be missed.
 ExactSphereContact exactSphereContact(const LevelSet& solid, const Vec3& center, double radius, double step = 0.05);
 
-}  // namespace trephine::cli
+}  // namespace trephine::study

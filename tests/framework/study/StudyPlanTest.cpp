@@ -1,9 +1,9 @@
 // The settings of a study: parsing of --vary and the cartesian product.
 #include <gtest/gtest.h>
 
-#include "tools/trephine/StudyPlan.h"
+#include "framework/study/StudyPlan.h"
 
-namespace trephine::cli {
+namespace trephine::study {
 namespace {
 
 TEST(StudyPlanTest, TheProductVariesTheFirstFieldSlowest) {
@@ -35,4 +35,4 @@ TEST(StudyPlanTest, MalformedVariationsSayWhatIsExpected) {
 }
 
 }  // namespace
-}  // namespace trephine::cli
+}  // namespace trephine::study

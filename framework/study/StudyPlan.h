@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-namespace trephine::cli {
+namespace trephine::study {
 
 struct StudyVariation {
   std::string field;                // "/patient/skull.backend"
@@ -33,4 +33,4 @@ std::optional<StudyVariation> parseVariation(const std::string& text, std::strin
 
 std::vector<StudySetting> expandSettings(const std::vector<StudyVariation>& variations);
 
-}  // namespace trephine::cli
+}  // namespace trephine::study
