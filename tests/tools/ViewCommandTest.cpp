@@ -13,7 +13,7 @@
 
 #include "tests/support/TestSupport.h"
 #include "framework/formats/encoding/Base64.h"
-#include "tools/trephine/RunViewerData.h"
+#include "plugins/viewer/RunViewerData.h"
 #include "framework/data/VertexClustering.h"
 
 namespace trephine {

@@ -6,8 +6,9 @@
 #include <optional>
 
 #include "framework/runtime/RunFolder.h"
-#include "plugins/viewer/ViewerAssets.h"
-#include "tools/trephine/RunViewerData.h"
+#include "framework/core/PluginLoader.h"
+#include "framework/core/Registry.h"
+#include "framework/runtime/RunViewer.h"
 
 namespace trephine::cli {
 
@@ -58,7 +59,19 @@ int viewCommand(const Arguments& arguments) {
     return kSceneError;
   }
   if (!runOutputsUsable(run, arguments.has("--partial"))) return kSceneError;
-  const fs::path assets = viewer::findViewerAssets();
+  // The viewer plugin provides the browser viewer and writes the run's data for it.
+  PluginLoader loader;
+  Registry registry;
+  if (const auto error = loader.load("viewer", registry)) {
+    std::cerr << "trephine view: " << *error << "\n";
+    return kRuntimeFailure;
+  }
+  const RunViewer* viewer = registry.service<RunViewer>();
+  if (!viewer) {
+    std::cerr << "trephine view: the viewer plugin provides no RunViewer\n";
+    return kRuntimeFailure;
+  }
+  const fs::path assets = viewer->assets();
   if (assets.empty()) {
     std::cerr << "trephine view: the browser viewer was not built: it needs Node.js and npm (tools/setup installs "
                  "them and the viewer's packages, then builds it). ParaView opens the run's .pvd files meanwhile.\n";
@@ -76,7 +89,7 @@ int viewCommand(const Arguments& arguments) {
       }
       triangles = size_t(n);
     }
-    const ViewerDataSummary summary = writeViewerData(run, view / "data", triangles);
+    const ViewerDataSummary summary = viewer->writeViewerData(run, view / "data", triangles);
     for (const char* file : {"index.html", "viewer.js"})
       fs::copy_file(assets / file, view / file, fs::copy_options::overwrite_existing);
     // The licences of what the bundle holds, when the build wrote them.

@@ -21,27 +21,16 @@
 // into the chunks as binary meshes (.tri: "TRI1", uint32 point and triangle
 // counts, float32 points in mm, uint32 corners).
 #include <filesystem>
-#include <stdexcept>
+#include <memory>
 #include <string>
 #include <vector>
 
-namespace trephine::cli {
+#include "framework/runtime/RunViewer.h"
 
-// Bad or missing run data; the message names the file and what was expected.
-class ViewerDataError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace trephine::viewer {
 
-struct ViewerDataSummary {
-  size_t frames = 0, parts = 0, files = 0, chunks = 0;
-  // Of block parts (a skull): in the files, in the viewer while moving, still.
-  size_t surfaceTriangles = 0, drawnTriangles = 0, stillTriangles = 0;
-  double coarseCell = 0, drilledCell = 0;           // mm of their clustering (0: none)
-  uint64_t bytes = 0;  // of the VTK files packed
-  double end = 0;      // s
-  bool plots = false;
-};
+// The viewer's RunViewer service (ViewerPlugin.cpp registers it).
+std::shared_ptr<RunViewer> makeRunViewer();
 
 // Writes `dataDirectory` (emptied first) from `runDirectory`.
 ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
@@ -49,4 +38,4 @@ ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
                                   uint64_t chunkBytes = 4u << 20);
 
 
-}  // namespace trephine::cli
+}  // namespace trephine::viewer

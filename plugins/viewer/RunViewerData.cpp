@@ -1,4 +1,4 @@
-#include "tools/trephine/RunViewerData.h"
+#include "plugins/viewer/RunViewerData.h"
 
 #include <tinyxml2.h>
 
@@ -13,8 +13,9 @@
 #include "framework/runtime/JsonWriter.h"
 #include "framework/formats/vtk/VtkSurfaceReader.h"
 #include "framework/data/VertexClustering.h"
+#include "plugins/viewer/ViewerAssets.h"
 
-namespace trephine::cli {
+namespace trephine::viewer {
 
 namespace fs = std::filesystem;
 
@@ -485,4 +486,19 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   return summary;
 }
 
-}  // namespace trephine::cli
+namespace {
+
+class BrowserRunViewer final : public RunViewer {
+ public:
+  std::filesystem::path assets() const override { return findViewerAssets(); }
+  ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
+                                    const std::filesystem::path& dataDirectory, size_t blockTriangles) const override {
+    return viewer::writeViewerData(runDirectory, dataDirectory, blockTriangles);
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<RunViewer> makeRunViewer() { return std::make_shared<BrowserRunViewer>(); }
+
+}  // namespace trephine::viewer

@@ -1,0 +1,44 @@
+#pragma once
+// What `trephine view` asks of the viewer plugin, which provides it as a
+// registry service: where the built browser viewer is, and a run's data
+// written for it (plugins/viewer/RunViewerData.h says what the data are).
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string_view>
+
+#include "framework/core/Interface.h"
+
+namespace trephine {
+
+// Bad or missing run data; the message names the file and what was expected.
+class ViewerDataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ViewerDataSummary {
+  size_t frames = 0, parts = 0, files = 0, chunks = 0;
+  // Of block parts (a skull): in the files, in the viewer while moving, still.
+  size_t surfaceTriangles = 0, drawnTriangles = 0, stillTriangles = 0;
+  double coarseCell = 0, drilledCell = 0;  // mm of their clustering (0: none)
+  uint64_t bytes = 0;                      // of the VTK files packed
+  double end = 0;                          // s
+  bool plots = false;
+};
+
+class TREPHINE_INTERFACE RunViewer {
+ public:
+  static constexpr std::string_view kTypeName = "RunViewer";
+  virtual ~RunViewer();
+  // The folder of the built browser viewer (index.html, viewer.js), or empty.
+  virtual std::filesystem::path assets() const = 0;
+  // Writes `dataDirectory` (emptied first) from `runDirectory`, surfaces of
+  // block parts simplified to at most `blockTriangles`. Throws ViewerDataError.
+  virtual ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
+                                            const std::filesystem::path& dataDirectory,
+                                            size_t blockTriangles) const = 0;
+};
+
+}  // namespace trephine
