@@ -10,7 +10,7 @@
 #include "framework/core/SourceSpec.h"
 #include "framework/meshing/TetMeshing.h"
 #include "framework/meshing/TetMeshing.h"
-#include "plugins/tetra_brain/SurfaceSolid.h"
+#include "framework/meshing/SurfaceSolid.h"
 #include "framework/formats/surface/SurfaceReader.h"
 #include "framework/formats/mesh/VtuWriter.h"
 #include "tools/trephine/LabelledImageInput.h"
@@ -49,7 +49,7 @@ Solid solidOf(const std::string& name) {
     const ImplicitSolid s = ballSolid(r);
     return {s, "a ball of radius " + std::to_string(r) + " mm"};
   }
-  tetra::SurfaceSolid surface(formats::readSurface(name));
+  SurfaceSolid surface(formats::readSurface(name));
   return {surface.solid(), std::to_string(surface.triangleCount()) + " triangles, enclosing " +
                                std::to_string(std::abs(surface.volume())) + " mm^3 (inside: the winding number)"};
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The inside of a closed triangle surface as an implicit solid for the
-// mesher (ImplicitMesher): the winding number of the surface around a
+// mesher (meshImplicitSolid): the winding number of the surface around a
 // point, counted along the vertical ray above it (each triangle the ray
 // crosses adds the sign of its normal's z). It is 1 inside a closed surface
 // whose normals point out (-1 when they point in), 0 outside, and stays
@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "framework/data/TriangleMesh.h"
 #include "framework/meshing/TetMeshing.h"
-#include "framework/formats/surface/SurfaceReader.h"
 
-namespace trephine::tetra {
+namespace trephine {
 
 class SurfaceSolid {
  public:
@@ -46,4 +46,4 @@ class SurfaceSolid {
   std::vector<int32_t> m_items;
 };
 
-}  // namespace trephine::tetra
+}  // namespace trephine

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "framework/meshing/TetMeshing.h"
-#include "plugins/tetra_brain/SurfaceSolid.h"
+#include "framework/meshing/SurfaceSolid.h"
 #include "framework/formats/surface/SurfaceReader.h"
 #include "framework/formats/mesh/TetMeshReader.h"
 #include "tests/support/TestSupport.h"
@@ -113,7 +113,7 @@ std::string plyText(const std::string& format) {
 void expectBox(const TriangleMesh& s, const std::string& what) {
   EXPECT_EQ(s.vertices.size(), 8u) << what;
   EXPECT_EQ(s.triangles.size(), 12u) << what;
-  const tetra::SurfaceSolid solid(s);
+  const SurfaceSolid solid(s);
   EXPECT_NEAR(solid.volume(), 24.0, 1e-9) << what;
   EXPECT_NEAR(solid.area(), 2 * (6 + 8 + 12), 1e-9) << what;
 }
@@ -179,7 +179,7 @@ TEST(SurfaceReaderTest, BadFilesAreErrorsThatSayWhereAndWhat) {
 TEST(SurfaceSolidTest, TheWindingNumberIsOneInsideAndZeroOutsideOnEdgesAndCornersToo) {
   test::TempDir dir;
   dir.write("box.off", offText());
-  const tetra::SurfaceSolid solid(formats::readSurface(dir / "box.off"));
+  const SurfaceSolid solid(formats::readSurface(dir / "box.off"));
   EXPECT_EQ(solid.windingNumber(Vec3(1, 1.5, 2)), 1);
   EXPECT_EQ(solid.windingNumber(Vec3(3, 1.5, 2)), 0);
   EXPECT_EQ(solid.windingNumber(Vec3(1, 1.5, 5)), 0);
@@ -204,14 +204,14 @@ TEST(SurfaceSolidTest, APartThroughAnotherCountsTwiceAndAnOpenSurfaceIsRefused) 
       two.triangles.push_back({base + q[0], base + q[2], base + q[3]});
     }
   }
-  const tetra::SurfaceSolid solid(two);
+  const SurfaceSolid solid(two);
   EXPECT_EQ(solid.windingNumber(Vec3(0.5, 1, 1)), 1);
   EXPECT_EQ(solid.windingNumber(Vec3(1.5, 1, 1)), 2);
   EXPECT_EQ(solid.windingNumber(Vec3(2.5, 1, 1)), 1);
   TriangleMesh open = two;
   open.triangles.pop_back();
   try {
-    tetra::SurfaceSolid refused(open);
+    SurfaceSolid refused(open);
     ADD_FAILURE() << "an open surface was taken";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("not closed: 3 edges"), std::string::npos) << e.what();
@@ -221,7 +221,7 @@ TEST(SurfaceSolidTest, APartThroughAnotherCountsTwiceAndAnOpenSurfaceIsRefused) 
 TEST(SurfaceSolidTest, ABoxSurfaceMeshesToTheCountAndFillsTheBox) {
   test::TempDir dir;
   dir.write("box.obj", objText());
-  const tetra::SurfaceSolid surface(formats::readSurface(dir / "box.obj"));
+  const SurfaceSolid surface(formats::readSurface(dir / "box.obj"));
   const TetMesh mesh = meshImplicitSolid(surface.solid(), 3000);
   EXPECT_NEAR(double(mesh.tetCount()), 3000.0, 0.03 * 3000) << mesh.tetCount();
   double volume = 0;

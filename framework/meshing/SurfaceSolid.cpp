@@ -1,4 +1,4 @@
-#include "plugins/tetra_brain/SurfaceSolid.h"
+#include "framework/meshing/SurfaceSolid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <string>
 #include <unordered_map>
 
-namespace trephine::tetra {
+namespace trephine {
 
 namespace {
 
@@ -128,4 +128,4 @@ ImplicitSolid SurfaceSolid::solid() const {
   return s;
 }
 
-}  // namespace trephine::tetra
+}  // namespace trephine
