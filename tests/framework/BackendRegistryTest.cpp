@@ -3,6 +3,8 @@
 // registration of the same pair is an error naming both plugins.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "framework/core/CollisionBackend.h"
 #include "framework/core/Registry.h"
 
@@ -82,6 +84,38 @@ TEST(BackendRegistryTest, APhantomFileIsWrittenByThePluginThatClaimsItsSuffix) {
   gz.addPhantomWriter(writer("gzip", {".gz"}));
   ASSERT_EQ(gz.errors().size(), 1u) << "'.gz' ends '.mesh.gz': a .mesh.gz file would be claimed twice";
   EXPECT_EQ(registry.phantomWriters().size(), 2u);
+}
+
+// A service is found by its interface's name and points at the interface part
+// of the object (not at the start of a class with several bases); a second
+// provider is an error naming both plugins.
+struct Greeter {
+  static constexpr std::string_view kTypeName = "Greeter";
+  virtual ~Greeter() = default;
+  virtual int greet() const = 0;
+};
+struct Padding {
+  virtual ~Padding() = default;
+  double unused[4] = {};
+};
+struct PaddedGreeter final : Padding, Greeter {
+  int greet() const override { return 42; }
+};
+
+TEST(BackendRegistryTest, AServiceIsFoundByItsInterfaceAndProvidedOnce) {
+  Registry registry;
+  EXPECT_EQ(registry.service<Greeter>(), nullptr);
+  PluginRegistrar first(registry, "one");
+  first.addService<Greeter>(std::make_shared<PaddedGreeter>());
+  EXPECT_TRUE(first.errors().empty());
+  ASSERT_NE(registry.service<Greeter>(), nullptr);
+  EXPECT_EQ(registry.service<Greeter>()->greet(), 42);
+  EXPECT_EQ(registry.findService("Greeter")->plugin, "one");
+  PluginRegistrar second(registry, "two");
+  second.addService<Greeter>(std::make_shared<PaddedGreeter>());
+  ASSERT_EQ(second.errors().size(), 1u);
+  EXPECT_NE(second.errors()[0].find("'one'"), std::string::npos) << second.errors()[0];
+  EXPECT_NE(second.errors()[0].find("'two'"), std::string::npos) << second.errors()[0];
 }
 
 }  // namespace
