@@ -1,27 +1,52 @@
 #pragma once
 // A target that a pointshell tool collides with (a voxel skull, a tetrahedral
-// brain). The god-object proxy drives it through three queries, all called
-// from the haptic loop (no allocation, no exception):
-//   sweep    - how far the tool can move along a segment before entering the target;
-//   collide  - which shell points are inside, and the contact normal and
-//              penetration they give (and, for a drillable target, removal);
-//   overlaps - whether a displayed tool pose visibly overlaps the target.
+// brain). Each haptic frame a tool drives it through one contract, whatever
+// the number of tools touching it:
+//   beginFrame - first, at the frame's time: the first call of a frame takes
+//                the target's latest shape and applies the cuts of the frame
+//                before; later calls of the same frame change nothing, so every
+//                tool sees one shape per frame;
+//   sweep      - how far the tool can move along a segment before entering the target;
+//   collide    - which shell points are inside, the contact normal and
+//                penetration they give, and what the response needs (the sites
+//                it presses, the primitives a cut lowers): its answer is the
+//                value, no state is left for a later call;
+//   overlaps   - whether a displayed tool pose visibly overlaps the target;
+//   respond    - once the force is known, once per tool: the force onto the
+//                target and the cut, taken from what collide returned. Forces
+//                of several tools add up; cuts act on the next frame's shape.
+// All are called from the haptic loop (no allocation, no exception). The
+// tools that share a target tick in one rate group (one thread).
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
 
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 #include "framework/geometry/SurfaceTarget.h"
 
 namespace trephine {
 
-// What a tool placement collides with this frame.
+// Where a contact presses on a deformable target: up to four nodes with
+// weights summing to 1 (a tetrahedron's barycentric coordinates, or a boundary
+// triangle's with a zero fourth), and how deep (mm). The contact force is
+// shared among the sites by depth, then among each site's nodes by weight.
+struct ContactSite {
+  std::array<int32_t, 4> nodes{-1, -1, -1, -1};
+  std::array<double, 4> weights{0, 0, 0, 0};
+  double depth = 0;
+};
+
+// What a tool placement collides with this frame. The spans stay valid until
+// the same shell's next collide() on this target.
 struct ShellContact {
   int points = 0;              // shell points inside the target
   int primitives = 0;          // colliding primitives (voxels, tetrahedra)
-  int removed = 0;             // primitives removed this frame (drilling)
   Vec3 normal = Vec3::Zero();  // unit, out of the target towards the tool; zero if undefined
   double penetration = 0;      // mm, depth of the tool in the target as the target measures it
+  std::span<const ContactSite> sites;  // deformable target: where the tool presses
+  std::span<const int64_t> touched;    // drillable target, asked for a cut: the primitives it lowers
 };
 
 // What a spinning burr does to a drillable target in one haptic frame: the
@@ -36,6 +61,33 @@ struct CuttingLoad {
   double dt = 0;                 // s, duration of the frame
   double t = 0;                  // s, time of the frame (for events)
   CuttingBurr burr;
+};
+
+// What one tool does to the target in one haptic frame, once its force is
+// known: built from what this frame's collide() returned.
+struct ContactResponse {
+  double t = 0;                         // s, time of the frame
+  Vec3 forceOnTarget_N = Vec3::Zero();  // N, the opposite of the force rendered to the user; zero without contact
+  std::span<const ContactSite> sites;   // collide()'s sites
+  // The drill runs and the tool is in contact: the target's removal law cuts,
+  // from the load (force-driven), or from the primitives collide() touched
+  // and the point where a sweep stopped the tool between its shell points
+  // (the thesis's law).
+  bool cutting = false;
+  CuttingLoad load;
+  std::span<const int64_t> touched;
+  std::optional<Vec3> stoppedAt;  // mm, world
+};
+
+// What a tool learns at the start of a frame: the same for every tool of the frame.
+struct TargetFrame {
+  // How many times what shapes the target has failed so far, its shape
+  // jumping (a deformation model that diverged and restarted from rest, a
+  // frame of positions that was not this target's). A tool that sees the
+  // count grow lets go of its contact, whose proxy and constraint plane belong
+  // to a shape that is gone.
+  uint64_t shapeFailures = 0;
+  int removed = 0;  // primitives the cuts of the frame before removed (every tool's)
 };
 
 // How the sweep probes the path of a tool.
@@ -77,9 +129,9 @@ class ShellContactTarget : public SurfaceTarget {
     (void)solid;
   }
   virtual SweepResult sweep(const SweepQuery& query) const = 0;
-  // `removeMaterial`: the tool cuts now (a drill that is running); a target
-  // that cannot be cut, or is not set to, ignores it.
-  virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) = 0;
+  // `cutting`: the tool's drill runs this frame; the answer then also holds
+  // what its cut needs (ShellContact::touched). Nothing is removed here.
+  virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) = 0;
   virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
   // Only the broad phase of collide() (the search for candidate primitives),
   // so that studies can time it apart; returns the candidates, or nothing
@@ -89,15 +141,6 @@ class ShellContactTarget : public SurfaceTarget {
     (void)shell;
     return std::nullopt;
   }
-  // The tool cuts where a sweep stopped it although none of its shell points
-  // is inside there (the probe is between them): returns the primitives
-  // removed. A target that cannot be cut, or is not set to, does nothing.
-  virtual int cutAt(const Vec3& point_W) { return 0; }
-  // A spinning burr loaded against the target this frame (force-driven
-  // removal): returns the primitives removed. The force of this frame acts on
-  // the next frame's shape. A target that cannot be cut, or is not set to,
-  // does nothing.
-  virtual int cutUnderLoad(const CuttingLoad& load) { return 0; }
   // Whether tools cut this target (it is set to be drilled): material only
   // ever leaves it, so the space free of it only grows, and its cut surface is
   // rough at the scale of its primitives.
@@ -105,21 +148,23 @@ class ShellContactTarget : public SurfaceTarget {
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;
-  // Called by each tool at the start of its haptic frame, before any query: a
-  // deforming target takes its latest shape here, so that every query of the
-  // frame sees the same one.
-  virtual void refresh() {}
-  // The force (N) the tool's contact exerts on the target this frame (the
-  // opposite of the force rendered to the user), from the last collide():
-  // for a deformable target to pass on to its deformation model. Called every
-  // haptic frame, with zero when the tool touches nothing.
-  virtual void applyContactForce(const Vec3& forceOnTarget_N, double t) {}
-  // How many times what shapes this target has failed so far, its shape
-  // jumping (a deformation model that diverged and restarted from rest, a
-  // frame of positions that was not this target's). Read after refresh(): a
-  // tool that sees the count grow lets go of its contact, whose proxy and
-  // constraint plane belong to a shape that is gone.
+  // Called by each tool at the start of its haptic frame (time t, s), before
+  // any query; see the top of this file.
+  virtual TargetFrame beginFrame(double t) {
+    (void)t;
+    return {};
+  }
+  // The failure count beginFrame() reports, as it stands (for a tool that
+  // starts on this target).
   virtual uint64_t shapeFailures() const { return 0; }
+  // One tool's response this frame (see ContactResponse), every frame it is
+  // in the loop, with a zero force when it touches nothing: a deformable
+  // target passes the sum of the tools' forces on to its deformation model,
+  // a drillable one cuts at the start of the next frame. `shell` names the tool.
+  virtual void respond(std::span<const ShellPoint> shell, const ContactResponse& response) {
+    (void)shell;
+    (void)response;
+  }
 };
 
 }  // namespace trephine

@@ -155,7 +155,7 @@ class Simulation::Context final : public InitContext {
   HapticFrameLog* claimHapticLog(const Component& component) override {
     if (m_simulation.m_hapticLogOwner) {
       error(component, "only one component per scene writes the haptic trace; " +
-                           m_simulation.m_hapticLogOwner->path() + " already does");
+                           m_simulation.m_hapticLogOwner->path() + " already does (a ForceFeedback's trace=\"false\" leaves it to the other)");
       return nullptr;
     }
     m_simulation.m_hapticLogOwner = &component;

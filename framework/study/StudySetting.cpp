@@ -10,7 +10,7 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/geometry/ExactShape.h"
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/runtime/Scheduler.h"
 #include "framework/study/ExactSphereContact.h"
@@ -67,10 +67,10 @@ std::pair<ShellContactTarget*, Component*> findTarget(const Simulation& simulati
   return {dynamic_cast<ShellContactTarget*>(targets.front()), targets.front()};
 }
 
-const PointShellTool& findTool(const Simulation& simulation) {
-  const PointShellTool* tool = nullptr;
+const ShellTool& findTool(const Simulation& simulation) {
+  const ShellTool* tool = nullptr;
   for (Component* c : simulation.scene().components())
-    if (auto* t = dynamic_cast<const PointShellTool*>(c)) {
+    if (auto* t = dynamic_cast<const ShellTool*>(c)) {
       if (tool) throw SettingError("the scene has several pointshell tools; a study probes a scene with one");
       tool = t;
     }
@@ -101,7 +101,7 @@ std::vector<StudyPose> posesFromRun(const Simulation& simulation, int perKind) {
   return poses;
 }
 
-void addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const PointShellTool& tool) {
+void addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const ShellTool& tool) {
   const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
   if (!source) return;
   const LevelSet shape = source->exactShape();
@@ -167,8 +167,8 @@ std::vector<Vec3> readPositions(const std::filesystem::path& file) {
 void probe(Simulation& simulation, const StudyOptions& options, const StudySetting& setting,
            const std::vector<Vec3>& positions, const std::filesystem::path& file) {
   auto [target, component] = findTarget(simulation, options, setting);
-  const PointShellTool& tool = findTool(simulation);
-  target->refresh();
+  const ShellTool& tool = findTool(simulation);
+  target->beginFrame(0.0);
   using Clock = std::chrono::steady_clock;
   const auto microseconds = [](Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); };
   std::vector<double> broadUs(positions.size(), std::nan(""));

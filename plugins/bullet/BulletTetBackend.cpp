@@ -17,7 +17,7 @@ struct BulletTetBackend::State {
   BulletTools tools;
   tetra::RefitPolicy refit;
   tetra::FollowTiming following;
-  tetra::ContactSite site;  // the last contact's
+  ContactSite site;  // the last contact's
 };
 
 BulletTetBackend::BulletTetBackend() : m_state(std::make_unique<State>()) {}

@@ -17,7 +17,7 @@ struct EmbreeTetBackend::State {
   ReservedShells shells;
   tetra::RefitPolicy refit;
   tetra::FollowTiming following;
-  tetra::ContactSite site;  // the last contact's
+  ContactSite site;  // the last contact's
 
   // The proxy rests contactDepth deep (as on the native back-end); sweeps
   // sample the exact depth every half average edge; a displayed burr ten

@@ -16,7 +16,7 @@ void FixedConstraint::init(InitContext& context) {
   }
   TLEDForceField& fem = *l_fem;
   if (!fem.hasModel()) return;  // the FEM's own error is reported
-  TledModel& model = fem.model();
+  TLEDModel& model = fem.model();
   const size_t n = model.nodeCount();
   std::vector<char> selected(n, 0);
   if (d_indices.isSet()) {

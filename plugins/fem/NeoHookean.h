@@ -10,7 +10,7 @@
 // Units: the FEM's (mm, kg, s), so stresses and moduli in kg / (mm s^2) = kPa
 // and forces in kg mm / s^2 = mN.
 // These scalar forms are the reference for the vectorised kernel
-// (TledKernel.cpp) and give the strain energy the tests and reports use.
+// (TLEDKernel.cpp) and give the strain energy the tests and reports use.
 #include <Eigen/Core>
 #include <cmath>
 

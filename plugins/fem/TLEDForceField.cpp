@@ -5,11 +5,14 @@
 #include <sstream>
 
 #include "framework/core/Lifecycle.h"
+#include "framework/core/Strings.h"
 
 namespace trephine::fem {
 
 namespace {
 constexpr double kNewtonsToModelForce = 1000.0;  // N -> mN (kg mm / s^2)
+// N s/mm: above this a contactDamping is taken for a slip of units (warned).
+constexpr double kMostPlausibleContactDamping = 0.1;
 
 std::string seconds(double s) {
   std::ostringstream out;
@@ -24,12 +27,18 @@ void TLEDForceField::init(InitContext& context) {
   const TetMesh& mesh = brain.mesh();
   const ElementMaterial material = this->material();
   try {
-    m_model = std::make_unique<TledModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
+    m_model = std::make_unique<TLEDModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
   } catch (const std::invalid_argument& e) {
     context.error(l_mesh, std::string("cannot build the FEM model of this mesh: ") + e.what());
     return;
   }
   m_labels = mesh.labels;
+  // k T of a haptic spring is of the order of 0.001 N s/mm (3 N/mm acting
+  // 2 ms late: 0.006): a hundred times that is a value in N s/m.
+  if (d_contactDamping.value() > kMostPlausibleContactDamping)
+    context.warning(d_contactDamping, "is in N s/mm; a spring k acting T late needs about k T (0.3 N/mm, 1.5 ms: "
+                                      "0.00045), so " + formatDouble(d_contactDamping.value()) +
+                                          " is a damping in N s/m, or far more than the contact needs");
   m_model->setElementPrecision(d_precision.is("single") ? ElementPrecision::kSingle : ElementPrecision::kDouble);
   scaleMass();
   if (auto error = checkTimeStep()) context.error(d_dt, *error);
@@ -134,10 +143,12 @@ void TLEDForceField::tick(const TickContext& context) {
     }
   }
   m_appliedNodes.resize(kept);
-  // contactDamping (N s/m is the model's kg/s), shared as the force is.
+  // contactDamping, shared as the force is: N s/mm, in the model's kg/s
+  // (N s/m, the mN of a mm/s) times 1000.
   if (d_contactDamping.value() > 0)
     for (int32_t node : m_appliedNodes)
-      m_model->setNodeDamping(node, total > 0 ? d_contactDamping.value() * m_applied[node].norm() / total : 0.0);
+      m_model->setNodeDamping(node, total > 0 ? kNewtonsToModelForce * d_contactDamping.value() * m_applied[node].norm() / total
+                                              : 0.0);
   // As many steps as fit: the model's time stays within one step of the end
   // of this period. In real time, after a stall (a tick that came late), at
   // most one step more than a period holds: the model falls behind the clock
@@ -159,7 +170,7 @@ void TLEDForceField::tick(const TickContext& context) {
   // At rest and published so: the brain already has this shape (the rest
   // shape before the first frame).
   if (m_model->resting() && m_publishedRest) return;
-  const TledModel::WrittenShape shape = m_model->writePositions(m_frame.positions);
+  const TLEDModel::WrittenShape shape = m_model->writePositions(m_frame.positions);
   const double largest = shape.largestDisplacement;
   // A node farther from rest than the mesh is large has diverged as surely
   // as a NaN (and would widen every collision query by as much).

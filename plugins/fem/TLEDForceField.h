@@ -1,6 +1,6 @@
 #pragma once
 // The brain's mechanics: TLED on the linear tetrahedra of a TetraBrain
-// (TledModel), ticked in its own rate group. Each tick it takes the latest
+// (TLEDModel), ticked in its own rate group. Each tick it takes the latest
 // reaction forces of the tool on the nodes (the brain's node_forces, N),
 // advances as many time steps as fit in the period, and publishes the node
 // positions on node_positions, which the brain reads at the start of each
@@ -19,7 +19,7 @@
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Component.h"
 #include "framework/geometry/DeformableMesh.h"
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 
 namespace trephine::fem {
 
@@ -33,7 +33,7 @@ class TLEDForceField final : public Component {
   void reportCounters(std::vector<Counter>& counters) const override;
 
   // For the components that link here, during their init() (after this one's).
-  TledModel& model() { return *m_model; }
+  TLEDModel& model() { return *m_model; }
   const DeformableMesh& brain() const { return *l_mesh; }
   // The deformed mesh's path, for messages.
   std::string brainPath() const { return l_mesh.boundComponent()->path(); }
@@ -112,8 +112,8 @@ class TLEDForceField final : public Component {
       0.0,
       {.help = "Viscous damping of the brain where the tool presses, shared among the pressed nodes as the force "
                "is. The haptic spring acts on the brain a frame or two late, and a spring k acting T late feeds "
-               "the surface like a negative damping of about k T; this returns it (0.3 N/mm and 1.5 ms: 0.45)",
-       .unit = "N s/m",
+               "the surface like a negative damping of about k T; this returns it (0.3 N/mm and 1.5 ms: 0.00045)",
+       .unit = "N s/mm",
        .min = 0.0}};
   EnumField d_precision{this,
                         "precision",
@@ -134,7 +134,7 @@ class TLEDForceField final : public Component {
   // After a divergence: the tool's forces, fetched and applied, are dropped.
   void dropToolLoad();
 
-  std::unique_ptr<TledModel> m_model;
+  std::unique_ptr<TLEDModel> m_model;
   std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
   std::optional<ChannelReader<NodeForces>> m_forces;
   // The tool's forces (mN) per node: the last fetched (target) and those

@@ -3,7 +3,7 @@
 // can drill. Only a drillable target with the force-driven removal law reads
 // them (VoxelSkull removal="force"); elsewhere they have no effect.
 #include "framework/core/Field.h"
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 
 namespace trephine::haptics {
 

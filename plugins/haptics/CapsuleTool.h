@@ -3,15 +3,15 @@
 // cylinder of `shaftRadius` running `shaftLength` along `axis` (device frame)
 // from the burr centre. Shell points cover the sphere (except where the shaft
 // covers it) and the shaft wall, so a shaft touching a bone edge pushes back too.
-// One component is all a new tool shape needs: see PointShellTool.
+// One component is all a new tool shape needs: see ShellTool.
 #include <vector>
 
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 #include "plugins/haptics/BurrFields.h"
 
 namespace trephine::haptics {
 
-class CapsuleTool final : public Component, public PointShellTool {
+class CapsuleTool final : public Component, public ShellTool {
  public:
   static constexpr std::string_view kTypeName = "CapsuleTool";
 

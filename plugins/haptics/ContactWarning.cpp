@@ -8,11 +8,11 @@ void ContactWarning::init(InitContext&) { l_target->reserveShell(l_proxy->tool()
 
 void ContactWarning::tick(const TickContext& context) {
   if (l_until && l_until->changed()) return;
-  const PointShellTool& tool = l_proxy->tool();
+  const ShellTool& tool = l_proxy->tool();
   const DeviceState& device = tool.device().state();
   if (!device.valid) return;
   ShellContactTarget& target = *l_target;
-  target.refresh();
+  target.beginFrame(context.t);
   const Pose X_WT{l_proxy->state().proxy, tool.toolPose(device.pose).orientation};
   ++m_queries;
   const bool touching = target.overlaps(X_WT, tool.shellPoints());

@@ -9,7 +9,7 @@
 namespace trephine::haptics {
 
 void ForceFeedback::init(InitContext& context) {
-  m_log = context.claimHapticLog(*this);
+  m_log = d_trace.value() ? context.claimHapticLog(*this) : nullptr;
   // The summary judges force steps beyond what k and b explain from the device's motion.
   // After a tool change the gains may change: the larger of each explains more, so the judge is not harsher.
   if (m_log)
@@ -90,9 +90,11 @@ void ForceFeedback::tick(const TickContext& context) {
   if (!force.allFinite()) force = m_force;  // never send a NaN; hold the last force
   m_force = force;
   device.applyForce(force);
-  // The load of this force on the target (drilling under load happens here).
-  // A fading force belongs to the contact that was let go, not to the target.
-  proxy.applyForce(fading ? Vec3::Zero() : force, context.t);
+  // The target's response to this frame's contact: the force on it and, while
+  // the drill runs, the cut (applied at the start of the next frame). Every
+  // frame, so that a deformable target knows when the contact ended. A
+  // fading force belongs to the contact that was let go, not to the target.
+  proxy.target().respond(proxy.tool().shellPoints(), proxy.response(fading ? Vec3::Zero() : force, context.t));
 
   HapticFrame frame;
   frame.t = context.t;

@@ -64,6 +64,11 @@ class ForceFeedback final : public Component, public SampleSource {
       "maxForceStep",
       0.0,
       {.help = "Largest change of the force vector between two frames; 0 for no limit", .unit = "N", .min = 0.0}};
+  Field<bool> d_trace{this,
+                      "trace",
+                      true,
+                      {.help = "Write this tool's frames to the run's trace.csv (one tool per scene does; with "
+                               "several, set false on the others and record them with a Recorder)"}};
   Field<double> d_releaseRamp{
       this,
       "releaseRamp",

@@ -27,7 +27,7 @@ void GodObjectProxy::init(InitContext& context) {
   if (l_toolChange) {
     if (!l_nextTool && !l_nextTarget)
       context.error(l_toolChange, "a tool change needs nextTool, nextTarget or both (what changes)");
-    PointShellTool& nextTool = l_nextTool ? *l_nextTool : *l_tool;
+    ShellTool& nextTool = l_nextTool ? *l_nextTool : *l_tool;
     ShellContactTarget& nextTarget = l_nextTarget ? *l_nextTarget : *l_target;
     nextTarget.reserveShell(nextTool.shellPoints());
     nextTarget.describeTool(nextTool.shellPoints(), nextTool.solid());
@@ -45,22 +45,27 @@ void GodObjectProxy::init(InitContext& context) {
                                     : SweepProbe::Line;
 }
 
-int GodObjectProxy::applyForce(const Vec3& forceOnTool_N, double t) {
-  // Every frame, so that a deformable target knows when the contact ended.
-  m_target->applyContactForce(m_state.contact ? Vec3(-forceOnTool_N) : Vec3::Zero(), t);
-  if (!m_state.contact) return 0;
-  if (!m_state.cutting) return 0;
-  CuttingLoad load;
-  load.center_W = m_state.proxy;
-  load.radius = m_tool->leadingRadius();
-  load.overlap = m_state.overlap;
-  load.force_N = -forceOnTool_N;
-  load.dt = 1.0 / d_rate.value();
-  load.t = t;
-  load.burr = m_tool->cuttingBurr();
-  const int removed = m_target->cutUnderLoad(load);
-  m_state.removed += removed;
-  return removed;
+ContactResponse GodObjectProxy::response(const Vec3& forceOnTool_N, double t) const {
+  ContactResponse response;
+  response.t = t;
+  if (m_state.contact) {
+    response.forceOnTarget_N = -forceOnTool_N;
+    response.sites = m_frameContact.sites;
+    if (m_state.cutting) {
+      response.cutting = true;
+      CuttingLoad& load = response.load;
+      load.center_W = m_state.proxy;
+      load.radius = m_tool->leadingRadius();
+      load.overlap = m_state.overlap;
+      load.force_N = -forceOnTool_N;
+      load.dt = 1.0 / d_rate.value();
+      load.t = t;
+      load.burr = m_tool->cuttingBurr();
+      response.touched = m_frameContact.touched;
+      response.stoppedAt = m_stoppedAt;
+    }
+  }
+  return response;
 }
 
 double GodObjectProxy::slideAllowance(const Vec3& device) const {
@@ -118,7 +123,9 @@ void GodObjectProxy::followDevice(ProxyState& s, const Vec3& device, const Quat&
 void GodObjectProxy::changeTools(const TickContext& context) {
   // The first target hears that the contact ended; the proxy starts again
   // where the device is, with no plane and no history of the old contact.
-  m_target->applyContactForce(Vec3::Zero(), context.t);
+  ContactResponse ended;
+  ended.t = context.t;
+  m_target->respond(m_tool->shellPoints(), ended);
   if (l_nextTool) m_tool = &*l_nextTool;
   if (l_nextTarget) m_target = &*l_nextTarget;
   m_state = ProxyState{};
@@ -131,12 +138,15 @@ void GodObjectProxy::changeTools(const TickContext& context) {
 
 void GodObjectProxy::tick(const TickContext& context) {
   if (l_toolChange && !m_changedTools && l_toolChange->changed()) changeTools(context);
-  PointShellTool& tool = *m_tool;
+  ShellTool& tool = *m_tool;
   ShellContactTarget& target = *m_target;
-  target.refresh();
+  const TargetFrame frame = target.beginFrame(context.t);
+  m_frameContact = ShellContact{};
+  m_stoppedAt.reset();
   const DeviceState& device = tool.device().state();
   ProxyState s;
   s.deviceValid = device.valid;
+  s.removed = frame.removed;
   if (!device.valid) {
     s.proxy = m_state.proxy;
     m_state = s;
@@ -149,8 +159,8 @@ void GodObjectProxy::tick(const TickContext& context) {
     m_state.proxy = D;  // the proxy starts with the device, wherever that is
     m_started = true;
   }
-  if (target.shapeFailures() != m_seenShapeFailures) {
-    m_seenShapeFailures = target.shapeFailures();
+  if (frame.shapeFailures != m_seenShapeFailures) {
+    m_seenShapeFailures = frame.shapeFailures;
     letGo(context);
   }
   if (m_released) {
@@ -206,9 +216,9 @@ void GodObjectProxy::tick(const TickContext& context) {
   const bool cutting = d_drillButton.value() == 0 || (device.buttons >> (d_drillButton.value() - 1)) & 1u;
   s.cutting = cutting;
   const ShellContact c = target.collide({P1, q}, tool.shellPoints(), cutting);
+  m_frameContact = c;
   s.points = c.points;
   s.primitives = c.primitives;
-  s.removed = c.removed;
   s.rawPenetration = c.penetration;
 
   Vec3 normal = c.normal;
@@ -332,7 +342,7 @@ void GodObjectProxy::tick(const TickContext& context) {
     // the spring to the device acts.
     ++m_conflictFrames;
     // A cutting tool cuts what stopped it, even between its shell points.
-    if (cutting && blocked) s.removed += target.cutAt(blockedAt);
+    if (cutting && blocked) m_stoppedAt = blockedAt;
     s.normal = (P1 - D).normalized();
     s.penetration = (D - P1).norm();
     s.contact = true;
@@ -369,8 +379,10 @@ void GodObjectProxy::tick(const TickContext& context) {
   if (!P2.allFinite() || !s.normal.allFinite() || !std::isfinite(s.penetration)) {
     // Never expected; if it happens the proxy and the force hold, and it is counted.
     ++m_nonFiniteFrames;
+    const int removed = s.removed;
     s = m_state;
     s.device = D;
+    s.removed = removed;
     P2 = m_state.proxy;
   }
   m_lastDevice = D;

@@ -23,6 +23,7 @@
 // When the sweep stopped the proxy but no shell point collides there (the two
 // conflicting cases of the rigid method), the normal is against the sweep
 // direction and the penetration is the device-proxy distance.
+#include <optional>
 #include <vector>
 
 #include "framework/geometry/ShellContactTarget.h"
@@ -39,7 +40,7 @@ struct ProxyState {
   double overlap = 0;          // mm, depth of the displayed tool in the target (its contact skin)
   int points = 0;              // colliding shell points
   int primitives = 0;          // colliding voxels / tetrahedra
-  int removed = 0;             // drilled primitives this frame
+  int removed = 0;             // primitives the target lost at the start of this frame (every tool's cuts of the frame before)
   bool contact = false;
   bool cutting = false;      // the drill runs this frame (pedal held, or no pedal)
   bool proxyInside = false;  // the displayed proxy visibly overlaps the target
@@ -59,14 +60,16 @@ class GodObjectProxy final : public Component {
 
   const ProxyState& state() const { return m_state; }
   // The tool and target of this frame (the next ones after a tool change).
-  PointShellTool& tool() const { return *m_tool; }
+  ShellTool& tool() const { return *m_tool; }
   bool changedTools() const { return m_changedTools; }
   bool hasToolChange() const { return bool(l_toolChange); }
-  // The force rendered to the user this frame (N, on the tool); its opposite
-  // goes to the target (a deformable one passes it on to its nodes) and, while
-  // the drill runs, loads the burr against it (force-driven removal). Returns
-  // the primitives that load removed.
-  int applyForce(const Vec3& forceOnTool_N, double t);
+  // What this frame's target takes (ShellContactTarget::respond, with the
+  // tool's shell) once the force rendered to the user is known (N, on the
+  // tool): its opposite onto the target (a deformable one passes it on to its
+  // nodes) and, while the drill runs, the burr loaded against it, with what
+  // this frame's collide() returned. Zero force without contact.
+  ContactResponse response(const Vec3& forceOnTool_N, double t) const;
+  ShellContactTarget& target() const { return *m_target; }
 
  private:
   // mm: how far the proxy may slide along its constraint plane this frame.
@@ -79,7 +82,7 @@ class GodObjectProxy final : public Component {
   // While let go: the proxy at the device, until the tool is clear of the target.
   void followDevice(ProxyState& s, const Vec3& device, const Quat& orientation);
 
-  Link<PointShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
+  Link<ShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
   Link<ShellContactTarget> l_target{this, "target", {.help = "What the tool collides with", .required = true}};
   EnumField d_sweep{this,
                     "sweep",
@@ -105,13 +108,13 @@ class GodObjectProxy final : public Component {
       this,
       "toolChange",
       {.help = "From this tool change on, the proxy moves nextTool against nextTarget (the procedure's next phase)"}};
-  Link<PointShellTool> l_nextTool{
+  Link<ShellTool> l_nextTool{
       this, "nextTool", {.help = "The tool after the change (the same device's); unset keeps the tool"}};
   Link<ShellContactTarget> l_nextTarget{
       this, "nextTarget", {.help = "What the tool collides with after the change; unset keeps the target"}};
   RateField d_rate{this, 1000.0, "Haptic rate"};
 
-  PointShellTool* m_tool = nullptr;        // l_tool, then l_nextTool
+  ShellTool* m_tool = nullptr;        // l_tool, then l_nextTool
   ShellContactTarget* m_target = nullptr;  // l_target, then l_nextTarget
   bool m_changedTools = false;
 
@@ -119,6 +122,11 @@ class GodObjectProxy final : public Component {
   SweepProbe m_probe = SweepProbe::Line;
   bool m_sweeps = true;
   ProxyState m_state;
+  // This frame's answer of collide() (its spans: until the next one) and the
+  // point where a sweep stopped a cutting tool between its shell points: what
+  // response() gives the target.
+  ShellContact m_frameContact;
+  std::optional<Vec3> m_stoppedAt;
   Vec3 m_lastNormal = Vec3::Zero();
   Vec3 m_lastDevice = Vec3::Zero();  // mm, the device's point last frame
   bool m_hadDevice = false;

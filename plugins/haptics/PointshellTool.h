@@ -4,12 +4,12 @@
 // pointCount > 0, from an even-area distribution of that many points.
 #include <vector>
 
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 #include "plugins/haptics/BurrFields.h"
 
 namespace trephine::haptics {
 
-class PointshellTool final : public Component, public PointShellTool {
+class PointshellTool final : public Component, public ShellTool {
  public:
   static constexpr std::string_view kTypeName = "PointshellTool";
 

@@ -52,16 +52,6 @@ struct NodeFrame {
   double largestMove = INFINITY;        // mm, no node moved farther since the previous frame; infinite when unknown
 };
 
-// Where a contact presses on the mesh: up to four nodes with weights summing
-// to 1 (a tetrahedron's barycentric coordinates, or a boundary triangle's with
-// a zero fourth), and how deep (mm). The contact force is shared among the
-// sites by depth, then among each site's nodes by weight.
-struct ContactSite {
-  std::array<int32_t, 4> nodes{-1, -1, -1, -1};
-  std::array<double, 4> weights{0, 0, 0, 0};
-  double depth = 0;
-};
-
 // A contact, and when asked for, its sites (valid until the back-end's next query).
 struct TetContact {
   ShellContact contact;

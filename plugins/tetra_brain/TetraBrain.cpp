@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "framework/core/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
@@ -207,7 +208,15 @@ void TetraBrain::bindBackend() {
   m_bound = true;
 }
 
-void TetraBrain::refresh() {
+TargetFrame TetraBrain::beginFrame(double t) {
+  if (!(t == m_frameTime)) {
+    m_frameTime = t;
+    takeLatestShape();
+  }
+  return {m_shapeFailures, 0};
+}
+
+void TetraBrain::takeLatestShape() {
   if (!m_bound || !m_positions) return;
   // New grids (built off this thread) are read in place: adopting them is a pointer.
   const bool newGrids = m_grids && m_grids->fetch();
@@ -247,13 +256,30 @@ void TetraBrain::refresh() {
   });
 }
 
+TetraBrain::ShellSlot* TetraBrain::slotOf(const ShellPoint* shell) {
+  for (ShellSlot& slot : m_slots)
+    if (slot.shell == shell) return &slot;
+  return nullptr;
+}
+
 void TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
   if (!m_bound) return;
   m_backend->reserveShell(shell);
-  if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) m_shells.push_back(shell.data());
+  if (!slotOf(shell.data())) {
+    ShellSlot slot;
+    slot.shell = shell.data();
+    m_slots.push_back(std::move(slot));
+  }
+  // Every shell's sites may take the back-end's largest contact, and the
+  // node forces the sites of every shell at once.
   const size_t sites = m_backend->siteCapacity();
-  if (m_lastSites.capacity() < sites) m_lastSites.reserve(sites);
-  if (m_nodeForceValue.forces.capacity() < 4 * sites) reserveNodeForces(4 * sites);
+  size_t allSites = 0;
+  for (ShellSlot& slot : m_slots) {
+    if (slot.sites.capacity() < sites) slot.sites.reserve(sites);
+    allSites += slot.sites.capacity();
+  }
+  m_frameResponses.reserve(m_slots.size());
+  if (m_nodeForceValue.forces.capacity() < 4 * allSites) reserveNodeForces(4 * allSites);
 }
 
 void TetraBrain::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
@@ -264,9 +290,9 @@ void TetraBrain::describeTool(std::span<const ShellPoint> shell, const ToolSolid
 // Before that (the mesh or the back-end failed to load, and the tools' init
 // still announces their shells) there is nothing to hit.
 ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
-  m_lastSites.clear();
   if (!m_bound) return {};
-  if (std::find(m_shells.begin(), m_shells.end(), shell.data()) == m_shells.end()) {
+  ShellSlot* slot = slotOf(shell.data());
+  if (!slot) {
     ++m_unreservedShellCalls;
     return {};
   }
@@ -274,10 +300,13 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
   const bool wantSites = !m_nodeSlot.empty();
   const TetContact result = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, wantSites); });
   if (result.contact.points > 0) ++m_contactFrames;
-  // Kept for applyContactForce (the back-end's span lasts until its next query).
-  const size_t kept = std::min(result.sites.size(), m_lastSites.capacity());
-  m_lastSites.assign(result.sites.begin(), result.sites.begin() + kept);
-  return result.contact;
+  // Copied into the shell's own slot: the back-end's span lasts only until its
+  // next query, which may be another tool's.
+  const size_t kept = std::min(result.sites.size(), slot->sites.capacity());
+  slot->sites.assign(result.sites.begin(), result.sites.begin() + kept);
+  ShellContact contact = result.contact;
+  contact.sites = slot->sites;
+  return contact;
 }
 
 std::optional<size_t> TetraBrain::broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) {
@@ -298,13 +327,33 @@ std::optional<SurfaceHit> TetraBrain::raycast(const Vec3& origin, const Vec3& di
                  : std::nullopt;
 }
 
-void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
-  // The reaction on the mesh: shared among the contact's sites by depth (the
-  // points that press hardest carry most), then among each site's nodes by
-  // its weights, so that the nodal forces sum to the contact force and act
-  // where it acts. Computed only for a reader.
-  if (m_nodeSlot.empty()) return;
-  if (m_lastSites.empty() || !forceOnTarget_N.allFinite() || forceOnTarget_N.isZero(0.0)) {
+void TetraBrain::respond(std::span<const ShellPoint> shell, const ContactResponse& response) {
+  if (m_nodeSlot.empty()) return;  // no component reads the node forces
+  ShellSlot* slot = slotOf(shell.data());
+  if (!slot) return;
+  const bool pushes = !response.sites.empty() && response.forceOnTarget_N.allFinite() &&
+                      !response.forceOnTarget_N.isZero(0.0);
+  slot->respondedAt = response.t;
+  slot->force = pushes ? response.forceOnTarget_N : Vec3::Zero();
+  slot->respondedSites = pushes ? response.sites : std::span<const ContactSite>{};
+  publishNodeForces(response.t);
+}
+
+void TetraBrain::publishNodeForces(double t) {
+  // The reaction on the mesh: each tool's force shared among its contact's
+  // sites by depth (the points that press hardest carry most), then among
+  // each site's nodes by its weights, so that the nodal forces sum to the
+  // contact forces and act where they act. The tools in an order of their
+  // own (not the scene's), so the sums are the same whatever order they
+  // answered in.
+  m_frameResponses.clear();
+  size_t siteCount = 0;
+  for (const ShellSlot& slot : m_slots)
+    if (slot.respondedAt == t && !slot.respondedSites.empty()) {
+      m_frameResponses.push_back(&slot);
+      siteCount += slot.respondedSites.size();
+    }
+  if (m_frameResponses.empty()) {
     // No contact: the reader's last forces must end too (published once).
     if (m_nodeForceValue.forces.empty()) return;
     m_nodeForceValue.forces.clear();
@@ -313,22 +362,34 @@ void TetraBrain::applyContactForce(const Vec3& forceOnTarget_N, double t) {
     m_nodeForces->publish(m_nodeForceValue);
     return;
   }
-  double depthSum = 0;
-  for (const ContactSite& site : m_lastSites) depthSum += site.depth;
+  std::sort(m_frameResponses.begin(), m_frameResponses.end(), [](const ShellSlot* a, const ShellSlot* b) {
+    const auto key = [](const ShellSlot* s) {
+      return std::tuple(s->force.x(), s->force.y(), s->force.z(), s->respondedSites.size());
+    };
+    return key(a) < key(b);
+  });
   std::vector<NodeForce>& forces = m_nodeForceValue.forces;
-  forces.resize(4 * m_lastSites.size());  // within the capacity reserveShell() gave it: no allocation
+  // Within the capacity reserveShell() gave it: no allocation.
+  forces.resize(std::min(4 * siteCount, forces.capacity()));
   uint32_t count = 0;
-  for (const ContactSite& site : m_lastSites) {
-    const double share = depthSum > 0 ? site.depth / depthSum : 1.0 / double(m_lastSites.size());
-    if (share == 0) continue;
-    for (int i = 0; i < 4; ++i) {
-      if (site.nodes[i] < 0 || site.weights[i] == 0) continue;
-      int32_t& slot = m_nodeSlot[site.nodes[i]];
-      if (slot < 0) {
-        slot = int32_t(count++);
-        forces[slot] = {site.nodes[i], Vec3::Zero()};
+  for (const ShellSlot* response : m_frameResponses) {
+    const std::span<const ContactSite> sites = response->respondedSites;
+    const Vec3& forceOnTarget_N = response->force;
+    double depthSum = 0;
+    for (const ContactSite& site : sites) depthSum += site.depth;
+    for (const ContactSite& site : sites) {
+      const double share = depthSum > 0 ? site.depth / depthSum : 1.0 / double(sites.size());
+      if (share == 0) continue;
+      for (int i = 0; i < 4; ++i) {
+        if (site.nodes[i] < 0 || site.weights[i] == 0) continue;
+        int32_t& slot = m_nodeSlot[site.nodes[i]];
+        if (slot < 0) {
+          if (count == forces.size()) continue;  // cannot happen: the capacity covers every site's nodes
+          slot = int32_t(count++);
+          forces[slot] = {site.nodes[i], Vec3::Zero()};
+        }
+        forces[slot].force += (share * site.weights[i]) * forceOnTarget_N;
       }
-      forces[slot].force += (share * site.weights[i]) * forceOnTarget_N;
     }
   }
   forces.resize(count);
@@ -369,7 +430,7 @@ void TetraBrain::declareOutputs(std::vector<OutputFile>& outputs) const {
 void TetraBrain::finish(FinishContext& context) {
   if (d_saveDeformed.value().empty() || context.outputDirectory().empty() || !m_bound) return;
   if (!context.claimOutput(*this, d_saveDeformed.value())) return;
-  refresh();  // the deformation's last shape, also when no tool asked for it during the run
+  takeLatestShape();  // the deformation's last shape, also when no tool asked for it during the run
   TetMesh deformed;
   deformed.nodes.assign(m_nodes, m_nodes + m_mesh.nodeCount());
   deformed.tets = m_mesh.tets;

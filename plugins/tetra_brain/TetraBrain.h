@@ -6,6 +6,7 @@
 // turn. The queries go to the collision back-end the `backend` field picks:
 // NativeTetBackend (the thesis's uniform grid and boundary-face methods) or a
 // plugin's, on the boundary triangles.
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,13 +43,15 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   void reserveShell(std::span<const ShellPoint> shell) override;
   void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   SweepResult sweep(const SweepQuery& query) const override;
-  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) override;
+  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) override;
   std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return d_contactDepth.value(); }
-  void refresh() override;
+  TargetFrame beginFrame(double t) override;
   uint64_t shapeFailures() const override { return m_shapeFailures; }
-  void applyContactForce(const Vec3& forceOnTarget_N, double t) override;
+  // The node forces: the sum of this frame's responses, published with each
+  // (the last of the frame carries every tool's force, whatever their order).
+  void respond(std::span<const ShellPoint> shell, const ContactResponse& response) override;
   void reportFacts(std::vector<Fact>& facts) const override;
 
   // Publishes the node_forces channel (init() calls it; tests that build the
@@ -87,8 +90,22 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   void bindBackend();
   void warnUnusedNodes(InitContext& context, const MeshReport& report) const;
   void checkNativeOnlyFields(InitContext& context);
+  // Per reserved shell (one per tool): the sites of its last collide() (the
+  // span that collide() returns points here) and its response this frame.
+  struct ShellSlot {
+    const ShellPoint* shell = nullptr;
+    std::vector<ContactSite> sites;  // capacity reserved with the shell
+    double respondedAt = NAN;        // s, the frame of its last response
+    Vec3 force = Vec3::Zero();       // N, that response's force on the mesh
+    std::span<const ContactSite> respondedSites;
+  };
+  ShellSlot* slotOf(const ShellPoint* shell);
+  // Takes the deformation's latest shape and grids (beginFrame, finish).
+  void takeLatestShape();
   void reserveNodeForces(size_t entries);
   void buildForceSpread();
+  // The node forces of the responses of frame t, shared out and published.
+  void publishNodeForces(double t);
 
   FilePathField d_file{this,
                        "file",
@@ -203,7 +220,8 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
   std::unique_ptr<TetBackend> m_backend;  // d_backend, bound to m_mesh
   bool m_bound = false;
-  std::vector<const ShellPoint*> m_shells;  // the reserved shells
+  std::vector<ShellSlot> m_slots;  // the reserved shells
+  double m_frameTime = NAN;        // s, the frame beginFrame() last started
 
   // Deformation (followDeformation).
   std::optional<ChannelReader<NodePositions>> m_positions;
@@ -215,12 +233,11 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   uint64_t m_deformationResets = 0;  // the deformation's reset count last seen
   uint64_t m_shapeFailures = 0;      // resets seen and frames rejected (shapeFailures())
 
-  // Reaction forces on the nodes (computed only when a component reads them):
-  // from the sites of the last contact, kept here until the force is known.
+  // Reaction forces on the nodes (computed only when a component reads them).
   Channel<NodeForces>* m_nodeForces = nullptr;
   NodeForces m_nodeForceValue;
-  std::vector<int32_t> m_nodeSlot;       // per node: its entry in m_nodeForceValue, or -1
-  std::vector<ContactSite> m_lastSites;  // capacity reserved with the shells
+  std::vector<int32_t> m_nodeSlot;                    // per node: its entry in m_nodeForceValue, or -1
+  std::vector<const ShellSlot*> m_frameResponses;     // this frame's, in a fixed order; capacity: the shells
   // forceSpread: per node, the boundary nodes that share a force on it and
   // their weights (compressed rows, built in prepare()); the spread forces.
   std::vector<uint32_t> m_spreadStart;

@@ -8,7 +8,7 @@
 // the sweeps and the ray cast.
 #include <vector>
 
-#include "plugins/voxel_skull/ShellPointTest.h"
+#include "plugins/voxel_skull/ShellPointClassifier.h"
 #include "plugins/voxel_skull/VoxelBackend.h"
 #include "plugins/voxel_skull/VoxelGroups.h"
 

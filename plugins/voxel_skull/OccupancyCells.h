@@ -1,6 +1,6 @@
 #pragma once
 // Which interpolation cells the smooth surface may cross: the coarse level of
-// the smooth per-point test (ShellPointTest.cpp).
+// the smooth per-point test (ShellPointClassifier.cpp).
 //
 // A cell is the box between 8 neighbouring voxel centres, (i..i+1, j..j+1,
 // k..k+1); the trilinear density of any point in it interpolates those 8

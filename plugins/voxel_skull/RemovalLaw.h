@@ -16,7 +16,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 
 namespace trephine::voxel {
 

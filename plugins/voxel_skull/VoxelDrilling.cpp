@@ -21,6 +21,7 @@
 // itself is FootprintCut.cpp.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "framework/core/BackendBinding.h"
 #include "framework/logs/EventLog.h"
@@ -49,8 +50,15 @@ int VoxelSkull::lowerVoxel(int64_t voxel) {
   return emptied ? 1 : 0;
 }
 
+int VoxelSkull::cutTouched(std::span<const int64_t> touched) {
+  int removed = 0;
+  for (const int64_t voxel : touched) removed += lowerVoxel(voxel);
+  m_voxelsRemoved += removed;
+  return removed;
+}
+
 int VoxelSkull::cutAt(const Vec3& point_W) {
-  if (!d_drill.value() || m_forceRemoval || !point_W.allFinite()) return 0;
+  if (!point_W.allFinite()) return 0;
   int removed = 0;
   if (!m_grid.smooth) {
     // The probe met the bone at a voxel face: the voxel just beyond, within a tenth of a voxel.
@@ -68,17 +76,73 @@ int VoxelSkull::cutAt(const Vec3& point_W) {
   return removed;
 }
 
-ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) {
+VoxelSkull::ShellSlot* VoxelSkull::slotOf(const ShellPoint* shell) {
+  for (ShellSlot& slot : m_slots)
+    if (slot.shell == shell) return &slot;
+  return nullptr;
+}
+
+ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) {
   if (!m_bound) return {};
-  const bool thesisCut = removeMaterial && d_drill.value() && !m_forceRemoval;
-  VoxelContact c = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, thesisCut); });
+  ShellSlot* slot = slotOf(shell.data());
+  // The thesis's law cuts the voxels the contact touches: asked for only then.
+  const bool thesisCut = cutting && d_drill.value() && !m_forceRemoval && slot;
+  const VoxelContact c = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, thesisCut); });
+  ShellContact contact = c.contact;
   if (thesisCut) {
-    int removed = 0;
-    for (const int64_t voxel : c.touched) removed += lowerVoxel(voxel);
-    c.contact.removed = removed;
-    m_voxelsRemoved += removed;
+    // Copied into the shell's own slot: the back-end's span lasts only until
+    // its next query, which may be another tool's.
+    const size_t kept = std::min(c.touched.size(), slot->touched.capacity());
+    slot->touched.assign(c.touched.begin(), c.touched.begin() + kept);
+    contact.touched = slot->touched;
   }
-  return c.contact;
+  return contact;
+}
+
+void VoxelSkull::respond(std::span<const ShellPoint> shell, const ContactResponse& response) {
+  if (!d_drill.value() || !response.cutting) return;
+  ShellSlot* slot = slotOf(shell.data());
+  if (!slot) return;
+  slot->cut = response;
+  slot->cutPending = true;
+}
+
+TargetFrame VoxelSkull::beginFrame(double t) {
+  if (!(t == m_frameTime)) {
+    m_frameTime = t;
+    m_removedAtFrameStart = applyPendingCuts(t);
+  }
+  return {0, m_removedAtFrameStart};
+}
+
+int VoxelSkull::applyPendingCuts(double now) {
+  m_cutOrder.clear();
+  for (ShellSlot& slot : m_slots)
+    if (slot.cutPending) m_cutOrder.push_back(&slot);
+  if (m_cutOrder.empty()) return 0;
+  // A force-driven cut lowers codes by their own gradients, so two cuts that
+  // overlap depend on their order: an order of the cuts' own, not the scene's.
+  std::sort(m_cutOrder.begin(), m_cutOrder.end(), [](const ShellSlot* a, const ShellSlot* b) {
+    const auto key = [](const ShellSlot* s) {
+      const CuttingLoad& l = s->cut.load;
+      const Vec3 stop = s->cut.stoppedAt.value_or(Vec3::Constant(INFINITY));
+      return std::tuple(l.center_W.x(), l.center_W.y(), l.center_W.z(), l.force_N.x(), l.force_N.y(), l.force_N.z(),
+                        s->cut.touched.size(), stop.x(), stop.y(), stop.z());
+    };
+    return key(a) < key(b);
+  });
+  int removed = 0;
+  for (ShellSlot* slot : m_cutOrder) {
+    slot->cutPending = false;
+    const ContactResponse& cut = slot->cut;
+    if (m_forceRemoval) {
+      removed += cutUnderLoad(*slot, cut.load, now);
+    } else {
+      removed += cutTouched(cut.touched);
+      if (cut.stoppedAt) removed += cutAt(*cut.stoppedAt);
+    }
+  }
+  return removed;
 }
 
 bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
@@ -86,8 +150,7 @@ bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
   return m_grid.solidAt(front + 0.5 * h * direction) || m_grid.solidAt(front + h * direction);
 }
 
-int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
-  if (!d_drill.value() || !m_forceRemoval) return 0;
+int VoxelSkull::cutUnderLoad(ShellSlot& slot, const CuttingLoad& load, double now) {
   const double thrust = load.force_N.norm();  // N
   if (!(thrust > 0) || !std::isfinite(thrust) || !load.center_W.allFinite() || !(load.dt > 0) || !(load.radius > 0))
     return 0;
@@ -100,16 +163,16 @@ int VoxelSkull::cutUnderLoad(const CuttingLoad& load) {
   // Breakthrough: bone ahead of the burr at the last cut, none now; once per
   // stretch of drilling (a pause longer than kCutPause starts a new one).
   const bool ahead = boneAhead(front, d);
-  if (load.t - m_lastCutTime > kCutPause) m_boneAhead = m_brokeThrough = false;
-  if (m_boneAhead && !ahead && !m_brokeThrough) {
+  if (load.t - slot.lastCutTime > kCutPause) slot.boneAhead = slot.brokeThrough = false;
+  if (slot.boneAhead && !ahead && !slot.brokeThrough) {
     ++m_breakthroughs;
-    m_brokeThrough = true;
+    slot.brokeThrough = true;
     if (m_events)
-      m_events->log(load.t, "breakthrough", "no bone ahead of the burr", this, thrust,
+      m_events->log(now, "breakthrough", "no bone ahead of the burr", this, thrust,
                     {front.x(), front.y(), front.z()});
   }
-  m_boneAhead = ahead;
-  m_lastCutTime = load.t;
+  slot.boneAhead = ahead;
+  slot.lastCutTime = load.t;
 
   // How fast the surface recedes: the hardness of the bone one voxel ahead.
   const DensityEncoding& e = m_volume.encoding();

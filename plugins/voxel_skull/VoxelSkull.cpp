@@ -117,14 +117,25 @@ void VoxelSkull::setVolume(DensityVolume volume) {
   // Drilling works on the stored codes: at least one code step per frame.
   m_drillStep =
       std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
-  m_boneAhead = false;
+  for (ShellSlot& slot : m_slots) {  // a new volume: no cut pending, no drilling under way
+    slot.cutPending = slot.boneAhead = slot.brokeThrough = false;
+    slot.lastCutTime = -1e300;
+  }
 }
 
 // The queries go to the collision back-end once it is bound to the data.
 // Before that (the volume or the back-end failed to load, and the tools' init
 // still announces their shells) there is nothing to hit.
 void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
-  if (m_bound) m_backend->reserveShell(shell);
+  if (!m_bound) return;
+  m_backend->reserveShell(shell);
+  if (slotOf(shell.data())) return;
+  ShellSlot slot;
+  slot.shell = shell.data();
+  // At most the 8 voxel centres around each shell point (the smooth surface).
+  if (d_drill.value() && !m_forceRemoval) slot.touched.reserve(8 * shell.size());
+  m_slots.push_back(std::move(slot));
+  m_cutOrder.reserve(m_slots.size());
 }
 void VoxelSkull::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
   if (m_bound) m_backend->describeTool(shell, solid);
@@ -156,6 +167,7 @@ void VoxelSkull::declareOutputs(std::vector<OutputFile>& outputs) const {
 }
 
 void VoxelSkull::finish(FinishContext& context) {
+  applyPendingCuts(m_frameTime);  // the last frame's, which no next frame applied
   if (d_saveDrilled.value().empty() || context.outputDirectory().empty()) return;
   if (!context.claimOutput(*this, d_saveDrilled.value())) return;
   const std::string& name = d_saveDrilled.value();

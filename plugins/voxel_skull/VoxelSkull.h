@@ -11,6 +11,7 @@
 //    sub-voxel and nothing beyond the burr's radius plus one voxel changes;
 //  - removal="thesis": the voxels the tool touches lose `drillRate` density
 //    per haptic frame until they fall below the isovalue, whatever the force.
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,11 +47,14 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   void reserveShell(std::span<const ShellPoint> shell) override;
   void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   SweepResult sweep(const SweepQuery& query) const override;
-  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool removeMaterial) override;
+  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return 0.1 * m_grid.smallestSide(); }
-  int cutAt(const Vec3& point_W) override;
-  int cutUnderLoad(const CuttingLoad& load) override;
+  // Applies the cuts the tools asked for in the frame before (once a frame).
+  TargetFrame beginFrame(double t) override;
+  // Queues the tool's cut for the start of the next frame: every cut of a
+  // frame acts on the shape all the tools saw, whatever their order.
+  void respond(std::span<const ShellPoint> shell, const ContactResponse& response) override;
 
   const DensityVolume& volume() const { return m_volume; }
   const SolidGrid& grid() const { return m_grid; }
@@ -64,6 +68,27 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   void setVolume(DensityVolume volume);
 
  private:
+  // Per reserved shell (one per tool): the voxels its last collide() touched
+  // (the span collide() returns points here), the cut its last response
+  // asked for, and its own breakthrough test.
+  struct ShellSlot {
+    const ShellPoint* shell = nullptr;
+    std::vector<int64_t> touched;  // capacity reserved with the shell
+    bool cutPending = false;
+    ContactResponse cut;          // the response whose cut is pending
+    bool boneAhead = false;       // at the tool's last cut: bone ahead of the burr (armed for a breakthrough event)
+    double lastCutTime = -1e300;  // s
+    bool brokeThrough = false;    // the breakthrough of this stretch of drilling was reported
+  };
+  ShellSlot* slotOf(const ShellPoint* shell);
+  // The pending cuts, in an order of their own (not the scene's), at time
+  // `now` (s: events are logged then); returns the voxels removed.
+  int applyPendingCuts(double now);
+  // The thesis's law: the voxels the tool touched, and the point a sweep stopped it at.
+  int cutTouched(std::span<const int64_t> touched);
+  int cutAt(const Vec3& point_W);
+  // The force law.
+  int cutUnderLoad(ShellSlot& slot, const CuttingLoad& load, double now);
   // Drills one voxel by m_drillStep; 1 if it was bone and is not any more.
   int lowerVoxel(int64_t voxel);
   // Whether bone lies ahead of a burr's front along `direction` (unit), within
@@ -208,9 +233,10 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   int32_t m_drillStep = 1;     // codes removed per frame (removal="thesis")
   bool m_forceRemoval = true;  // d_removal, read once at init
   RemovalLaw m_law;
-  bool m_boneAhead = false;       // at the last cut: bone ahead of the burr (armed for a breakthrough event)
-  double m_lastCutTime = -1e300;  // s
-  bool m_brokeThrough = false;    // the breakthrough of this stretch of drilling was reported
+  std::vector<ShellSlot> m_slots;      // the reserved shells
+  std::vector<ShellSlot*> m_cutOrder;  // the pending cuts being applied; capacity: the shells
+  double m_frameTime = NAN;            // s, the frame beginFrame() last started
+  int m_removedAtFrameStart = 0;       // voxels that frame's start removed
   EventLog* m_events = nullptr;
   double m_removedCodes = 0;  // code steps removed by the force law, summed over voxels
   double m_maxCutSpeed = 0;   // mm/s, largest recession speed reached

@@ -18,7 +18,7 @@
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/IsoSurface.h"
 #include "plugins/voxel_skull/Phantoms.h"
-#include "plugins/voxel_skull/ShellPointTest.h"
+#include "plugins/voxel_skull/ShellPointClassifier.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
 
 namespace trephine::bench {

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "framework/core/Diagnostics.h"
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "framework/formats/mesh/MeditWriter.h"
@@ -47,7 +47,7 @@ TEST(FemSceneTest, TheComponentStepsTheModelExactlyAsTheModelAlone) {
   // The same by hand: 3000 steps of 0.1 ms.
   const TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
   const ElementMaterial material{};
-  TledModel model(bar.nodes, bar.tets, std::span(&material, 1));
+  TLEDModel model(bar.nodes, bar.tets, std::span(&material, 1));
   for (size_t i = 0; i < bar.nodeCount(); ++i)
     if (bar.nodes[i].x() <= 0.001) model.fixNode(int32_t(i));
   model.setBodyAcceleration(Vec3(0, 0, -10));
@@ -89,6 +89,21 @@ TEST(FemSceneTest, ATimeStepAboveTheCriticalOneIsALoadErrorGivingBoth) {
   ASSERT_TRUE(accepted);
   EXPECT_GT(test::componentCounter(*accepted, "TLEDForceField", "non_finite_ticks"), 0);
   for (const Vec3& p : formats::readTetMesh(out / "bar.vtu").nodes) EXPECT_TRUE(p.allFinite());
+}
+
+TEST(FemSceneTest, AContactDampingInNewtonSecondsPerMetreIsWarnedOf) {
+  // 2 N s/m, written as the field's N s/mm: a thousand times the damping.
+  Diagnostics d;
+  EXPECT_TRUE(test::loadScene(barScene("", -10, R"(dt="0.1e-3" contactDamping="2")"), d));
+  const std::string m = test::messages(d);
+  EXPECT_NE(m.find("inline.xml:5:"), std::string::npos) << m;
+  EXPECT_NE(m.find("contactDamping"), std::string::npos) << m;
+  EXPECT_NE(m.find("is in N s/mm"), std::string::npos) << m;
+  EXPECT_NE(m.find("2 is a damping in N s/m"), std::string::npos) << m;
+  // What the contact needs is not warned of.
+  Diagnostics quiet;
+  EXPECT_TRUE(test::loadScene(barScene("", -10, R"(dt="0.1e-3" contactDamping="0.002")"), quiet));
+  EXPECT_EQ(test::messages(quiet).find("contactDamping"), std::string::npos) << test::messages(quiet);
 }
 
 TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {

@@ -118,8 +118,9 @@ TEST(IntegratedProcedureTest, AfterTheToolChangeTheProbeDeformsTheBrainWithForce
 }
 
 TEST(IntegratedProcedureTest, AnEventChangesToolsInTheFrameAfterItIsLogged) {
-  // The burr breaking through the plate: the skull logs it during the
-  // proxy's tick, the ToolChange (earlier in the group) reads it a frame later.
+  // The burr breaking through the plate: the skull applies a frame's cut at
+  // the start of the next and logs the breakthrough then, in the proxy's
+  // tick; the ToolChange (earlier in the group) reads it a frame later.
   auto simulation = run(procedure({.changeEvent = "breakthrough"}), 4.1);
   ASSERT_TRUE(simulation);
   const auto breakthroughs = eventsOf(*simulation, "breakthrough");

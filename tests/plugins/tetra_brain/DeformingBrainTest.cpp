@@ -16,6 +16,7 @@ namespace trephine::tetra {
 namespace {
 
 using shapes::cubeBrain;
+using shapes::pressing;
 using shapes::sphereShell;
 
 // Vertical spherical wave from (0, 0, 100): amplitude A (mm), wavelength 120 mm, at phase `phase`.
@@ -44,7 +45,7 @@ struct FollowingBrain {
     frame.positions = positions;
     frame.displacementBound = bound;
     channel->publish(frame);
-    brain.refresh();
+    brain.beginFrame(1e-3 * double(step));
   }
 };
 
@@ -192,8 +193,9 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
     const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
     brain.reserveShell(shell);
     brain.prepare(RunPlan{});
-    ASSERT_GT(brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false).points, 10);
-    brain.applyContactForce(Vec3(0, 0, -0.3), 1.0);
+    const ShellContact contact = brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false);
+    ASSERT_GT(contact.points, 10);
+    brain.respond(shell, pressing(1.0, Vec3(0, 0, -0.3), contact.sites));
     ASSERT_TRUE(reader.fetch());
     out = reader.read().forces;
     // The counter of the largest frame, on either path (spread or not).
@@ -220,6 +222,46 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
   EXPECT_LT((spreadCentre - pressedCentre).head<2>().norm(), 3.0) << "mm, on a 9 mm mesh";
 }
 
+// Two tools on the brain in one frame: the node forces published after the
+// second response carry both forces, each where it acts, and are the same
+// to the bit whichever tool answered first. A tool's sites stay its own
+// while the other tool queries.
+TEST(DeformingBrainTest, TwoToolsForcesAddUpWhicheverAnswersFirst) {
+  const std::vector<ShellPoint> left = sphereShell(2.5, 266), right = sphereShell(2.0, 200);
+  const Pose leftPose{Vec3(10.0, -4.2, 100 + 2.5 - 0.8), Quat::Identity()};
+  const Pose rightPose{Vec3(13.5, -2.0, 100 + 2.0 - 0.6), Quat::Identity()};
+  const Vec3 leftForce(0.05, -0.02, -0.3), rightForce(-0.03, 0.04, -0.2);  // N, on the brain
+  const auto published = [&](bool leftFirst) {
+    ChannelHub hub;
+    TetraBrain brain;
+    cubeBrain(brain, 22);
+    brain.connectChannels(hub);
+    ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
+    brain.reserveShell(left);
+    brain.reserveShell(right);
+    brain.prepare(RunPlan{});
+    brain.beginFrame(0.5);
+    // Both query before either responds (two proxies, then two force feedbacks).
+    const ShellContact a = brain.collide(leftFirst ? leftPose : rightPose, leftFirst ? left : right, false);
+    const ShellContact b = brain.collide(leftFirst ? rightPose : leftPose, leftFirst ? right : left, false);
+    EXPECT_GT(a.points, 5);
+    EXPECT_GT(b.points, 5);
+    brain.respond(leftFirst ? left : right, pressing(0.5, leftFirst ? leftForce : rightForce, a.sites));
+    brain.respond(leftFirst ? right : left, pressing(0.5, leftFirst ? rightForce : leftForce, b.sites));
+    EXPECT_TRUE(reader.fetch());
+    return reader.read().forces;
+  };
+  const std::vector<NodeForce> leftFirst = published(true), rightFirst = published(false);
+  Vec3 sum = Vec3::Zero();
+  for (const NodeForce& f : leftFirst) sum += f.force;
+  EXPECT_NEAR((sum - (leftForce + rightForce)).norm(), 0.0, 1e-12) << "both tools' forces reach the mesh";
+  ASSERT_EQ(leftFirst.size(), rightFirst.size());
+  for (size_t i = 0; i < leftFirst.size(); ++i) {
+    EXPECT_EQ(leftFirst[i].node, rightFirst[i].node);
+    EXPECT_EQ(leftFirst[i].force, rightFirst[i].force) << "node " << leftFirst[i].node;
+  }
+}
+
 TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   ChannelHub hub;
   TetraBrain brain;
@@ -233,7 +275,7 @@ TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   const ShellContact contact = brain.collide(pose, shell, false);
   ASSERT_GT(contact.points, 10);
   const Vec3 force(0.05, -0.02, -0.3);  // N, on the brain
-  brain.applyContactForce(force, 1.25);
+  brain.respond(shell, pressing(1.25, force, contact.sites));
   ASSERT_TRUE(reader.fetch()) << "a reader is there: the node forces are published";
   const NodeForces& forces = reader.read();
   EXPECT_DOUBLE_EQ(forces.t, 1.25);
@@ -281,7 +323,9 @@ TEST_P(PublishingNodeForces, EveryFrameAllocatesNothing) {
   for (int frame = 0; frame < 400; ++frame) {
     const double press = 6.0 * std::sin(frame * 0.05);
     const Pose pose{Vec3(13.1 + 0.01 * frame, -4.2, 100 + 8.0 - press), Quat::Identity()};
-    if (brain.collide(pose, shell, false).points > 0) brain.applyContactForce(Vec3(0, 0, -0.3 * press), frame * 1e-3);
+    const ShellContact contact = brain.collide(pose, shell, false);
+    if (contact.points > 0)
+      brain.respond(shell, pressing(frame * 1e-3, Vec3(0, 0, -0.3 * press), contact.sites));
     if (reader.fetch()) {
       ++published;
       largest = std::max(largest, reader.read().forces.size());

@@ -140,8 +140,9 @@ TEST_P(TetBackendConformanceTest, TheReactionOnTheNodesSumsToTheContactForce) {
   auto forces = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
   brain.prepare(RunPlan{});
   const Vec3 force(0.3, -0.2, -1.5);
-  ASSERT_GT(touch(Vec3(13, -7, 100 + kBurr - 0.8)).points, 0);
-  brain.applyContactForce(force, 0.25);
+  const ShellContact contact = touch(Vec3(13, -7, 100 + kBurr - 0.8));
+  ASSERT_GT(contact.points, 0);
+  brain.respond(shell, shapes::pressing(0.25, force, contact.sites));
   ASSERT_TRUE(forces.fetch());
   Vec3 sum = Vec3::Zero();
   // On the nodes of the touched triangle (mesh back-ends), or of the
@@ -172,7 +173,7 @@ TEST_P(TetBackendConformanceTest, ADeformingMeshAnswersAsTheSameShapeBuiltRigidW
       frame.positions = waved(rest, amplitude, phase);
       frame.displacementBound = amplitude;
       channel.publish(frame);
-      brain.refresh();
+      brain.beginFrame(1e-3 * double(step));
       TetraBrain rigid;
       rigid.setBackend(b.create());
       TetMesh shape = brain.mesh();

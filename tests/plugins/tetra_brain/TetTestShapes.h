@@ -36,4 +36,14 @@ inline TetraBrain& cubeBrain(TetraBrain& brain, int cells, const Vec3& shift = V
   return brain;
 }
 
+// A tool's response that presses the mesh with `force` (N, on the mesh) at
+// the sites its collide() returned, at time t (s).
+inline ContactResponse pressing(double t, const Vec3& force, std::span<const ContactSite> sites) {
+  ContactResponse response;
+  response.t = t;
+  response.forceOnTarget_N = force;
+  response.sites = sites;
+  return response;
+}
+
 }  // namespace trephine::tetra::shapes

@@ -1,4 +1,4 @@
-// The fast smooth point tests (ShellPointTest.cpp: occupancy cells, AVX2
+// The fast smooth point tests (ShellPointClassifier.cpp: occupancy cells, AVX2
 // gathers) against the one-point-at-a-time reference (SolidGrid::codeAt and
 // voxelOf per point): the same solid flags and voxel indices for every point,
 // on the skull phantom at random placements and orientations, on voxel faces
@@ -15,7 +15,7 @@
 
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
-#include "plugins/voxel_skull/ShellPointTest.h"
+#include "plugins/voxel_skull/ShellPointClassifier.h"
 
 namespace trephine::voxel {
 namespace {

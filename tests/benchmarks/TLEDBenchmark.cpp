@@ -3,7 +3,7 @@
 // run: STREAM's triad (memory bandwidth of one core) and a chain of fused
 // multiply-adds (peak double-precision flops of one core).
 //
-// BM_TledStep/<mesh>/<precision>/<isa>: one iteration is one time step
+// BM_TLEDStep/<mesh>/<precision>/<isa>: one iteration is one time step
 // (element loop and central-difference update) of the FEM with the thesis's
 // material (Table 6.1), at rest plus a pressed dent so that the stresses are
 // not zero; the element loop in double (precision 0) or single precision (1),
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 
 #if defined(__x86_64__)
@@ -38,14 +38,14 @@ constexpr MeshCase kMeshes[] = {{"Brain1", "brain?tets=3500"},   {"Brain2", "bra
                                 {"Brain3", "brain?tets=22000"},  {"Brain4", "brain?tets=40500"},
                                 {"Brain5", "brain?tets=50000"},  {"Cube3", "cube?cells=22"}};
 
-// Flops per element of TledKernel.cpp, counted from its loops: gather 9,
+// Flops per element of TLEDKernel.cpp, counted from its loops: gather 9,
 // F 57, J 14, I1 18, guess 6, four Newton steps 24, stress factors 8,
 // cofactor 27, V P 36, forces 45, scatter 21.
 constexpr double kFlopsPerElement = 265;
 constexpr double kThesisStep = 0.33e-3;  // s
 
 struct Model {
-  std::unique_ptr<fem::TledModel> model;
+  std::unique_ptr<fem::TLEDModel> model;
 };
 
 Model& modelFor(int index) {
@@ -54,7 +54,7 @@ Model& modelFor(int index) {
   if (!m.model) {
     const TetMesh mesh = tetra::makeTetPhantom(kMeshes[index].spec);
     const fem::ElementMaterial material{};  // Table 6.1
-    m.model = std::make_unique<fem::TledModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
+    m.model = std::make_unique<fem::TLEDModel>(mesh.nodes, mesh.tets, std::span(&material, 1));
     // A dent: the nodes within 15 mm of the top pushed 3 mm down, held.
     Vec3 top = mesh.nodes[0];
     for (const Vec3& p : mesh.nodes)
@@ -65,8 +65,8 @@ Model& modelFor(int index) {
   return m;
 }
 
-void BM_TledStep(benchmark::State& state) {
-  fem::TledModel& model = *modelFor(int(state.range(0))).model;
+void BM_TLEDStep(benchmark::State& state) {
+  fem::TLEDModel& model = *modelFor(int(state.range(0))).model;
   const bool single = state.range(1) == 1;
   const auto isa = fem::ElementLoopIsa(state.range(2));
   model.setElementPrecision(single ? fem::ElementPrecision::kSingle : fem::ElementPrecision::kDouble);
@@ -152,7 +152,7 @@ void registerSteps() {
     for (int precision : {0, 1})
       for (fem::ElementLoopIsa isa : {fem::ElementLoopIsa::kAvx2, fem::ElementLoopIsa::kAvx512})
         if (fem::elementLoopAvailable(isa))
-          benchmark::RegisterBenchmark("BM_TledStep", BM_TledStep)
+          benchmark::RegisterBenchmark("BM_TLEDStep", BM_TLEDStep)
               ->Args({i, precision, int(isa)})
               ->Unit(benchmark::kMicrosecond);
   }

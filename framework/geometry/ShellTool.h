@@ -1,5 +1,5 @@
 #pragma once
-// A rigid tool described by a cloud of points on its surface (the pointshell),
+// A rigid tool described by a cloud of points on its surface (its shell),
 // each with the unit normal pointing into the tool. Collision targets test
 // these points; a new tool shape is one component implementing this
 // interface (PointshellTool: a sphere; CapsuleTool: a burr on a shaft).
@@ -18,7 +18,7 @@ struct ShellPoint {
 
 // A tool that cuts bone when its target is drillable: how fast it spins and how
 // sharp it is. The removal law of the target turns these and the contact load
-// into removed material (see ShellContactTarget::cutUnderLoad).
+// into removed material (see CuttingLoad in ShellContactTarget.h).
 struct CuttingBurr {
   double spindleSpeed_rpm = 0;  // 0: the tool does not spin and cuts nothing
   double sharpness = 0;         // tangential over normal force at the cutting edge (dimensionless)
@@ -35,10 +35,10 @@ struct ToolSolid {
   Vec3 shaftAxis = Vec3::UnitZ();
 };
 
-class PointShellTool {
+class ShellTool {
  public:
-  static constexpr std::string_view kTypeName = "PointShellTool";
-  virtual ~PointShellTool() = default;
+  static constexpr std::string_view kTypeName = "ShellTool";
+  virtual ~ShellTool() = default;
 
   // The shell in the tool frame; fixed after initialisation (spans stay valid).
   virtual std::span<const ShellPoint> shellPoints() const = 0;

@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "framework/geometry/PointShellTool.h"
+#include "framework/geometry/ShellTool.h"
 #include "plugins/voxel_skull/SolidGrid.h"
 
 namespace trephine::voxel {

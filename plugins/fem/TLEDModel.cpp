@@ -1,4 +1,4 @@
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 
 #include <algorithm>
 #include <climits>
@@ -49,7 +49,7 @@ std::vector<int32_t> zOrder(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const TetIndices> tets,
+TLEDModel::TLEDModel(std::span<const Vec3> restNodes, std::span<const TetIndices> tets,
                      std::span<const ElementMaterial> materials)
     : m_rest(restNodes.begin(), restNodes.end()) {
   if (materials.size() != 1 && materials.size() != tets.size())
@@ -86,9 +86,9 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const TetIndices
   m_elementInternal.assign(tets.size(), 0);
   for (size_t k = 0; k < tets.size(); ++k) m_elementInternal[elementOrder[k]] = int32_t(k);
 
-  TledElements& el = m_elements;
+  TLEDElements& el = m_elements;
   el.count = tets.size();
-  el.padded = (el.count + TledElements::kLanes - 1) / TledElements::kLanes * TledElements::kLanes;
+  el.padded = (el.count + TLEDElements::kLanes - 1) / TLEDElements::kLanes * TLEDElements::kLanes;
   for (auto& v : el.nodeOffset) v.assign(el.padded, 0);
   for (auto& v : el.grad) v.assign(el.padded, 0.0);
   el.muVolume.assign(el.padded, 0.0);
@@ -148,7 +148,7 @@ TledModel::TledModel(std::span<const Vec3> restNodes, std::span<const TetIndices
   m_dampingSlot.assign(n, -1);
 }
 
-void TledModel::findCriticalStep() {
+void TLEDModel::findCriticalStep() {
   m_criticalStep = INFINITY;
   for (size_t k = 0; k < m_elements.count; ++k) {
     const ElasticModuli moduli{m_elements.muVolume[k] / m_volume[k], m_elements.kappaVolume[k] / m_volume[k]};
@@ -166,7 +166,7 @@ void TledModel::findCriticalStep() {
     }
 }
 
-size_t TledModel::elementsBelowStep(double dt) const {
+size_t TLEDModel::elementsBelowStep(double dt) const {
   size_t count = 0;
   for (size_t k = 0; k < m_elements.count; ++k) {
     const ElasticModuli moduli{m_elements.muVolume[k] / m_volume[k], m_elements.kappaVolume[k] / m_volume[k]};
@@ -175,10 +175,10 @@ size_t TledModel::elementsBelowStep(double dt) const {
   return count;
 }
 
-void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementMaterial& material) {
+void TLEDModel::assignMaterial(std::span<const int32_t> elements, const ElementMaterial& material) {
   checkMaterial(material);
   const ElasticModuli moduli = ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio);
-  TledElements& el = m_elements;
+  TLEDElements& el = m_elements;
   for (int32_t e : elements) {
     const size_t k = size_t(m_elementInternal[e]);
     const double change = 0.25 * (material.density - m_density[k]) * m_volume[k];
@@ -192,13 +192,13 @@ void TledModel::assignMaterial(std::span<const int32_t> elements, const ElementM
   if (m_dt > 0) setTimeStep(m_dt, m_damping);
 }
 
-void TledModel::setElementPrecision(ElementPrecision precision) {
+void TLEDModel::setElementPrecision(ElementPrecision precision) {
   m_elements.precision = precision;
   copyToSingle();
 }
 
-void TledModel::copyToSingle() {
-  TledElements& el = m_elements;
+void TLEDModel::copyToSingle() {
+  TLEDElements& el = m_elements;
   auto copy = [&](const std::vector<double>& from, std::vector<float>& to) {
     if (el.precision == ElementPrecision::kSingle) {
       to.assign(from.begin(), from.end());
@@ -212,11 +212,11 @@ void TledModel::copyToSingle() {
   copy(el.kappaVolume, el.single.kappaVolume);
 }
 
-size_t TledModel::scaleMassForStep(double dt) {
+size_t TLEDModel::scaleMassForStep(double dt) {
   // An element's step is L / c, c = sqrt(M / rho): its density times
   // (dt / step)^2 brings its step to dt.
   size_t scaled = 0;
-  const TledElements& el = m_elements;
+  const TLEDElements& el = m_elements;
   for (size_t k = 0; k < el.count; ++k) {
     const ElasticModuli moduli{el.muVolume[k] / m_volume[k], el.kappaVolume[k] / m_volume[k]};
     const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_materialDensity[k]);
@@ -231,18 +231,18 @@ size_t TledModel::scaleMassForStep(double dt) {
   return scaled;
 }
 
-double TledModel::addedMass() const {
+double TLEDModel::addedMass() const {
   double added = 0;
   for (size_t k = 0; k < m_elements.count; ++k) added += (m_density[k] - m_materialDensity[k]) * m_volume[k];
   return added;
 }
 
-double TledModel::criticalTimeStep(double damping) const {
+double TLEDModel::criticalTimeStep(double damping) const {
   const double xi = damping * m_criticalStep / 4;  // damping ratio of the highest mode, 2 / dt_cr rad/s
   return m_criticalStep * (std::sqrt(1 + xi * xi) - xi);
 }
 
-void TledModel::setTimeStep(double dt, double damping) {
+void TLEDModel::setTimeStep(double dt, double damping) {
   if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("time step must be > 0 s");
   if (!(damping >= 0) || !std::isfinite(damping)) throw std::invalid_argument("damping must be >= 0 1/s");
   m_dt = dt;
@@ -251,7 +251,7 @@ void TledModel::setTimeStep(double dt, double damping) {
   for (size_t k = 0; k < m_mass.size(); ++k) m_stepScale[k] = m_mass[k] > 0 ? dt * dt / (m_mass[k] * denominator) : 0.0;
 }
 
-void TledModel::fixNode(int32_t node, const Vec3& displacement, unsigned axes) {
+void TLEDModel::fixNode(int32_t node, const Vec3& displacement, unsigned axes) {
   const size_t base = kNodeStride * size_t(m_internal[node]);
   for (size_t axis = 0; axis < 3; ++axis) {
     if (!(axes & (1u << axis))) continue;
@@ -266,12 +266,12 @@ void TledModel::fixNode(int32_t node, const Vec3& displacement, unsigned axes) {
   }
 }
 
-bool TledModel::isFixed(int32_t node, int axis) const {
+bool TLEDModel::isFixed(int32_t node, int axis) const {
   const size_t index = kNodeStride * size_t(m_internal[node]) + size_t(axis);
   return std::any_of(m_held.begin(), m_held.end(), [&](const HeldAxis& h) { return h.index == index; });
 }
 
-void TledModel::setExternalForce(int32_t node, const Vec3& force_mN) {
+void TLEDModel::setExternalForce(int32_t node, const Vec3& force_mN) {
   const int32_t k = m_internal[node];
   int32_t& slot = m_externalSlot[k];
   if (slot < 0) {
@@ -281,7 +281,7 @@ void TledModel::setExternalForce(int32_t node, const Vec3& force_mN) {
   m_externalForces[slot].force = force_mN;
 }
 
-void TledModel::setNodeDamping(int32_t node, double damping) {
+void TLEDModel::setNodeDamping(int32_t node, double damping) {
   const int32_t k = m_internal[node];
   int32_t& slot = m_dampingSlot[k];
   if (damping > 0) {
@@ -299,24 +299,24 @@ void TledModel::setNodeDamping(int32_t node, double damping) {
   }
 }
 
-void TledModel::clearExternalForces() {
+void TLEDModel::clearExternalForces() {
   for (const ExternalForce& f : m_externalForces) m_externalSlot[f.node] = -1;
   m_externalForces.clear();
 }
 
-void TledModel::forcesInto(const std::vector<double>& u, std::vector<double>& f) const {
+void TLEDModel::forcesInto(const std::vector<double>& u, std::vector<double>& f) const {
   std::fill(f.begin(), f.end(), 0.0);
   accumulateInternalForces(m_elements, u.data(), f.data(), m_isa);
 }
 
-void TledModel::setElementLoopIsa(ElementLoopIsa isa) {
+void TLEDModel::setElementLoopIsa(ElementLoopIsa isa) {
   if (!elementLoopAvailable(isa))
     throw std::invalid_argument(std::string("this processor cannot run the element loop's ") + elementLoopName(isa) +
                                 " version");
   m_isa = isa;
 }
 
-bool TledModel::loaded() const {
+bool TLEDModel::loaded() const {
   if (!m_bodyAcceleration.isZero(0.0)) return true;
   for (const ExternalForce& e : m_externalForces)
     if (!e.force.isZero(0.0)) return true;
@@ -325,7 +325,7 @@ bool TledModel::loaded() const {
   return false;
 }
 
-void TledModel::step() {
+void TLEDModel::step() {
   // At rest with nothing to move it, the step's answer is rest: it is not
   // computed (the element loop would return forces of rounding size, 1e-16
   // of the moduli). A brain nobody touches costs nothing.
@@ -386,7 +386,7 @@ void TledModel::step() {
   ++m_steps;
 }
 
-void TledModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious) {
+void TLEDModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious) {
   if (u.size() != nodeCount() || uPrevious.size() != nodeCount())
     throw std::invalid_argument("one displacement per node");
   for (size_t i = 0; i < nodeCount(); ++i)
@@ -399,14 +399,14 @@ void TledModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> 
   m_resting = false;
 }
 
-void TledModel::resetToRest() {
+void TLEDModel::resetToRest() {
   std::fill(m_u.begin(), m_u.end(), 0.0);
   std::fill(m_uPrev.begin(), m_uPrev.end(), 0.0);
   for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
   m_resting = true;
 }
 
-TledModel::WrittenShape TledModel::writePositions(std::span<Vec3> positions) const {
+TLEDModel::WrittenShape TLEDModel::writePositions(std::span<Vec3> positions) const {
   double largestSquared = 0, largestMoveSquared = 0;
   bool finite = true;
   for (size_t i = 0; i < m_rest.size(); ++i) {
@@ -424,9 +424,9 @@ TledModel::WrittenShape TledModel::writePositions(std::span<Vec3> positions) con
   return {std::sqrt(largestSquared), std::sqrt(largestMoveSquared)};
 }
 
-double TledModel::totalMass() const { return std::accumulate(m_mass.begin(), m_mass.end(), 0.0); }
+double TLEDModel::totalMass() const { return std::accumulate(m_mass.begin(), m_mass.end(), 0.0); }
 
-void TledModel::internalForces(std::span<Vec3> forces) const {
+void TLEDModel::internalForces(std::span<Vec3> forces) const {
   forcesInto(m_u, m_f);
   for (size_t i = 0; i < nodeCount(); ++i) {
     const double* f = &m_f[kNodeStride * size_t(m_internal[i])];
@@ -434,7 +434,7 @@ void TledModel::internalForces(std::span<Vec3> forces) const {
   }
 }
 
-void TledModel::internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces) const {
+void TLEDModel::internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces) const {
   std::vector<double> at(m_u.size(), 0.0);
   for (size_t i = 0; i < nodeCount(); ++i)
     for (size_t axis = 0; axis < 3; ++axis) at[kNodeStride * size_t(m_internal[i]) + axis] = u[i][axis];
@@ -445,7 +445,7 @@ void TledModel::internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces
   }
 }
 
-double TledModel::kineticEnergy() const {
+double TLEDModel::kineticEnergy() const {
   if (m_dt <= 0) return 0;
   double twice = 0;  // kg mm^2 / s^2
   for (size_t k = 0; k < m_mass.size(); ++k) {
@@ -459,8 +459,8 @@ double TledModel::kineticEnergy() const {
   return 0.5 * twice / (m_dt * m_dt);
 }
 
-double TledModel::strainEnergy() const {
-  const TledElements& el = m_elements;
+double TLEDModel::strainEnergy() const {
+  const TLEDElements& el = m_elements;
   double energy = 0;
   for (size_t k = 0; k < el.count; ++k) {
     Mat3 F = Mat3::Identity();

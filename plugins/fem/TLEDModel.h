@@ -14,7 +14,7 @@
 // with the haptic side, in newtons, converts (TLEDForceField).
 //
 // Storage is structure-of-arrays, elements and nodes alike, so that the
-// element loop vectorises (TledKernel.cpp); nothing allocates after the
+// element loop vectorises (TLEDKernel.cpp); nothing allocates after the
 // model is built.
 #include <cstdint>
 #include <span>
@@ -59,7 +59,7 @@ const char* elementLoopName(ElementLoopIsa isa);
 // The element arrays, structure of arrays, in the model's internal order (a
 // space-filling curve, so that neighbouring elements share nodes in cache),
 // padded to a multiple of kLanes with elements of zero volume on node 0.
-struct TledElements {
+struct TLEDElements {
   static constexpr size_t kLanes = 64;  // the element loop's chunk: every chunk is whole
   size_t count = 0;   // real elements
   size_t padded = 0;  // count rounded up to kLanes
@@ -83,8 +83,8 @@ struct TledElements {
 
 // Computes the internal nodal forces f_int (mN) of every element from the
 // displacements `u` (mm), adding them into `f`; both kNodeStride doubles per
-// internal node. `isa` must be available. Defined in TledKernel.cpp.
-ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f,
+// internal node. `isa` must be available. Defined in TLEDKernel.cpp.
+ElementStepCounts accumulateInternalForces(const TLEDElements& elements, const double* u, double* f,
                                            ElementLoopIsa isa);
 
 // J below which the isochoric part of the stress is evaluated at this J
@@ -94,13 +94,13 @@ ElementStepCounts accumulateInternalForces(const TledElements& elements, const d
 // element back.
 inline constexpr double kMinIsochoricJ = 0.05;
 
-class TledModel {
+class TLEDModel {
  public:
   // Precomputes the element matrices and the lumped masses. `materials` has
   // one entry per tetrahedron, or one for all. Throws std::invalid_argument
   // for an element of non-positive rest volume (its index), or a material out
   // of range. Node and element indices in this interface are the mesh's.
-  TledModel(std::span<const Vec3> restNodes, std::span<const TetIndices> tets,
+  TLEDModel(std::span<const Vec3> restNodes, std::span<const TetIndices> tets,
             std::span<const ElementMaterial> materials);
 
   size_t nodeCount() const { return m_rest.size(); }
@@ -194,7 +194,7 @@ class TledModel {
 
   double mass(int32_t node) const { return m_mass[m_internal[node]]; }  // kg
   double totalMass() const;
-  const TledElements& elements() const { return m_elements; }
+  const TLEDElements& elements() const { return m_elements; }
   // The internal force on every node (mN) at the current displacements, or at
   // displacements `u` (tests, static solves).
   void internalForces(std::span<Vec3> forces) const;
@@ -219,7 +219,7 @@ class TledModel {
   std::vector<Vec3> m_rest;                        // mesh order
   std::vector<int32_t> m_internal, m_external;     // node: mesh -> internal, internal -> mesh
   std::vector<int32_t> m_elementInternal;          // element: mesh -> internal
-  TledElements m_elements;
+  TLEDElements m_elements;
   // Per internal element: mm^3, kg/mm^3 (effective, and the material's), 1 / |grad N| mm.
   std::vector<double> m_volume, m_density, m_materialDensity, m_length;
   std::vector<double> m_mass;                         // kg, lumped, per internal node

@@ -22,7 +22,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 // GCC 12's AVX-512 intrinsics pass a deliberately undefined merge operand,
@@ -42,7 +42,7 @@ namespace {
 
 constexpr size_t kChunk = 64;  // elements per pass: the scratch below stays in L1 (about 30 KB)
 constexpr double kFastLow = 0.65, kFastHigh = 1.5;
-static_assert(kChunk == TledElements::kLanes && kChunk % 16 == 0);  // whole chunks, whole vectors
+static_assert(kChunk == TLEDElements::kLanes && kChunk % 16 == 0);  // whole chunks, whole vectors
 
 // T: the precision of the element arithmetic (double or float).
 template <typename T>
@@ -62,7 +62,7 @@ struct ElementArrays {
   const T* grad[9];
   const T* muVolume;
   const T* kappaVolume;
-  explicit ElementArrays(const TledElements& el) {
+  explicit ElementArrays(const TLEDElements& el) {
     if constexpr (std::is_same_v<T, double>) {
       for (int k = 0; k < 9; ++k) grad[k] = el.grad[k].data();
       muVolume = el.muVolume.data();
@@ -85,7 +85,7 @@ constexpr size_t scatterGroup(size_t g) { return (g * 4) % (kChunk / 4) + (g * 4
 // ---- gather and scatter, portable --------------------------------------------
 
 template <typename T>
-[[gnu::always_inline]] inline void gatherScalar(const TledElements& el, size_t base, const double* u,
+[[gnu::always_inline]] inline void gatherScalar(const TLEDElements& el, size_t base, const double* u,
                                                 ChunkScratch<T>& s) {
   for (size_t e = 0; e < kChunk; ++e) {
     const double* u0 = u + size_t(el.nodeOffset[0][base + e]);
@@ -97,7 +97,7 @@ template <typename T>
 }
 
 template <typename T>
-[[gnu::always_inline]] inline void scatterScalar(const TledElements& el, size_t base,
+[[gnu::always_inline]] inline void scatterScalar(const TLEDElements& el, size_t base,
                                                  const ChunkScratch<T>& s, double* f) {
   for (size_t i = 0; i < kChunk; ++i) {
     const size_t e = 4 * scatterGroup(i / 4) + i % 4;
@@ -202,7 +202,7 @@ template <typename T>
 // ---- the versions: baseline, AVX2, AVX-512 ---------------------------------------
 
 template <typename T>
-ElementStepCounts forcesBaseline(const TledElements& el, const double* u, double* f) {
+ElementStepCounts forcesBaseline(const TLEDElements& el, const double* u, double* f) {
   ElementStepCounts counts;
   ChunkScratch<T> s;
   const ElementArrays<T> arrays(el);
@@ -257,7 +257,7 @@ __attribute__((target("avx2,fma"), always_inline)) inline __m256d loadColumn(con
 }
 
 template <typename T>
-__attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const TledElements& el, size_t base,
+__attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const TLEDElements& el, size_t base,
                                                                          const double* u,
                                                                          ChunkScratch<T>& s) {
   for (size_t e = 0; e < kChunk; e += 4) {
@@ -277,7 +277,7 @@ __attribute__((target("avx2,fma"), always_inline)) inline void gatherAvx2(const 
 }
 
 template <typename T>
-__attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const TledElements& el, size_t base,
+__attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const TLEDElements& el, size_t base,
                                                                           const ChunkScratch<T>& s,
                                                                           double* f) {
   for (size_t g = 0; g < kChunk / 4; ++g) {
@@ -302,7 +302,7 @@ __attribute__((target("avx2,fma"), always_inline)) inline void scatterAvx2(const
 }
 
 template <typename T>
-__attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TledElements& el, const double* u, double* f) {
+__attribute__((target("avx2,fma"))) ElementStepCounts forcesAvx2(const TLEDElements& el, const double* u, double* f) {
   ElementStepCounts counts;
   ChunkScratch<T> s;
   const ElementArrays<T> arrays(el);
@@ -333,7 +333,7 @@ __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inl
 // needs seven shuffles for four elements).
 template <typename T>
 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inline void gatherAvx512(
-    const TledElements& el, size_t base, const double* u, ChunkScratch<T>& s) {
+    const TLEDElements& el, size_t base, const double* u, ChunkScratch<T>& s) {
   const int32_t* offset[4];
   for (int a = 0; a < 4; ++a) offset[a] = el.nodeOffset[a].data() + base;
   // Element order within the unpacked pairs: lanes (0, 2 | 1, 3) of each 128-bit half.
@@ -361,7 +361,7 @@ __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inl
 // floats or 8 doubles); the scatter as in AVX2.
 template <typename T>
 __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) ElementStepCounts
-forcesAvx512(const TledElements& el, const double* u, double* f) {
+forcesAvx512(const TLEDElements& el, const double* u, double* f) {
   ElementStepCounts counts;
   ChunkScratch<T> s;
   const ElementArrays<T> arrays(el);
@@ -375,7 +375,7 @@ forcesAvx512(const TledElements& el, const double* u, double* f) {
 
 #endif
 
-using ForcesFunction = ElementStepCounts (*)(const TledElements&, const double*, double*);
+using ForcesFunction = ElementStepCounts (*)(const TLEDElements&, const double*, double*);
 
 bool processorHas(ElementLoopIsa isa) {
 #ifdef TREPHINE_TLED_AVX2
@@ -428,7 +428,7 @@ const char* elementLoopName(ElementLoopIsa isa) {
   return "?";
 }
 
-ElementStepCounts accumulateInternalForces(const TledElements& elements, const double* u, double* f,
+ElementStepCounts accumulateInternalForces(const TLEDElements& elements, const double* u, double* f,
                                            ElementLoopIsa isa) {
   return elements.precision == ElementPrecision::kSingle ? forcesFor<float>(isa)(elements, u, f)
                                                          : forcesFor<double>(isa)(elements, u, f);

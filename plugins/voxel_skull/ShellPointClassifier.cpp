@@ -1,4 +1,4 @@
-#include "plugins/voxel_skull/ShellPointTest.h"
+#include "plugins/voxel_skull/ShellPointClassifier.h"
 
 #include <algorithm>
 #include <cstring>

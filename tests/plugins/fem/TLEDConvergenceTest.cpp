@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <functional>
 
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "tests/plugins/fem/FemTestSupport.h"
 
@@ -47,7 +47,7 @@ struct Cantilever {
 // conjugate gradients (Jacobi preconditioned), K v the difference quotient of
 // the internal forces along v at rest (the small-strain stiffness).
 double staticTipDeflection(const Cantilever& beam) {
-  const TledModel model = modelOf(beam.mesh);
+  const TLEDModel model = modelOf(beam.mesh);
   const size_t m = beam.mesh.nodeCount();
   using Vector = std::vector<Vec3>;
   Vector plus(m), forcePlus(m);
@@ -105,7 +105,7 @@ double staticTipDeflection(const Cantilever& beam) {
   return beam.meanTip([&](size_t i) { return x[i].z(); });
 }
 
-TEST(TledConvergenceTest, ACantileverUnderGravityConvergesToEulerBernoulli) {
+TEST(TLEDConvergenceTest, ACantileverUnderGravityConvergesToEulerBernoulli) {
   // Linear tetrahedra are stiff in bending: the error falls with the square
   // of the element size (here 32%, 11% and 4% with 2, 4 and 7 cells across).
   const double exact = Cantilever::eulerBernoulli();
@@ -127,7 +127,7 @@ class DampedCantilever : public ::testing::TestWithParam<ElementPrecision> {};
 TEST_P(DampedCantilever, SettlesOnItsStaticDeflectionWithinOnePercent) {
   const Cantilever beam(2);
   const double expected = staticTipDeflection(beam);
-  TledModel model = modelOf(beam.mesh);
+  TLEDModel model = modelOf(beam.mesh);
   model.setElementPrecision(GetParam());
   for (size_t i = 0; i < beam.mesh.nodeCount(); ++i)
     if (beam.clamped[i]) model.fixNode(int32_t(i));

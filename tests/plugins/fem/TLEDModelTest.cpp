@@ -1,14 +1,14 @@
 // TLED against closed forms: the kernel against the scalar neo-Hookean
 // formulas, uniaxial stretch against the material's stress-strain curve,
 // energy conservation, rigid motions, inverted elements, the critical time
-// step, determinism (the cantilever: TledConvergenceTest).
+// step, determinism (the cantilever: TLEDConvergenceTest).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <random>
 
-#include "plugins/fem/TledModel.h"
+#include "plugins/fem/TLEDModel.h"
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "tests/plugins/fem/FemTestSupport.h"
 
@@ -59,7 +59,7 @@ void expectKernelForcesMatchTheFormulas(ElementPrecision precision, ElementLoopI
       std::array<Vec3, 4> x;
       for (int a = 0; a < 4; ++a) x[a] = F * X[a] + Vec3(1, 2, 3);
       const TetMesh mesh{{X.begin(), X.end()}, {TetIndices{0, 1, 2, 3}}, {}};
-      TledModel model = modelOf(mesh);
+      TLEDModel model = modelOf(mesh);
       model.setElementPrecision(precision);
       model.setElementLoopIsa(isa);
       std::vector<Vec3> u(4), forces(4);
@@ -96,11 +96,11 @@ std::vector<ElementLoopIsa> availableIsas() {
   return isas;
 }
 
-TEST(TledModelTest, KernelForcesMatchTheScalarNeoHookeanFormulas) {
+TEST(TLEDModelTest, KernelForcesMatchTheScalarNeoHookeanFormulas) {
   for (ElementLoopIsa isa : availableIsas()) expectKernelForcesMatchTheFormulas(ElementPrecision::kDouble, isa, 1e-12, 0);
 }
 
-TEST(TledModelTest, InSinglePrecisionKernelForcesMatchTheFormulasToFloatRounding) {
+TEST(TLEDModelTest, InSinglePrecisionKernelForcesMatchTheFormulasToFloatRounding) {
   // A float carries 6e-8 relative; the worst case here loses 3 to 8 units of
   // it (measured: 2e-7 fails, 5e-7 holds); 1e-6 is 16 units.
   for (ElementLoopIsa isa : availableIsas()) expectKernelForcesMatchTheFormulas(ElementPrecision::kSingle, isa, 0, 1e-6);
@@ -109,7 +109,7 @@ TEST(TledModelTest, InSinglePrecisionKernelForcesMatchTheFormulasToFloatRounding
 // On a mesh, where elements share nodes and several chunks run: every
 // version's node forces against the portable version's, at a random
 // deformation. The versions differ in the order of additions only.
-TEST(TledModelTest, EveryInstructionSetGivesThePortableNodeForcesOnAMesh) {
+TEST(TLEDModelTest, EveryInstructionSetGivesThePortableNodeForcesOnAMesh) {
   const TetMesh mesh = makeBoxMesh({7, 6, 5}, Vec3::Zero(), Vec3(20, 16, 12));  // over 1,000 elements: many chunks
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(-1, 1);
@@ -117,7 +117,7 @@ TEST(TledModelTest, EveryInstructionSetGivesThePortableNodeForcesOnAMesh) {
   for (Vec3& d : u) d = Vec3(unit(random), unit(random), unit(random)) * 0.4 + Vec3(5, -3, 2);
   for (ElementPrecision precision : {ElementPrecision::kDouble, ElementPrecision::kSingle}) {
     std::vector<Vec3> expected(mesh.nodeCount()), forces(mesh.nodeCount());
-    TledModel model = modelOf(mesh);
+    TLEDModel model = modelOf(mesh);
     model.setElementPrecision(precision);
     model.setElementLoopIsa(ElementLoopIsa::kPortable);
     model.setDisplacements(u, u);
@@ -136,8 +136,8 @@ TEST(TledModelTest, EveryInstructionSetGivesThePortableNodeForcesOnAMesh) {
   }
 }
 
-TEST(TledModelTest, AnInstructionSetTheProcessorLacksIsRefused) {
-  TledModel model = modelOf(makeBoxMesh({1, 1, 1}, Vec3::Zero(), Vec3::Constant(1)));
+TEST(TLEDModelTest, AnInstructionSetTheProcessorLacksIsRefused) {
+  TLEDModel model = modelOf(makeBoxMesh({1, 1, 1}, Vec3::Zero(), Vec3::Constant(1)));
   EXPECT_EQ(model.elementLoopIsa(), bestElementLoopIsa());
   for (ElementLoopIsa isa : {ElementLoopIsa::kPortable, ElementLoopIsa::kAvx2, ElementLoopIsa::kAvx512}) {
     if (elementLoopAvailable(isa))
@@ -169,7 +169,7 @@ void expectUniaxialStretchFollowsTheCurveWithinOnePercent(ElementPrecision preci
   const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(L));
   const ElasticModuli moduli = ElasticModuli::fromYoung(kBrain.youngModulus, kBrain.poissonRatio);
   for (double lambda : {0.8, 0.9, 1.1, 1.3, 1.5}) {
-    TledModel model = modelOf(mesh);
+    TLEDModel model = modelOf(mesh);
     model.setElementPrecision(precision);
     // Symmetry planes x = 0, y = 0, z = 0; the face x = L pulled to lambda L.
     std::vector<int32_t> pulled;
@@ -198,11 +198,11 @@ void expectUniaxialStretchFollowsTheCurveWithinOnePercent(ElementPrecision preci
   }
 }
 
-TEST(TledModelTest, UniaxialStretchOfACubeFollowsTheNeoHookeanCurveWithinOnePercent) {
+TEST(TLEDModelTest, UniaxialStretchOfACubeFollowsTheNeoHookeanCurveWithinOnePercent) {
   expectUniaxialStretchFollowsTheCurveWithinOnePercent(ElementPrecision::kDouble);
 }
 
-TEST(TledModelTest, InSinglePrecisionUniaxialStretchFollowsTheCurveWithinOnePercent) {
+TEST(TLEDModelTest, InSinglePrecisionUniaxialStretchFollowsTheCurveWithinOnePercent) {
   expectUniaxialStretchFollowsTheCurveWithinOnePercent(ElementPrecision::kSingle);
 }
 
@@ -210,7 +210,7 @@ TEST(TledModelTest, InSinglePrecisionUniaxialStretchFollowsTheCurveWithinOnePerc
 // `drift`: mm, how far a node may wander in 200 steps released.
 void expectARigidMotionProducesNoForce(ElementPrecision precision, double relative, double drift) {
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(30));
-  TledModel model = modelOf(mesh);
+  TLEDModel model = modelOf(mesh);
   model.setElementPrecision(precision);
   const Mat3 R = Eigen::AngleAxisd(0.9, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   std::vector<Vec3> u(mesh.nodeCount()), forces(mesh.nodeCount());
@@ -224,22 +224,22 @@ void expectARigidMotionProducesNoForce(ElementPrecision precision, double relati
   for (size_t i = 0; i < u.size(); ++i) EXPECT_LT((model.displacement(int32_t(i)) - u[i]).norm(), drift);
 }
 
-TEST(TledModelTest, ARigidMotionProducesNoForce) {
+TEST(TLEDModelTest, ARigidMotionProducesNoForce) {
   expectARigidMotionProducesNoForce(ElementPrecision::kDouble, 1e-9, 1e-9);
 }
 
-TEST(TledModelTest, InSinglePrecisionARigidMotionProducesNoForceBeyondFloatRounding) {
+TEST(TLEDModelTest, InSinglePrecisionARigidMotionProducesNoForceBeyondFloatRounding) {
   // F = R to 6e-8: the stress of a strain of about 1e-7, 1e-5 of a 1% strain's.
   // Each step rounds afresh: undamped, the nodes wander by about 1e-6 of the
   // 10 mm cells (1e-5 mm in 200 steps); 1e-4 mm bounds it.
   expectARigidMotionProducesNoForce(ElementPrecision::kSingle, 1e-5, 1e-4);
 }
 
-TEST(TledModelTest, AnInvertedElementGivesFiniteRestoringForcesAndIsCounted) {
+TEST(TLEDModelTest, AnInvertedElementGivesFiniteRestoringForcesAndIsCounted) {
   const std::vector<Vec3> nodes{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   const TetMesh mesh{nodes, {TetIndices{0, 1, 2, 3}}, {}};
   for (double z : {0.0, -0.5, -3.0}) {  // flat (J = 0), inverted, far inverted
-    TledModel model = modelOf(mesh);
+    TLEDModel model = modelOf(mesh);
     for (int32_t i = 0; i < 3; ++i) model.fixNode(i);
     std::vector<Vec3> u(4, Vec3::Zero()), forces(4);
     u[3] = Vec3(0, 0, z - 1);
@@ -260,11 +260,11 @@ TEST(TledModelTest, AnInvertedElementGivesFiniteRestoringForcesAndIsCounted) {
 // Total energy of a free cube released from a smooth deformation, no damping:
 // at step n, the strain energy of u_n plus the kinetic energy of the central
 // velocity (u_(n+1) - u_(n-1)) / (2 dt), second-order accurate as the scheme.
-TEST(TledModelTest, WithoutDampingEnergyIsConservedWithinOnePercentOver10000Steps) {
+TEST(TLEDModelTest, WithoutDampingEnergyIsConservedWithinOnePercentOver10000Steps) {
   const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(20));
   const size_t n = mesh.nodeCount();
-  TledModel model = modelOf(mesh);
-  TledModel probe = modelOf(mesh);  // evaluates the strain energy of a past state
+  TLEDModel model = modelOf(mesh);
+  TLEDModel probe = modelOf(mesh);  // evaluates the strain energy of a past state
   std::vector<Vec3> u(n);
   for (size_t i = 0; i < n; ++i) {
     const Vec3& X = mesh.nodes[i];
@@ -294,14 +294,14 @@ TEST(TledModelTest, WithoutDampingEnergyIsConservedWithinOnePercentOver10000Step
   EXPECT_LT(worst, 0.01);
 }
 
-TEST(TledModelTest, TheCriticalTimeStepSeparatesStableFromDivergent) {
+TEST(TLEDModelTest, TheCriticalTimeStepSeparatesStableFromDivergent) {
   const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(20));
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(-1, 1);
   std::vector<Vec3> u(mesh.nodeCount());
   for (Vec3& v : u) v = 1e-3 * Vec3(unit(random), unit(random), unit(random));  // every mode excited
   const auto largestAfter = [&](double factor) {
-    TledModel model = modelOf(mesh);
+    TLEDModel model = modelOf(mesh);
     model.setDisplacements(u, u);
     model.setTimeStep(factor * model.criticalTimeStep(), 0);
     for (int step = 0; step < 3000; ++step) model.step();
@@ -319,10 +319,10 @@ TEST(TledModelTest, TheCriticalTimeStepSeparatesStableFromDivergent) {
   EXPECT_FALSE(beyond < 1e3) << beyond;
 }
 
-TEST(TledModelTest, StepsAreDeterministic) {
+TEST(TLEDModelTest, StepsAreDeterministic) {
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
   const auto run = [&] {
-    TledModel model = modelOf(mesh);
+    TLEDModel model = modelOf(mesh);
     for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
     model.setBodyAcceleration(Vec3(0, 0, -9810));
     model.setExternalForce(50, Vec3(1, 2, -3));
@@ -337,10 +337,10 @@ TEST(TledModelTest, StepsAreDeterministic) {
   for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(Vec3)), 0);
 }
 
-TEST(TledModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) {
+TEST(TLEDModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) {
   // Checked against the positions written, node by node.
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
-  TledModel model = modelOf(mesh);
+  TLEDModel model = modelOf(mesh);
   for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
   model.setBodyAcceleration(Vec3(0, 0, -9810));
   model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
@@ -348,7 +348,7 @@ TEST(TledModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) 
   for (int frame = 0; frame < 20; ++frame) {
     for (int step = 0; step < 3; ++step) model.step();
     before = positions;
-    const TledModel::WrittenShape shape = model.writePositions(positions);
+    const TLEDModel::WrittenShape shape = model.writePositions(positions);
     double displacement = 0, move = 0;
     for (size_t i = 0; i < positions.size(); ++i) {
       displacement = std::max(displacement, (positions[i] - mesh.nodes[i]).norm());
@@ -360,14 +360,14 @@ TEST(TledModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) 
   EXPECT_GT(model.writePositions(positions).largestDisplacement, 0.0);  // it did move
   // Over a shape that is not finite (a diverged one) the move is unknown, the displacement is not.
   positions[7] = Vec3::Constant(NAN);
-  const TledModel::WrittenShape shape = model.writePositions(positions);
+  const TLEDModel::WrittenShape shape = model.writePositions(positions);
   EXPECT_TRUE(std::isfinite(shape.largestDisplacement));
   EXPECT_EQ(shape.largestMove, INFINITY);
 }
 
-TEST(TledModelTest, AtRestWithoutLoadNothingIsComputedAndTheAnswerIsTheComputedOne) {
+TEST(TLEDModelTest, AtRestWithoutLoadNothingIsComputedAndTheAnswerIsTheComputedOne) {
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
-  TledModel model = modelOf(mesh);
+  TLEDModel model = modelOf(mesh);
   for (int32_t i = 0; i < 4; ++i) model.fixNode(i);  // held at zero: no load
   model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
   for (int step = 0; step < 100; ++step) model.step();
@@ -376,7 +376,7 @@ TEST(TledModelTest, AtRestWithoutLoadNothingIsComputedAndTheAnswerIsTheComputedO
   for (size_t i = 0; i < mesh.nodeCount(); ++i) EXPECT_EQ(model.displacement(int32_t(i)), Vec3::Zero());
   // The same 100 steps computed (a state set by hand is not known to be rest):
   // rest to rounding, which is what the skipped steps answered.
-  TledModel computed = modelOf(mesh);
+  TLEDModel computed = modelOf(mesh);
   for (int32_t i = 0; i < 4; ++i) computed.fixNode(i);
   computed.setTimeStep(0.8 * computed.criticalTimeStep(), 50);
   const std::vector<Vec3> zero(mesh.nodeCount(), Vec3::Zero());
@@ -408,14 +408,14 @@ TEST(TledModelTest, AtRestWithoutLoadNothingIsComputedAndTheAnswerIsTheComputedO
   EXPECT_EQ(model.restingSteps(), 101u);
 }
 
-TEST(TledModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
+TEST(TLEDModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
   // One element, three nodes held, the apex released from a small
   // displacement, no mass-proportional damping: damping c on the apex alone
   // is proportional to its mass, so every mode's energy decays as
   // exp(-c t / m) (lightly damped: c / (2 m omega) is about 4e-4 here).
   const std::vector<Vec3> nodes{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   const TetMesh mesh{nodes, {TetIndices{0, 1, 2, 3}}, {}};
-  TledModel model = modelOf(mesh), probe = modelOf(mesh);  // probe: the strain energy of a past state
+  TLEDModel model = modelOf(mesh), probe = modelOf(mesh);  // probe: the strain energy of a past state
   for (int32_t i = 0; i < 3; ++i) model.fixNode(i);
   const double m = model.mass(3), rate = 20;  // kg, 1/s
   model.setNodeDamping(3, rate * m);
@@ -453,9 +453,9 @@ TEST(TledModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
   EXPECT_NEAR(stepAndMeasure(steps) / end, 1.0, 0.01);
 }
 
-TEST(TledModelTest, LumpedMassesSumToTheBodysMass) {
+TEST(TLEDModelTest, LumpedMassesSumToTheBodysMass) {
   const TetMesh mesh = makeBoxMesh({3, 4, 5}, Vec3::Zero(), Vec3(30, 20, 10));
-  const TledModel model = modelOf(mesh);
+  const TLEDModel model = modelOf(mesh);
   EXPECT_NEAR(model.totalMass(), kBrain.density * 30 * 20 * 10, 1e-15);
 }
 
