@@ -357,10 +357,18 @@ __attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma"), always_inline)) inl
   }
 }
 
+// GCC also takes the preferred vector width as a target (its loops would
+// otherwise stay at 256 bits); clang does not, and drops the whole attribute.
+#if defined(__clang__)
+#define TREPHINE_AVX512_LOOP_TARGET "avx512f,avx512vl,avx512dq,avx2,fma"
+#else
+#define TREPHINE_AVX512_LOOP_TARGET "avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"
+#endif
+
 // The same loop with the gather and the arithmetic on 512-bit vectors (16
 // floats or 8 doubles); the scatter as in AVX2.
 template <typename T>
-__attribute__((target("avx512f,avx512vl,avx512dq,avx2,fma,prefer-vector-width=512"))) ElementStepCounts
+__attribute__((target(TREPHINE_AVX512_LOOP_TARGET))) ElementStepCounts
 forcesAvx512(const TLEDElements& el, const double* u, double* f) {
   ElementStepCounts counts;
   ChunkScratch<T> s;

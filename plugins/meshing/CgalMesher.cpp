@@ -198,7 +198,8 @@ TetMesh meshAtSize(const MeshingProblem& problem, double size) {
 // that regions touching the image's border are closed, with the count model
 // from the labelled volume and the area between labels.
 MeshingProblem labelledProblem(const LabelledImage& image) {
-  const auto [nx, ny, nz] = image.dims;
+  // Named copies, not a structured binding: the lambda below captures them.
+  const int nx = image.dims[0], ny = image.dims[1], nz = image.dims[2];
   if (nx <= 0 || ny <= 0 || nz <= 0 || image.labels.size() != size_t(nx) * ny * nz)
     throw std::invalid_argument("the labelled image's size does not match its labels");
   if (!(image.spacing.minCoeff() > 0) || !image.spacing.allFinite() || !image.origin.allFinite())
