@@ -1,9 +1,11 @@
 // The key functions of the framework's interfaces that plugins meet through
 // (TREPHINE_INTERFACE): their type information lives in this library alone.
 #include "framework/geometry/DeformableMesh.h"
+#include "framework/geometry/DrillableVolume.h"
 
 namespace trephine {
 
 DeformableMesh::~DeformableMesh() = default;
+DrillableVolume::~DrillableVolume() = default;
 
 }  // namespace trephine

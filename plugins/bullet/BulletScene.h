@@ -25,7 +25,7 @@
 #include "framework/geometry/MeshSphereContact.h"
 #include "framework/geometry/MeshSurfaceCounters.h"
 #include "framework/geometry/ShellContactTarget.h"
-#include "framework/geometry/TriangleBlocks.h"
+#include "framework/data/TriangleBlocks.h"
 
 namespace trephine {
 struct Counter;

@@ -5,13 +5,13 @@
 
 #include "framework/geometry/MeshSphereContact.h"
 #include "plugins/bullet/BulletScene.h"
-#include "plugins/voxel_skull/IsoSurface.h"
+#include "framework/data/IsoSurface.h"
 
 namespace trephine::bullet {
 
 struct BulletVoxelBackend::State {
   voxel::VoxelData data;
-  voxel::BlockedIsoSurface surface;
+  BlockedIsoSurface surface;
   BulletScene scene;
   BulletTools tools;
 };
@@ -25,7 +25,7 @@ void BulletVoxelBackend::bind(const voxel::VoxelData& data) {
     throw std::runtime_error("backend=\"bullet\" meshes the smooth surface: set surface=\"smooth\"");
   const auto start = std::chrono::steady_clock::now();
   s.data = data;
-  s.surface.build(*data.grid);
+  s.surface.build(*data.grid, data.grid->cellsWithoutSurface());
   s.scene.build(s.surface);
   // The build time counts the extraction too.
   s.scene.counts().buildMs =
@@ -74,7 +74,7 @@ std::optional<SurfaceHit> BulletVoxelBackend::raycast(const Vec3& origin, const 
 void BulletVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const std::array<int64_t, 3>& last) {
   State& s = *m_state;
   if (s.scene.empty()) return;
-  s.scene.rebuildBlocks(s.surface.update(*s.data.grid, first, last));
+  s.scene.rebuildBlocks(s.surface.update(*s.data.grid, first, last, s.data.grid->cellsWithoutSurface()));
 }
 
 void BulletVoxelBackend::reportCounters(std::vector<Counter>& counters) const {

@@ -20,7 +20,7 @@
 
 #include "framework/geometry/MeshSurfaceCounters.h"
 #include "framework/geometry/ShellContactTarget.h"
-#include "framework/geometry/TriangleBlocks.h"
+#include "framework/data/TriangleBlocks.h"
 
 namespace trephine {
 struct Counter;

@@ -6,13 +6,13 @@
 
 #include "framework/geometry/MeshSphereContact.h"
 #include "plugins/embree/EmbreeScene.h"
-#include "plugins/voxel_skull/IsoSurface.h"
+#include "framework/data/IsoSurface.h"
 
 namespace trephine::embree {
 
 struct EmbreeVoxelBackend::State {
   voxel::VoxelData data;
-  voxel::BlockedIsoSurface surface;
+  BlockedIsoSurface surface;
   EmbreeScene scene;
   ReservedShells shells;
   mutable std::vector<double> depths;  // per shell point, the point-by-point contact
@@ -34,7 +34,7 @@ void EmbreeVoxelBackend::bind(const voxel::VoxelData& data) {
     throw std::runtime_error("backend=\"embree\" meshes the smooth surface: set surface=\"smooth\"");
   const auto start = std::chrono::steady_clock::now();
   s.data = data;
-  s.surface.build(*data.grid);
+  s.surface.build(*data.grid, data.grid->cellsWithoutSurface());
   s.scene.build(s.surface, false);
   // The build time counts the extraction too.
   s.scene.counts().buildMs =
@@ -113,7 +113,7 @@ std::optional<SurfaceHit> EmbreeVoxelBackend::raycast(const Vec3& origin, const 
 void EmbreeVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const std::array<int64_t, 3>& last) {
   State& s = *m_state;
   if (s.scene.empty()) return;
-  const std::vector<size_t> changed = s.surface.update(*s.data.grid, first, last);
+  const std::vector<size_t> changed = s.surface.update(*s.data.grid, first, last, s.data.grid->cellsWithoutSurface());
   s.scene.rebuildBlocks(changed);
 }
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "framework/geometry/TriangleBlocks.h"
+#include "framework/data/TriangleBlocks.h"
 #include "framework/data/TetMesh.h"
 #include "framework/data/TetTopology.h"
 

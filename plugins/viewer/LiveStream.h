@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "framework/geometry/TriangleBlocks.h"
+#include "framework/data/TriangleBlocks.h"
 #include "framework/math/Math.h"
 
 namespace trephine::viewer {

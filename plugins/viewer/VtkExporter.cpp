@@ -30,20 +30,18 @@ void VtkExporter::init(InitContext& context) {
   if (!l_brain && !l_force && !l_skull)
     context.error(*this, "names nothing to write: link a brain, a skull, a force, or several");
   if (l_skull) {
-    voxel::VoxelSkull& skull = *l_skull;
-    const voxel::SolidGrid& grid = skull.grid();
-    m_skullCodes.assign(grid.codes, grid.codes + size_t(grid.nx) * grid.ny * grid.nz);
+    DrillableVolume& skull = *l_skull;
+    const VoxelGrid& grid = skull.voxelGrid();
+    m_skullCodes.assign(grid.codes, grid.codes + grid.voxelCount());
     m_skullGrid = grid;
     m_skullGrid.codes = m_skullCodes.data();
-    m_skullGrid.occupancy = nullptr;
-    m_skullGrid.edits = nullptr;
     m_skullSurface.build(m_skullGrid);
     m_blockChanged.assign(m_skullSurface.blockCount(), 1);
     m_blockFiles.assign(m_skullSurface.blockCount(), "");
     if (skull.drills()) {
       // A drill frame lowers at most a few thousand codes (a 466-point shell,
       // 8 corners each); at 30 Hz the ring holds some 70 frames of that.
-      m_edits = std::make_shared<ChangeQueue<voxel::VoxelEdit>>(size_t(1) << 18);
+      m_edits = std::make_shared<ChangeQueue<VoxelEdit>>(size_t(1) << 18);
       skull.recordEdits(m_edits);
     }
   }
@@ -167,7 +165,7 @@ bool VtkExporter::applySkullEdits() {
   if (!m_edits) return false;
   std::array<int64_t, 3> first{INT64_MAX, INT64_MAX, INT64_MAX}, last{INT64_MIN, INT64_MIN, INT64_MIN};
   const int64_t nx = m_skullGrid.nx, ny = m_skullGrid.ny;
-  const size_t n = m_edits->drain([&](const voxel::VoxelEdit& e) {
+  const size_t n = m_edits->drain([&](const VoxelEdit& e) {
     m_skullCodes[size_t(e.voxel)] = e.code;
     const std::array<int64_t, 3> ijk{e.voxel % nx, (e.voxel / nx) % ny, e.voxel / (nx * ny)};
     for (int a = 0; a < 3; ++a) {
@@ -193,7 +191,7 @@ void VtkExporter::writeSkull(double t) {
   for (size_t b = 0; b < m_blockChanged.size(); ++b) {
     if (!m_blockChanged[b]) continue;
     m_blockChanged[b] = 0;
-    const voxel::TriangleMesh& mesh = m_skullSurface.block(b);
+    const TriangleMesh& mesh = m_skullSurface.block(b);
     if (mesh.triangles.empty()) {
       m_blockFiles[b].clear();
       continue;

@@ -35,10 +35,10 @@
 #include "framework/core/Link.h"
 #include "framework/core/SampleSource.h"
 #include "framework/formats/vtk/VtkXml.h"
-#include "plugins/viewer/LiveStream.h"
+#include "framework/data/IsoSurface.h"
 #include "framework/geometry/DeformableMesh.h"
-#include "plugins/voxel_skull/IsoSurface.h"
-#include "plugins/voxel_skull/VoxelSkull.h"
+#include "framework/geometry/DrillableVolume.h"
+#include "plugins/viewer/LiveStream.h"
 
 namespace trephine::viewer {
 
@@ -81,7 +81,7 @@ class VtkExporter final : public Component {
                              "force",
                              {.help = "ForceFeedback whose device, proxy, force, normal and penetration are written",
                               .initOnly = true}};
-  Link<voxel::VoxelSkull> l_skull{
+  Link<DrillableVolume> l_skull{
       this, "skull", {.help = "Skull whose surface is written (again where drilled)", .initOnly = true}};
   RateField d_rate{this, 30.0, "Frames per second of the files (ParaView plays them at their times)"};
   Field<double> d_skullInterval{
@@ -118,10 +118,10 @@ class VtkExporter final : public Component {
 
   // Skull: a copy of its codes, kept current from the drill's changes (the
   // haptic thread pushes them into m_edits), and its surface in blocks.
-  std::shared_ptr<ChangeQueue<voxel::VoxelEdit>> m_edits;
+  std::shared_ptr<ChangeQueue<VoxelEdit>> m_edits;
   std::vector<VoxelCode> m_skullCodes;
-  voxel::SolidGrid m_skullGrid;
-  voxel::BlockedIsoSurface m_skullSurface;
+  VoxelGrid m_skullGrid;  // over m_skullCodes
+  BlockedIsoSurface m_skullSurface;
   std::vector<uint8_t> m_blockChanged;       // per block: to write at the next skull frame
   std::vector<std::string> m_blockFiles;     // per block: its latest file (relative to the .vtm), "" when empty
   bool m_skullChanged = false;

@@ -14,26 +14,18 @@
 
 #include "framework/channels/ChangeQueue.h"
 #include "framework/data/DensityVolume.h"
+#include "framework/data/IsoSurface.h"
+#include "framework/data/VoxelGrid.h"
 #include "plugins/voxel_skull/OccupancyCells.h"
 
 namespace trephine::voxel {
 
-// A voxel's code after a change (drilling only lowers codes).
-struct VoxelEdit {
-  int64_t voxel = -1;
-  VoxelCode code = 0;
-};
+using trephine::VoxelEdit;
 
-struct SolidGrid {
-  VoxelCode* codes = nullptr;
-  int32_t nx = 0, ny = 0, nz = 0;
-  Vec3 corner = Vec3::Zero();          // mm, outer corner of voxel (0, 0, 0)
-  Vec3 spacing = Vec3::Ones();         // mm
-  Vec3 inverseSpacing = Vec3::Ones();  // 1/mm
-  int32_t threshold = 0;               // codes >= threshold are solid
+// The codes, their grid and isovalue (VoxelGrid), and how this skull reads them.
+struct SolidGrid : VoxelGrid {
+  int32_t threshold = 0;  // codes >= threshold are solid
   bool smooth = false;
-  double isoCode = 0;      // the isovalue in code units (smooth surface)
-  double outsideCode = 0;  // code of the space around the grid (the volume's lowest)
   // Code drilled bone falls to: density 0 (air in a raw scanner scale, water
   // in Hounsfield units, as the irrigation fills a burr hole) or the volume's
   // lowest if that is higher; not the air of a CT in Hounsfield units (-1000),
@@ -51,18 +43,9 @@ struct SolidGrid {
 
   static SolidGrid of(DensityVolume& volume, double isovalue, bool smoothSurface = false) {
     SolidGrid g;
-    g.codes = volume.codes();
-    g.nx = volume.dims()[0];
-    g.ny = volume.dims()[1];
-    g.nz = volume.dims()[2];
-    g.spacing = volume.spacing();
-    g.corner = volume.origin() - 0.5 * g.spacing;
-    g.inverseSpacing = g.spacing.cwiseInverse();
+    static_cast<VoxelGrid&>(g) = VoxelGrid::of(volume, isovalue);
     g.threshold = volume.encoding().thresholdCode(isovalue);
     g.smooth = smoothSurface;
-    g.isoCode = (isovalue - volume.encoding().offset) / volume.encoding().scale;
-    g.outsideCode =
-        volume.voxelCount() ? (volume.minDensity() - volume.encoding().offset) / volume.encoding().scale : 0;
     g.emptyCode = isovalue > 0 ? std::max(g.outsideCode, -volume.encoding().offset / volume.encoding().scale)
                                : g.outsideCode;
     return g;
@@ -71,6 +54,15 @@ struct SolidGrid {
   // Builds `occupancy` from the codes when the surface is smooth (nothing on
   // voxels): once after the codes are set, O(voxels).
   void buildOccupancy() { occupancy = smooth && codes ? OccupancyCells::build(*this) : nullptr; }
+  // For an isosurface's extraction: the cells the occupancy decided (all
+  // corners clearly in or out) hold no surface. Empty without occupancy cells;
+  // valid while this grid's occupancy lives (a pointer kept, no allocation).
+  CellsWithoutSurface cellsWithoutSurface() const {
+    if (!occupancy) return {};
+    return [cells = occupancy.get()](int64_t i, int64_t j, int64_t k) {
+      return cells->state(cells->cellIndex(i, j, k)) != OccupancyCells::kSurface;
+    };
+  }
   // The hook of every change that lowers a code (drilling): call it after
   // codes[voxel] was lowered to newCode, with newCode the code now stored. O(1)
   // (at most 8 cell states change), nothing without occupancy cells. A code
@@ -100,10 +92,6 @@ struct SolidGrid {
     return t - (double(t) > u ? 1 : 0);
   }
 
-  bool inside(int64_t i, int64_t j, int64_t k) const {
-    return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz;
-  }
-  int64_t linear(int64_t i, int64_t j, int64_t k) const { return i + int64_t(nx) * (j + int64_t(ny) * k); }
   bool solidCell(int64_t i, int64_t j, int64_t k) const {
     return inside(i, j, k) && codes[linear(i, j, k)] >= threshold;
   }
@@ -135,9 +123,6 @@ struct SolidGrid {
     }
     const int64_t v = voxelOf(p);
     return v >= 0 && codes[v] >= threshold;
-  }
-  double codeAtCell(int64_t i, int64_t j, int64_t k) const {
-    return inside(i, j, k) ? double(codes[linear(i, j, k)]) : outsideCode;
   }
   // Trilinear interpolation of the codes between voxel centres, and optionally
   // its gradient (codes per mm). NaN points give NaN.

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "framework/core/Component.h"
+#include "framework/geometry/DrillableVolume.h"
 #include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/data/DensityVolume.h"
@@ -27,7 +28,7 @@
 
 namespace trephine::voxel {
 
-class VoxelSkull final : public Component, public ShellContactTarget, public ExactShapeSource {
+class VoxelSkull final : public Component, public ShellContactTarget, public ExactShapeSource, public DrillableVolume {
  public:
   static constexpr std::string_view kTypeName = "VoxelSkull";
 
@@ -58,10 +59,12 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   const DensityVolume& volume() const { return m_volume; }
   const SolidGrid& grid() const { return m_grid; }
+  // ShellContactTarget and DrillableVolume
   bool drills() const override { return d_drill.value(); }
-  // Every code change from now on goes to `edits` as well (initialisation
-  // only: a reader on another thread that keeps its own copy of the codes).
-  void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) { m_grid.edits = std::move(edits); }
+  // DrillableVolume (initialisation only: a reader on another thread that
+  // keeps its own copy of the codes).
+  const VoxelGrid& voxelGrid() const override { return m_grid; }
+  void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) override { m_grid.edits = std::move(edits); }
   uint64_t voxelsRemoved() const { return m_voxelsRemoved; }
   const RemovalLaw& removalLaw() const { return m_law; }
   // Replaces the volume (tests and tools); call before the run.

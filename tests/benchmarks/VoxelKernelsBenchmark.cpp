@@ -16,7 +16,7 @@
 #include "framework/runtime/TimingHistogram.h"
 #include "plugins/haptics/ShellSampling.h"
 #include "plugins/voxel_skull/FootprintCut.h"
-#include "plugins/voxel_skull/IsoSurface.h"
+#include "framework/data/IsoSurface.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/ShellPointClassifier.h"
 #include "plugins/voxel_skull/VoxelTraversal.h"
@@ -266,7 +266,7 @@ void BM_IsoSurfaceBuild(benchmark::State& state) {
   SolidGrid grid = SolidGrid::of(volume, 400.0, true);
   grid.buildOccupancy();
   BlockedIsoSurface surface;
-  for (auto _ : state) surface.build(grid);
+  for (auto _ : state) surface.build(grid, grid.cellsWithoutSurface());
   state.counters["triangles"] = double(surface.triangleCount());
   state.counters["blocks"] = double(surface.blockCount());
 }
@@ -277,7 +277,7 @@ void BM_IsoSurfaceUpdate(benchmark::State& state) {
   SolidGrid grid = SolidGrid::of(volume, 400.0, true);
   grid.buildOccupancy();
   BlockedIsoSurface surface;
-  surface.build(grid);
+  surface.build(grid, grid.cellsWithoutSurface());
   const std::vector<Pose> poses = placements(grid);
   const double reach = kRadius + grid.smallestSide();  // mm, the cut's footprint
   size_t k = 0, blocks = 0;
@@ -290,7 +290,7 @@ void BM_IsoSurfaceUpdate(benchmark::State& state) {
       last[a] = int64_t(std::floor((centre[a] + reach - grid.corner[a]) * grid.inverseSpacing[a]));
     }
     const auto start = std::chrono::steady_clock::now();
-    blocks += surface.update(grid, first, last).size();
+    blocks += surface.update(grid, first, last, grid.cellsWithoutSurface()).size();
     perCall.record(
         std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
   }

@@ -10,7 +10,7 @@
 
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "framework/formats/mesh/TetMeshReader.h"
-#include "plugins/voxel_skull/IsoSurface.h"
+#include "framework/data/IsoSurface.h"
 #include "framework/formats/volume/VolumeReader.h"
 #include "tests/support/TestSupport.h"
 #include "tests/support/VtkAppended.h"
@@ -215,9 +215,9 @@ TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
   EXPECT_GT(blockFiles, firstBlocks) << "drilled blocks were written again";
   EXPECT_LT(blockFiles, firstBlocks + firstBlocks / 4) << "only the drilled ones";
   DensityVolume drilled = formats::readVolume(dir / "run" / "drilled.mha");
-  voxel::BlockedIsoSurface expected;
-  expected.build(voxel::SolidGrid::of(drilled, 600.0, true));
-  const voxel::TriangleMesh merged = expected.merged();
+  BlockedIsoSurface expected;
+  expected.build(VoxelGrid::of(drilled, 600.0));
+  const TriangleMesh merged = expected.merged();
   EXPECT_EQ(polysOfFrame(skulls.back()), int(merged.triangles.size()));
   EXPECT_NE(polysOfFrame(skulls.front()), polysOfFrame(skulls.back())) << "the drill changed the surface";
   const std::string summary = test::readFile(dir / "run" / "summary.json");

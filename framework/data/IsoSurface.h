@@ -22,26 +22,30 @@
 // zero area (an isovalue equal to a corner's code) are dropped.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
-#include "framework/geometry/TriangleBlocks.h"
-#include "plugins/voxel_skull/SolidGrid.h"
+#include "framework/data/TriangleBlocks.h"
+#include "framework/data/VoxelGrid.h"
 
-namespace trephine::voxel {
+namespace trephine {
 
-using trephine::TriangleMesh;
+// Optional: cells known to hold no surface (all 8 corners clearly on one
+// side, as the voxel skull's occupancy cells know), skipped without reading
+// their codes; by the cell's base corner (i, j, k), each from -1.
+using CellsWithoutSurface = std::function<bool(int64_t i, int64_t j, int64_t k)>;
 
 class BlockedIsoSurface final : public TriangleBlocks {
  public:
   static constexpr int kBlockCells = 16;
 
   // Extracts every block (O(voxels)).
-  void build(const SolidGrid& grid);
+  void build(const VoxelGrid& grid, const CellsWithoutSurface& skip = {});
   // Re-extracts the blocks with a cell that has a corner in the voxel box
   // [first, last] (inclusive indices, clamped to the grid): the codes there
   // changed. Returns the indices of the blocks re-extracted.
-  std::vector<size_t> update(const SolidGrid& grid, const std::array<int64_t, 3>& first,
-                             const std::array<int64_t, 3>& last);
+  std::vector<size_t> update(const VoxelGrid& grid, const std::array<int64_t, 3>& first,
+                             const std::array<int64_t, 3>& last, const CellsWithoutSurface& skip = {});
 
   size_t blockCount() const override { return m_blocks.size(); }
   const TriangleMesh& block(size_t index) const override { return m_blocks[index]; }
@@ -50,7 +54,7 @@ class BlockedIsoSurface final : public TriangleBlocks {
   uint64_t degenerateTriangles() const { return m_degenerate; }
 
  private:
-  void extractBlock(const SolidGrid& grid, size_t index);
+  void extractBlock(const VoxelGrid& grid, size_t index, const CellsWithoutSurface& skip);
   // Cells have base corners -1..n-1 per axis: n + 1 of them.
   std::array<int64_t, 3> m_cells{0, 0, 0};
   std::array<int64_t, 3> m_blocksPerAxis{0, 0, 0};
@@ -58,4 +62,4 @@ class BlockedIsoSurface final : public TriangleBlocks {
   uint64_t m_degenerate = 0;
 };
 
-}  // namespace trephine::voxel
+}  // namespace trephine

@@ -1,9 +1,9 @@
-#include "plugins/voxel_skull/IsoSurface.h"
+#include "framework/data/IsoSurface.h"
 
 #include <algorithm>
 #include <unordered_map>
 
-namespace trephine::voxel {
+namespace trephine {
 
 namespace {
 
@@ -21,7 +21,7 @@ struct CellCorners {
 
 class BlockExtractor {
  public:
-  BlockExtractor(const SolidGrid& grid, TriangleMesh& mesh, uint64_t& degenerate)
+  BlockExtractor(const VoxelGrid& grid, TriangleMesh& mesh, uint64_t& degenerate)
       : m_grid(grid), m_mesh(mesh), m_degenerate(degenerate) {}
 
   void cell(int64_t i, int64_t j, int64_t k) {
@@ -91,7 +91,7 @@ class BlockExtractor {
     triangle(ac, bd, bc, outward);
   }
 
-  const SolidGrid& m_grid;
+  const VoxelGrid& m_grid;
   TriangleMesh& m_mesh;
   uint64_t& m_degenerate;
   std::unordered_map<uint64_t, int32_t> m_vertices;  // edge (lower id, higher id) to vertex
@@ -99,16 +99,16 @@ class BlockExtractor {
 
 }  // namespace
 
-void BlockedIsoSurface::build(const SolidGrid& grid) {
+void BlockedIsoSurface::build(const VoxelGrid& grid, const CellsWithoutSurface& skip) {
   m_cells = {int64_t(grid.nx) + 1, int64_t(grid.ny) + 1, int64_t(grid.nz) + 1};
   for (int a = 0; a < 3; ++a) m_blocksPerAxis[a] = (m_cells[a] + kBlockCells - 1) / kBlockCells;
   m_blocks.assign(size_t(m_blocksPerAxis[0] * m_blocksPerAxis[1] * m_blocksPerAxis[2]), TriangleMesh{});
   m_degenerate = 0;
-  for (size_t b = 0; b < m_blocks.size(); ++b) extractBlock(grid, b);
+  for (size_t b = 0; b < m_blocks.size(); ++b) extractBlock(grid, b, skip);
 }
 
-std::vector<size_t> BlockedIsoSurface::update(const SolidGrid& grid, const std::array<int64_t, 3>& first,
-                                              const std::array<int64_t, 3>& last) {
+std::vector<size_t> BlockedIsoSurface::update(const VoxelGrid& grid, const std::array<int64_t, 3>& first,
+                                              const std::array<int64_t, 3>& last, const CellsWithoutSurface& skip) {
   // A cell with base corner c (from -1) has corners c and c + 1, so it has one
   // in [first, last] when c is in [first - 1, last]; its block is (c + 1) / kBlockCells.
   std::array<int64_t, 3> lo{}, hi{};
@@ -122,13 +122,13 @@ std::vector<size_t> BlockedIsoSurface::update(const SolidGrid& grid, const std::
     for (int64_t y = lo[1]; y <= hi[1]; ++y)
       for (int64_t x = lo[0]; x <= hi[0]; ++x) {
         const size_t b = size_t(x + m_blocksPerAxis[0] * (y + m_blocksPerAxis[1] * z));
-        extractBlock(grid, b);
+        extractBlock(grid, b, skip);
         changed.push_back(b);
       }
   return changed;
 }
 
-void BlockedIsoSurface::extractBlock(const SolidGrid& grid, size_t index) {
+void BlockedIsoSurface::extractBlock(const VoxelGrid& grid, size_t index, const CellsWithoutSurface& skip) {
   TriangleMesh& mesh = m_blocks[index];
   mesh.vertices.clear();
   mesh.triangles.clear();
@@ -136,12 +136,10 @@ void BlockedIsoSurface::extractBlock(const SolidGrid& grid, size_t index) {
   const int64_t by = (int64_t(index) / m_blocksPerAxis[0]) % m_blocksPerAxis[1];
   const int64_t bz = int64_t(index) / (m_blocksPerAxis[0] * m_blocksPerAxis[1]);
   BlockExtractor extractor(grid, mesh, m_degenerate);
-  const OccupancyCells* cells = grid.occupancy.get();
   for (int64_t k = bz * kBlockCells - 1; k < std::min((bz + 1) * kBlockCells, m_cells[2]) - 1; ++k)
     for (int64_t j = by * kBlockCells - 1; j < std::min((by + 1) * kBlockCells, m_cells[1]) - 1; ++j)
       for (int64_t i = bx * kBlockCells - 1; i < std::min((bx + 1) * kBlockCells, m_cells[0]) - 1; ++i) {
-        // Cells the occupancy decided (all corners clearly in or out) hold no surface.
-        if (cells && cells->state(cells->cellIndex(i, j, k)) != OccupancyCells::kSurface) continue;
+        if (skip && skip(i, j, k)) continue;
         extractor.cell(i, j, k);
       }
 }
@@ -156,4 +154,4 @@ TriangleMesh BlockedIsoSurface::merged() const {
   return all;
 }
 
-}  // namespace trephine::voxel
+}  // namespace trephine
