@@ -1,5 +1,7 @@
 #include "framework/core/Registry.h"
 
+#include <algorithm>
+
 #include "framework/core/CollisionBackend.h"
 #include "framework/core/Component.h"
 
@@ -41,7 +43,7 @@ std::unique_ptr<Component> Registry::create(std::string_view type) const {
 }
 
 std::optional<std::string> Registry::addBackend(BackendEntry entry) {
-  if (const BackendEntry* existing = findBackend(entry.kind, entry.name)) {
+  if (const BackendEntry* existing = findOwnBackend(entry.kind, entry.name)) {
     return "back-end '" + entry.name + "' of " + entry.kind + " is registered by both plugin '" + existing->plugin +
            "' and plugin '" + entry.plugin + "'";
   }
@@ -50,16 +52,42 @@ std::optional<std::string> Registry::addBackend(BackendEntry entry) {
   return std::nullopt;
 }
 
-const BackendEntry* Registry::findBackend(std::string_view kind, std::string_view name) const {
+const BackendEntry* Registry::findOwnBackend(std::string_view kind, std::string_view name) const {
   const auto it = m_backends.find(std::make_pair(std::string(kind), std::string(name)));
   return it == m_backends.end() ? nullptr : &it->second;
 }
 
+const EngineAdapterEntry* Registry::findEngineAdapter(std::string_view kind) const {
+  const auto it = m_engineAdapters.find(kind);
+  return it == m_engineAdapters.end() ? nullptr : &it->second;
+}
+
+const BackendEntry* Registry::findBackend(std::string_view kind, std::string_view name) const {
+  if (const BackendEntry* own = findOwnBackend(kind, name)) return own;
+  return findEngineAdapter(kind) ? findOwnBackend(kTriangleEngineKind, name) : nullptr;
+}
+
 std::vector<std::string> Registry::backendNames(std::string_view kind) const {
   std::vector<std::string> names;
+  const bool takesEngines = findEngineAdapter(kind) != nullptr;
   for (const auto& [key, entry] : m_backends)
-    if (key.first == kind) names.push_back(key.second);
+    if (key.first == kind || (takesEngines && key.first == kTriangleEngineKind && !findOwnBackend(kind, key.second)))
+      names.push_back(key.second);
+  std::sort(names.begin(), names.end());
   return names;
+}
+
+std::optional<std::string> Registry::addEngineAdapter(EngineAdapterEntry entry) {
+  if (const EngineAdapterEntry* existing = findEngineAdapter(entry.kind))
+    return "the triangle engines' adapter of " + entry.kind + " is registered by both plugin '" + existing->plugin +
+           "' and plugin '" + entry.plugin + "'";
+  std::string kind = entry.kind;
+  m_engineAdapters.emplace(std::move(kind), std::move(entry));
+  return std::nullopt;
+}
+
+void PluginRegistrar::addEngineAdapterEntry(EngineAdapterEntry entry) {
+  if (auto error = m_registry.addEngineAdapter(std::move(entry))) m_errors.push_back(*error);
 }
 
 std::vector<const BackendEntry*> Registry::backends() const {
@@ -69,8 +97,10 @@ std::vector<const BackendEntry*> Registry::backends() const {
 }
 
 std::unique_ptr<CollisionBackend> Registry::createBackend(std::string_view kind, std::string_view name) const {
-  const BackendEntry* entry = findBackend(kind, name);
-  return entry ? entry->create() : nullptr;
+  if (const BackendEntry* own = findOwnBackend(kind, name)) return own->create();
+  const EngineAdapterEntry* adapter = findEngineAdapter(kind);
+  const BackendEntry* engine = adapter ? findOwnBackend(kTriangleEngineKind, name) : nullptr;
+  return engine ? adapter->adapt(engine->create()) : nullptr;
 }
 
 void PluginRegistrar::addBackendEntry(BackendEntry entry) {

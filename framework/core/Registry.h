@@ -31,6 +31,20 @@ struct BackendEntry {
   std::function<std::unique_ptr<CollisionBackend>()> create;
 };
 
+// Back-ends of this kind are triangle engines (TriangleEngine,
+// framework/geometry/TriangleEngine.h): libraries that query any closed
+// triangle surface, for every kind of target that registers an adapter.
+inline constexpr std::string_view kTriangleEngineKind = "TriangleEngine";
+
+// How a kind of target (its component type) puts a triangle engine to use:
+// `adapt` takes a new engine and returns the target's back-end over it. With
+// an adapter, every engine is also a back-end of that kind, under its own name.
+struct EngineAdapterEntry {
+  std::string kind;    // target component type, e.g. "VoxelSkull"
+  std::string plugin;  // filled in by the registrar
+  std::function<std::unique_ptr<CollisionBackend>(std::unique_ptr<CollisionBackend> engine)> adapt;
+};
+
 // Generated data a plugin can write to a file (`trephine phantom SPEC --out
 // FILE`): the phantoms its components also read as file="phantom:SPEC". The
 // output file's suffix picks the writer (the same phantom name, "cube", is a
@@ -69,12 +83,17 @@ class Registry {
   // Adds a back-end. Returns an error naming both providers when the kind
   // already has a back-end of that name.
   std::optional<std::string> addBackend(BackendEntry entry);
+  // The back-end of that name for `kind`: its own, or a triangle engine when
+  // `kind` has an engine adapter.
   const BackendEntry* findBackend(std::string_view kind, std::string_view name) const;
-  // Names of the back-ends registered for `kind`, sorted.
+  // Names of the back-ends of `kind` (the engines too when it has an adapter), sorted.
   std::vector<std::string> backendNames(std::string_view kind) const;
   std::vector<const BackendEntry*> backends() const;  // sorted by kind, then name
-  // A new back-end, or null when none of that name is registered for `kind`.
+  // A new back-end, or null when none of that name is registered for `kind`
+  // (an engine comes inside the kind's adapter).
   std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) const;
+  // Returns an error naming both plugins when the kind already has an adapter.
+  std::optional<std::string> addEngineAdapter(EngineAdapterEntry entry);
 
   // Returns an error naming both plugins when a suffix is already taken.
   std::optional<std::string> addPhantomWriter(PhantomWriterEntry entry);
@@ -94,7 +113,10 @@ class Registry {
 
  private:
   std::map<std::string, ComponentEntry, std::less<>> m_entries;
+  const BackendEntry* findOwnBackend(std::string_view kind, std::string_view name) const;
+  const EngineAdapterEntry* findEngineAdapter(std::string_view kind) const;
   std::map<std::pair<std::string, std::string>, BackendEntry> m_backends;
+  std::map<std::string, EngineAdapterEntry, std::less<>> m_engineAdapters;
   std::vector<PhantomWriterEntry> m_phantomWriters;
   std::map<std::string, ServiceEntry, std::less<>> m_services;
 };
@@ -117,6 +139,19 @@ class PluginRegistrar {
                      [] { return std::unique_ptr<CollisionBackend>(new T()); }});
   }
 
+  // A triangle engine (T derives from TriangleEngine), a back-end of every
+  // kind of target with an engine adapter.
+  template <class T>
+  void addTriangleEngine(std::string_view name, std::string_view summary) {
+    addBackend<T>(kTriangleEngineKind, name, summary);
+  }
+  // How targets of type `kind` use a triangle engine: `adapt` takes a new
+  // engine (a TriangleEngine) and returns the target's back-end over it.
+  void addEngineAdapter(std::string_view kind,
+                        std::function<std::unique_ptr<CollisionBackend>(std::unique_ptr<CollisionBackend>)> adapt) {
+    addEngineAdapterEntry({std::string(kind), m_plugin, std::move(adapt)});
+  }
+
   void addPhantomWriter(PhantomWriterEntry entry);
   // `object` as the provider of interface T (T declares kTypeName).
   template <class T, class Implementation>
@@ -130,6 +165,7 @@ class PluginRegistrar {
  private:
   void addEntry(ComponentEntry entry);
   void addBackendEntry(BackendEntry entry);
+  void addEngineAdapterEntry(EngineAdapterEntry entry);
   void addServiceEntry(ServiceEntry entry);
   Registry& m_registry;
   std::string m_plugin;

@@ -2,10 +2,12 @@
 // (TREPHINE_INTERFACE): their type information lives in this library alone.
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
+#include "framework/geometry/TriangleEngine.h"
 
 namespace trephine {
 
 DeformableMesh::~DeformableMesh() = default;
 DrillableVolume::~DrillableVolume() = default;
+TriangleEngine::~TriangleEngine() = default;
 
 }  // namespace trephine

@@ -3,8 +3,8 @@
 // (TriangleBlocks): each block a btBvhTriangleMeshShape reading the block's
 // own arrays (double precision), its own object, so a block whose triangles
 // change (drilling) is rebuilt alone and a block whose vertices move
-// (deformation) is refitted alone. Shared by the skull's and the brain's
-// Bullet back-ends, with the queries a spherical burr needs:
+// (deformation) is refitted alone. The library side of BulletEngine, with
+// the queries a spherical burr needs:
 //  - contact: the burr as a btSphereShape in contactTest; Bullet finds the
 //    triangles within reach, the closest point of each is computed here;
 //    inside: behind the closest triangle's face, or by ray parity at an edge
@@ -148,7 +148,8 @@ class BulletTools {
     double radius = 0;                   // mm, the burr's
     const BulletShaft* shaft = nullptr;  // or none: a spherical shell
   };
-  void reserve(std::span<const ShellPoint> shell) { m_shells.add(shell); }
+  // True: the shell is a sphere.
+  bool reserve(std::span<const ShellPoint> shell) { return m_shells.add(shell).sphere; }
   // Throws when the shell is not a sphere and the solid has no shaft.
   void describe(std::span<const ShellPoint> shell, const ToolSolid& solid, const std::string& owner);
   // A reserved shell's tool; none for a shell not reserved, or not a sphere

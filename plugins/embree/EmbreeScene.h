@@ -2,8 +2,8 @@
 // A closed triangle surface in Embree, block by block (TriangleBlocks): one
 // BVH per block, instanced in a top scene under the block's index, so a
 // block whose triangles change (drilling) is rebuilt alone, and a block
-// whose vertices move (deformation) is refitted alone. Shared by the skull's
-// and the brain's Embree back-ends, with the queries a spherical burr needs:
+// whose vertices move (deformation) is refitted alone. The library side of
+// EmbreeEngine, with the queries a spherical burr needs:
 //  - contact: the closest point of the surface to the centre
 //    (rtcPointQuery) gives the distance d; the centre is inside when a ray
 //    from it crosses the surface an odd number of times; penetration r - d
@@ -21,19 +21,13 @@
 #include "framework/geometry/MeshSurfaceCounters.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/data/TriangleBlocks.h"
+#include "framework/geometry/TriangleEngine.h"
 
 namespace trephine {
 struct Counter;
 }
 
 namespace trephine::embree {
-
-// The scale of a surface's sphere queries (mm).
-struct SphereQueryScale {
-  double skin = 0;       // how deep a proxy rests (the sweep's allowance, MeshSphereContact.h)
-  double sweepStep = 0;  // a sweep samples the exact depth this far apart
-  double inset = 0;      // a displayed sphere pulled in this far that still reaches the surface overlaps it
-};
 
 class EmbreeScene {
  public:
@@ -78,6 +72,8 @@ class EmbreeScene {
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const;
 
   MeshSurfaceCounters& counts() { return m_counts; }
+  // A contact found outside sphereContact (a shell point by point).
+  void countContactFrame() const { ++m_counts.contactFrames; }
   void reportCounters(std::vector<Counter>& counters) const;
 
  private:

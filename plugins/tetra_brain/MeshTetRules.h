@@ -1,7 +1,7 @@
 #pragma once
-// What the mesh back-ends of TetraBrain (embree, bullet) share, whichever
-// library holds the boundary triangles: when a refitted tree is rebuilt, and
-// where a contact presses on the nodes.
+// The rules of TetraBrain's back-end on a triangle engine (MeshTetBackend),
+// whichever library holds the boundary triangles: when a refitted tree is
+// rebuilt, and where a contact presses on the nodes.
 #include <algorithm>
 #include <vector>
 

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "framework/core/Registry.h"
+#include "plugins/tetra_brain/MeshTetBackend.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/ScriptedDeformation.h"
 #include "plugins/tetra_brain/TetGridRebuild.h"
@@ -16,6 +17,10 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
       "TetraBrain", "native",
       "The thesis's method: shell points located in tetrahedra through a uniform grid, depth from the boundary "
       "faces");
+  // Every triangle engine (embree, bullet) is a back-end too, on the boundary faces.
+  registrar.addEngineAdapter("TetraBrain", [](std::unique_ptr<trephine::CollisionBackend> engine) {
+    return trephine::adaptEngine<trephine::tetra::MeshTetBackend>(std::move(engine));
+  });
   registrar.add<trephine::tetra::ScriptedDeformation>(
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
   registrar.add<trephine::tetra::TetGridRebuild>(

@@ -2,6 +2,7 @@
 #include <sstream>
 
 #include "framework/core/Registry.h"
+#include "plugins/voxel_skull/MeshVoxelBackend.h"
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
@@ -13,6 +14,10 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
       "VoxelSkull", "Rigid skull of CT density voxels: pointshell collision, sweeps and drilling");
   registrar.addBackend<trephine::voxel::NativeVoxelBackend>(
       "VoxelSkull", "native", "The thesis's voxel method: pointshell against voxels or the smooth isosurface");
+  // Every triangle engine (embree, bullet) is a back-end too, on the smooth isosurface.
+  registrar.addEngineAdapter("VoxelSkull", [](std::unique_ptr<trephine::CollisionBackend> engine) {
+    return trephine::adaptEngine<trephine::voxel::MeshVoxelBackend>(std::move(engine));
+  });
   registrar.addPhantomWriter({.kind = "volume",
                               .suffixes = {".mha", ".mhd"},
                               .plugin = {},

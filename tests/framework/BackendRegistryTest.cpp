@@ -1,6 +1,7 @@
 // Collision back-ends in the registry: registered under a name for a kind of
 // target, found and created by that pair, listed per kind; a second
-// registration of the same pair is an error naming both plugins.
+// registration of the same pair is an error naming both plugins. Triangle
+// engines are back-ends of every kind with an engine adapter, inside it.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -50,6 +51,49 @@ TEST(BackendRegistryTest, TheSameNameForTheSameKindTwiceIsAnErrorNamingBothPlugi
             "back-end 'native' of VoxelSkull is registered by both plugin 'first' and plugin 'second'");
   // The first stays.
   EXPECT_NE(dynamic_cast<FirstBackend*>(registry.createBackend("VoxelSkull", "native").get()), nullptr);
+}
+
+// An adapter of a kind: holds the engine it was made over.
+class Adapter : public CollisionBackend {
+ public:
+  explicit Adapter(std::unique_ptr<CollisionBackend> engine) : engine(std::move(engine)) {}
+  std::unique_ptr<CollisionBackend> engine;
+};
+
+TEST(BackendRegistryTest, AnEngineIsABackEndOfEveryKindWithAnAdapterInsideIt) {
+  Registry registry;
+  PluginRegistrar engines(registry, "engines");
+  engines.addTriangleEngine<SecondBackend>("bvh", "triangles in a tree");
+  PluginRegistrar skull(registry, "skull");
+  skull.addBackend<FirstBackend>("VoxelSkull", "native", "voxels");
+  skull.addEngineAdapter("VoxelSkull", [](std::unique_ptr<CollisionBackend> engine) {
+    return std::unique_ptr<CollisionBackend>(new Adapter(std::move(engine)));
+  });
+  EXPECT_TRUE(engines.errors().empty() && skull.errors().empty());
+
+  EXPECT_EQ(registry.backendNames("VoxelSkull"), (std::vector<std::string>{"bvh", "native"}));
+  EXPECT_TRUE(registry.backendNames("TetraBrain").empty()) << "no adapter, no engines";
+  ASSERT_NE(registry.findBackend("VoxelSkull", "bvh"), nullptr);
+  EXPECT_EQ(registry.findBackend("VoxelSkull", "bvh")->plugin, "engines") << "the reference names the engine";
+  EXPECT_EQ(registry.findBackend("TetraBrain", "bvh"), nullptr);
+  const auto created = registry.createBackend("VoxelSkull", "bvh");
+  const auto* adapter = dynamic_cast<const Adapter*>(created.get());
+  ASSERT_NE(adapter, nullptr) << "the kind's adapter";
+  EXPECT_NE(dynamic_cast<const SecondBackend*>(adapter->engine.get()), nullptr) << "over a new engine";
+  EXPECT_EQ(registry.createBackend("TetraBrain", "bvh"), nullptr);
+  EXPECT_NE(dynamic_cast<FirstBackend*>(registry.createBackend("VoxelSkull", "native").get()), nullptr);
+
+  // A kind's own back-end of an engine's name comes first.
+  skull.addBackend<FirstBackend>("VoxelSkull", "bvh", "voxels again");
+  EXPECT_TRUE(skull.errors().empty()) << skull.errors().front();
+  EXPECT_NE(dynamic_cast<FirstBackend*>(registry.createBackend("VoxelSkull", "bvh").get()), nullptr);
+  EXPECT_EQ(registry.backendNames("VoxelSkull"), (std::vector<std::string>{"bvh", "native"})) << "listed once";
+
+  PluginRegistrar other(registry, "other");
+  other.addEngineAdapter("VoxelSkull", [](std::unique_ptr<CollisionBackend>) { return nullptr; });
+  ASSERT_EQ(other.errors().size(), 1u);
+  EXPECT_EQ(other.errors()[0],
+            "the triangle engines' adapter of VoxelSkull is registered by both plugin 'skull' and plugin 'other'");
 }
 
 PhantomWriterEntry writer(const std::string& kind, std::vector<std::string> suffixes) {

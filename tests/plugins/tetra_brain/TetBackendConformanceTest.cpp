@@ -22,13 +22,14 @@
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Diagnostics.h"
 #include "framework/runtime/Simulation.h"
+#include "plugins/tetra_brain/MeshTetBackend.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"
 #include "tests/support/TestSupport.h"
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
-#include "plugins/embree/EmbreeTetBackend.h"
+#include "plugins/embree/EmbreeEngine.h"
 #endif
 #ifdef TREPHINE_HAS_BULLET_BACKEND
-#include "plugins/bullet/BulletTetBackend.h"
+#include "plugins/bullet/BulletEngine.h"
 #endif
 
 namespace trephine::tetra {
@@ -50,10 +51,10 @@ void PrintTo(const Backend& backend, std::ostream* os) { *os << backend.name; }
 std::vector<Backend> backends() {
   std::vector<Backend> list = {{"native", [] { return std::make_unique<NativeTetBackend>(); }, 0.01, 1e-6, false}};
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
-  list.push_back({"embree", [] { return std::make_unique<embree::EmbreeTetBackend>(); }, 1e-4, 1e-3, true});
+  list.push_back({"embree", [] { return std::make_unique<MeshTetBackend>(std::make_unique<embree::EmbreeEngine>()); }, 1e-4, 1e-3, true});
 #endif
 #ifdef TREPHINE_HAS_BULLET_BACKEND
-  list.push_back({"bullet", [] { return std::make_unique<bullet::BulletTetBackend>(); }, 1e-6, 1e-3, true});
+  list.push_back({"bullet", [] { return std::make_unique<MeshTetBackend>(std::make_unique<bullet::BulletEngine>()); }, 1e-6, 1e-3, true});
 #endif
   return list;
 }
@@ -278,7 +279,7 @@ TEST(TetBackendFieldTest, BulletTakesABurrOnAShaftAndItsShaftMeasuresTheClosedFo
       shell.push_back({toAxis * (r * radial + (2.3 + (L - 2.3) * k / 40.0) * Vec3::UnitZ()), toAxis * -radial});
     }
   TetraBrain brain;
-  brain.setBackend(std::make_unique<bullet::BulletTetBackend>());
+  brain.setBackend(std::make_unique<MeshTetBackend>(std::make_unique<bullet::BulletEngine>()));
   shapes::cubeBrain(brain, kCells);
   brain.reserveShell(shell);
   // Without a shaft the shell is neither a sphere nor a burr on a shaft.

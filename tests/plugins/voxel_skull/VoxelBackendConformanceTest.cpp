@@ -30,12 +30,13 @@
 #include <random>
 
 #include "plugins/haptics/ShellSampling.h"
+#include "plugins/voxel_skull/MeshVoxelBackend.h"
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
-#include "plugins/embree/EmbreeVoxelBackend.h"
+#include "plugins/embree/EmbreeEngine.h"
 #endif
 #ifdef TREPHINE_HAS_BULLET_BACKEND
-#include "plugins/bullet/BulletVoxelBackend.h"
+#include "plugins/bullet/BulletEngine.h"
 #endif
 
 namespace trephine::voxel {
@@ -58,10 +59,10 @@ std::vector<Backend> backends() {
   std::vector<Backend> list = {
       {"native", [] { return std::make_unique<NativeVoxelBackend>(); }, 0.04, 0.01, 0.06, 0.04}};
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
-  list.push_back({"embree", [] { return std::make_unique<embree::EmbreeVoxelBackend>(); }, 0.06, 0.0, 0.1, 0.06});
+  list.push_back({"embree", [] { return std::make_unique<MeshVoxelBackend>(std::make_unique<embree::EmbreeEngine>()); }, 0.06, 0.0, 0.1, 0.06});
 #endif
 #ifdef TREPHINE_HAS_BULLET_BACKEND
-  list.push_back({"bullet", [] { return std::make_unique<bullet::BulletVoxelBackend>(); }, 0.06, 0.0, 0.1, 0.06});
+  list.push_back({"bullet", [] { return std::make_unique<MeshVoxelBackend>(std::make_unique<bullet::BulletEngine>()); }, 0.06, 0.0, 0.1, 0.06});
 #endif
   return list;
 }
