@@ -43,7 +43,8 @@ def main():
     parser.add_argument('new')
     parser.add_argument('--runs', type=int, default=8)
     parser.add_argument('cases', nargs='*', help='case names (default: all)')
-    args = parser.parse_args()
+    # Intermixed: the case names may follow --runs N (old new --runs 8 'FEM press').
+    args = parser.parse_intermixed_args()
     os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
     print('| case | old p50 / p99 (us) | new p50 / p99 (us) | new/old |')
     print('|---|---|---|---|')
