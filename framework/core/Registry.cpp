@@ -1,6 +1,7 @@
 #include "framework/core/Registry.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "framework/core/CollisionBackend.h"
 #include "framework/core/Component.h"
@@ -100,7 +101,15 @@ std::unique_ptr<CollisionBackend> Registry::createBackend(std::string_view kind,
   if (const BackendEntry* own = findOwnBackend(kind, name)) return own->create();
   const EngineAdapterEntry* adapter = findEngineAdapter(kind);
   const BackendEntry* engine = adapter ? findOwnBackend(kTriangleEngineKind, name) : nullptr;
-  return engine ? adapter->adapt(engine->create()) : nullptr;
+  if (!engine) return nullptr;
+  std::unique_ptr<CollisionBackend> adapted = adapter->adapt(engine->create());
+  // An engine the adapter cannot take (a plugin's class that is no
+  // TriangleEngine) is its plugin's error, not a missing back-end.
+  if (!adapted)
+    throw std::runtime_error("back-end '" + std::string(name) + "' of plugin '" + engine->plugin +
+                             "' is registered as a triangle engine, but " + std::string(kind) +
+                             "'s adapter (plugin '" + adapter->plugin + "') cannot use it: it is not a TriangleEngine");
+  return adapted;
 }
 
 void PluginRegistrar::addBackendEntry(BackendEntry entry) {

@@ -90,7 +90,8 @@ class Registry {
   std::vector<std::string> backendNames(std::string_view kind) const;
   std::vector<const BackendEntry*> backends() const;  // sorted by kind, then name
   // A new back-end, or null when none of that name is registered for `kind`
-  // (an engine comes inside the kind's adapter).
+  // (an engine comes inside the kind's adapter; throws, naming both plugins,
+  // when the adapter cannot use the engine).
   std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) const;
   // Returns an error naming both plugins when the kind already has an adapter.
   std::optional<std::string> addEngineAdapter(EngineAdapterEntry entry);

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "framework/core/CollisionBackend.h"
 #include "framework/core/Registry.h"
@@ -94,6 +96,18 @@ TEST(BackendRegistryTest, AnEngineIsABackEndOfEveryKindWithAnAdapterInsideIt) {
   ASSERT_EQ(other.errors().size(), 1u);
   EXPECT_EQ(other.errors()[0],
             "the triangle engines' adapter of VoxelSkull is registered by both plugin 'skull' and plugin 'other'");
+
+  // An adapter that cannot use the engine is an error naming both plugins, not a missing back-end.
+  PluginRegistrar brain(registry, "brain");
+  brain.addEngineAdapter("TetraBrain", [](std::unique_ptr<CollisionBackend>) { return nullptr; });
+  try {
+    registry.createBackend("TetraBrain", "bvh");
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "back-end 'bvh' of plugin 'engines' is registered as a triangle engine, but TetraBrain's adapter "
+              "(plugin 'brain') cannot use it: it is not a TriangleEngine");
+  }
 }
 
 PhantomWriterEntry writer(const std::string& kind, std::vector<std::string> suffixes) {
