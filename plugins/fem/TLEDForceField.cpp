@@ -93,6 +93,8 @@ std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const 
 
 void TLEDForceField::prepare(const RunPlan&) {
   m_model->setTimeStep(d_dt.value(), d_damping.value());
+  // After every component's init: the constraints and gravity are in the model.
+  m_state.emplace(*m_model);
   const size_t n = m_model->nodeCount();
   m_target.assign(n, Vec3::Zero());
   m_applied.assign(n, Vec3::Zero());
@@ -133,11 +135,11 @@ void TLEDForceField::tick(const TickContext& context) {
     m_applied[node] += follow * (m_target[node] - m_applied[node]);
     const bool done = m_target[node].isZero(0.0) && m_applied[node].norm() < 1e-9;  // mN
     if (done) m_applied[node] = Vec3::Zero();
-    m_model->setExternalForce(node, m_applied[node]);
+    m_state->setExternalForce(node, m_applied[node]);
     total += m_applied[node].norm();
     if (done) {
       m_applying[node] = 0;
-      m_model->setNodeDamping(node, 0);
+      m_state->setNodeDamping(node, 0);
     } else {
       m_appliedNodes[kept++] = node;
     }
@@ -147,7 +149,7 @@ void TLEDForceField::tick(const TickContext& context) {
   // (N s/m, the mN of a mm/s) times 1000.
   if (d_contactDamping.value() > 0)
     for (int32_t node : m_appliedNodes)
-      m_model->setNodeDamping(node, total > 0 ? kNewtonsToModelForce * d_contactDamping.value() * m_applied[node].norm() / total
+      m_state->setNodeDamping(node, total > 0 ? kNewtonsToModelForce * d_contactDamping.value() * m_applied[node].norm() / total
                                               : 0.0);
   // As many steps as fit: the model's time stays within one step of the end
   // of this period. In real time, after a stall (a tick that came late), at
@@ -156,21 +158,21 @@ void TLEDForceField::tick(const TickContext& context) {
   const double dt = m_model->timeStep();
   uint64_t target = uint64_t(std::floor((context.t + context.dt) / dt + 1e-9)) - m_droppedSteps;
   const uint64_t most = uint64_t(std::ceil(context.dt / dt - 1e-9)) + 1;
-  if (target > m_model->steps() + most) {
-    m_droppedSteps += target - (m_model->steps() + most);
-    target = m_model->steps() + most;
+  if (target > m_state->steps() + most) {
+    m_droppedSteps += target - (m_state->steps() + most);
+    target = m_state->steps() + most;
   }
   uint64_t substeps = 0;
-  while (m_model->steps() < target) {
-    m_model->step();
-    m_mostInverted = std::max(m_mostInverted, m_model->invertedNow());
+  while (m_state->steps() < target) {
+    m_state->step();
+    m_mostInverted = std::max(m_mostInverted, m_state->invertedNow());
     ++substeps;
   }
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
   // At rest and published so: the brain already has this shape (the rest
   // shape before the first frame).
-  if (m_model->resting() && m_publishedRest) return;
-  const TLEDModel::WrittenShape shape = m_model->writePositions(m_frame.positions);
+  if (m_state->resting() && m_publishedRest) return;
+  const TLEDState::WrittenShape shape = m_state->writePositions(m_frame.positions);
   const double largest = shape.largestDisplacement;
   // A node farther from rest than the mesh is large has diverged as surely
   // as a NaN (and would widen every collision query by as much).
@@ -182,7 +184,7 @@ void TLEDForceField::tick(const TickContext& context) {
     ++m_nonFinite;
     ++m_frame.resets;  // carried by the rest shape published next: the haptic side lets go
     if (context.events) context.events->log(context.t, "fem_diverged", "reset to rest", this);
-    m_model->resetToRest();
+    m_state->resetToRest();
     dropToolLoad();
     m_movesKnown = false;  // the shape held is not the one last published
     m_publishedRest = false;
@@ -194,7 +196,7 @@ void TLEDForceField::tick(const TickContext& context) {
   m_movesKnown = true;
   ++m_frame.step;
   m_channel->publish(m_frame);
-  m_publishedRest = m_model->resting();
+  m_publishedRest = m_state->resting();
 }
 
 void TLEDForceField::dropToolLoad() {
@@ -206,8 +208,8 @@ void TLEDForceField::dropToolLoad() {
   for (int32_t node : m_appliedNodes) {
     m_applied[node] = Vec3::Zero();
     m_applying[node] = 0;
-    m_model->setExternalForce(node, Vec3::Zero());
-    m_model->setNodeDamping(node, 0);
+    m_state->setExternalForce(node, Vec3::Zero());
+    m_state->setNodeDamping(node, 0);
   }
   m_appliedNodes.clear();
 }
@@ -220,18 +222,19 @@ void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
     counters.push_back({"mass_scaled_elements", double(m_massScaledElements)});
     counters.push_back({"added_mass_fraction", m_model->addedMass() / (m_model->totalMass() - m_model->addedMass())});
   }
-  counters.push_back({"steps", double(m_model->steps())});
+  if (!m_state) return;  // not run
+  counters.push_back({"steps", double(m_state->steps())});
   counters.push_back({"most_substeps", double(m_mostSubsteps)});
   counters.push_back({"dropped_steps", double(m_droppedSteps)});  // behind the clock after stalls (real time)
-  counters.push_back({"inverted_element_steps", double(m_model->counts().inverted)});
+  counters.push_back({"inverted_element_steps", double(m_state->counts().inverted)});
   counters.push_back({"most_inverted_elements", double(m_mostInverted)});
-  counters.push_back({"far_from_rest_element_steps", double(m_model->counts().farFromRest)});
+  counters.push_back({"far_from_rest_element_steps", double(m_state->counts().farFromRest)});
   counters.push_back({"largest_displacement_mm", m_largestDisplacement});
   counters.push_back({"force_updates", double(m_forceUpdates)});
   counters.push_back({"dropped_forces", double(m_droppedForces)});
   counters.push_back({"non_finite_ticks", double(m_nonFinite)});
   counters.push_back({"published_steps", double(m_frame.step)});
-  counters.push_back({"resting_steps", double(m_model->restingSteps())});  // at rest, no load: not computed
+  counters.push_back({"resting_steps", double(m_state->restingSteps())});  // at rest, no load: not computed
 }
 
 }  // namespace trephine::fem

@@ -1,6 +1,6 @@
 #pragma once
 // The brain's mechanics: TLED on the linear tetrahedra of a TetraBrain
-// (TLEDModel), ticked in its own rate group. Each tick it takes the latest
+// (TLEDModel, moving a TLEDState), ticked in its own rate group. Each tick it takes the latest
 // reaction forces of the tool on the nodes (the brain's node_forces, N),
 // advances as many time steps as fit in the period, and publishes the node
 // positions on node_positions, which the brain reads at the start of each
@@ -20,6 +20,7 @@
 #include "framework/core/Component.h"
 #include "framework/geometry/DeformableMesh.h"
 #include "plugins/fem/TLEDModel.h"
+#include "plugins/fem/TLEDState.h"
 
 namespace trephine::fem {
 
@@ -135,6 +136,7 @@ class TLEDForceField final : public Component {
   void dropToolLoad();
 
   std::unique_ptr<TLEDModel> m_model;
+  std::optional<TLEDState> m_state;  // made at prepare(), once the components that link here have set the model
   std::vector<int32_t> m_labels;  // per element, the mesh's tissue labels (or empty)
   std::optional<ChannelReader<NodeForces>> m_forces;
   // The tool's forces (mN) per node: the last fetched (target) and those

@@ -134,18 +134,11 @@ TLEDModel::TLEDModel(std::span<const Vec3> restNodes, std::span<const TetIndices
     m_length[k] = 1 / std::sqrt(gradientSquared);
   }
   findCriticalStep();
-  m_u.assign(kNodeStride * n, 0.0);
-  m_uPrev.assign(kNodeStride * n, 0.0);
-  m_f.assign(kNodeStride * n, 0.0);
   m_stepScale.assign(n, 0.0);
   // A node no element holds has no mass: it stays where it is.
   for (size_t k = 0; k < n; ++k)
     if (m_mass[k] == 0)
       for (size_t axis = 0; axis < 3; ++axis) m_held.push_back({kNodeStride * k + axis, 0.0});
-  m_externalForces.reserve(n);
-  m_externalSlot.assign(n, -1);
-  m_nodeDamping.reserve(n);
-  m_dampingSlot.assign(n, -1);
 }
 
 void TLEDModel::findCriticalStep() {
@@ -262,7 +255,6 @@ void TLEDModel::fixNode(int32_t node, const Vec3& displacement, unsigned axes) {
     } else {
       held->value = displacement[axis];
     }
-    m_u[index] = m_uPrev[index] = displacement[axis];
   }
 }
 
@@ -271,42 +263,9 @@ bool TLEDModel::isFixed(int32_t node, int axis) const {
   return std::any_of(m_held.begin(), m_held.end(), [&](const HeldAxis& h) { return h.index == index; });
 }
 
-void TLEDModel::setExternalForce(int32_t node, const Vec3& force_mN) {
-  const int32_t k = m_internal[node];
-  int32_t& slot = m_externalSlot[k];
-  if (slot < 0) {
-    slot = int32_t(m_externalForces.size());
-    m_externalForces.push_back({k, Vec3::Zero()});  // within the capacity reserved for every node
-  }
-  m_externalForces[slot].force = force_mN;
-}
-
-void TLEDModel::setNodeDamping(int32_t node, double damping) {
-  const int32_t k = m_internal[node];
-  int32_t& slot = m_dampingSlot[k];
-  if (damping > 0) {
-    if (slot < 0) {
-      slot = int32_t(m_nodeDamping.size());
-      m_nodeDamping.push_back({k, 0.0, {}});  // within the capacity reserved for every node
-    }
-    m_nodeDamping[slot].damping = damping;
-  } else if (slot >= 0) {
-    // The last entry takes the removed one's place.
-    m_nodeDamping[slot] = m_nodeDamping.back();
-    m_dampingSlot[m_nodeDamping[slot].node] = slot;
-    m_nodeDamping.pop_back();
-    slot = -1;
-  }
-}
-
-void TLEDModel::clearExternalForces() {
-  for (const ExternalForce& f : m_externalForces) m_externalSlot[f.node] = -1;
-  m_externalForces.clear();
-}
-
-void TLEDModel::forcesInto(const std::vector<double>& u, std::vector<double>& f) const {
-  std::fill(f.begin(), f.end(), 0.0);
-  accumulateInternalForces(m_elements, u.data(), f.data(), m_isa);
+ElementStepCounts TLEDModel::forcesInto(const double* u, double* f) const {
+  std::fill(f, f + vectorSize(), 0.0);
+  return accumulateInternalForces(m_elements, u, f, m_isa);
 }
 
 void TLEDModel::setElementLoopIsa(ElementLoopIsa isa) {
@@ -316,164 +275,17 @@ void TLEDModel::setElementLoopIsa(ElementLoopIsa isa) {
   m_isa = isa;
 }
 
-bool TLEDModel::loaded() const {
-  if (!m_bodyAcceleration.isZero(0.0)) return true;
-  for (const ExternalForce& e : m_externalForces)
-    if (!e.force.isZero(0.0)) return true;
-  for (const HeldAxis& h : m_held)
-    if (h.value != 0) return true;
-  return false;
-}
-
-void TLEDModel::step() {
-  // At rest with nothing to move it, the step's answer is rest: it is not
-  // computed (the element loop would return forces of rounding size, 1e-16
-  // of the moduli). A brain nobody touches costs nothing.
-  if (m_resting) {
-    if (!loaded()) {
-      ++m_steps;
-      ++m_restingSteps;
-      m_invertedNow = 0;
-      return;
-    }
-    m_resting = false;
-  }
-  std::fill(m_f.begin(), m_f.end(), 0.0);
-  const ElementStepCounts counts = accumulateInternalForces(m_elements, m_u.data(), m_f.data(), m_isa);
-  m_invertedNow = counts.inverted;
-  m_counts.inverted += counts.inverted;
-  m_counts.farFromRest += counts.farFromRest;
-  for (const ExternalForce& e : m_externalForces)
-    for (size_t axis = 0; axis < 3; ++axis) m_f[kNodeStride * e.node + axis] -= e.force[axis];
-  const double denominator = 1 + m_damping * m_dt / 2;
-  const double now = 2 / denominator, before = (1 - m_damping * m_dt / 2) / denominator;
-  // A node's (x, y, z, 0) as one vector: the update is the same four
-  // operations on each, node after node.
-  using NodeVector = double __attribute__((vector_size(kNodeStride * sizeof(double))));
-  const NodeVector gravity = {m_dt * m_dt * m_bodyAcceleration.x() / denominator,
-                              m_dt * m_dt * m_bodyAcceleration.y() / denominator,
-                              m_dt * m_dt * m_bodyAcceleration.z() / denominator, 0.0};  // mm per step
-  const size_t n = m_mass.size();
-  const double* u = m_u.data();
-  const double* f = m_f.data();
-  const double* scale = m_stepScale.data();
-  double* next = m_uPrev.data();  // u- is read and overwritten by u+ at the same index
-  for (NodeDamping& d : m_nodeDamping)
-    std::copy_n(next + kNodeStride * size_t(d.node), kNodeStride, d.before);
-  for (size_t k = 0; k < n; ++k) {
-    const size_t i = kNodeStride * k;
-    NodeVector current, previous, force;
-    std::memcpy(&current, u + i, sizeof current);
-    std::memcpy(&previous, next + i, sizeof previous);
-    std::memcpy(&force, f + i, sizeof force);
-    const NodeVector value = now * current - before * previous - scale[k] * force + gravity;
-    std::memcpy(next + i, &value, sizeof value);
-  }
-  // The damped nodes again, with their own damping added to the mass-proportional one.
-  for (const NodeDamping& d : m_nodeDamping) {
-    const double mass = m_mass[d.node];
-    if (!(mass > 0)) continue;
-    const double half = (m_damping + d.damping / mass) * m_dt / 2;
-    for (size_t axis = 0; axis < 3; ++axis) {
-      const size_t i = kNodeStride * size_t(d.node) + axis;
-      next[i] = (2 * u[i] - (1 - half) * d.before[axis] - m_dt * m_dt / mass * f[i] +
-                 m_dt * m_dt * m_bodyAcceleration[axis]) /
-                (1 + half);
-    }
-  }
-  for (const HeldAxis& h : m_held) next[h.index] = h.value;
-  std::swap(m_u, m_uPrev);
-  ++m_steps;
-}
-
-void TLEDModel::setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious) {
-  if (u.size() != nodeCount() || uPrevious.size() != nodeCount())
-    throw std::invalid_argument("one displacement per node");
-  for (size_t i = 0; i < nodeCount(); ++i)
-    for (size_t axis = 0; axis < 3; ++axis) {
-      const size_t index = kNodeStride * size_t(m_internal[i]) + axis;
-      m_u[index] = u[i][axis];
-      m_uPrev[index] = uPrevious[i][axis];
-    }
-  for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
-  m_resting = false;
-}
-
-void TLEDModel::resetToRest() {
-  std::fill(m_u.begin(), m_u.end(), 0.0);
-  std::fill(m_uPrev.begin(), m_uPrev.end(), 0.0);
-  for (const HeldAxis& h : m_held) m_u[h.index] = m_uPrev[h.index] = h.value;
-  m_resting = true;
-}
-
-TLEDModel::WrittenShape TLEDModel::writePositions(std::span<Vec3> positions) const {
-  double largestSquared = 0, largestMoveSquared = 0;
-  bool finite = true;
-  for (size_t i = 0; i < m_rest.size(); ++i) {
-    const double* d = &m_u[kNodeStride * size_t(m_internal[i])];
-    const Vec3 u(d[0], d[1], d[2]);
-    const Vec3 p = m_rest[i] + u;
-    const double squared = u.squaredNorm(), moveSquared = (p - positions[i]).squaredNorm();
-    positions[i] = p;
-    // std::max would drop a NaN. The shape before may be a diverged one: then the move is unknown.
-    finite = finite && std::isfinite(squared) && p.allFinite();
-    largestSquared = std::max(largestSquared, squared);
-    largestMoveSquared = std::isfinite(moveSquared) ? std::max(largestMoveSquared, moveSquared) : INFINITY;
-  }
-  if (!finite) return {INFINITY, INFINITY};
-  return {std::sqrt(largestSquared), std::sqrt(largestMoveSquared)};
-}
-
 double TLEDModel::totalMass() const { return std::accumulate(m_mass.begin(), m_mass.end(), 0.0); }
 
-void TLEDModel::internalForces(std::span<Vec3> forces) const {
-  forcesInto(m_u, m_f);
-  for (size_t i = 0; i < nodeCount(); ++i) {
-    const double* f = &m_f[kNodeStride * size_t(m_internal[i])];
-    forces[i] = Vec3(f[0], f[1], f[2]);
-  }
-}
-
 void TLEDModel::internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces) const {
-  std::vector<double> at(m_u.size(), 0.0);
+  std::vector<double> at(vectorSize(), 0.0), f(vectorSize(), 0.0);
   for (size_t i = 0; i < nodeCount(); ++i)
-    for (size_t axis = 0; axis < 3; ++axis) at[kNodeStride * size_t(m_internal[i]) + axis] = u[i][axis];
-  forcesInto(at, m_f);
+    for (size_t axis = 0; axis < 3; ++axis) at[index(int32_t(i), axis)] = u[i][axis];
+  forcesInto(at.data(), f.data());
   for (size_t i = 0; i < nodeCount(); ++i) {
-    const double* f = &m_f[kNodeStride * size_t(m_internal[i])];
-    forces[i] = Vec3(f[0], f[1], f[2]);
+    const double* fi = &f[index(int32_t(i), 0)];
+    forces[i] = Vec3(fi[0], fi[1], fi[2]);
   }
-}
-
-double TLEDModel::kineticEnergy() const {
-  if (m_dt <= 0) return 0;
-  double twice = 0;  // kg mm^2 / s^2
-  for (size_t k = 0; k < m_mass.size(); ++k) {
-    double v2 = 0;
-    for (size_t axis = 0; axis < 3; ++axis) {
-      const double v = m_u[kNodeStride * k + axis] - m_uPrev[kNodeStride * k + axis];
-      v2 += v * v;
-    }
-    twice += m_mass[k] * v2;
-  }
-  return 0.5 * twice / (m_dt * m_dt);
-}
-
-double TLEDModel::strainEnergy() const {
-  const TLEDElements& el = m_elements;
-  double energy = 0;
-  for (size_t k = 0; k < el.count; ++k) {
-    Mat3 F = Mat3::Identity();
-    const double* u0 = &m_u[size_t(el.nodeOffset[0][k])];
-    for (int a = 1; a < 4; ++a) {
-      const double* ua = &m_u[size_t(el.nodeOffset[a][k])];
-      const Vec3 d(ua[0] - u0[0], ua[1] - u0[1], ua[2] - u0[2]);
-      const Eigen::RowVector3d g(el.grad[3 * (a - 1)][k], el.grad[3 * (a - 1) + 1][k], el.grad[3 * (a - 1) + 2][k]);
-      F += d * g;
-    }
-    energy += neoHookeanEnergy(F, {el.muVolume[k], el.kappaVolume[k]});  // the volume is in the moduli
-  }
-  return energy;
 }
 
 }  // namespace trephine::fem

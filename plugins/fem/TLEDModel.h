@@ -16,6 +16,12 @@
 // Storage is structure-of-arrays, elements and nodes alike, so that the
 // element loop vectorises (TLEDKernel.cpp); nothing allocates after the
 // model is built.
+//
+// The model is what stays fixed while it moves (MuJoCo's mjModel): the rest
+// shape, the element matrices, the masses, the time step, gravity and the
+// held axes. What moves is a TLEDState (TLEDState.h, MuJoCo's mjData): the
+// displacements, the loads on the nodes and the step counts. One model
+// serves any number of states; a copy of a state replays its steps exactly.
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -94,6 +100,8 @@ ElementStepCounts accumulateInternalForces(const TLEDElements& elements, const d
 // element back.
 inline constexpr double kMinIsochoricJ = 0.05;
 
+class TLEDState;
+
 class TLEDModel {
  public:
   // Precomputes the element matrices and the lumped masses. `materials` has
@@ -145,76 +153,31 @@ class TLEDModel {
 
   // Uniform acceleration of every node (gravity), mm/s^2.
   void setBodyAcceleration(const Vec3& acceleration) { m_bodyAcceleration = acceleration; }
+  const Vec3& bodyAcceleration() const { return m_bodyAcceleration; }
   // Holds `axes` (bit 0: x, 1: y, 2: z) of a node at its rest position plus
   // `displacement` (mm); the node's own forces no longer move those axes.
+  // The value may change between steps (a prescribed displacement): every
+  // state of the model takes it, now and one step ago, at its next step.
   void fixNode(int32_t node, const Vec3& displacement = Vec3::Zero(), unsigned axes = 7);
   bool isFixed(int32_t node, int axis) const;
 
-  // External force on a node (mN) for the next steps, until changed or cleared.
-  void setExternalForce(int32_t node, const Vec3& force_mN);
-  void clearExternalForces();
-  // Viscous damping on one node (kg/s, that is mN s/mm or N s/m) on top of
-  // the mass-proportional damping, for the next steps until changed; 0
-  // removes it. Central in velocity like the mass-proportional damping, so
-  // stable at any value. Allocation-free.
-  void setNodeDamping(int32_t node, double damping);
-  size_t dampedNodes() const { return m_nodeDamping.size(); }
-
-  // Advances one time step. Allocation-free. A model at rest (as built, or
-  // after resetToRest()) with no load (no external force, no body
-  // acceleration, every held axis at zero) stays at rest without computing
-  // anything until a load appears.
-  void step();
-  uint64_t steps() const { return m_steps; }
-  uint64_t restingSteps() const { return m_restingSteps; }  // of steps(): at rest, not computed
-  bool resting() const { return m_resting; }  // exactly at rest, and the last step found no load
-
-  // State, mm.
-  Vec3 displacement(int32_t node) const {
-    const double* u = &m_u[kNodeStride * m_internal[node]];
-    return {u[0], u[1], u[2]};
-  }
-  Vec3 position(int32_t node) const { return m_rest[node] + displacement(node); }
   const std::vector<Vec3>& restNodes() const { return m_rest; }
-  // Sets the displacement of every node now and one step ago (mm): a start
-  // with a velocity (u - uPrevious) / dt. Held axes keep their values.
-  void setDisplacements(std::span<const Vec3> u, std::span<const Vec3> uPrevious);
-  // Back to rest, at rest (the held axes at their values); the external
-  // forces stay. Allocation-free.
-  void resetToRest();
-  // Writes rest + displacement into `positions` (nodeCount() entries, holding
-  // the shape written before); returns the largest displacement from rest and
-  // the largest move from the shape before (mm), both infinite when any
-  // position is not finite. Allocation-free.
-  struct WrittenShape {
-    double largestDisplacement = 0;  // mm, from rest
-    double largestMove = 0;          // mm, from what `positions` held
-  };
-  WrittenShape writePositions(std::span<Vec3> positions) const;
-
   double mass(int32_t node) const { return m_mass[m_internal[node]]; }  // kg
   double totalMass() const;
   const TLEDElements& elements() const { return m_elements; }
-  // The internal force on every node (mN) at the current displacements, or at
-  // displacements `u` (tests, static solves).
-  void internalForces(std::span<Vec3> forces) const;
+  // The internal force on every node (mN) at displacements `u` (mm; tests,
+  // static solves). Allocates.
   void internalForcesAt(std::span<const Vec3> u, std::span<Vec3> forces) const;
 
-  // Energies, uJ: kinetic from the velocity at the half step just taken,
-  // strain from the neo-Hookean energy of every element (slow: reports and tests).
-  double kineticEnergy() const;
-  double strainEnergy() const;
-
-  // Running totals of the element loop.
-  const ElementStepCounts& counts() const { return m_counts; }
-  // Elements with J <= 0 in the last step.
-  uint64_t invertedNow() const { return m_invertedNow; }
-
  private:
+  friend class TLEDState;  // steps on the arrays below, in the model's internal order
+
   void findCriticalStep();
   void copyToSingle();  // the element arrays, when the loop runs in single precision
-  bool loaded() const;  // a force, an acceleration or a held displacement would move it from rest
-  void forcesInto(const std::vector<double>& u, std::vector<double>& f) const;
+  // kNodeStride doubles per internal node: the internal forces at `u` into `f` (mN).
+  ElementStepCounts forcesInto(const double* u, double* f) const;
+  size_t vectorSize() const { return kNodeStride * m_rest.size(); }
+  size_t index(int32_t node, size_t axis) const { return kNodeStride * size_t(m_internal[node]) + axis; }
 
   std::vector<Vec3> m_rest;                        // mesh order
   std::vector<int32_t> m_internal, m_external;     // node: mesh -> internal, internal -> mesh
@@ -223,9 +186,6 @@ class TLEDModel {
   // Per internal element: mm^3, kg/mm^3 (effective, and the material's), 1 / |grad N| mm.
   std::vector<double> m_volume, m_density, m_materialDensity, m_length;
   std::vector<double> m_mass;                         // kg, lumped, per internal node
-  // kNodeStride doubles per internal node:
-  std::vector<double> m_u, m_uPrev;  // mm, now and one step ago
-  mutable std::vector<double> m_f;   // mN, the step's internal less external forces
   ElementLoopIsa m_isa = bestElementLoopIsa();
   std::vector<double> m_stepScale;   // dt^2 / (m (1 + a dt / 2)) per internal node, mm / mN
   struct HeldAxis {
@@ -233,26 +193,10 @@ class TLEDModel {
     double value;  // mm
   };
   std::vector<HeldAxis> m_held;  // held axes, and every axis of a node without mass
-  struct ExternalForce {
-    int32_t node;  // internal
-    Vec3 force;    // mN
-  };
-  std::vector<ExternalForce> m_externalForces;  // reserved for every node
-  std::vector<int32_t> m_externalSlot;          // per internal node: its entry, or -1
-  struct NodeDamping {
-    int32_t node;            // internal
-    double damping;          // kg/s
-    double before[kNodeStride];  // mm, u- during a step
-  };
-  std::vector<NodeDamping> m_nodeDamping;  // reserved for every node
-  std::vector<int32_t> m_dampingSlot;      // per internal node: its entry, or -1
   double m_dt = 0, m_damping = 0;
   Vec3 m_bodyAcceleration = Vec3::Zero();
   double m_criticalStep = 0;
   size_t m_criticalElement = 0;
-  uint64_t m_steps = 0, m_invertedNow = 0, m_restingSteps = 0;
-  bool m_resting = true;  // exactly at rest: u = u- = 0
-  ElementStepCounts m_counts;
 };
 
 }  // namespace trephine::fem

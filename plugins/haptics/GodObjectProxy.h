@@ -1,54 +1,15 @@
 #pragma once
-// The god-object proxy of a pointshell tool against a ShellContactTarget. Each
-// haptic frame:
-//  1. sweep before moving: the proxy moves from its last position towards the
-//     device until the target stops it (placed contactDepth into the target);
-//  2. detection at that position: colliding shell points, contact normal and
-//     raw penetration from the target (drilling happens here if the target drills);
-//  3. god-object projection: the device is projected on the constraint plane
-//     through the proxy (lifted out to the contact depth when the raw
-//     penetration is deeper), so the proxy slides along the surface;
-//  4. rectifying sweep from the proxy to that projection, so the new position
-//     never crosses another part of the target;
-//  5. penetration = the depth of the device below the constraint plane (the
-//     device-proxy distance along the normal) plus the proxy's own contact depth;
-//  6. on a target being drilled, the spring's anchor (the proxy lifted by that
-//     depth) ends no farther from the device than last frame's anchor now is,
-//     so the proxy's own moves never stretch the spring (PassiveAnchor.h:
-//     passive at the sampled-data bound).
-// In a crease, where this frame's projection would cross the last frame's
-// constraint plane, the proxy goes to the nearest point on both planes (the
-// god-object with two constraints, Zilles and Salisbury) and the force points
-// from the device to it.
-// When the sweep stopped the proxy but no shell point collides there (the two
-// conflicting cases of the rigid method), the normal is against the sweep
-// direction and the penetration is the device-proxy distance.
-#include <optional>
+// The god-object proxy of a pointshell tool against a ShellContactTarget, as
+// a component: each haptic frame it reads the device and the tool change,
+// steps the proxy (stepProxy, ProxyStep.h, which says what a frame does), and
+// keeps the memory and this frame's answer for ForceFeedback.
 #include <vector>
 
 #include "framework/geometry/ShellContactTarget.h"
+#include "plugins/haptics/ProxyStep.h"
 #include "plugins/haptics/ToolChange.h"
 
 namespace trephine::haptics {
-
-struct ProxyState {
-  Vec3 device = Vec3::Zero();  // mm, tool reference point where the device puts it
-  Vec3 proxy = Vec3::Zero();   // mm, displayed tool reference point
-  Vec3 normal = Vec3::Zero();  // unit contact normal (out of the target); zero without contact
-  double penetration = 0;      // mm, rendered depth
-  double rawPenetration = 0;   // mm, as detected before rectification
-  double overlap = 0;          // mm, depth of the displayed tool in the target (its contact skin)
-  int points = 0;              // colliding shell points
-  int primitives = 0;          // colliding voxels / tetrahedra
-  int removed = 0;             // primitives the target lost at the start of this frame (every tool's cuts of the frame before)
-  bool contact = false;
-  bool cutting = false;      // the drill runs this frame (pedal held, or no pedal)
-  bool proxyInside = false;  // the displayed proxy visibly overlaps the target
-  bool deviceValid = false;
-  // Let go after what shapes the target failed: the proxy is at the device and
-  // no contact is rendered until the tool is clear of the target.
-  bool released = false;
-};
 
 class GodObjectProxy final : public Component {
  public:
@@ -58,7 +19,10 @@ class GodObjectProxy final : public Component {
   void tick(const TickContext& context) override;
   void reportCounters(std::vector<Counter>& counters) const override;
 
-  const ProxyState& state() const { return m_state; }
+  const ProxyState& state() const { return m_memory.state; }
+  // What the proxy keeps from one frame to the next.
+  const ProxyMemory& memory() const { return m_memory; }
+  const ProxySettings& settings() const { return m_settings; }
   // The tool and target of this frame (the next ones after a tool change).
   ShellTool& tool() const { return *m_tool; }
   bool changedTools() const { return m_changedTools; }
@@ -72,15 +36,7 @@ class GodObjectProxy final : public Component {
   ShellContactTarget& target() const { return *m_target; }
 
  private:
-  // mm: how far the proxy may slide along its constraint plane this frame.
-  double slideAllowance(const Vec3& device) const;
-  // Neither the sweep from `from` to the device nor the tool at the device meets the target.
-  bool nothingBetween(const Vec3& from, const Vec3& device, const Quat& orientation) const;
-  SweepResult sweepPath(const Vec3& from, const Vec3& to, const Quat& orientation) const;
   void changeTools(const TickContext& context);
-  void letGo(const TickContext& context);
-  // While let go: the proxy at the device, until the tool is clear of the target.
-  void followDevice(ProxyState& s, const Vec3& device, const Quat& orientation);
 
   Link<ShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
   Link<ShellContactTarget> l_target{this, "target", {.help = "What the tool collides with", .required = true}};
@@ -118,30 +74,9 @@ class GodObjectProxy final : public Component {
   ShellContactTarget* m_target = nullptr;  // l_target, then l_nextTarget
   bool m_changedTools = false;
 
-  // d_sweep, read once at init: the probe, or none.
-  SweepProbe m_probe = SweepProbe::Line;
-  bool m_sweeps = true;
-  ProxyState m_state;
-  // This frame's answer of collide() (its spans: until the next one) and the
-  // point where a sweep stopped a cutting tool between its shell points: what
-  // response() gives the target.
-  ShellContact m_frameContact;
-  std::optional<Vec3> m_stoppedAt;
-  Vec3 m_lastNormal = Vec3::Zero();
-  Vec3 m_lastDevice = Vec3::Zero();  // mm, the device's point last frame
-  bool m_hadDevice = false;
-  bool m_heldBack = false;  // last frame's sweep towards the device was held to the plane
-  // This frame's and the last frame's constraint plane (a point on it and its normal).
-  Vec3 m_planePoint = Vec3::Zero(), m_planeNormal = Vec3::Zero(), m_lastPlanePoint = Vec3::Zero();
-  bool m_hasPlane = false, m_hadPlane = false;
-  bool m_started = false;
-  uint64_t m_blockedSweeps = 0, m_conflictFrames = 0, m_degenerateNormals = 0, m_contactFrames = 0, m_creaseFrames = 0,
-           m_nonFiniteFrames = 0;
-  uint64_t m_releasedHolds = 0;      // frames a hold to last frame's plane found no surface and let the proxy go
-  uint64_t m_seenShapeFailures = 0;  // the target's shapeFailures() last seen
-  bool m_released = false;           // let go after a shape failure, until the tool is clear
-  uint64_t m_releases = 0;           // times the proxy was let go after a shape failure
-  uint64_t m_heldAnchors = 0;        // frames whose anchor was held to the last one's distance from the device
+  ProxySettings m_settings;  // the fields, read once at init
+  ProxyMemory m_memory;
+  ProxyFrame m_frame;  // this frame's answer: what response() gives the target
 };
 
 }  // namespace trephine::haptics

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "plugins/fem/TLEDModel.h"
+#include "plugins/fem/TLEDState.h"
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "tests/plugins/fem/FemTestSupport.h"
 
@@ -60,12 +61,13 @@ void expectKernelForcesMatchTheFormulas(ElementPrecision precision, ElementLoopI
       for (int a = 0; a < 4; ++a) x[a] = F * X[a] + Vec3(1, 2, 3);
       const TetMesh mesh{{X.begin(), X.end()}, {TetIndices{0, 1, 2, 3}}, {}};
       TLEDModel model = modelOf(mesh);
+      TLEDState state(model);
       model.setElementPrecision(precision);
       model.setElementLoopIsa(isa);
       std::vector<Vec3> u(4), forces(4);
       for (int a = 0; a < 4; ++a) u[a] = x[a] - X[a];
-      model.setDisplacements(u, u);
-      model.internalForces(forces);
+      state.setDisplacements(u, u);
+      state.internalForces(forces);
       const auto expected = referenceForces(X, x, moduli);
       double scale = 0;
       for (const Vec3& f : expected) scale = std::max(scale, f.norm());
@@ -118,17 +120,18 @@ TEST(TLEDModelTest, EveryInstructionSetGivesThePortableNodeForcesOnAMesh) {
   for (ElementPrecision precision : {ElementPrecision::kDouble, ElementPrecision::kSingle}) {
     std::vector<Vec3> expected(mesh.nodeCount()), forces(mesh.nodeCount());
     TLEDModel model = modelOf(mesh);
+    TLEDState state(model);
     model.setElementPrecision(precision);
     model.setElementLoopIsa(ElementLoopIsa::kPortable);
-    model.setDisplacements(u, u);
-    model.internalForces(expected);
+    state.setDisplacements(u, u);
+    state.internalForces(expected);
     double scale = 0;
     for (const Vec3& f : expected) scale = std::max(scale, f.norm());
     ASSERT_GT(scale, 1.0);  // mN: a real deformation
     const double tolerance = precision == ElementPrecision::kDouble ? 1e-12 : 1e-5;
     for (ElementLoopIsa isa : availableIsas()) {
       model.setElementLoopIsa(isa);
-      model.internalForces(forces);
+      state.internalForces(forces);
       double worst = 0;
       for (size_t i = 0; i < forces.size(); ++i) worst = std::max(worst, (forces[i] - expected[i]).norm());
       EXPECT_LT(worst, tolerance * scale) << elementLoopName(isa) << (precision == ElementPrecision::kDouble ? " double" : " single");
@@ -170,6 +173,7 @@ void expectUniaxialStretchFollowsTheCurveWithinOnePercent(ElementPrecision preci
   const ElasticModuli moduli = ElasticModuli::fromYoung(kBrain.youngModulus, kBrain.poissonRatio);
   for (double lambda : {0.8, 0.9, 1.1, 1.3, 1.5}) {
     TLEDModel model = modelOf(mesh);
+    TLEDState state(model);
     model.setElementPrecision(precision);
     // Symmetry planes x = 0, y = 0, z = 0; the face x = L pulled to lambda L.
     std::vector<int32_t> pulled;
@@ -186,10 +190,10 @@ void expectUniaxialStretchFollowsTheCurveWithinOnePercent(ElementPrecision preci
     for (int step = 1; step <= 5000; ++step) {
       const double share = std::min(1.0, step / 2000.0);
       for (int32_t i : pulled) model.fixNode(i, Vec3(share * (lambda - 1) * L, 0, 0), 1u);
-      model.step();
+      state.step();
     }
     std::vector<Vec3> forces(mesh.nodeCount());
-    model.internalForces(forces);
+    state.internalForces(forces);
     double reaction = 0;  // mN: what holds the pulled face
     for (int32_t i : pulled) reaction += forces[i].x();
     const double expected = uniaxialNominalStress(lambda, moduli) * L * L;  // kPa mm^2 = mN
@@ -211,17 +215,18 @@ TEST(TLEDModelTest, InSinglePrecisionUniaxialStretchFollowsTheCurveWithinOnePerc
 void expectARigidMotionProducesNoForce(ElementPrecision precision, double relative, double drift) {
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(30));
   TLEDModel model = modelOf(mesh);
+  TLEDState state(model);
   model.setElementPrecision(precision);
   const Mat3 R = Eigen::AngleAxisd(0.9, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   std::vector<Vec3> u(mesh.nodeCount()), forces(mesh.nodeCount());
   for (size_t i = 0; i < u.size(); ++i) u[i] = R * mesh.nodes[i] + Vec3(40, -7, 3) - mesh.nodes[i];
-  model.setDisplacements(u, u);
-  model.internalForces(forces);
+  state.setDisplacements(u, u);
+  state.internalForces(forces);
   for (const Vec3& f : forces) EXPECT_LT(f.norm(), relative * 30) << f.transpose();
   // Released at rest, it stays where it is.
   model.setTimeStep(0.5 * model.criticalTimeStep(), 0);
-  for (int step = 0; step < 200; ++step) model.step();
-  for (size_t i = 0; i < u.size(); ++i) EXPECT_LT((model.displacement(int32_t(i)) - u[i]).norm(), drift);
+  for (int step = 0; step < 200; ++step) state.step();
+  for (size_t i = 0; i < u.size(); ++i) EXPECT_LT((state.displacement(int32_t(i)) - u[i]).norm(), drift);
 }
 
 TEST(TLEDModelTest, ARigidMotionProducesNoForce) {
@@ -240,20 +245,21 @@ TEST(TLEDModelTest, AnInvertedElementGivesFiniteRestoringForcesAndIsCounted) {
   const TetMesh mesh{nodes, {TetIndices{0, 1, 2, 3}}, {}};
   for (double z : {0.0, -0.5, -3.0}) {  // flat (J = 0), inverted, far inverted
     TLEDModel model = modelOf(mesh);
+    TLEDState state(model);
     for (int32_t i = 0; i < 3; ++i) model.fixNode(i);
     std::vector<Vec3> u(4, Vec3::Zero()), forces(4);
     u[3] = Vec3(0, 0, z - 1);
-    model.setDisplacements(u, u);
-    model.internalForces(forces);
+    state.setDisplacements(u, u);
+    state.internalForces(forces);
     for (const Vec3& f : forces) EXPECT_TRUE(f.allFinite()) << "z " << z;
     // The internal force on the apex points down (it resists): released, it moves up.
     EXPECT_LT(forces[3].z(), 0) << "z " << z;
     model.setTimeStep(0.5 * model.criticalTimeStep(), 0);
-    model.step();
-    EXPECT_EQ(model.invertedNow(), 1u) << "z " << z;  // J <= 0
-    EXPECT_EQ(model.counts().farFromRest, 1u);
-    EXPECT_GT(model.displacement(3).z(), z - 1) << "z " << z;
-    EXPECT_TRUE(model.displacement(3).allFinite());
+    state.step();
+    EXPECT_EQ(state.invertedNow(), 1u) << "z " << z;  // J <= 0
+    EXPECT_EQ(state.counts().farFromRest, 1u);
+    EXPECT_GT(state.displacement(3).z(), z - 1) << "z " << z;
+    EXPECT_TRUE(state.displacement(3).allFinite());
   }
 }
 
@@ -264,31 +270,32 @@ TEST(TLEDModelTest, WithoutDampingEnergyIsConservedWithinOnePercentOver10000Step
   const TetMesh mesh = makeBoxMesh({4, 4, 4}, Vec3::Zero(), Vec3::Constant(20));
   const size_t n = mesh.nodeCount();
   TLEDModel model = modelOf(mesh);
-  TLEDModel probe = modelOf(mesh);  // evaluates the strain energy of a past state
+  TLEDState state(model);
+  TLEDState probe(model);  // a second state of the model: the strain energy of a past one
   std::vector<Vec3> u(n);
   for (size_t i = 0; i < n; ++i) {
     const Vec3& X = mesh.nodes[i];
     u[i] = Vec3(0.15 * X.x() * std::sin(X.y() / 12), -0.1 * X.y(), 0.05 * X.z() * X.x() / 20);
   }
-  model.setDisplacements(u, u);
+  state.setDisplacements(u, u);
   const double dt = 0.5 * model.criticalTimeStep();
   model.setTimeStep(dt, 0);
-  const double initial = model.strainEnergy();
+  const double initial = state.strainEnergy();
   ASSERT_GT(initial, 0);
   std::vector<Vec3> before = u, now = u;
   double worst = 0, largestKinetic = 0;
   for (int step = 1; step <= 10000; ++step) {
-    model.step();
+    state.step();
     if (step % 10 == 0) {
       double kinetic = 0;  // uJ
       for (size_t i = 0; i < n; ++i)
-        kinetic += 0.5 * model.mass(int32_t(i)) * ((model.displacement(int32_t(i)) - before[i]) / (2 * dt)).squaredNorm();
+        kinetic += 0.5 * model.mass(int32_t(i)) * ((state.displacement(int32_t(i)) - before[i]) / (2 * dt)).squaredNorm();
       probe.setDisplacements(now, now);
       largestKinetic = std::max(largestKinetic, kinetic);
       worst = std::max(worst, std::abs(probe.strainEnergy() + kinetic - initial) / initial);
     }
     before.swap(now);
-    for (size_t i = 0; i < n; ++i) now[i] = model.displacement(int32_t(i));
+    for (size_t i = 0; i < n; ++i) now[i] = state.displacement(int32_t(i));
   }
   EXPECT_GT(largestKinetic, 0.5 * initial);  // it did oscillate
   EXPECT_LT(worst, 0.01);
@@ -302,12 +309,13 @@ TEST(TLEDModelTest, TheCriticalTimeStepSeparatesStableFromDivergent) {
   for (Vec3& v : u) v = 1e-3 * Vec3(unit(random), unit(random), unit(random));  // every mode excited
   const auto largestAfter = [&](double factor) {
     TLEDModel model = modelOf(mesh);
-    model.setDisplacements(u, u);
+    TLEDState state(model);
+    state.setDisplacements(u, u);
     model.setTimeStep(factor * model.criticalTimeStep(), 0);
-    for (int step = 0; step < 3000; ++step) model.step();
+    for (int step = 0; step < 3000; ++step) state.step();
     double largest = 0;
     for (size_t i = 0; i < u.size(); ++i) {
-      const double d = model.displacement(int32_t(i)).norm();
+      const double d = state.displacement(int32_t(i)).norm();
       if (!(d <= largest)) largest = d;  // a NaN stays
     }
     return largest;
@@ -323,13 +331,14 @@ TEST(TLEDModelTest, StepsAreDeterministic) {
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
   const auto run = [&] {
     TLEDModel model = modelOf(mesh);
+    TLEDState state(model);
     for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
     model.setBodyAcceleration(Vec3(0, 0, -9810));
-    model.setExternalForce(50, Vec3(1, 2, -3));
+    state.setExternalForce(50, Vec3(1, 2, -3));
     model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
-    for (int step = 0; step < 500; ++step) model.step();
+    for (int step = 0; step < 500; ++step) state.step();
     std::vector<Vec3> positions(mesh.nodeCount());
-    model.writePositions(positions);
+    state.writePositions(positions);
     return positions;
   };
   const auto a = run(), b = run();
@@ -341,14 +350,15 @@ TEST(TLEDModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) 
   // Checked against the positions written, node by node.
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
   TLEDModel model = modelOf(mesh);
+  TLEDState state(model);
   for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
   model.setBodyAcceleration(Vec3(0, 0, -9810));
   model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
   std::vector<Vec3> positions = mesh.nodes, before;
   for (int frame = 0; frame < 20; ++frame) {
-    for (int step = 0; step < 3; ++step) model.step();
+    for (int step = 0; step < 3; ++step) state.step();
     before = positions;
-    const TLEDModel::WrittenShape shape = model.writePositions(positions);
+    const TLEDState::WrittenShape shape = state.writePositions(positions);
     double displacement = 0, move = 0;
     for (size_t i = 0; i < positions.size(); ++i) {
       displacement = std::max(displacement, (positions[i] - mesh.nodes[i]).norm());
@@ -357,10 +367,10 @@ TEST(TLEDModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) 
     EXPECT_NEAR(shape.largestDisplacement, displacement, 1e-12);
     EXPECT_NEAR(shape.largestMove, move, 1e-12);
   }
-  EXPECT_GT(model.writePositions(positions).largestDisplacement, 0.0);  // it did move
+  EXPECT_GT(state.writePositions(positions).largestDisplacement, 0.0);  // it did move
   // Over a shape that is not finite (a diverged one) the move is unknown, the displacement is not.
   positions[7] = Vec3::Constant(NAN);
-  const TLEDModel::WrittenShape shape = model.writePositions(positions);
+  const TLEDState::WrittenShape shape = state.writePositions(positions);
   EXPECT_TRUE(std::isfinite(shape.largestDisplacement));
   EXPECT_EQ(shape.largestMove, INFINITY);
 }
@@ -368,44 +378,46 @@ TEST(TLEDModelTest, WrittenShapesReportTheLargestDisplacementAndTheLargestMove) 
 TEST(TLEDModelTest, AtRestWithoutLoadNothingIsComputedAndTheAnswerIsTheComputedOne) {
   const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
   TLEDModel model = modelOf(mesh);
+  TLEDState state(model);
   for (int32_t i = 0; i < 4; ++i) model.fixNode(i);  // held at zero: no load
   model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
-  for (int step = 0; step < 100; ++step) model.step();
-  EXPECT_EQ(model.steps(), 100u);
-  EXPECT_EQ(model.restingSteps(), 100u);
-  for (size_t i = 0; i < mesh.nodeCount(); ++i) EXPECT_EQ(model.displacement(int32_t(i)), Vec3::Zero());
+  for (int step = 0; step < 100; ++step) state.step();
+  EXPECT_EQ(state.steps(), 100u);
+  EXPECT_EQ(state.restingSteps(), 100u);
+  for (size_t i = 0; i < mesh.nodeCount(); ++i) EXPECT_EQ(state.displacement(int32_t(i)), Vec3::Zero());
   // The same 100 steps computed (a state set by hand is not known to be rest):
   // rest to rounding, which is what the skipped steps answered.
-  TLEDModel computed = modelOf(mesh);
-  for (int32_t i = 0; i < 4; ++i) computed.fixNode(i);
-  computed.setTimeStep(0.8 * computed.criticalTimeStep(), 50);
+  TLEDModel computedModel = modelOf(mesh);
+  TLEDState computed(computedModel);
+  for (int32_t i = 0; i < 4; ++i) computedModel.fixNode(i);
+  computedModel.setTimeStep(0.8 * computedModel.criticalTimeStep(), 50);
   const std::vector<Vec3> zero(mesh.nodeCount(), Vec3::Zero());
   computed.setDisplacements(zero, zero);
   for (int step = 0; step < 100; ++step) computed.step();
   EXPECT_EQ(computed.restingSteps(), 0u);
   for (size_t i = 0; i < mesh.nodeCount(); ++i) EXPECT_LT(computed.displacement(int32_t(i)).norm(), 1e-12);
   // A load ends the rest at the next step; back at rest with the load still on, it goes on computing.
-  model.setExternalForce(50, Vec3(0, 0, -10));
-  model.step();
-  EXPECT_EQ(model.restingSteps(), 100u);
-  EXPECT_LT(model.displacement(50).z(), 0.0);
-  model.resetToRest();
-  model.step();
-  EXPECT_EQ(model.restingSteps(), 100u);
+  state.setExternalForce(50, Vec3(0, 0, -10));
+  state.step();
+  EXPECT_EQ(state.restingSteps(), 100u);
+  EXPECT_LT(state.displacement(50).z(), 0.0);
+  state.resetToRest();
+  state.step();
+  EXPECT_EQ(state.restingSteps(), 100u);
   // Without it, at rest again: nothing computed.
-  model.clearExternalForces();
-  model.resetToRest();
-  model.step();
-  EXPECT_EQ(model.restingSteps(), 101u);
+  state.clearExternalForces();
+  state.resetToRest();
+  state.step();
+  EXPECT_EQ(state.restingSteps(), 101u);
   // Gravity and a held displacement are loads too.
   model.setBodyAcceleration(Vec3(0, 0, -9810));
-  model.step();
-  EXPECT_EQ(model.restingSteps(), 101u);
+  state.step();
+  EXPECT_EQ(state.restingSteps(), 101u);
   model.setBodyAcceleration(Vec3::Zero());
-  model.resetToRest();
+  state.resetToRest();
   model.fixNode(60, Vec3(0.1, 0, 0));
-  model.step();
-  EXPECT_EQ(model.restingSteps(), 101u);
+  state.step();
+  EXPECT_EQ(state.restingSteps(), 101u);
 }
 
 TEST(TLEDModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
@@ -415,13 +427,14 @@ TEST(TLEDModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
   // exp(-c t / m) (lightly damped: c / (2 m omega) is about 4e-4 here).
   const std::vector<Vec3> nodes{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   const TetMesh mesh{nodes, {TetIndices{0, 1, 2, 3}}, {}};
-  TLEDModel model = modelOf(mesh), probe = modelOf(mesh);  // probe: the strain energy of a past state
+  TLEDModel model = modelOf(mesh);
+  TLEDState state(model), probe(model);  // probe: a second state of the model, the strain energy of a past one
   for (int32_t i = 0; i < 3; ++i) model.fixNode(i);
   const double m = model.mass(3), rate = 20;  // kg, 1/s
-  model.setNodeDamping(3, rate * m);
+  state.setNodeDamping(3, rate * m);
   std::vector<Vec3> now(4, Vec3::Zero());
   now[3] = Vec3(1e-3, -2e-3, 1.5e-3);
-  model.setDisplacements(now, now);
+  state.setDisplacements(now, now);
   // A tenth of the critical step: the central-velocity energy then wobbles
   // with the step by a few 1e-4 (it is second order in omega dt).
   const double dt = 0.1 * model.criticalTimeStep();
@@ -432,14 +445,14 @@ TEST(TLEDModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
   const auto stepAndMeasure = [&](int steps) {
     double energy = 0;
     for (int step = 0; step < steps; ++step) {
-      model.step();
+      state.step();
       if (step == steps - 1) {
         probe.setDisplacements(now, now);
         energy = probe.strainEnergy() +
-                 0.5 * m * ((model.displacement(3) - before[3]) / (2 * dt)).squaredNorm();
+                 0.5 * m * ((state.displacement(3) - before[3]) / (2 * dt)).squaredNorm();
       }
       before = now;
-      for (int32_t i = 0; i < 4; ++i) now[i] = model.displacement(i);
+      for (int32_t i = 0; i < 4; ++i) now[i] = state.displacement(i);
     }
     return energy;
   };
@@ -448,9 +461,55 @@ TEST(TLEDModelTest, ANodesOwnDampingDecaysItsEnergyAsExpMinusCtOverM) {
   const double end = stepAndMeasure(steps);
   EXPECT_NEAR(end / start, std::exp(-rate * steps * dt), 0.01 * std::exp(-rate * steps * dt));
   // Removed, the energy stays.
-  model.setNodeDamping(3, 0);
-  EXPECT_EQ(model.dampedNodes(), 0u);
+  state.setNodeDamping(3, 0);
+  EXPECT_EQ(state.dampedNodes(), 0u);
   EXPECT_NEAR(stepAndMeasure(steps) / end, 1.0, 0.01);
+}
+
+// The model is fixed while a state moves on it: two states of one model,
+// stepped in turn under different loads, end where each would alone on a
+// model of its own, to the bit; and a copy of a state replays its steps.
+TEST(TLEDModelTest, StatesOfOneModelMoveIndependentlyAndACopyReplaysExactly) {
+  const TetMesh mesh = makeBoxMesh({3, 3, 3}, Vec3::Zero(), Vec3::Constant(20));
+  const auto setUp = [&](TLEDModel& model) {
+    for (int32_t i = 0; i < 4; ++i) model.fixNode(i);
+    model.setBodyAcceleration(Vec3(0, 0, -9810));
+    model.setTimeStep(0.8 * model.criticalTimeStep(), 50);
+  };
+  const auto load = [](TLEDState& state, double scale) {
+    state.setExternalForce(50, scale * Vec3(1, 2, -3));
+    state.setNodeDamping(40, scale * 1e-3);
+  };
+  const auto shape = [&](const TLEDState& state) {
+    std::vector<Vec3> positions(mesh.nodeCount());
+    state.writePositions(positions);
+    return positions;
+  };
+  TLEDModel shared = modelOf(mesh), aloneA = modelOf(mesh), aloneB = modelOf(mesh);
+  for (TLEDModel* model : {&shared, &aloneA, &aloneB}) setUp(*model);
+  TLEDState a(shared), b(shared), onlyA(aloneA), onlyB(aloneB);
+  load(a, 1);
+  load(onlyA, 1);
+  load(b, -2);
+  load(onlyB, -2);
+  for (int step = 0; step < 300; ++step) {
+    a.step();
+    b.step();
+    onlyA.step();
+    onlyB.step();
+  }
+  EXPECT_EQ(shape(a), shape(onlyA));
+  EXPECT_EQ(shape(b), shape(onlyB));
+  EXPECT_NE(shape(a), shape(b)) << "the loads differ: so must the shapes";
+  // A copy made mid-run (velocity, loads and counts included) replays the rest.
+  TLEDState copy = a;
+  for (int step = 0; step < 200; ++step) {
+    a.step();
+    copy.step();
+  }
+  EXPECT_EQ(shape(copy), shape(a));
+  EXPECT_EQ(copy.steps(), 500u);
+  EXPECT_EQ(copy.kineticEnergy(), a.kineticEnergy());
 }
 
 TEST(TLEDModelTest, LumpedMassesSumToTheBodysMass) {

@@ -1,0 +1,362 @@
+#include "plugins/haptics/ProxyStep.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plugins/haptics/PassiveAnchor.h"
+
+namespace trephine::haptics {
+
+namespace {
+// Below this the proxy and the device coincide (mm).
+constexpr double kSamePlace = 1e-9;
+// Fraction of the way to the god-object position the proxy moves each frame.
+constexpr double kProxyRelaxation = 0.5;
+// Planes whose normals are closer than this (cosine, about 2.6 degrees) are one plane.
+constexpr double kSamePlane = 0.999;
+// How far (mm) the proxy may slide in a frame beyond the device's own move:
+// 0.02 mm, so k = 3 N/mm renders at most 0.06 N of catch-up per frame.
+constexpr double kCatchUp = 0.02;
+
+// One frame's work: the settings, the memory, the inputs and the target.
+class Frame {
+ public:
+  Frame(const ProxySettings& settings, ProxyMemory& memory, const ProxyInput& input, ShellContactTarget& target)
+      : m_settings(settings), m_memory(memory), m_input(input), m_target(target) {}
+
+  ProxyFrame run();
+
+ private:
+  // mm: how far the proxy may slide along its constraint plane this frame.
+  double slideAllowance(const Vec3& device) const {
+    // The device's own move, but no more than the tool's leading radius: the
+    // constraint plane stands for the surface only over the contact patch, so
+    // a longer slide along it (a device that jumped far beneath a tilted
+    // plane projects onto it metres away) would leave the surface it was
+    // measured on. The proxy covers a longer way over several frames, its
+    // contact measured anew after each step.
+    return std::min((device - m_memory.lastDevice).norm(), m_input.leadingRadius) + kCatchUp;
+  }
+  SweepResult sweepPath(const Vec3& from, const Vec3& to) const {
+    SweepQuery query;
+    query.from = from;
+    query.to = to;
+    query.orientation = m_input.toolPose.orientation;
+    query.probe = m_settings.probe;
+    query.leadingRadius = m_input.leadingRadius;
+    query.shell = m_input.shell;
+    return m_target.sweep(query);
+  }
+  bool overlapsAt(const Vec3& position) const {
+    return m_target.overlaps({position, m_input.toolPose.orientation}, m_input.shell);
+  }
+  // Neither the sweep from `from` to the device nor the tool at the device meets the target.
+  bool nothingBetween(const Vec3& from, const Vec3& device) const {
+    if (m_settings.sweeps && sweepPath(from, device).blocked) return false;
+    return !overlapsAt(device);
+  }
+  void letGo();
+  ProxyFrame contactFrame();
+
+  const ProxySettings& m_settings;
+  ProxyMemory& m_memory;
+  const ProxyInput& m_input;
+  ShellContactTarget& m_target;
+  ProxyFrame m_out;
+};
+
+void Frame::letGo() {
+  // What shapes the target failed and its shape jumped: the proxy's place
+  // and its constraint plane belong to a shape that is gone, and the spring
+  // to them may point anywhere, into the target or away from the tool. The
+  // proxy goes to the device and renders nothing (ForceFeedback takes the
+  // force it rendered to zero along its ramp) until the tool is clear of the
+  // target; then it starts again there. Already let go, it stays so (one
+  // event, however many failures follow before the tool is clear).
+  if (m_memory.released) return;
+  ++m_memory.counters.releases;
+  m_memory.released = true;
+  m_memory.lastNormal = Vec3::Zero();
+  m_memory.hadDevice = m_memory.heldBack = m_memory.hadPlane = false;
+  m_out.letGo = true;
+}
+
+ProxyFrame Frame::run() {
+  ProxyState& s = m_out.state;
+  s.deviceValid = m_input.deviceValid;
+  s.removed = m_input.frame.removed;
+  if (!m_input.deviceValid) {
+    s.proxy = m_memory.state.proxy;
+    m_memory.state = s;
+    return m_out;
+  }
+  const Vec3 D = m_input.toolPose.position;
+  if (!m_memory.started) {
+    m_memory.state.proxy = D;  // the proxy starts with the device, wherever that is
+    m_memory.started = true;
+  }
+  if (m_input.frame.shapeFailures != m_memory.seenShapeFailures) {
+    m_memory.seenShapeFailures = m_input.frame.shapeFailures;
+    letGo();
+  }
+  if (m_memory.released) {
+    // While let go: the proxy at the device, until the tool is clear of the target.
+    s.device = s.proxy = D;
+    s.released = true;
+    // Clear of the target: from the next frame the proxy works from here again.
+    if (!overlapsAt(D)) m_memory.released = false;
+    m_memory.state = s;
+    return m_out;
+  }
+  return contactFrame();
+}
+
+ProxyFrame Frame::contactFrame() {
+  ProxyMemory& m = m_memory;
+  ProxyCounters& counters = m.counters;
+  ProxyState& s = m_out.state;
+  const Vec3 D = m_input.toolPose.position;
+  const Quat& q = m_input.toolPose.orientation;
+  const Vec3 P = m.state.proxy;
+  s.device = D;
+  // This frame's constraint plane, for the next frame.
+  Vec3 planePoint = Vec3::Zero(), planeNormal = Vec3::Zero();
+  bool hasPlane = false;
+
+  // 1. Sweep before moving, towards the device. While the device presses
+  // beneath last frame's constraint plane, the proxy slides along that plane
+  // no farther than the device's own move plus kCatchUp (as in step 3): a
+  // straight sweep to a device millimetres inside the bone would otherwise
+  // carry the proxy across a groove in one frame wherever the probe sees no
+  // bone, and the spring's direction would jump with it.
+  Vec3 sweepEnd = D;
+  bool beneathPlane = false;  // held because the device is beneath last frame's plane
+  if (m.hadPlane && m.hadDevice) {
+    const Vec3 toDevice = D - P;
+    const double into = toDevice.dot(m.lastNormal);  // < 0: the device is beneath the plane
+    const Vec3 along = toDevice - into * m.lastNormal;
+    const double slideLimit = slideAllowance(D);
+    // Also while the device rises off the plane, when the proxy was held back
+    // and pulled on the device last frame: it lifts with the device at once
+    // but closes the lag along the plane at the same pace, so a drag of
+    // millimetres built up while sliding (at the force limit) fades instead
+    // of dropping in one frame.
+    const bool dragging = m.heldBack && m.state.penetration > 0;
+    if ((into < 0 || dragging) && along.norm() > slideLimit) {
+      sweepEnd = P + into * m.lastNormal + slideLimit / along.norm() * along;
+      beneathPlane = into < 0;
+    }
+  }
+  const bool heldBack = (D - sweepEnd).norm() > kSamePlace;
+  m.heldBack = heldBack;
+  Vec3 P1 = sweepEnd;
+  bool blocked = false;
+  Vec3 blockedAt = Vec3::Zero();
+  const Vec3 path = sweepEnd - P;
+  const double length = path.norm();
+  if (m_settings.sweeps && length > kSamePlace) {
+    const SweepResult r = sweepPath(P, sweepEnd);
+    if (r.blocked) {
+      const double travel = r.freeFraction * length + (r.startsInside ? 0.0 : m_target.contactDepth());
+      P1 = P + std::min(travel, length) / length * path;
+      blocked = (D - P1).norm() > kSamePlace;
+      blockedAt = r.contactPoint;
+      if (blocked) ++counters.blockedSweeps;
+    }
+  }
+
+  // 2. Detection (and drilling) where the proxy now is.
+  const bool cutting = m_input.cutting;
+  s.cutting = cutting;
+  const ShellContact c = m_target.collide({P1, q}, m_input.shell, cutting);
+  m_out.contact = c;
+  s.points = c.points;
+  s.primitives = c.primitives;
+  s.rawPenetration = c.penetration;
+
+  Vec3 normal = c.normal;
+  if (c.points > 0 && normal.squaredNorm() < 0.5) {
+    // Contacts all round cancel out (the tool buried in the target): keep the last direction.
+    ++counters.degenerateNormals;
+    normal = m.lastNormal;
+  }
+  Vec3 P2 = P1;
+  if (c.points > 0 && normal.squaredNorm() > 0.5) {
+    // 3. God-object projection on the constraint plane, lifted to the contact depth.
+    const double skin = std::min(c.penetration, m_target.contactDepth());
+    s.overlap = skin;
+    const Vec3 onPlane = P1 + (c.penetration - skin) * normal;
+    Vec3 goal = P1;
+    bool crease = false;
+    if (m_settings.godObject) {
+      goal = D + std::max(0.0, (onPlane - D).dot(normal)) * normal;
+      // In a crease the new plane's projection crosses the last frame's plane:
+      // the god-object then sits on both (their intersection nearest the device),
+      // instead of alternating between them frame by frame.
+      if (m.hadPlane && m.lastNormal.dot(normal) < kSamePlane && (goal - m.lastPlanePoint).dot(m.lastNormal) < 0) {
+        const double a = normal.dot(m.lastNormal);
+        const double det = 1.0 - a * a;
+        const double b0 = (onPlane - D).dot(normal), b1 = (m.lastPlanePoint - D).dot(m.lastNormal);
+        const double l0 = (b0 - a * b1) / det, l1 = (b1 - a * b0) / det;
+        // Opposite planes (a near -1) have no useful intersection near the device.
+        if (det > 1e-3 && l0 >= 0 && l1 >= 0) {
+          goal = D + l0 * normal + l1 * m.lastNormal;
+          crease = true;
+        }
+      }
+    }
+    // Half the slide along the surface each frame (the lift off it in full): on
+    // a curved or rough surface the normal depends on where the proxy is, and a
+    // full step lets proxy and normal chase each other frame by frame (the
+    // projection moves the proxy by the device depth times the change of
+    // normal). Halving converges geometrically and lags a steady slide by one
+    // frame's motion at most.
+    const Vec3 step = goal - P1;
+    // The lift off the surface, along the normal the depth was measured on:
+    // at least the measured depth less the skin. While last frame's plane
+    // holds the proxy back (step 1), only that much: the rest of the way
+    // towards a device that is out of this contact's plane (the contact
+    // switched to another wall of a groove) is part of the slide, so the
+    // proxy does not jump to the device in one frame.
+    const double outOfDepth = std::max(0.0, c.penetration - skin);
+    const double along = step.dot(normal);
+    const Vec3 lift = (heldBack ? std::min(along, outOfDepth) : along) * normal;
+    // The slide is also held to the device's own move this frame plus
+    // kCatchUp: a proxy freed from a pit it was held in (a burr pressed into
+    // its own cut, then slid) catches up over several frames instead of
+    // jumping, so the force it renders changes by at most k kCatchUp beyond
+    // what the hand's motion explains.
+    Vec3 slide = kProxyRelaxation * (step - lift);
+    const double slideLimit = slideAllowance(D);
+    if (m.hadDevice && slide.norm() > slideLimit) slide *= slideLimit / slide.norm();
+    goal = P1 + lift + slide;
+    // 4. Rectifying sweep of the slide. The lift out along the contact normal
+    // is taken first, unswept: the proxy is in the target when it is lifted, so
+    // a sweep from there would stop it at once and keep it inside (a burr that
+    // slipped into a drilled groove could never climb out).
+    const Vec3 lifted = P1 + lift;
+    P2 = goal;
+    const Vec3 move = goal - lifted;
+    const double moveLength = move.norm();
+    bool heldByTarget = false;  // the target stops the proxy short of its goal
+    if (m_settings.rectify && m_settings.sweeps && moveLength > kSamePlace) {
+      const SweepResult r = sweepPath(lifted, goal);
+      if (r.blocked) {
+        P2 = lifted + r.freeFraction * move;
+        heldByTarget = (goal - P2).norm() > kSamePlace;
+      }
+    }
+    // 5. Rendered penetration: the spring from the device to the proxy lifted
+    // out by its skin, P2 + skin n - D, in its own direction. The proxy and the
+    // device move continuously, so this vector does; the contact normal alone
+    // does not (in a drilled groove it swings as points enter and leave the
+    // bone, and times the device depth that is a jump of force). Held on a
+    // surface it is the normal times the depth; sliding, it trails the device
+    // by the proxy's lag (a drag); held by two planes, it points from the
+    // device to the crease. Without the god-object the proxy is not over the
+    // device: the thesis's depth along the normal.
+    const Vec3 spring =
+        m_settings.godObject ? Vec3(P2 + skin * normal - D) : Vec3(((P2 - D).dot(normal) + skin) * normal);
+    if (crease) ++counters.creaseFrames;
+    // The device presses when the spring points out along this contact's
+    // normal or the last frame's (a normal that swings for a frame in a
+    // drilled pit must not drop the force for that frame), or when the target
+    // holds the proxy back from the device: the proxy is then constrained and
+    // the spring acts whatever the normal says. On a vertex or an edge (the
+    // apex of a tetrahedron, the rim of a crack) the nearest face of a point
+    // on it may be a side face, and its horizontal normal is orthogonal to a
+    // device pressing straight down: judged by the normal alone, the proxy
+    // would be held with no force.
+    const bool pressing = spring.dot(normal) > kSamePlace || (m.hadPlane && spring.dot(m.lastNormal) > kSamePlace) ||
+                          (heldByTarget && spring.norm() > kSamePlace);
+    if (pressing) {
+      s.penetration = spring.norm();
+      s.normal = spring / s.penetration;
+    } else {
+      s.normal = normal;  // the device is out of the target: no push
+      s.penetration = 0;
+    }
+    s.contact = true;
+    planePoint = onPlane;
+    planeNormal = normal;
+    hasPlane = true;
+  } else if (heldBack && !blocked && beneathPlane && nothingBetween(P1, D)) {
+    // Held to last frame's plane, but no surface is there any more: the proxy
+    // slid off the edge the plane came from (a device far beneath a tilted
+    // plane, after a jump), and neither the way to the device nor the device
+    // itself meets the target. Nothing holds the proxy: it joins the device,
+    // and nothing is rendered (a plane kept here would pull the hand
+    // sideways from wherever the proxy is, in free space).
+    ++counters.releasedHolds;
+    P2 = D;
+  } else if (blocked || heldBack) {
+    // Conflicting case: the proxy is free where the sweep stopped it, or where
+    // its slide along last frame's plane was held, but the device is beyond:
+    // the spring to the device acts.
+    ++counters.conflictFrames;
+    // A cutting tool cuts what stopped it, even between its shell points.
+    if (cutting && blocked) m_out.stoppedAt = blockedAt;
+    s.normal = (P1 - D).normalized();
+    s.penetration = (D - P1).norm();
+    s.contact = true;
+    if (heldBack && !blocked) {
+      // Still held to that plane next frame, so the proxy keeps catching up at
+      // the same pace instead of jumping to the device.
+      planePoint = m.lastPlanePoint;
+      planeNormal = m.lastNormal;
+      hasPlane = true;
+    }
+  }
+  // 6. On a target being drilled, the spring's anchor (the proxy lifted by its
+  // skin) moves no farther from the device than last frame's anchor now is
+  // (PassiveAnchor.h): a re-projection on the cut surface never pushes harder
+  // than the device's own move explains. Elsewhere the anchor may have to
+  // move out: a deforming target pushes the tool, and a proxy that a sweep
+  // left inside a rigid target is lifted out of it.
+  if (s.contact && s.penetration > 0 && m.hadDevice && m_target.drills()) {
+    const Vec3 wanted = D + s.penetration * s.normal;
+    const Vec3 anchor = passiveAnchor(m.lastDevice + m.state.penetration * m.state.normal, wanted, D);
+    if (anchor != wanted) {
+      if ((anchor - wanted).norm() > kSamePlace) ++counters.heldAnchors;  // not a rounding
+      P2 += anchor - wanted;
+      s.penetration = (anchor - D).norm();
+      if (s.penetration > 0) s.normal = (anchor - D) / s.penetration;
+    }
+  }
+  if (s.contact) ++counters.contactFrames;
+  // The constraint plane of this frame, for the next one.
+  m.hadPlane = hasPlane;
+  if (hasPlane) m.lastPlanePoint = planePoint;
+  m.lastNormal = hasPlane ? planeNormal : (s.contact ? s.normal : m.lastNormal);
+  if (!P2.allFinite() || !s.normal.allFinite() || !std::isfinite(s.penetration)) {
+    // Never expected; if it happens the proxy and the force hold, and it is counted.
+    ++counters.nonFiniteFrames;
+    const int removed = s.removed;
+    s = m.state;
+    s.device = D;
+    s.removed = removed;
+    P2 = m.state.proxy;
+  }
+  m.lastDevice = D;
+  m.hadDevice = true;
+  s.proxy = P2;
+  s.proxyInside = overlapsAt(P2);
+  m.state = s;
+  return m_out;
+}
+
+}  // namespace
+
+void ProxyMemory::restart(uint64_t shapeFailures) {
+  const ProxyCounters kept = counters;
+  *this = ProxyMemory{};
+  counters = kept;
+  seenShapeFailures = shapeFailures;
+}
+
+ProxyFrame stepProxy(const ProxySettings& settings, ProxyMemory& memory, const ProxyInput& input,
+                     ShellContactTarget& target) {
+  return Frame(settings, memory, input, target).run();
+}
+
+}  // namespace trephine::haptics
