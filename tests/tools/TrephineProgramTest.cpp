@@ -18,6 +18,43 @@ TEST(TrephineProgramTest, VersionAndHelpExitZero) {
   EXPECT_NE(out.find("trephine run SCENE"), std::string::npos);
 }
 
+// Every command named in the whole help answers --help (and -h, and
+// `trephine help COMMAND`) with its own part of it, exit 0, whatever else is
+// on the line; a usage error points there.
+TEST(TrephineProgramTest, EveryCommandAnswersHelpWithItsPartOfTheWholeHelp) {
+  std::string whole;
+  ASSERT_EQ(runProgram({"--help"}, &whole), 0);
+  std::vector<std::string> names;
+  for (size_t at = whole.find("\n  trephine "); at != std::string::npos; at = whole.find("\n  trephine ", at + 1)) {
+    const size_t start = at + 12, end = whole.find_first_of(" \n", start);
+    const std::string name = whole.substr(start, end - start);
+    if (name.starts_with("-") || name == "COMMAND") continue;
+    if (names.empty() || names.back() != name) names.push_back(name);
+  }
+  ASSERT_GE(names.size(), 8u) << whole;
+  for (const std::string& name : names) {
+    std::string help, shortHelp, viaHelp;
+    EXPECT_EQ(runProgram({name, "--help"}, &help), 0) << name;
+    EXPECT_TRUE(help.starts_with("usage:\n  trephine " + name + " ")) << help;
+    // Its lines are the whole help's, from its first usage line to the next command's.
+    const std::string body = help.substr(7, help.find("\nPlugins are searched") - 7);
+    EXPECT_NE(whole.find(body), std::string::npos) << name << ":\n" << body;
+    EXPECT_EQ(runProgram({name, "-h"}, &shortHelp), 0) << name;
+    EXPECT_EQ(runProgram({"help", name}, &viaHelp), 0) << name;
+    EXPECT_EQ(shortHelp, help);
+    EXPECT_EQ(viaHelp, help);
+    std::string withOthers;
+    EXPECT_EQ(runProgram({name, "no-such-file.xml", "--no-such-option", "--help"}, &withOthers), 0) << name;
+    EXPECT_EQ(withOthers, help);
+    std::string error;
+    EXPECT_EQ(runProgram({name, "--no-such-option"}, &error), 2) << name;
+    EXPECT_NE(error.find("(trephine " + name + " --help)"), std::string::npos) << error;
+  }
+  std::string unknown;
+  EXPECT_EQ(runProgram({"help", "fly"}, &unknown), 2);
+  EXPECT_NE(unknown.find("unknown command 'fly'"), std::string::npos) << unknown;
+}
+
 TEST(TrephineProgramTest, UsageErrorsExitTwo) {
   std::string out;
   EXPECT_EQ(runProgram({}, &out), 2);

@@ -1,7 +1,9 @@
 // trephine: run, validate and document scenes.
+#include <algorithm>
 #include <iostream>
-#include <vector>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "tools/trephine/CellSizeCommand.h"
 #include "tools/trephine/CommandLine.h"
@@ -14,22 +16,58 @@
 
 namespace {
 
-constexpr const char* kHelp = R"(trephine - haptic neurosurgery simulation framework
+using namespace trephine::cli;
 
-usage:
-  trephine run SCENE [--duration S] [--out DIR] [--realtime [--view [PORT]]] [--seed N] [--set path.field=value ...] [--quiet]
+int componentsCommand(const Arguments& arguments) {
+  if (arguments.positional.size() > 1) {
+    std::cerr << "usage: trephine components [NAME] [--json | --markdown | --xsd]\n";
+    return kUsage;
+  }
+  const ReferenceFormat format = arguments.has("--json")       ? ReferenceFormat::Json
+                                 : arguments.has("--markdown") ? ReferenceFormat::Markdown
+                                 : arguments.has("--xsd")      ? ReferenceFormat::XmlSchema
+                                                               : ReferenceFormat::Text;
+  std::string problem;
+  const bool ok =
+      writeReference(std::cout, format, arguments.positional.empty() ? "" : arguments.positional[0], problem);
+  if (!problem.empty()) std::cerr << "trephine: " << problem << "\n";
+  return ok ? kOk : kSceneError;
+}
+
+// A subcommand: its part of the help, its options and what runs it.
+struct Command {
+  std::string_view name;
+  std::string_view usage;  // indented lines, as in the whole help
+  std::vector<std::string> valueOptions, flags;
+  int (*run)(const Arguments&);
+};
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> table{
+      {"run",
+       R"(  trephine run SCENE [--duration S] [--out DIR] [--realtime [--view [PORT]]] [--seed N] [--set path.field=value ...] [--quiet]
                     [--strict]
       Run a scene (virtual time unless --realtime) and write summary.json,
       trace.csv and timings.csv to DIR (default runs/<scene name>).
       --view [PORT] (with --realtime): the browser viewer at
       http://127.0.0.1:PORT/ (8080 unless given; 0: any free port, printed),
       streaming what the scene's VtkExporter names as it happens.
-  trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...] [--strict]
+)",
+       {"--duration", "--out", "--seed", "--set", "--view"},
+       {"--realtime", "--quiet", "--strict"},
+       runCommand},
+      {"validate",
+       R"(  trephine validate SCENE [--duration S] [--seed N] [--set path.field=value ...] [--strict]
       Load and initialise a scene as run would, without running it;
       print every error, or "ok".
   Warnings (a rendering that may not be passive) are printed and the run goes
   on; --strict makes them errors (exit 1).
-  trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N]
+)",
+       {"--duration", "--seed", "--set"},
+       {"--strict"},
+       validateCommand},
+      {"study",
+       R"(  trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N]
                       [--duration S] [--seed N] [--set path.field=value ...] [--target PATH]
                       [--reference K] [--poses N]
       Run the scene once per setting of the varied fields (their cartesian
@@ -43,17 +81,33 @@ usage:
       time (their timings then share the cores). Under mpirun -n R each rank
       takes every R-th setting and rank 0 gathers (DIR on a shared file
       system).
-  trephine components [NAME] [--json | --markdown | --xsd]
+)",
+       {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference", "--poses",
+        "--setting"},
+       {},
+       studyCommand},
+      {"components",
+       R"(  trephine components [NAME] [--json | --markdown | --xsd]
       Document every component and field of every available plugin
       (--xsd: an XML Schema of scenes, for editors).
-  trephine phantom SPEC --out FILE.mha|FILE.mhd [--raw]
+)",
+       {},
+       {"--json", "--markdown", "--xsd"},
+       componentsCommand},
+      {"phantom",
+       R"(  trephine phantom SPEC --out FILE.mha|FILE.mhd [--raw]
   trephine phantom SPEC --out FILE.mesh|FILE.mesh.gz
       Write a generated phantom (the same as file="phantom:SPEC" in a scene).
       .mha/.mhd: a volume, e.g. skull?voxel=0.5 or cube?voxels=300,
       zlib-compressed unless --raw. .mesh/.mesh.gz: a tetrahedral mesh as
       Medit (gzipped for .gz), e.g. cube?cells=22 or brain?tets=22000.
       Run without arguments for the list of phantoms.
-  trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,...] [--tets N | --size S]
+)",
+       {"--out"},
+       {"--raw"},
+       phantomCommand},
+      {"mesh",
+       R"(  trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,...] [--tets N | --size S]
       Mesh a closed surface (.off, .obj, .stl, .ply), phantom:sphere?radius=R
       or a labelled image into tetrahedra with CGAL Mesh_3, at about N
       tetrahedra (within 3% from a few thousand up) or at cells of
@@ -64,7 +118,12 @@ usage:
       0 outside) is meshed region by region, each tetrahedron keeping its
       label (TetraBrain's labels, LabelMaterial's label); --labels keeps only
       those listed. Needs the meshing plugin (CGAL, GPL-3.0-or-later).
-  trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]
+)",
+       {"--out", "--tets", "--size", "--labels"},
+       {},
+       meshCommand},
+      {"cellsize",
+       R"(  trephine cellsize MESH [--pnc P] [--rt R | --calibrate] [--json] [--experiment] [--out DIR]
                         [--frames N] [--rounds N]
       The grid cell size for collision between two copies of a tetrahedral
       mesh (a file, or phantom:SPEC): delta_a, the minimiser of the thesis's
@@ -85,7 +144,12 @@ usage:
       proxy holds the tool), fits a polynomial in log(delta), and writes tool_cellsize.csv, .json and .png; --calibrate
       fits the model's weights to those times. --deforming: the grids of a
       deforming mesh (boxes grown by the displacement margin).
-  trephine view RUN_DIR [--triangles N] [--partial]
+)",
+       {"--pnc", "--rt", "--out", "--frames", "--rounds", "--tool", "--tool-step", "--poses", "--depth"},
+       {"--calibrate", "--json", "--experiment", "--deforming"},
+       cellSizeCommand},
+      {"view",
+       R"(  trephine view RUN_DIR [--triangles N] [--partial]
       Write the browser viewer of a run whose scene has a VtkExporter:
       RUN_DIR/view/index.html opens from the disk in a browser (nothing to
       install, no network) and shows the skull, the brain, the tool, the
@@ -97,90 +161,87 @@ usage:
       the blocks the drill changed kept whole while they fit in half of
       that; standing still, to 10 N. Needs the viewer built (Node.js and
       npm, see tools/setup).
-  trephine --version | --help
+)",
+       {"--triangles"},
+       {"--partial"},
+       viewCommand},
+  };
+  return table;
+}
 
+constexpr std::string_view kTitle = "trephine - haptic neurosurgery simulation framework\n";
+constexpr std::string_view kFooter = R"(
 Plugins are searched in TREPHINE_PLUGIN_PATH (colon-separated), then
 <prefix>/lib/trephine/plugins, then the build's plugin directory.
 
 exit codes: 0 ok, 1 scene or input error, 2 usage, 3 run-time failure
 )";
 
+void writeHelp(std::ostream& out) {
+  out << kTitle << "\nusage:\n";
+  for (const Command& command : commands()) out << command.usage;
+  out << "  trephine --version | --help\n  trephine COMMAND --help\n      One command's part of this help.\n"
+      << kFooter;
+}
+
+void writeCommandHelp(std::ostream& out, const Command& command) { out << "usage:\n" << command.usage << kFooter; }
+
+bool asksForHelp(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view word = argv[i];
+    if (word == "--help" || word == "-h") return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace trephine::cli;
   if (argc < 2) {
-    std::cerr << kHelp;
+    writeHelp(std::cerr);
     return kUsage;
   }
-  const std::string command = argv[1];
-  if (command == "--help" || command == "-h" || command == "help") {
-    std::cout << kHelp;
+  std::string name = argv[1];
+  // `trephine help` is `trephine --help`; `trephine help run` is `trephine run --help`.
+  const bool helpFor = name == "help" && argc > 2;
+  if ((name == "--help" || name == "-h" || name == "help") && !helpFor) {
+    writeHelp(std::cout);
     return kOk;
   }
-  if (command == "--version") {
+  if (name == "--version") {
     std::cout << "trephine " << TREPHINE_VERSION << "\n";
     return kOk;
   }
-  Arguments arguments;
-  arguments.command = command;
-  std::optional<std::string> error;
-  if (command == "run") {
-    // --view takes an optional port: "--view" alone is "--view 8080".
-    std::vector<std::string> words(argv, argv + argc);
-    for (size_t i = 2; i < words.size(); ++i)
-      if (words[i] == "--view" && (i + 1 == words.size() || words[i + 1].empty() || words[i + 1][0] < '0' ||
-                                   words[i + 1][0] > '9'))
-        words[i] = "--view=8080";
-    std::vector<char*> pointers;
-    for (std::string& w : words) pointers.push_back(w.data());
-    error = parseArguments(int(pointers.size()), pointers.data(), {"--duration", "--out", "--seed", "--set", "--view"},
-                           {"--realtime", "--quiet", "--strict"}, arguments);
-    if (!error) return runCommand(arguments);
-  } else if (command == "study") {
-    error = parseArguments(argc, argv,
-                           {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference",
-                            "--poses", "--setting"},
-                           {}, arguments);
-    if (!error) return studyCommand(arguments);
-  } else if (command == "mesh") {
-    error = parseArguments(argc, argv, {"--out", "--tets", "--size", "--labels"}, {}, arguments);
-    if (!error) return meshCommand(arguments);
-  } else if (command == "cellsize") {
-    error = parseArguments(argc, argv, {"--pnc", "--rt", "--out", "--frames", "--rounds", "--tool", "--tool-step", "--poses", "--depth"},
-                           {"--calibrate", "--json", "--experiment", "--deforming"}, arguments);
-    if (!error) return cellSizeCommand(arguments);
-  } else if (command == "validate") {
-    error = parseArguments(argc, argv, {"--duration", "--seed", "--set"}, {"--strict"}, arguments);
-    if (!error) return validateCommand(arguments);
-  } else if (command == "components") {
-    error = parseArguments(argc, argv, {}, {"--json", "--markdown", "--xsd"}, arguments);
-    if (!error) {
-      if (arguments.positional.size() > 1) {
-        std::cerr << "usage: trephine components [NAME] [--json | --markdown | --xsd]\n";
-        return kUsage;
-      }
-      const ReferenceFormat format = arguments.has("--json")       ? ReferenceFormat::Json
-                                     : arguments.has("--markdown") ? ReferenceFormat::Markdown
-                                     : arguments.has("--xsd")      ? ReferenceFormat::XmlSchema
-                                                                   : ReferenceFormat::Text;
-      std::string problem;
-      const bool ok =
-          writeReference(std::cout, format, arguments.positional.empty() ? "" : arguments.positional[0], problem);
-      if (!problem.empty()) std::cerr << "trephine: " << problem << "\n";
-      return ok ? kOk : kSceneError;
-    }
-  } else if (command == "view") {
-    error = parseArguments(argc, argv, {"--triangles"}, {"--partial"}, arguments);
-    if (!error) return viewCommand(arguments);
-  } else if (command == "phantom") {
-    error = parseArguments(argc, argv, {"--out"}, {"--raw"}, arguments);
-    if (!error) return phantomCommand(arguments);
-  } else {
-    std::cerr << "trephine: unknown command '" << command
-              << "' (run, validate, study, components, phantom, mesh, cellsize, view, --help, --version)\n";
+  if (helpFor) name = argv[2];
+  const auto found =
+      std::find_if(commands().begin(), commands().end(), [&](const Command& command) { return command.name == name; });
+  if (found == commands().end()) {
+    std::string names;
+    for (const Command& command : commands()) names += std::string(command.name) + ", ";
+    std::cerr << "trephine: unknown command '" << name << "' (" << names << "--help, --version)\n";
     return kUsage;
   }
-  std::cerr << "trephine " << command << ": " << *error << "\n";
-  return kUsage;
+  const Command& command = *found;
+  if (helpFor || asksForHelp(argc, argv)) {
+    writeCommandHelp(std::cout, command);
+    return kOk;
+  }
+  Arguments arguments;
+  arguments.command = name;
+  std::vector<std::string> words(argv, argv + argc);
+  if (command.name == "run") {
+    // --view takes an optional port: "--view" alone is "--view 8080".
+    for (size_t i = 2; i < words.size(); ++i)
+      if (words[i] == "--view" &&
+          (i + 1 == words.size() || words[i + 1].empty() || words[i + 1][0] < '0' || words[i + 1][0] > '9'))
+        words[i] = "--view=8080";
+  }
+  std::vector<char*> pointers;
+  for (std::string& w : words) pointers.push_back(w.data());
+  if (const auto error =
+          parseArguments(int(pointers.size()), pointers.data(), command.valueOptions, command.flags, arguments)) {
+    std::cerr << "trephine " << name << ": " << *error << " (trephine " << name << " --help)\n";
+    return kUsage;
+  }
+  return command.run(arguments);
 }
