@@ -9,6 +9,7 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Strings.h"
+#include "framework/core/TextTable.h"
 #include "framework/runtime/JsonWriter.h"
 #include "framework/runtime/Simulation.h"
 
@@ -229,23 +230,31 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
       << ", simulated " << formatDouble(scheduler.simulatedTime()) << " s in " << std::fixed << std::setprecision(3)
       << simulation.wallTime() << " s wall\n";
   if (!simulation.complete()) out << "status    INCOMPLETE: " << simulation.incompleteReason() << "\n";
-  out << "groups    rate_hz     calls   p50_us   p99_us   max_us  misses\n";
+  // Fixed decimals, each column as wide as its widest value.
+  const auto fixed = [](double value, int decimals) {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(decimals) << value;
+    return text.str();
+  };
+  std::vector<std::vector<std::string>> groups{{"rate_hz", "calls", "p50_us", "p99_us", "max_us", "misses", "group"}};
   for (const RateGroup& g : scheduler.groups()) {
     const TimingSummary s = g.stepHistogram.summary();
-    out << "          " << std::setw(7) << formatDouble(g.rateHz) << std::setw(10) << g.calls
-        << std::setprecision(2) << std::setw(9) << s.p50 << std::setw(9) << s.p99 << std::setw(9) << s.max
-        << std::setw(8) << g.deadlineMisses << (g.name.empty() ? "" : "  group " + g.name) << "\n";
+    groups.push_back({formatDouble(g.rateHz), std::to_string(g.calls), fixed(s.p50, 2), fixed(s.p99, 2),
+                      fixed(s.max, 2), std::to_string(g.deadlineMisses), g.name.empty() ? "-" : g.name});
   }
+  const std::string groupTable = formatColumns(groups, "          ");
+  out << "groups" << groupTable.substr(6);
   if (simulation.plan().realtime) {
-    out << "realtime  rate_hz  calls/s  wake_late_p50_us  p99_us  max_us  skipped  SCHED_FIFO\n";
+    std::vector<std::vector<std::string>> late{
+        {"rate_hz", "calls/s", "wake_late_p50_us", "p99_us", "max_us", "skipped", "SCHED_FIFO", "group"}};
     for (const RateGroup& g : scheduler.groups()) {
-      const TimingSummary late = g.wakeLateness.summary();
-      out << "          " << std::setw(7) << formatDouble(g.rateHz) << std::setprecision(1) << std::setw(9)
-          << g.callsPerSecond()
-          << std::setprecision(3) << std::setw(18) << late.p50 << std::setw(8) << late.p99 << std::setw(8) << late.max
-          << std::setw(9) << g.skippedTicks << std::setw(12) << (g.realtimePriority ? "yes" : "no")
-          << (g.name.empty() ? "" : "  group " + g.name) << "\n";
+      const TimingSummary s = g.wakeLateness.summary();
+      late.push_back({formatDouble(g.rateHz), fixed(g.callsPerSecond(), 1), fixed(s.p50, 3), fixed(s.p99, 3),
+                      fixed(s.max, 3), std::to_string(g.skippedTicks), g.realtimePriority ? "yes" : "no",
+                      g.name.empty() ? "-" : g.name});
     }
+    const std::string lateTable = formatColumns(late, "          ");
+    out << "realtime" << lateTable.substr(8);
   }
   if (simulation.hapticLogOwner()) {
     const HapticStats h = simulation.hapticLog().stats();
