@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "framework/core/CollisionBackend.h"
 #include "framework/core/Component.h"
@@ -15,6 +16,13 @@
 #include "framework/core/Lifecycle.h"
 
 namespace trephine {
+
+// Why no back-end `name` serves targets of type `kind`: the names registered,
+// the closest of them or of the installed plugins (a typo), and the
+// <RequiredPlugin/> that would load an installed plugin of that name.
+std::string missingBackendMessage(std::string_view name, std::string_view kind,
+                                  const std::vector<std::string>& registered,
+                                  const std::vector<std::string>& installed);
 
 // The back-end `field`'s value names for targets of type `kind`, as the
 // target's query interface `Backend`; null, with the error reported at
@@ -26,12 +34,8 @@ std::unique_ptr<Backend> createBackendAt(InitContext& context, const Field<std::
     created.release();
     return std::unique_ptr<Backend>(backend);
   }
-  std::string known;
-  for (const std::string& name : context.backendNames(kind)) known += (known.empty() ? "" : ", ") + name;
-  context.error(field, "no collision back-end \"" + field.value() + "\" for " + std::string(kind) +
-                           " (registered: " + (known.empty() ? "none" : known) +
-                           "); if a plugin provides it, add <RequiredPlugin name=\"" + field.value() +
-                           "\"/> to the scene");
+  context.error(field,
+                missingBackendMessage(field.value(), kind, context.backendNames(kind), context.installedPlugins()));
   return nullptr;
 }
 

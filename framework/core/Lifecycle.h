@@ -46,6 +46,9 @@ class InitContext {
     (void)kind;
     return {};
   }
+  // Names of the plugins installed on the search path, loaded or not (for a
+  // message's suggestion). Contexts without a loader have none.
+  virtual std::vector<std::string> installedPlugins() const { return {}; }
   virtual uint64_t seed() const = 0;  // the run's seed (--seed)
   virtual bool isRealtime() const = 0;
   virtual ChannelHub& channels() = 0;

@@ -271,6 +271,30 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
           << " N s/mm: energy in " << h.energyInWithDevice_mJ << " mJ, min " << h.minEnergyInWithDevice_mJ << " mJ";
     out << "\n";
   }
+  // What the user should know of: each event of a kind that says something
+  // went other than planned, up to a few, and a count of every kind.
+  const EventLog& events = simulation.events();
+  std::map<std::string, size_t> kinds;
+  size_t told = 0;
+  for (size_t i = 0; i < events.size(); ++i) {
+    const Event& e = events[i];
+    ++kinds[e.kind];
+    const std::string_view kind = e.kind;
+    if ((kind == "tool_starts_inside" || kind == "haptic_released" || kind == "fem_diverged" ||
+         kind == "tick_failed") &&
+        told++ < 5)
+      out << "warning   " << std::setprecision(3) << e.t << " s, " << sourcePath(simulation, e.source) << ": "
+          << e.kind << (*e.detail ? std::string(": ") + e.detail : std::string()) << "\n";
+  }
+  if (!kinds.empty()) {
+    out << "events    " << events.size() + events.dropped() << " (";
+    bool first = true;
+    for (const auto& [kind, count] : kinds) {
+      out << (first ? "" : ", ") << kind << " " << count;
+      first = false;
+    }
+    out << (events.dropped() ? ", " + std::to_string(events.dropped()) + " not kept" : std::string()) << ")\n";
+  }
   out.unsetf(std::ios::fixed);
 }
 

@@ -156,6 +156,7 @@ void Scheduler::runVirtual(const std::atomic<bool>& stop) {
       if (ns > static_cast<uint64_t>(g.periodS * 1e9)) ++g.deadlineMisses;  // would miss in real time
       ++next[chosen];
       m_simulatedTime = std::max(m_simulatedTime, static_cast<double>(next[chosen]) / g.rateHz);
+      m_progress.store(m_simulatedTime, std::memory_order_relaxed);
       if (next[chosen] < g.plannedCalls) {
         queue.push_back({static_cast<double>(next[chosen]) / g.rateHz, chosen});  // within the reserved size
         std::push_heap(queue.begin(), queue.end(), later);
@@ -171,6 +172,7 @@ void Scheduler::runVirtual(const std::atomic<bool>& stop) {
     m_simulatedTime = m_completed ? m_plan.duration : 0;
   }
   if (m_completed) m_simulatedTime = m_plan.duration;
+  m_progress.store(m_simulatedTime, std::memory_order_relaxed);
 }
 
 void Scheduler::runRealtime(const std::atomic<bool>& stop) {
@@ -201,6 +203,7 @@ void Scheduler::runRealtime(const std::atomic<bool>& stop) {
           if (g.calls == 0) g.firstStartNs = wake;
           g.lastStartNs = wake;
           step(g, k);
+          if (i == 0) m_progress.store(static_cast<double>(k + 1) / g.rateHz, std::memory_order_relaxed);
           const uint64_t end = nowNs();
           if (static_cast<double>(end - deadline) > periodNs) ++g.deadlineMisses;
           // After a stall, resume at the tick now due instead of bursting through the missed ones.
@@ -230,6 +233,7 @@ void Scheduler::runRealtime(const std::atomic<bool>& stop) {
   double elapsed = 0;
   for (const RateGroup& g : m_groups) elapsed = std::max(elapsed, g.wallSeconds);
   m_simulatedTime = m_completed ? m_plan.duration : std::min(elapsed, m_plan.duration);
+  m_progress.store(m_simulatedTime, std::memory_order_relaxed);
 }
 
 }  // namespace trephine

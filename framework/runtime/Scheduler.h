@@ -70,6 +70,10 @@ class Scheduler {
   // The rate's own group (not a named one), or null.
   const RateGroup* group(double rateHz) const;
   double simulatedTime() const { return m_simulatedTime; }  // s
+  // The simulated time reached so far (s), readable from any thread while
+  // run() goes on (a relaxed atomic the stepping thread stores after each
+  // step of the fastest group in real time, of any group in virtual time).
+  double progress() const { return m_progress.load(std::memory_order_relaxed); }
   bool completed() const { return m_completed; }
   // Set when a component threw during a tick: "path: message".
   const std::optional<std::string>& failure() const { return m_failure; }
@@ -86,6 +90,7 @@ class Scheduler {
   EventLog* m_events;
   std::vector<RateGroup> m_groups;  // highest rate first
   double m_simulatedTime = 0;
+  std::atomic<double> m_progress{0};
   bool m_completed = false;
   std::optional<std::string> m_failure;
 };

@@ -125,10 +125,12 @@ class Simulation::Context final : public InitContext {
       : m_simulation(simulation), m_diagnostics(diagnostics), m_options(options) {}
 
   void error(const Component& component, std::string message) override {
+    m_failed.insert(&component);
     m_diagnostics.error(component.location(), component.typeName() + " '" + component.name() + "': " + message);
   }
   void error(const BaseField& field, std::string message) override {
     const auto* owner = dynamic_cast<const Component*>(&field.owner());
+    if (owner) m_failed.insert(owner);
     const std::string of = owner ? " of " + owner->typeName() + " '" + owner->name() + "'" : std::string();
     m_diagnostics.error(field.location(), "invalid " + field.name() + of + ": " + message);
   }
@@ -148,6 +150,7 @@ class Simulation::Context final : public InitContext {
   std::vector<std::string> backendNames(std::string_view kind) const override {
     return m_simulation.m_registry->backendNames(kind);
   }
+  std::vector<std::string> installedPlugins() const override { return m_simulation.m_plugins->available(); }
   uint64_t seed() const override { return m_options.seed; }
   bool isRealtime() const override { return m_options.realtime; }
   ChannelHub& channels() override { return *m_simulation.m_channels; }
@@ -162,10 +165,16 @@ class Simulation::Context final : public InitContext {
     return &m_simulation.m_hapticLog;
   }
 
+  // Whether a component reported an error during its init, or was not
+  // initialised because a component it links to did.
+  bool failed(const Component& component) const { return m_failed.count(&component) > 0; }
+  void skip(const Component& component) { m_failed.insert(&component); }
+
  private:
   Simulation& m_simulation;
   Diagnostics& m_diagnostics;
   const SimulationOptions& m_options;
+  std::set<const Component*> m_failed;
 };
 
 std::unique_ptr<Simulation> Simulation::load(const std::function<std::unique_ptr<Scene>(SceneLoader&)>& read,
@@ -202,8 +211,19 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   const std::vector<Component*> components = s.m_scene->components();
 
   // Initialise link targets before the components that link to them (document
-  // order otherwise); a component that throws is reported at its element.
+  // order otherwise); a component that throws is reported at its element. A
+  // component that links to one whose init failed is not initialised: its
+  // errors would only follow from the first (a device aimed at a brain that
+  // has no collision back-end "misses" it), and the first is what to fix.
   for (Component* c : initialisationOrder(components)) {
+    bool linksToFailure = false;
+    for (const BaseField* field : c->fields())
+      if (const auto* link = dynamic_cast<const BaseLink*>(field); link && link->boundComponent())
+        linksToFailure = linksToFailure || context.failed(*link->boundComponent());
+    if (linksToFailure) {
+      context.skip(*c);
+      continue;
+    }
     try {
       c->init(context);
     } catch (const std::exception& e) {

@@ -6,6 +6,7 @@
 
 #include "framework/core/Lifecycle.h"
 #include "framework/core/Strings.h"
+#include "plugins/fem/MaterialPlausibility.h"
 
 namespace trephine::fem {
 
@@ -39,6 +40,8 @@ void TLEDForceField::init(InitContext& context) {
     context.warning(d_contactDamping, "is in N s/mm; a spring k acting T late needs about k T (0.3 N/mm, 1.5 ms: "
                                       "0.00045), so " + formatDouble(d_contactDamping.value()) +
                                           " is a damping in N s/m, or far more than the contact needs");
+  if (auto why = implausibleDensity(d_density.value())) context.warning(d_density, *why);
+  if (auto why = implausibleYoungModulus(d_youngModulus.value())) context.warning(d_youngModulus, *why);
   m_model->setElementPrecision(d_precision.is("single") ? ElementPrecision::kSingle : ElementPrecision::kDouble);
   scaleMass();
   if (auto error = checkTimeStep()) context.error(d_dt, *error);

@@ -79,6 +79,10 @@ void GodObjectProxy::tick(const TickContext& context) {
   input.shell = m_tool->shellPoints();
   input.leadingRadius = m_tool->leadingRadius();
   m_frame = stepProxy(m_settings, m_memory, input, *m_target);
+  if (m_frame.startedInside && context.events)
+    context.events->log(context.t, "tool_starts_inside",
+                        "the tool's first pose is inside its target: the force renders the whole depth at once", this,
+                        m_frame.state.rawPenetration);
   if (m_frame.letGo && context.events)
     context.events->log(context.t, "haptic_released", "the target's shape failed: proxy released to the device",
                         this);
@@ -94,6 +98,7 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"released_holds", double(c.releasedHolds)});
   counters.push_back({"releases", double(c.releases)});
   counters.push_back({"held_anchor_frames", double(c.heldAnchors)});
+  counters.push_back({"starts_inside", double(c.startsInside)});
   if (c.nonFiniteFrames) counters.push_back({"non_finite_frames", double(c.nonFiniteFrames)});
 }
 

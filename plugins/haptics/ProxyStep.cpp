@@ -94,6 +94,10 @@ ProxyFrame Frame::run() {
   if (!m_memory.started) {
     m_memory.state.proxy = D;  // the proxy starts with the device, wherever that is
     m_memory.started = true;
+    if (overlapsAt(D)) {
+      m_out.startedInside = true;
+      ++m_memory.counters.startsInside;
+    }
   }
   if (m_input.frame.shapeFailures != m_memory.seenShapeFailures) {
     m_memory.seenShapeFailures = m_input.frame.shapeFailures;

@@ -88,6 +88,7 @@ struct ProxyCounters {
   uint64_t releasedHolds = 0;  // a hold to last frame's plane found no surface and let the proxy go
   uint64_t releases = 0;       // times the proxy was let go after a shape failure
   uint64_t heldAnchors = 0;    // frames whose anchor was held to the last one's distance from the device
+  uint64_t startsInside = 0;   // starts (first valid device frame, tool changes) with the tool in the target
 };
 
 // What the proxy keeps from one frame to the next.
@@ -118,6 +119,10 @@ struct ProxyFrame {
   ShellContact contact;
   std::optional<Vec3> stoppedAt;
   bool letGo = false;  // this frame let the proxy go after a shape failure (an event)
+  // The tool's first pose (at the start, or after a tool change) overlaps
+  // the target: the proxy starts where the device is, inside, and the
+  // god-object lifts it out, so the spring renders the whole depth (an event).
+  bool startedInside = false;
 };
 
 // One haptic frame. Allocation-free; the target's queries are the only calls out.

@@ -123,6 +123,13 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
         << rows[2 + shell].at("label");
   EXPECT_EQ(rows[0].at("reference"), "1");
   EXPECT_EQ(rows[3].at("/tool/burr.pointCount"), "466");
+  // Each setting says when it is done, and until the last the time the study has left.
+  for (int done = 1; done <= 4; ++done) {
+    const size_t at = out.find("; " + std::to_string(done) + " of 4 done, ");
+    ASSERT_NE(at, std::string::npos) << out;
+    const std::string line = out.substr(at, out.find('\n', at) - at);
+    EXPECT_EQ(line.find("s left") != std::string::npos, done < 4) << line;
+  }
   const std::string table = test::readFile(dir / "study/study.md");
   EXPECT_NE(table.find("| 4 | file=phantom:halfspace?voxel=0.5"), std::string::npos) << table;
 }

@@ -6,8 +6,11 @@
 #include <iostream>
 #include <optional>
 
+#include <unistd.h>
+
 #include "framework/core/Strings.h"
 #include "framework/runtime/RunOutputs.h"
+#include "framework/runtime/RunProgress.h"
 #include "framework/runtime/Simulation.h"
 
 namespace trephine::cli {
@@ -121,7 +124,14 @@ int runCommand(const Arguments& a) {
   // Ctrl-C stops the run between steps; everything measured so far is written.
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
-  simulation->run(g_stopRequested);
+  {
+    // A line every 5 s on stderr (rewritten each second on a terminal) while it runs.
+    const bool terminal = isatty(STDERR_FILENO) != 0;
+    std::optional<RunProgress> progress;
+    if (!a.has("--quiet"))
+      progress.emplace(simulation->scheduler(), simulation->plan().duration, std::cerr, terminal ? 1.0 : 5.0, terminal);
+    simulation->run(g_stopRequested);
+  }
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (g_signal != 0 && !simulation->complete())

@@ -6,18 +6,20 @@
 #include <cerrno>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "framework/core/Strings.h"
-#include "tools/trephine/PlotScript.h"
-#include "tools/trephine/RunCommand.h"
 #include "framework/study/StudyReport.h"
 #include "framework/study/StudySetting.h"
+#include "tools/trephine/PlotScript.h"
+#include "tools/trephine/RunCommand.h"
 
 extern char** environ;
 
@@ -156,9 +158,35 @@ void clearSetting(const StudyRequest& request, int index) {
   for (const char* stale : {kProbeFile, kResultFile, kErrorFile}) std::filesystem::remove(directory / stale, ec);
 }
 
-// Runs the settings in worker processes, at most `jobs` at a time.
-void runWorkers(const StudyRequest& request, const std::vector<int>& indices, int jobs) {
-  std::map<pid_t, int> running;
+// This rank's settings done so far, for "setting 3/8 done in 12.4 s; 3 of 8
+// done, 37 s so far, about 62 s left": the time left at the pace so far.
+struct StudyProgress {
+  size_t all = 0;  // settings this rank runs
+  size_t done = 0;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+
+  std::string settingDone(int index, size_t total, double took) {
+    ++done;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::ostringstream line;
+    line.setf(std::ios::fixed);
+    line.precision(1);
+    line << "setting " << index + 1 << "/" << total << " done in " << took << " s; " << done << " of " << all
+         << " done, " << elapsed << " s so far";
+    if (done < all) line << ", about " << std::ceil(elapsed / double(done) * double(all - done)) << " s left";
+    return line.str();
+  }
+};
+
+// Runs the settings in worker processes, at most `jobs` at a time, saying
+// when each starts and ends, and the time the study has left.
+void runWorkers(const StudyRequest& request, const std::vector<int>& indices, int jobs, StudyProgress& progress) {
+  using Steady = std::chrono::steady_clock;
+  struct Running {
+    int index;
+    Steady::time_point started;
+  };
+  std::map<pid_t, Running> running;
   size_t next = 0;
   while (next < indices.size() || !running.empty()) {
     while (next < indices.size() && static_cast<int>(running.size()) < jobs) {
@@ -171,21 +199,24 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
       if (pid < 0) {
         recordAbnormalEnd(request, index,
                           std::string("the worker process could not start: ") + std::strerror(spawnError));
+        std::cout << progress.settingDone(index, request.settings.size(), 0) << std::endl;
         continue;
       }
-      running[pid] = index;
+      running[pid] = {index, Steady::now()};
     }
     if (running.empty()) continue;
     int status = 0;
-    const pid_t done = waitpid(-1, &status, 0);
-    if (done < 0) {
+    const pid_t ended = waitpid(-1, &status, 0);
+    if (ended < 0) {
       if (errno == EINTR) continue;
-      for (const auto& [pid, index] : running) recordAbnormalEnd(request, index, "its worker process was lost");
+      for (const auto& [pid, worker] : running) recordAbnormalEnd(request, worker.index, "its worker process was lost");
       running.clear();
       continue;
     }
-    if (auto it = running.find(done); it != running.end()) {
-      recordAbnormalEnd(request, it->second, describeStatus(status));
+    if (auto it = running.find(ended); it != running.end()) {
+      recordAbnormalEnd(request, it->second.index, describeStatus(status));
+      const double took = std::chrono::duration<double>(Steady::now() - it->second.started).count();
+      std::cout << progress.settingDone(it->second.index, request.settings.size(), took) << std::endl;
       running.erase(it);
     }
   }
@@ -259,7 +290,10 @@ int studyCommand(const Arguments& a) {
   // The reference's run gives the poses every other setting is queried at: it
   // runs first, on the rank that owns it; the others wait for its poses.
   const int referenceIndex = options.referenceIndex;
-  if (referenceIndex % rank.size == rank.rank) runWorkers(*request, {referenceIndex}, 1);
+  const bool ownsReference = referenceIndex % rank.size == rank.rank;
+  StudyProgress progress;
+  progress.all = mine.size() + (ownsReference ? 1 : 0);
+  if (ownsReference) runWorkers(*request, {referenceIndex}, 1, progress);
   waitFor([&] {
     return writtenSince(options.out / kPosesFile, started) || settingDone(*request, referenceIndex, started);
   });
@@ -268,7 +302,7 @@ int studyCommand(const Arguments& a) {
     std::cerr << "trephine: the reference setting failed, so no setting can be compared: " << why.rdbuf();
     return kRuntimeFailure;
   }
-  runWorkers(*request, mine, request->jobs);
+  runWorkers(*request, mine, request->jobs, progress);
   if (rank.rank != 0) return kOk;
 
   waitFor([&] {

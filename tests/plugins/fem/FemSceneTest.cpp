@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "framework/core/Diagnostics.h"
+#include "plugins/fem/MaterialPlausibility.h"
 #include "plugins/fem/TLEDModel.h"
 #include "plugins/fem/TLEDState.h"
 #include "plugins/tetra_brain/CubePhantom.h"
@@ -106,6 +107,33 @@ TEST(FemSceneTest, AContactDampingInNewtonSecondsPerMetreIsWarnedOf) {
   Diagnostics quiet;
   EXPECT_TRUE(test::loadScene(barScene("", -10, R"(dt="0.1e-3" contactDamping="0.002")"), quiet));
   EXPECT_EQ(test::messages(quiet).find("contactDamping"), std::string::npos) << test::messages(quiet);
+}
+
+// A slip of units in a material constant: warned of at the field, with the
+// unit it is in and what the value would be in the likely one; a tissue's
+// values are not.
+TEST(FemSceneTest, MaterialConstantsFarOutsideTissueAreWarnedOfWithTheLikelyUnit) {
+  const auto warnings = [](const std::string& fem, const std::string& extra = "") {
+    Diagnostics d;
+    EXPECT_TRUE(test::loadScene(barScene(extra, -10, R"(dt="0.1e-3" massScaling="true" )" + fem), d));
+    return test::messages(d);
+  };
+  std::string m = warnings(R"(youngModulus="30000")");
+  EXPECT_NE(m.find("inline.xml:5:"), std::string::npos) << m;
+  EXPECT_NE(m.find("youngModulus"), std::string::npos) << m;
+  EXPECT_NE(m.find("as pascals it would be 30 kPa"), std::string::npos) << m;
+  m = warnings(R"(youngModulus="0.03")");
+  EXPECT_NE(m.find("as MPa it would be 30 kPa"), std::string::npos) << m;
+  m = warnings(R"(density="1.0")");
+  EXPECT_NE(m.find("density"), std::string::npos) << m;
+  EXPECT_NE(m.find("as g/cm^3 it would be 1e-06 kg/mm^3"), std::string::npos) << m;
+  m = warnings(R"(density="1000")");
+  EXPECT_NE(m.find("as kg/m^3 it would be 1e-06 kg/mm^3"), std::string::npos) << m;
+  // A tissue's own material is not warned of (the bounds are inclusive).
+  for (const char* tissue : {R"(youngModulus="3" density="1.04e-6")", R"(youngModulus="300" density="1.9e-6")"})
+    EXPECT_EQ(warnings(tissue).find("is in k"), std::string::npos) << warnings(tissue);
+  for (const double kPa : {0.05, 1000.0}) EXPECT_FALSE(implausibleYoungModulus(kPa)) << kPa;
+  for (const double kPa : {0.049, 1001.0}) EXPECT_TRUE(implausibleYoungModulus(kPa)) << kPa;
 }
 
 TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {

@@ -9,7 +9,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
+#include "framework/runtime/RunOutputs.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -250,6 +252,34 @@ INSTANTIATE_TEST_SUITE_P(Sweeps, CreaseTest,
                                          CreaseCase{"cylinder", 1.0, 0.305}, CreaseCase{"cylinder", 0.7, 0.305},
                                          CreaseCase{"spheres", 1.0, 0.305}, CreaseCase{"spheres", 0.7, 0.305}),
                          creaseName);
+
+// A tool whose first pose is inside the target (here 1.5 mm into the
+// half-space) renders the whole depth at once: it is an event, counted, and
+// the run's summary says it; a tool that starts clear of it says nothing.
+TEST(GodObjectProxyTest, AToolThatStartsInsideTheTargetIsAnEventAndAWarningOfTheRun) {
+  auto inside = run(sceneXml(kHalfSpace, "0 0 0 1  0.2 0 0 1", ""));
+  ASSERT_TRUE(inside);
+  EXPECT_EQ(proxyCounter(*inside, "starts_inside"), 1);
+  size_t events = 0;
+  for (size_t i = 0; i < inside->events().size(); ++i)
+    if (std::string_view(inside->events()[i].kind) == "tool_starts_inside") {
+      ++events;
+      EXPECT_EQ(inside->events()[i].t, 0.0);
+      EXPECT_NEAR(inside->events()[i].value, 1.5, 0.1) << "the depth: 2.5 mm burr, centre 1 mm above the surface";
+    }
+  EXPECT_EQ(events, 1u);
+  std::ostringstream summary;
+  printRunSummary(*inside, summary);
+  EXPECT_NE(summary.str().find("warning   0.000 s, /proxy: tool_starts_inside: the tool's first pose is inside"),
+            std::string::npos)
+      << summary.str();
+  auto clear = run(sceneXml(kHalfSpace, kDiagonalPress, ""));
+  ASSERT_TRUE(clear);
+  EXPECT_EQ(proxyCounter(*clear, "starts_inside"), 0);
+  std::ostringstream quiet;
+  printRunSummary(*clear, quiet);
+  EXPECT_EQ(quiet.str().find("warning"), std::string::npos) << quiet.str();
+}
 
 }  // namespace
 }  // namespace trephine

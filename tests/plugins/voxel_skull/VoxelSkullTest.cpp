@@ -88,8 +88,9 @@ TEST(VoxelSkullTest, BadVolumeSourcesAreLoadErrorsAtTheAttribute) {
   Diagnostics d;
   auto simulation = test::loadScene(skullScene(R"(file="phantom:skull?voxel=abc")"), d);
   EXPECT_FALSE(simulation);
-  EXPECT_NE(test::messages(d).find("inline.xml:5:"), std::string::npos) << test::messages(d);
+  EXPECT_NE(test::messages(d).find("inline.xml:4:34:"), std::string::npos) << test::messages(d);
   EXPECT_NE(test::messages(d).find("'abc' is not a number"), std::string::npos) << test::messages(d);
+  EXPECT_EQ(d.errorCount(), 1) << "the device aimed at the skull adds nothing: " << test::messages(d);
 
   test::TempDir dir;
   dir.write("broken.mha",
@@ -98,7 +99,7 @@ TEST(VoxelSkullTest, BadVolumeSourcesAreLoadErrorsAtTheAttribute) {
   dir.write("scene.xml", skullScene(R"(file="broken.mha")"));
   Diagnostics d2;
   EXPECT_FALSE(Simulation::fromFile(dir / "scene.xml", {}, d2));
-  EXPECT_NE(test::messages(d2).find("scene.xml:5:"), std::string::npos) << test::messages(d2);
+  EXPECT_NE(test::messages(d2).find("scene.xml:4:34:"), std::string::npos) << test::messages(d2);
   EXPECT_NE(test::messages(d2).find("broken.mha"), std::string::npos) << test::messages(d2);
 }
 
@@ -108,7 +109,7 @@ TEST(VoxelSkullTest, TheBackendFieldPicksARegisteredBackEndAndTheSummaryNamesIt)
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(skullScene(R"(file="phantom:skull?voxel=3" backend="embree")"), d));
   const std::string m = test::messages(d);
-  EXPECT_NE(m.find("inline.xml:5:"), std::string::npos) << m;
+  EXPECT_NE(m.find("inline.xml:4:"), std::string::npos) << m;
   EXPECT_NE(m.find("invalid backend of VoxelSkull 'skull': no collision back-end \"embree\""), std::string::npos) << m;
   EXPECT_NE(m.find("(registered: native)"), std::string::npos) << m;
   EXPECT_NE(m.find("<RequiredPlugin name=\"embree\"/>"), std::string::npos) << m;
