@@ -33,6 +33,12 @@ class InitContext {
     (void)field;
     (void)message;
   }
+  // Something tolerated that the user may want to know of (padding ignored
+  // in a file): reported at the field's value; never an error.
+  virtual void note(const BaseField& field, std::string message) {
+    (void)field;
+    (void)message;
+  }
   // A new collision back-end registered (by the core or a loaded plugin) for
   // targets of type `kind` under `name`, or null when there is none; and the
   // names registered for `kind`, for the message. Contexts without a registry

@@ -144,6 +144,11 @@ class Simulation::Context final : public InitContext {
       m_diagnostics.warning(field.location(), std::move(text));
     }
   }
+  void note(const BaseField& field, std::string message) override {
+    const auto* owner = dynamic_cast<const Component*>(&field.owner());
+    const std::string of = owner ? " of " + owner->typeName() + " '" + owner->name() + "'" : std::string();
+    m_diagnostics.note(field.location(), field.name() + of + ": " + message);
+  }
   std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) override {
     return m_simulation.m_registry->createBackend(kind, name);
   }

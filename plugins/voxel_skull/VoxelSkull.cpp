@@ -41,13 +41,17 @@ void VoxelSkull::init(InitContext& context) {
   // The collision back-end first: an unknown one is reported with any error of the volume.
   m_backend = createBackendAt<VoxelBackend>(context, d_backend, kTypeName);
   DensityVolume volume;
+  formats::VolumeReadNotes notes;
   try {
-    volume = d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : formats::readVolume(d_file.path());
+    volume =
+        d_file.isScheme() ? makePhantom(std::string(d_file.schemeBody())) : formats::readVolume(d_file.path(), &notes);
     if (d_voxelSize.value() > 0) volume = formats::resampleToVoxelSize(volume, d_voxelSize.value());
   } catch (const std::exception& e) {
     context.error(d_file, e.what());
     return;
   }
+  for (const std::string& note : notes.notes) context.note(d_file, note);
+  for (const std::string& warning : notes.warnings) context.warning(d_file, warning);
   if (!d_saveDrilled.value().empty()) {
     const std::string& name = d_saveDrilled.value();
     const bool meta = name.size() > 4 && (name.ends_with(".mha") || name.ends_with(".mhd"));

@@ -29,7 +29,12 @@ std::vector<int32_t> parseLabelList(const std::string& text) {
 }
 
 LabelledImageInput readLabelledImage(const std::filesystem::path& file, const std::vector<int32_t>& keep) {
-  const DensityVolume volume = formats::readVolume(file);
+  formats::VolumeReadNotes notes;
+  const DensityVolume volume = formats::readVolume(file, &notes);
+  // Resampling interpolates, and an interpolated label is a label of neither side.
+  if (!notes.warnings.empty())
+    throw formats::VolumeReadError(file, "a labelled image is read as stored, and this one cannot be: " +
+                                             notes.warnings.front());
   LabelledImageInput input;
   LabelledImage& image = input.image;
   image.dims = volume.dims();

@@ -10,9 +10,12 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <sstream>
 #include <set>
 #include <vector>
 
+#include "framework/core/Strings.h"
 #include "framework/formats/volume/DicomStructure.h"
 #include "framework/formats/volume/StoredVolume.h"
 #include "framework/formats/volume/VolumeReader.h"
@@ -61,10 +64,27 @@ DicomPixelAttributes checkStructure(const fs::path& file) {
   return checkDicomStructure(file, bytes);
 }
 
+// GDCM reads the file, or, after padding, only its data set (from memory:
+// GDCM takes the zeros for an element and fails). `stream` keeps the bytes.
+void openForGdcm(gdcm::Reader& reader, const fs::path& file, const DicomPixelAttributes& pixel,
+                 std::unique_ptr<std::istringstream>& stream) {
+  if (pixel.trailingZeros == 0) {
+    reader.SetFileName(file.c_str());
+    return;
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes(pixel.dataSetEnd, '\0');
+  in.read(bytes.data(), std::streamsize(bytes.size()));
+  if (uint64_t(in.gcount()) != pixel.dataSetEnd) throw VolumeReadError(file, "cannot be read again");
+  stream = std::make_unique<std::istringstream>(std::move(bytes));
+  reader.SetStream(*stream);
+}
+
 Slice readHeader(const fs::path& file) {
   const DicomPixelAttributes pixel = checkStructure(file);
   gdcm::Reader reader;
-  reader.SetFileName(file.c_str());
+  std::unique_ptr<std::istringstream> stream;
+  openForGdcm(reader, file, pixel, stream);
   if (!reader.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010), std::set<gdcm::Tag>{}))
     throw VolumeReadError(file, "GDCM cannot read it as DICOM (truncated, or not Part 10)");
   const gdcm::File& f = reader.GetFile();
@@ -106,9 +126,9 @@ Slice readHeader(const fs::path& file) {
 // endian) Pixel Data: the element is the last (7FE0,0010) tag in the last
 // expected + 4 KiB of the file, its value starting 8 (implicit VR) or 12
 // (explicit VR) bytes after the tag.
-void checkPixelDataLength(const fs::path& file, uint64_t expected) {
-  std::ifstream in(file, std::ios::binary | std::ios::ate);
-  const uint64_t size = uint64_t(in.tellg());
+void checkPixelDataLength(const fs::path& file, uint64_t dataSetEnd, uint64_t expected) {
+  std::ifstream in(file, std::ios::binary);
+  const uint64_t size = dataSetEnd;  // the file less any padding after its data set
   const uint64_t tail = std::min<uint64_t>(size, expected + 4096);
   std::string bytes(tail, '\0');
   in.seekg(std::streamoff(size - tail));
@@ -139,7 +159,8 @@ std::vector<uint8_t> readPixels(const Slice& slice, NumberType& type) {
                                             " (expected 8, 16 or 32)");
   }
   gdcm::Reader reader;
-  reader.SetFileName(slice.file.c_str());
+  std::unique_ptr<std::istringstream> stream;
+  openForGdcm(reader, slice.file, a, stream);
   if (!reader.Read()) throw VolumeReadError(slice.file, "GDCM cannot read its data set");
   const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
   const gdcm::Tag pixelTag(0x7fe0, 0x0010);
@@ -162,7 +183,7 @@ std::vector<uint8_t> readPixels(const Slice& slice, NumberType& type) {
   image.SetDataElement(ds.GetDataElement(pixelTag));
   const size_t expected = size_t(slice.dims[0]) * slice.dims[1] * slice.dims[2] * byteSize(type);
   // Uncompressed data cut short: GDCM reads what is there, warns and pads.
-  if (!ds.GetDataElement(pixelTag).GetSequenceOfFragments()) checkPixelDataLength(slice.file, expected);
+  if (!ds.GetDataElement(pixelTag).GetSequenceOfFragments()) checkPixelDataLength(slice.file, a.dataSetEnd, expected);
   std::vector<uint8_t> bytes(expected);
   if (!image.GetBuffer(reinterpret_cast<char*>(bytes.data()))) {
     const char* name = syntax.GetString();
@@ -172,13 +193,47 @@ std::vector<uint8_t> readPixels(const Slice& slice, NumberType& type) {
   return bytes;
 }
 
+// "7.02 mm": a slice position or step, to the micrometre.
+std::string millimetres(double mm) { return formatDouble(std::round(mm * 1000) / 1000) + " mm"; }
+
+// Steps closer to the series' step than this fraction are even (rounding of
+// the positions); up to kMostUnevenStep they are resampled; beyond, refused.
+constexpr double kEvenStep = 0.01, kMostUnevenStep = 0.1;
+
+// The samples of `slices` (stored order, slices sorted by position, `type`)
+// at `positions` along the normal: each interpolated linearly between the
+// stored slices around it, as 32-bit floats.
+std::vector<uint8_t> resampleEvenly(const std::vector<Slice>& slices, const std::vector<double>& positions,
+                                    const std::vector<uint8_t>& samples, NumberType type) {
+  const size_t perSlice = size_t(slices.front().dims[0]) * slices.front().dims[1];
+  const size_t bytesPerSlice = perSlice * byteSize(type);
+  std::vector<double> below, above;
+  std::vector<uint8_t> out(positions.size() * perSlice * sizeof(float));
+  size_t k = 0;
+  for (size_t j = 0; j < positions.size(); ++j) {
+    while (k + 2 < slices.size() && slices[k + 1].position < positions[j]) ++k;
+    const double span = slices[k + 1].position - slices[k].position;
+    const double w = std::clamp((positions[j] - slices[k].position) / span, 0.0, 1.0);
+    const auto sliceBytes = [&](size_t index) {
+      return std::string_view(reinterpret_cast<const char*>(samples.data()) + index * bytesPerSlice, bytesPerSlice);
+    };
+    below.clear();
+    above.clear();
+    decodeNumbers(sliceBytes(k), type, false, below);
+    decodeNumbers(sliceBytes(k + 1), type, false, above);
+    float* target = reinterpret_cast<float*>(out.data()) + j * perSlice;
+    for (size_t i = 0; i < perSlice; ++i) target[i] = float((1 - w) * below[i] + w * above[i]);
+  }
+  return out;
+}
+
 }  // namespace
 
 bool looksLikeDicom(std::span<const uint8_t> head) {
   return head.size() >= 132 && std::equal(head.begin() + 128, head.begin() + 132, "DICM");
 }
 
-DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
+DensityVolume readDicom(const fs::path& path, const std::string& seriesUid, VolumeReadNotes* notes) {
   // GDCM's own warnings go to stderr; what matters comes back as errors here.
   gdcm::Trace::SetWarning(false);
   gdcm::Trace::SetDebug(false);
@@ -241,6 +296,7 @@ DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
 
   StoredVolume stored;
   Vec3 sliceStep = normal;  // mm from one slice to the next
+  std::vector<double> evenPositions;  // mm along the normal: the even grid, when the stored slices are not
   if (slices.size() == 1) {
     stored.dims = {first.dims[0], first.dims[1], first.dims[2]};
     sliceStep = normal * (first.frameStep > 0 ? first.frameStep : 1.0);
@@ -251,6 +307,7 @@ DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
     std::vector<double> sorted = steps;
     std::sort(sorted.begin(), sorted.end());
     const double step = sorted[sorted.size() / 2];
+    double farthest = 0;  // mm, the step farthest from the series' step
     for (size_t k = 0; k < steps.size(); ++k) {
       const std::string pair = slices[k].file.filename().string() + " and " + slices[k + 1].file.filename().string();
       if (steps[k] < 1e-3 * step || steps[k] < 1e-6)
@@ -258,15 +315,33 @@ DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
       if (steps[k] > 1.5 * step)
         throw VolumeReadError(path, "a slice is missing between " + pair + " (" + std::to_string(steps[k]) +
                                         " mm apart, the series' step is " + std::to_string(step) + " mm)");
-      if (std::abs(steps[k] - step) > 0.01 * step)
+      if (std::abs(steps[k] - step) > kMostUnevenStep * step)
         throw VolumeReadError(path, "uneven slice steps: " + pair + " are " + std::to_string(steps[k]) +
-                                        " mm apart, the series' step is " + std::to_string(step) + " mm");
+                                        " mm apart, the series' step is " + std::to_string(step) +
+                                        " mm (steps within " + std::to_string(int(kMostUnevenStep * 100)) +
+                                        "% of it are resampled onto an even grid)");
+      farthest = std::max(farthest, std::abs(steps[k] - step));
     }
     stored.dims = {first.dims[0], first.dims[1], int64_t(slices.size())};
     // From the first slice to the last, the mean step. A tilted gantry makes
     // it leave the normal: the grid is sheared, and assembleVolume resamples
     // it onto an axis-aligned one (as it does an oblique plane).
     sliceStep = (slices.back().origin - slices.front().origin) / double(slices.size() - 1);
+    if (farthest > kEvenStep * step) {
+      // Uneven within the tolerance (positions rounded by the scanner): each
+      // slice of the even grid interpolated between the two stored slices
+      // around it, as 3D Slicer regularises such series.
+      evenPositions.resize(slices.size());
+      for (size_t k = 0; k < slices.size(); ++k)
+        evenPositions[k] = slices.front().position +
+                           double(k) * (slices.back().position - slices.front().position) / double(slices.size() - 1);
+      if (notes)
+        notes->warnings.push_back(
+            "uneven slice steps, " + millimetres(sorted.front()) + " to " + millimetres(sorted.back()) +
+            " (the series' median step " + millimetres(step) + "): resampled onto an even " +
+            millimetres((slices.back().position - slices.front().position) / double(slices.size() - 1)) +
+            " grid by linear interpolation between the stored slices");
+    }
   }
   checkDimensions(stored.dims, "the series' Rows, Columns and slices", path);
   stored.axes.col(0) = first.rowDirection * first.pixelSpacing.x();
@@ -288,6 +363,19 @@ DensityVolume readDicom(const fs::path& path, const std::string& seriesUid) {
     samples.insert(samples.end(), pixels.begin(), pixels.end());
   }
   stored.layout = {type, false};
+  if (!evenPositions.empty()) {
+    samples = resampleEvenly(slices, evenPositions, samples, type);
+    stored.layout = {NumberType::kFloat32, false};
+  }
+  size_t padded = 0;
+  const Slice* example = nullptr;
+  for (const Slice& slice : slices)
+    if (slice.pixel.trailingZeros > 0) ++padded, example = example ? example : &slice;
+  if (padded > 0 && notes)
+    notes->notes.push_back(std::to_string(padded) + " of " + std::to_string(slices.size()) +
+                           " files carry zeros after their data set, padding that is ignored (" +
+                           example->file.filename().string() + ": " + std::to_string(example->pixel.trailingZeros) +
+                           " bytes)");
   return assembleVolume(stored, samples, path);
 }
 

@@ -83,6 +83,12 @@ class Walker {
   uint64_t elements(uint64_t at, uint64_t end, bool explicitVr, int depth, uint16_t delimiter) {
     if (depth > kMaxDepth) fail(at, "sequences nested deeper than " + std::to_string(kMaxDepth));
     while (at < end) {
+      // Zeros to the end of the file after the top-level data set (a tag
+      // (0000,0000) cannot start an element there): padding, not an element.
+      if (depth == 0 && delimiter == 0 && allZeros(at, end)) {
+        m_pixel.trailingZeros = end - at;
+        return end;
+      }
       const Header h = header(at, explicitVr);
       if (h.group == 0xFFFE) {
         if (h.element == delimiter && delimiter != 0) {
@@ -98,6 +104,12 @@ class Walker {
     if (delimiter != 0) fail(at, "a sequence or item of undefined length is not closed");
     if (at != end) fail(at, "an element runs past its parent's end");
     return at;
+  }
+
+  bool allZeros(uint64_t from, uint64_t end) const {
+    if (from + 4 > end) return false;  // an element header needs more
+    return std::all_of(m_bytes.begin() + std::ptrdiff_t(from), m_bytes.begin() + std::ptrdiff_t(end),
+                       [](uint8_t b) { return b == 0; });
   }
 
   std::string text(const Header& h) const {
@@ -293,6 +305,7 @@ class Walker {
                    " (expected implicit or explicit VR little endian, JPEG, JPEG-LS, JPEG 2000 or RLE)");
     if (at >= m_bytes.size()) fail(at, "the file ends after its meta information, with no data set");
     elements(at, m_bytes.size(), syntax != "1.2.840.10008.1.2", 0, 0);
+    m_pixel.dataSetEnd = m_bytes.size() - m_pixel.trailingZeros;
     // Absent BitsStored and HighBit mean all the allocated bits.
     m_pixel.bitsAllocated = uint16_t(m_bitsAllocated);
     m_pixel.bitsStored = uint16_t(m_bitsStored > 0 ? m_bitsStored : m_bitsAllocated);

@@ -32,6 +32,11 @@ namespace trephine::formats {
 struct DicomPixelAttributes {
   uint16_t bitsAllocated = 0, bitsStored = 0, highBit = 0, pixelRepresentation = 0;
   std::string photometricInterpretation;  // trimmed: MONOCHROME1, MONOCHROME2, or empty (absent)
+  // Where the data set ends, and the zero bytes after it: some scanners pad
+  // a file to a block size (a GE MR series carries megabytes). Only zeros
+  // pass; anything else after the data set is a breach like any other.
+  uint64_t dataSetEnd = 0;
+  uint64_t trailingZeros = 0;
 };
 
 DicomPixelAttributes checkDicomStructure(const std::filesystem::path& file, std::span<const uint8_t> bytes);

@@ -58,18 +58,18 @@ DensityVolume readFormat(Format format, const ByteSource& source) {
 
 }  // namespace
 
-DensityVolume readVolume(const std::filesystem::path& file) {
+DensityVolume readVolume(const std::filesystem::path& file, VolumeReadNotes* notes) {
   // A DICOM series: a directory (of one series, or DIR?series=UID to pick one).
   const std::string text = file.string();
   if (const size_t query = text.find("?series="); query != std::string::npos)
-    return readDicom(text.substr(0, query), text.substr(query + 8));
+    return readDicom(text.substr(0, query), text.substr(query + 8), notes);
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) return readDicom(file);
+  if (std::filesystem::is_directory(file, ec)) return readDicom(file, "", notes);
   const FileByteSource source(file);
   if (source.size() == 0)
     throw VolumeReadError(file, "the file is empty (expected a MetaImage, NRRD or NIfTI volume)");
   const std::vector<uint8_t> head = source.readClipped(0, kDetectionBytes);
-  if (looksLikeDicom(head)) return readDicom(file);  // one slice, or a multi-frame image
+  if (looksLikeDicom(head)) return readDicom(file, "", notes);  // one slice, or a multi-frame image
   if (!isGzip(head)) {
     const Format format = formatFromContent(head);
     return readFormat(format != Format::kUnknown ? format : formatFromExtension(file), source);

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "framework/data/DensityVolume.h"
 #include "framework/formats/FileReadError.h"
@@ -27,8 +28,16 @@ namespace trephine::formats {
 // A file that cannot be read as a volume.
 using VolumeReadError = FileReadError;
 
+// What a reader tolerated in a file it read: notes (padding ignored) and
+// warnings (data changed to fit, such as a DICOM series resampled onto even
+// slice steps), each a sentence naming the file.
+struct VolumeReadNotes {
+  std::vector<std::string> notes, warnings;
+};
+
 // Reads a volume, detecting the format from the file content (falling back
-// to the extension). Throws VolumeReadError for anything it cannot read.
-DensityVolume readVolume(const std::filesystem::path& file);
+// to the extension). Throws VolumeReadError for anything it cannot read;
+// `notes`, when given, gets what was tolerated.
+DensityVolume readVolume(const std::filesystem::path& file, VolumeReadNotes* notes = nullptr);
 
 }  // namespace trephine::formats

@@ -10,6 +10,7 @@
 #include <gdcmUIDGenerator.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -399,6 +400,135 @@ TEST(DicomReaderTest, AVoxelSkullLoadsASeriesFromItsDirectory) {
   Diagnostics unknown;
   EXPECT_FALSE(test::loadScene(scene((dir.path() / "ct").string() + "/?series=9.9"), unknown));
   EXPECT_NE(test::messages(unknown).find("no series 9.9 here"), std::string::npos) << test::messages(unknown);
+}
+
+// Slices whose positions a scanner rounded (steps within 10% of the series'
+// step): resampled onto even steps, each even slice interpolated linearly
+// between the stored slices around it, with a warning giving the spread;
+// beyond 10%, refused. Written here with GDCM at positions 0, 7.07, 14.04,
+// 21.16, 28.06, 35.11 mm; the value of slice k is 100 c + 10 r + k.
+TEST(DicomReaderTest, UnevenStepsWithinTenPercentAreResampledWithAWarningAndRefusedBeyond) {
+  test::TempDir dir;
+  const std::vector<double> positions{0, 7.07, 14.04, 21.16, 28.06, 35.11};
+  const auto write = [&](const std::filesystem::path& folder, const std::vector<double>& at) {
+    std::filesystem::create_directories(folder);
+    for (size_t k = 0; k < at.size(); ++k) {
+      SliceSpec s;
+      s.origin = Vec3(0, 0, at[k]);
+      s.value = [k](int c, int r) { return int16_t(100 * c + 10 * r + int(k)); };
+      writeSlice(folder / ("img" + std::to_string(k) + ".dcm"), s);
+    }
+  };
+  write(dir.path() / "uneven", positions);
+  formats::VolumeReadNotes notes;
+  const DensityVolume v = formats::readVolume(dir.path() / "uneven", &notes);
+  ASSERT_EQ(notes.warnings.size(), 1u);
+  EXPECT_NE(notes.warnings[0].find("uneven slice steps, 6.9 mm to 7.12 mm (the series' median step 7.05 mm): "
+                                   "resampled onto an even 7.022 mm grid"),
+            std::string::npos)
+      << notes.warnings[0];
+  ASSERT_EQ(v.dims()[2], 6);
+  EXPECT_NEAR(v.spacing().z(), 35.11 / 5, 1e-9);
+  // At even position z_j = j 35.11 / 5, between stored slices k and k + 1,
+  // the value is k + (z_j - z_k) / (z_k+1 - z_k) (linear in the position).
+  for (int j = 0; j < 6; ++j) {
+    const double z = j * 35.11 / 5;
+    size_t k = 0;
+    while (k + 2 < positions.size() && positions[k + 1] < z) ++k;
+    const double expected = double(k) + (z - positions[k]) / (positions[k + 1] - positions[k]);
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 6; ++c)
+        ASSERT_NEAR(v.density(c, r, j), 100 * c + 10 * r + expected - 1024, v.encoding().scale / 2 + 1e-9)
+            << c << " " << r << " " << j << " (interpolated values are coded on 16 bits)";
+  }
+  // Even to 1%: read as it is, no warning.
+  write(dir.path() / "rounded", {0, 7.02, 14.01, 21.03, 28.0});
+  formats::VolumeReadNotes none;
+  EXPECT_EQ(formats::readVolume(dir.path() / "rounded", &none).dims()[2], 5);
+  EXPECT_TRUE(none.warnings.empty());
+  EXPECT_TRUE(none.notes.empty());
+  // A step 12% off the series' step is not a rounding: refused, naming the pair.
+  write(dir.path() / "far", {0, 7, 14, 21.84, 28.84, 35.84});
+  EXPECT_NE(readError(dir.path() / "far").find("uneven slice steps: img2.dcm and img3.dcm are 7.84"),
+            std::string::npos)
+      << readError(dir.path() / "far");
+}
+
+// Zeros after a file's data set (padding some scanners write) are ignored
+// with a note: the volume is the one without them. Anything else there is an
+// error at its byte.
+TEST(DicomReaderTest, ZerosAfterTheDataSetArePaddingAndAnythingElseThereIsAnError) {
+  test::TempDir dir;
+  writeSeries(dir.path() / "plain", 3, 1.0);
+  writeSeries(dir.path() / "padded", 3, 1.0);
+  const auto padded = dir.path() / "padded" / "img96.dcm";
+  const auto size = std::filesystem::file_size(padded);
+  std::ofstream(padded, std::ios::binary | std::ios::app) << std::string(2'500'000, '\0');
+  formats::VolumeReadNotes notes;
+  const DensityVolume v = formats::readVolume(dir.path() / "padded", &notes);
+  const DensityVolume plain = formats::readVolume(dir.path() / "plain");
+  ASSERT_EQ(v.dims(), plain.dims());
+  for (size_t n = 0; n < v.voxelCount(); ++n) ASSERT_EQ(v.code(n), plain.code(n)) << n;
+  ASSERT_EQ(notes.notes.size(), 1u);
+  EXPECT_EQ(notes.notes[0], "1 of 3 files carry zeros after their data set, padding that is ignored (img96.dcm: "
+                            "2500000 bytes)");
+  EXPECT_TRUE(notes.warnings.empty());
+  // One byte that is not zero among them: not padding.
+  std::filesystem::resize_file(padded, size);
+  std::ofstream(padded, std::ios::binary | std::ios::app) << std::string(1000, '\0') + "\x01" + std::string(99, '\0');
+  EXPECT_NE(readError(dir.path() / "padded").find("img96.dcm: not a well-formed DICOM file at byte " +
+                                                  std::to_string(size)),
+            std::string::npos)
+      << readError(dir.path() / "padded");
+}
+
+// A series as a scanner writes it, from an independent writer (pydicom,
+// Debian's python3-pydicom: tests/framework/formats/data/write_scanner_dicom.py):
+// a padded file and rounded positions, read with a note and a warning, and
+// touched by a skull that loads it.
+TEST(DicomReaderTest, ASeriesWrittenByPydicomWithPaddingAndUnevenStepsLoads) {
+  if (std::system("/usr/bin/python3 -c 'import pydicom' 2>/dev/null") != 0)
+    GTEST_SKIP() << "pydicom is not installed (Debian: python3-pydicom; tools/setup installs it)";
+  test::TempDir dir;
+  const std::string command = "/usr/bin/python3 " +
+                              (test::sourceDir() / "tests/framework/formats/data/write_scanner_dicom.py").string() +
+                              " " + (dir.path() / "mr").string();
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  formats::VolumeReadNotes notes;
+  const DensityVolume v = formats::readVolume(dir.path() / "mr", &notes);
+  EXPECT_EQ(v.dims(), (std::array<int32_t, 3>{8, 5, 6}));
+  EXPECT_NEAR(v.spacing().x(), 0.8, 1e-9) << "PixelSpacing is rows then columns";
+  EXPECT_NEAR(v.spacing().y(), 0.9, 1e-9);
+  EXPECT_NEAR(v.spacing().z(), 35.11 / 5, 1e-9);
+  EXPECT_NEAR((v.origin() - Vec3(-5, 12, 0)).norm(), 0, 1e-6);
+  // Interpolated densities are coded on 16 bits over their range: to half a step.
+  EXPECT_NEAR(v.density(3, 2, 0), 320, v.encoding().scale / 2 + 1e-9);
+  EXPECT_NEAR(v.density(3, 2, 5), 325, v.encoding().scale / 2 + 1e-9) << "the first and last slices stay";
+  ASSERT_EQ(notes.notes.size(), 1u);
+  EXPECT_NE(notes.notes[0].find("IM0004: 65536 bytes"), std::string::npos) << notes.notes[0];
+  ASSERT_EQ(notes.warnings.size(), 1u);
+  // A skull on it: a note and a warning at its file attribute; it loads, and
+  // a 0.4 mm probe pushed along -x into its face at x = 0.6 mm is stopped there.
+  Diagnostics d;
+  auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <VoxelSkull name="skull" file=")" + (dir.path() / "mr").string() + R"(" isovalue="250"/>
+  <ScriptedDevice name="device" record="false" path="waypoints" waypoints="0 4 13.8 17  0.4 -1 13.8 17  0.6 -1 13.8 17"/>
+  <PointshellTool name="probe" radius="0.4" angleStep="15" device="@device"/>
+  <GodObjectProxy name="proxy" tool="@probe" target="@skull"/>
+  <ForceFeedback name="force" proxy="@proxy" stiffness="1" damping="0" maxForce="3"/>
+</Node>)", d);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  EXPECT_GT(simulation->hapticLog().stats().contactFrames, 100u);
+  EXPECT_GT(simulation->hapticLog().stats().forceMax, 1.0) << "pressed 1.4 mm past the face at 1 N/mm";
+  EXPECT_EQ(simulation->hapticLog().stats().proxyInsideFrames, 0u);
+  EXPECT_NE(test::messages(d).find("inline.xml:4:"), std::string::npos) << test::messages(d);
+  EXPECT_NE(test::messages(d).find("note: file of VoxelSkull 'skull': 1 of 6 files carry zeros"), std::string::npos)
+      << test::messages(d);
+  EXPECT_NE(test::messages(d).find("warning: file of VoxelSkull 'skull': uneven slice steps"), std::string::npos)
+      << test::messages(d);
 }
 
 }  // namespace
