@@ -82,13 +82,26 @@ size_t EmbreeEngine::broadPhase(const Pose& X_WT, std::span<const ShellPoint> sh
 SweepResult EmbreeEngine::sweep(const SweepQuery& query, const SphereQueryScale& scale) const {
   const State& s = *m_state;
   const ReservedShell* reserved = s.shells.find(query.shell);
-  return s.scene.sweepSphere(query, reserved ? reserved->radius : query.leadingRadius, scale);
+  // A sphere shell sweeps itself; any other, its leading sphere (the burr of a capsule).
+  return s.scene.sweepSphere(query, reserved && reserved->sphere ? reserved->radius : query.leadingRadius, scale);
 }
 
 bool EmbreeEngine::overlaps(const Pose& X_WT, std::span<const ShellPoint> shell, const SphereQueryScale& scale) const {
   const State& s = *m_state;
   const ReservedShell* reserved = s.shells.find(shell);
-  return reserved && s.scene.overlapsSphere(X_WT.position, reserved->radius, scale);
+  if (!reserved) return false;
+  if (reserved->sphere) return s.scene.overlapsSphere(X_WT.position, reserved->radius, scale);
+  // Any other shell, point by point (as its contact): a point inside the
+  // solid by more than the inset. The sphere through its farthest point (a
+  // capsule's shaft end) would overlap whatever lies within the shaft's length.
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  for (const ShellPoint& point : shell) {
+    const Vec3 p = R * point.position + X_WT.position;
+    Vec3 closest = Vec3::Zero();
+    double d = 0;
+    if (s.scene.inside(p) && !(scale.inset > 0 && s.scene.closest(p, scale.inset, closest, d))) return true;
+  }
+  return false;
 }
 
 std::optional<SurfaceHit> EmbreeEngine::raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const {

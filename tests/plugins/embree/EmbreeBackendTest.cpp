@@ -51,5 +51,48 @@ TEST(EmbreeBackendTest, AScenePicksItByTheBackendFieldAndTheThesisLawIsRefused) 
       << test::messages(d);
 }
 
+// A tool whose shell is not a sphere (a capsule: the burr on its shaft)
+// is taken point by point: held above the bone it overlaps nothing (before,
+// the sphere through its farthest point, the shaft's end, overlapped the
+// skull on every frame), and pressed 1 mm and slid it renders what the
+// native back-end renders.
+TEST(EmbreeBackendTest, ACapsuleIsTakenPointByPointAndRendersAsTheNativeBackEnd) {
+  const auto summaryOf = [](const std::string& backend, const std::string& path) {
+    test::TempDir dir;
+    dir.write("scene.xml", R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="embree"/>
+  <VoxelSkull name="skull" file="phantom:skull?voxel=0.7" backend=")" + backend + R"("/>
+  <ScriptedDevice name="device" target="@skull" tipOffset="2" record="false" direction="0 0 -1" )" + path + R"(/>
+  <CapsuleTool name="burr" radius="2" shaftLength="40" device="@device"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@skull"/>
+  <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" maxForce="3.3"/>
+</Node>)");
+    std::string output;
+    EXPECT_EQ(test::runProgram({"run", (dir / "scene.xml").string(), "--quiet", "--out", (dir / "run").string()},
+                               &output, "env ASAN_OPTIONS=detect_leaks=0:abort_on_error=1"),
+              0)
+        << output;
+    return test::readFile(dir / "run/summary.json");
+  };
+  const auto number = [](const std::string& json, const std::string& key) {
+    const size_t at = json.find("\"" + key + "\"");
+    EXPECT_NE(at, std::string::npos) << key;
+    return std::stod(json.substr(json.find(':', at) + 1));
+  };
+  const std::string above = summaryOf("embree", R"(path="approach-press-slide" standoff="10" depth="-8")");
+  EXPECT_NE(above.find("\"proxy_inside_frames\": 0"), std::string::npos) << above;
+  EXPECT_NE(above.find("\"contact_frames\": 0"), std::string::npos) << above;
+  const std::string press = R"(path="approach-press-slide" standoff="10" depth="1" slideDistance="10")";
+  const std::string embree = summaryOf("embree", press), native = summaryOf("native", press);
+  EXPECT_NE(embree.find("\"proxy_inside_frames\": 0"), std::string::npos) << embree;
+  EXPECT_GT(number(embree, "contact_frames"), 500);
+  EXPECT_NEAR(number(embree, "contact_frames"), number(native, "contact_frames"), 20);
+  // The spring of a 1 mm press at 2 N/mm, on either back-end.
+  EXPECT_NEAR(number(embree.substr(embree.find("\"force_N\"")), "max"), 2.0, 0.05) << embree;
+  EXPECT_NEAR(number(native.substr(native.find("\"force_N\"")), "max"), 2.0, 0.05) << native;
+}
+
 }  // namespace
 }  // namespace trephine::embree
