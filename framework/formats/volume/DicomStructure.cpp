@@ -306,6 +306,9 @@ class Walker {
     if (at >= m_bytes.size()) fail(at, "the file ends after its meta information, with no data set");
     elements(at, m_bytes.size(), syntax != "1.2.840.10008.1.2", 0, 0);
     m_pixel.dataSetEnd = m_bytes.size() - m_pixel.trailingZeros;
+    // Zeros from the meta information on are not a padded data set but none
+    // (and GDCM asserts on a file that ends after its meta information).
+    if (m_pixel.dataSetEnd <= at) fail(at, "only zeros after the meta information, no data set");
     // Absent BitsStored and HighBit mean all the allocated bits.
     m_pixel.bitsAllocated = uint16_t(m_bitsAllocated);
     m_pixel.bitsStored = uint16_t(m_bitsStored > 0 ? m_bitsStored : m_bitsAllocated);

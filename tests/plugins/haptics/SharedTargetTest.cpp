@@ -161,7 +161,8 @@ TEST_P(SharedTargetTest, TwoBurrsOnOneSkullCutTheSameBoneInEitherOrder) {
   const Outcome b = run(skullScene(GetParam(), false), "drilled.mha", "VoxelSkull", "voxels_removed");
   EXPECT_GT(pressingRows(a.left), 200);
   EXPECT_GT(pressingRows(a.right), 200);
-  EXPECT_GT(a.targetFigure, 20) << "both burrs drill";
+  // 35 voxels on the native back-end, 20 on the mesh ones (which see a smoother surface).
+  EXPECT_GT(a.targetFigure, 10) << "both burrs drill";
   EXPECT_EQ(a.targetFigure, b.targetFigure);
   EXPECT_EQ(a.left, b.left) << "the left burr's samples depend on the scene's order";
   EXPECT_EQ(a.right, b.right) << "the right burr's samples depend on the scene's order";
