@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -99,6 +101,9 @@ class Walker {
       }
       if (explicitVr) checkTypedVr(h, at);
       if (depth == 0) checkImageAttribute(h, at);
+      if (h.group == 0x0028 && h.element == 0x1053) checkRescaleSlope(h, at);
+      if (depth == 0 && h.group == 0x0028 && h.element == 0x1052) m_interceptAt = at;
+      if (depth == 0 && h.group == 0x0028 && h.element == 0x1053) m_hasSlope = true;
       at = value(h, at, end, explicitVr, depth);
     }
     if (delimiter != 0) fail(at, "a sequence or item of undefined length is not closed");
@@ -138,6 +143,21 @@ class Walker {
       if (h.group == t.group && h.element == t.element && h.vr != t.vr)
         fail(at, "(" + hex(h.group) + "," + hex(h.element) + ") has value representation " + h.vr + " (expected " +
                      t.vr + ")");
+  }
+
+  // RescaleSlope (0028,1053), at any depth (an enhanced image's functional
+  // groups carry it too): GDCM asserts that the slope it reads is not zero,
+  // and reads text that is not a number as zero.
+  void checkRescaleSlope(const Header& h, uint64_t at) const {
+    if (h.length == kUndefined || h.value + h.length > m_bytes.size()) return;  // the walk reports it
+    std::string first = text(h);
+    first = first.substr(0, first.find('\\'));
+    const size_t start = first.find_first_not_of(' ');
+    const char* begin = first.c_str() + (start == std::string::npos ? first.size() : start);
+    char* end = nullptr;
+    const double slope = std::strtod(begin, &end);
+    if (end == begin || !(slope != 0))
+      fail(at, "RescaleSlope (0028,1053) is \"" + first.substr(0, 32) + "\" (expected a number other than 0)");
   }
 
   // The image storage classes read (CT, MR and their enhanced forms,
@@ -306,6 +326,9 @@ class Walker {
     if (at >= m_bytes.size()) fail(at, "the file ends after its meta information, with no data set");
     elements(at, m_bytes.size(), syntax != "1.2.840.10008.1.2", 0, 0);
     m_pixel.dataSetEnd = m_bytes.size() - m_pixel.trailingZeros;
+    // GDCM reads both when either is there, and takes an absent slope for 0.
+    if (m_interceptAt && !m_hasSlope)
+      fail(*m_interceptAt, "RescaleIntercept (0028,1052) without RescaleSlope (0028,1053)");
     // Zeros from the meta information on are not a padded data set but none
     // (and GDCM asserts on a file that ends after its meta information).
     if (m_pixel.dataSetEnd <= at) fail(at, "only zeros after the meta information, no data set");
@@ -320,6 +343,8 @@ class Walker {
   const std::filesystem::path& m_file;
   std::span<const uint8_t> m_bytes;
   int m_bitsAllocated = 0, m_bitsStored = 0, m_highBit = -1;
+  std::optional<uint64_t> m_interceptAt;  // where a top-level RescaleIntercept is
+  bool m_hasSlope = false;
   DicomPixelAttributes m_pixel;
 };
 
