@@ -163,8 +163,10 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
   if (hasExact) {
     report.reference = "the exact shape of the phantom";
   } else {
+    std::string why;
+    std::getline(std::ifstream(out / kNoExactShapeFile), why);
     report.reference = "setting " + std::to_string(referenceIndex + 1) + " (" + referenceSetting.label() +
-                       "): no exact shape for this target";
+                       "): no exact shape for this target" + (why.empty() ? std::string() : ": " + why);
     try {
       reference = readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
     } catch (const std::exception& e) {

@@ -101,25 +101,33 @@ std::vector<StudyPose> posesFromRun(const Simulation& simulation, int perKind) {
   return poses;
 }
 
-void addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const ShellTool& tool) {
-  const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
-  if (!source) return;
-  const LevelSet shape = source->exactShape();
-  // The exact contact is that of a sphere: only for a spherical tool.
-  if (!shape || tool.boundingRadius() != tool.leadingRadius()) return;
-  for (StudyPose& pose : poses) {
-    const ExactSphereContact exact = exactSphereContact(shape, pose.position, tool.leadingRadius());
-    pose.exactPenetration = std::max(0.0, exact.penetration);
-    pose.exactNormal = exact.normal;
-  }
-}
-
 std::string number(double value) {
   std::ostringstream s;
   s.precision(9);
   s << value;
   return s.str();
 }
+
+// The exact contact at every pose, or why there is none.
+std::string addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const ShellTool& tool) {
+  const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
+  if (!source) return targetComponent.path() + " (" + targetComponent.typeName() + ") gives no exact shape";
+  const LevelSet shape = source->exactShape();
+  if (!shape)
+    return targetComponent.path() + " is read from a file (a scan or a mesh), which has no closed form; a phantom "
+           "(file=\"phantom:...\") has one";
+  // The exact contact is that of a sphere: only for a spherical tool.
+  if (tool.boundingRadius() != tool.leadingRadius())
+    return "the tool is not a sphere (its bounding radius " + number(tool.boundingRadius()) + " mm, its burr's " +
+           number(tool.leadingRadius()) + " mm): the exact contact is a sphere's";
+  for (StudyPose& pose : poses) {
+    const ExactSphereContact exact = exactSphereContact(shape, pose.position, tool.leadingRadius());
+    pose.exactPenetration = std::max(0.0, exact.penetration);
+    pose.exactNormal = exact.normal;
+  }
+  return "";
+}
+
 
 void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses) {
   std::ostringstream s;
@@ -237,8 +245,15 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
       if (poses.empty()) throw SettingError("the reference run has no frame in contact: there are no poses to compare");
       auto probed = load(options, setting);
       auto [target, component] = findTarget(*probed, options, setting);
-      addExactContacts(poses, *component, findTool(*probed));
+      const std::string noExactShape = addExactContacts(poses, *component, findTool(*probed));
       writePoses(posesFile, poses);
+      // Why the reference is a setting, for study.md (none: the exact shape).
+      std::filesystem::remove(options.out / kNoExactShapeFile, ec);
+      if (!noExactShape.empty()) {
+        AtomicFile why(options.out / kNoExactShapeFile);
+        why.write(noExactShape + "\n");
+        why.commit();
+      }
       for (const StudyPose& p : poses) positions.push_back(p.position);
       probe(*probed, options, setting, positions, directory / kProbeFile);
     } else {

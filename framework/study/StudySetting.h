@@ -29,6 +29,8 @@ struct StudyOptions {
 
 inline constexpr const char* kPosesFile = "poses.csv";
 inline constexpr const char* kProbeFile = "probe.csv";
+// Written by the reference's run when the target has no exact shape: why.
+inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
 inline constexpr const char* kResultFile = "result.csv";
 inline constexpr const char* kErrorFile = "error.txt";
 

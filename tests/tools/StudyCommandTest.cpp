@@ -151,6 +151,28 @@ TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
   EXPECT_NE(rows[1].at("status").find("nonesuch"), std::string::npos);
 }
 
+// Without an exact contact the reference is a setting, and the study says
+// why: here the tool, a burr on a shaft, is not a sphere.
+TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
+  test::TempDir dir("trephine-study");
+  std::string capsule = kScene;
+  capsule.replace(capsule.find("<PointshellTool"), capsule.find("/>", capsule.find("<PointshellTool")) + 2 -
+                                                      capsule.find("<PointshellTool"),
+                  R"(<CapsuleTool name="burr" radius="2.5" shaftLength="10" device="@device"/>)");
+  const auto scene = dir.write("capsule.xml", capsule);
+  std::string out;
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointSpacing=0.4,0.6", "--out",
+                        (dir / "study").string(), "--poses", "20"},
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("reference: setting 1 (pointSpacing=0.4): no exact shape for this target: the tool is not a "
+                     "sphere (its bounding radius"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(test::readFile(dir / "study/study.md").find("the tool is not a sphere"), std::string::npos);
+}
+
 TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
   test::TempDir dir("trephine-study");
   const auto scene = dir.write("halfspace.xml", kScene);
