@@ -19,6 +19,11 @@ struct HapticFrame {
   double rawPenetration = 0;  // mm, depth measured by the detection before the proxy rectified it
   int32_t primitives = 0;     // colliding primitives (voxels, tetrahedra) this frame
   int32_t removed = 0;        // primitives removed this frame (drilled voxels)
+  // The target this frame's contact is with (its identity, for a study that
+  // probes one target of several; not written to the trace); null when the
+  // renderer does not say.
+  const void* target = nullptr;
+  const void* tool = nullptr;  // and the tool that touches it (the same)
 };
 
 }  // namespace trephine

@@ -67,15 +67,33 @@ std::pair<ShellContactTarget*, Component*> findTarget(const Simulation& simulati
   return {dynamic_cast<ShellContactTarget*>(targets.front()), targets.front()};
 }
 
-const ShellTool& findTool(const Simulation& simulation) {
+// The tool at `path`, else the scene's only one.
+const ShellTool& findTool(const Simulation& simulation, const std::string& path = "") {
+  if (!path.empty()) {
+    const auto* tool = dynamic_cast<const ShellTool*>(simulation.scene().findComponent(path));
+    if (!tool) throw SettingError(path + ": no pointshell tool there");
+    return *tool;
+  }
   const ShellTool* tool = nullptr;
   for (Component* c : simulation.scene().components())
     if (auto* t = dynamic_cast<const ShellTool*>(c)) {
-      if (tool) throw SettingError("the scene has several pointshell tools; a study probes a scene with one");
+      if (tool)
+        throw SettingError("the scene has several pointshell tools and none touched the target in the reference run");
       tool = t;
     }
   if (!tool) throw SettingError("the scene has no pointshell tool to probe the target with");
   return *tool;
+}
+
+// The path of the tool the run's frames in contact with `target` used (the
+// first such frame's), or "" when the renderer does not say.
+std::string toolTouching(const Simulation& simulation, const ShellContactTarget* target) {
+  const HapticFrameLog& log = simulation.hapticLog();
+  for (size_t i = 0; i < log.size(); ++i)
+    if (log[i].contacts > 0 && log[i].target == target && log[i].tool)
+      for (Component* c : simulation.scene().components())
+        if (static_cast<const void*>(dynamic_cast<const ShellTool*>(c)) == log[i].tool) return c->path();
+  return "";
 }
 
 // The rate group that runs the component writing the haptic log: the haptic loop.
@@ -86,11 +104,13 @@ const RateGroup* hapticGroup(const Simulation& simulation) {
   return nullptr;
 }
 
-std::vector<StudyPose> posesFromRun(const Simulation& simulation, int perKind) {
+// Poses from the frames in contact with `target` (after a tool change the
+// proxy touches another target: its poses say nothing of this one).
+std::vector<StudyPose> posesFromRun(const Simulation& simulation, int perKind, const ShellContactTarget* target) {
   const HapticFrameLog& log = simulation.hapticLog();
   std::vector<size_t> contactFrames;
   for (size_t i = 0; i < log.size(); ++i)
-    if (log[i].contacts > 0) contactFrames.push_back(i);
+    if (log[i].contacts > 0 && (log[i].target == nullptr || log[i].target == target)) contactFrames.push_back(i);
   std::vector<StudyPose> poses;
   const size_t count = std::min<size_t>(contactFrames.size(), static_cast<size_t>(perKind));
   for (const char* kind : {"proxy", "device"})
@@ -175,7 +195,9 @@ std::vector<Vec3> readPositions(const std::filesystem::path& file) {
 void probe(Simulation& simulation, const StudyOptions& options, const StudySetting& setting,
            const std::vector<Vec3>& positions, const std::filesystem::path& file) {
   auto [target, component] = findTarget(simulation, options, setting);
-  const ShellTool& tool = findTool(simulation);
+  std::string toolPath;
+  std::getline(std::ifstream(options.out / kProbeToolFile), toolPath);
+  const ShellTool& tool = findTool(simulation, toolPath);
   target->beginFrame(0.0);
   using Clock = std::chrono::steady_clock;
   const auto microseconds = [](Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); };
@@ -241,11 +263,21 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
     if (isReference) {
       // The reference's run gives the poses.
       simulation->run();
-      std::vector<StudyPose> poses = posesFromRun(*simulation, options.posesPerKind);
-      if (poses.empty()) throw SettingError("the reference run has no frame in contact: there are no poses to compare");
+      const auto [ranTarget, ranComponent] = findTarget(*simulation, options, setting);
+      std::vector<StudyPose> poses = posesFromRun(*simulation, options.posesPerKind, ranTarget);
+      if (poses.empty())
+        throw SettingError("the reference run has no frame in contact with " + ranComponent->path() +
+                           ": there are no poses to compare");
+      const std::string toolPath = toolTouching(*simulation, ranTarget);
+      std::filesystem::remove(options.out / kProbeToolFile, ec);
+      if (!toolPath.empty()) {
+        AtomicFile tool(options.out / kProbeToolFile);
+        tool.write(toolPath + "\n");
+        tool.commit();
+      }
       auto probed = load(options, setting);
       auto [target, component] = findTarget(*probed, options, setting);
-      const std::string noExactShape = addExactContacts(poses, *component, findTool(*probed));
+      const std::string noExactShape = addExactContacts(poses, *component, findTool(*probed, toolPath));
       writePoses(posesFile, poses);
       // Why the reference is a setting, for study.md (none: the exact shape).
       std::filesystem::remove(options.out / kNoExactShapeFile, ec);

@@ -31,6 +31,9 @@ inline constexpr const char* kPosesFile = "poses.csv";
 inline constexpr const char* kProbeFile = "probe.csv";
 // Written by the reference's run when the target has no exact shape: why.
 inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
+// Written by the reference's run: the path of the tool it touched the target
+// with, which every setting probes with (a scene may have several).
+inline constexpr const char* kProbeToolFile = "probe_tool.txt";
 inline constexpr const char* kResultFile = "result.csv";
 inline constexpr const char* kErrorFile = "error.txt";
 

@@ -108,6 +108,8 @@ void ForceFeedback::tick(const TickContext& context) {
   frame.rawPenetration = s.rawPenetration;
   frame.primitives = s.primitives;
   frame.removed = s.removed;
+  frame.target = &proxy.target();
+  frame.tool = &proxy.tool();
   if (m_log) m_log->record(frame);
 
   Sample sample;

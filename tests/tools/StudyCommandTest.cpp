@@ -173,6 +173,48 @@ TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
   EXPECT_NE(test::readFile(dir / "study/study.md").find("the tool is not a sphere"), std::string::npos);
 }
 
+// A procedure with a tool change: the burr presses a half-space of bone,
+// then the proxy moves on to a tetrahedral cube that lies inside that
+// half-space's bone, 40 mm down (as a brain lies under the skull it was
+// drilled through). The study of the bone takes its poses from the first
+// phase alone: probed at the second phase's poses, deep in the half-space,
+// the bone would be compared where no tool ever touched it.
+TEST(StudyCommandTest, AfterAToolChangeTheStudiedTargetIsProbedOnlyWhereTheToolTouchedIt) {
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("procedure.xml", R"(<Node name="root" units="mm">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <Node name="patient">
+    <VoxelSkull name="skull" file="phantom:halfspace?voxel=1.0&amp;size=40" isovalue="500"/>
+    <TetraBrain name="brain" file="phantom:cube?cells=6&amp;size=20" translation="0 0 -40"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="waypoints" rate="1000" record="false"
+                    waypoints="0 0 0 5  0.4 0 0 1.5  0.8 3 0 1.5  1.0 3 0 5  1.1 0 0 -25  1.5 0 0 -28.5  2 2 0 -28.5"/>
+    <PointshellTool name="burr" radius="2.5" pointCount="466" device="@device"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <ToolChange name="change" time="1.0" rate="1000"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull" toolChange="@change" nextTool="@probe"
+                    nextTarget="@/patient/brain" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" damping="0.002" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)");
+  std::string out;
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", kVoxels, "--target", "/patient/skull", "--out",
+                        (dir / "study").string(), "--poses", "40"},
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("reference: the exact shape of the phantom"), std::string::npos) << out;
+  for (const auto& row : readStudy(dir / "study/study.csv")) {
+    EXPECT_EQ(row.at("status"), "ok");
+    // The voxel method's own error (as on the tilted plane above), not the
+    // 20 mm and more of a pose in the cube's phase.
+    EXPECT_LT(number(row, "pen_err_max_mm"), 0.2) << row.at("label");
+  }
+}
+
 TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
   test::TempDir dir("trephine-study");
   const auto scene = dir.write("halfspace.xml", kScene);

@@ -280,7 +280,7 @@ int studyCommand(const Arguments& a) {
     return kSceneError;
   }
   if (rank.size == 1)
-    for (const char* stale : {kPosesFile, kNoExactShapeFile, "study.csv", "study.md", "pareto.png"})
+    for (const char* stale : {kPosesFile, kNoExactShapeFile, kProbeToolFile, "study.csv", "study.md", "pareto.png"})
       std::filesystem::remove(options.out / stale, ec);
 
   const int count = static_cast<int>(request->settings.size());
