@@ -121,7 +121,10 @@ void ForceFeedback::tick(const TickContext& context) {
   sample.values[k++] = frame.rawPenetration;
   sample.values[k++] = s.points;
   sample.values[k++] = s.primitives;
-  sample.values[k++] = proxy.tool().boundingRadius();  // mm: the tool in hand (it changes with a ToolChange)
+  // mm: the burr of the tool in hand (it changes with a ToolChange), which
+  // the viewer draws and whose surface the contact point is on; a capsule's
+  // bounding radius is its shaft's length.
+  sample.values[k++] = proxy.tool().leadingRadius();
   m_samples->publish(sample);
 }
 

@@ -262,5 +262,35 @@ TEST(VtkExporterTest, AFileThatCannotBeWrittenIsCountedAndReported) {
   EXPECT_TRUE(std::filesystem::exists(dir / "run" / "vtk" / "tool_00014.vtp")) << "the frames that fit were written";
 }
 
+// A burr on a shaft (a 2 mm burr, 40 mm of shaft) is drawn with its burr's
+// radius, and its contact point is on the burr: before, the radius written
+// was the tool's bounding radius, the shaft's length, and the viewer drew a
+// 40 mm ball.
+TEST(VtkExporterTest, ACapsulesBurrIsDrawnWithItsOwnRadius) {
+  test::TempDir dir;
+  std::string xml = scene(kExporter);
+  const size_t at = xml.find("<PointshellTool");
+  xml.replace(at, xml.find("/>", at) + 2 - at,
+              R"(<CapsuleTool name="probe" radius="2" shaftLength="40" device="@device"/>)");
+  xml.replace(xml.find(R"(tipOffset="2.5")"), 15, R"(tipOffset="2")");
+  runInto(dir, xml, "1.0");
+  int files = 0, inContact = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk")) {
+    if (!entry.path().filename().string().starts_with("tool_")) continue;
+    ++files;
+    const std::string text = test::readFile(entry.path());
+    for (const float radius : test::appendedArray<float>(text, test::appendedOffset(text, "radius")))
+      EXPECT_FLOAT_EQ(radius, 2.0f) << entry.path();
+    const size_t points = text.find("<Points>");
+    const std::vector<float> xyz =
+        test::appendedArray<float>(text, std::stoull(text.substr(text.find("offset=\"", points) + 8)));
+    if (xyz.size() != 9) continue;
+    ++inContact;
+    EXPECT_NEAR((Vec3(xyz[3], xyz[4], xyz[5]) - Vec3(xyz[6], xyz[7], xyz[8])).norm(), 2.0, 1e-4) << entry.path();
+  }
+  EXPECT_GT(files, 10);
+  EXPECT_GT(inContact, 3);
+}
+
 }  // namespace
 }  // namespace trephine
