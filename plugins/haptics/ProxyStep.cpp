@@ -17,6 +17,9 @@ constexpr double kSamePlane = 0.999;
 // How far (mm) the proxy may slide in a frame beyond the device's own move:
 // 0.02 mm, so k = 3 N/mm renders at most 0.06 N of catch-up per frame.
 constexpr double kCatchUp = 0.02;
+// Halvings of a move that ended inside the target, to the last free place
+// along it (1/64 of the move: 0.01 mm of a 0.6 mm jump).
+constexpr int kFreeSearchSteps = 6;
 
 // One frame's work: the settings, the memory, the inputs and the target.
 class Frame {
@@ -353,10 +356,28 @@ ProxyFrame Frame::contactFrame() {
     s.removed = removed;
     P2 = m.state.proxy;
   }
+  s.proxyInside = overlapsAt(P2);
+  if (m_settings.godObject && s.proxyInside && m.hadDevice && !m.state.proxyInside && s.contact && !overlapsAt(P)) {
+    // 7. The new place shows the tool inside the target, where last frame's
+    // did not: a sweep that missed a fold between two probes (the line
+    // probe sees only the leading point's path). The proxy goes back along
+    // its move to the farthest place that is still free, and the spring's
+    // anchor with it, so the displayed tool never enters the target.
+    Vec3 free = P, blockedAt = P2;
+    for (int i = 0; i < kFreeSearchSteps; ++i) {
+      const Vec3 middle = 0.5 * (free + blockedAt);
+      (overlapsAt(middle) ? blockedAt : free) = middle;
+    }
+    const Vec3 anchor = D + s.penetration * s.normal + (free - P2);
+    s.penetration = (anchor - D).norm();
+    if (s.penetration > 0) s.normal = (anchor - D) / s.penetration;
+    P2 = free;
+    s.proxyInside = false;
+    ++counters.heldOutside;
+  }
   m.lastDevice = D;
   m.hadDevice = true;
   s.proxy = P2;
-  s.proxyInside = overlapsAt(P2);
   m.state = s;
   return m_out;
 }

@@ -23,7 +23,9 @@
 //  6. on a target being drilled, the spring's anchor (the proxy lifted by that
 //     depth) ends no farther from the device than last frame's anchor now is,
 //     so the proxy's own moves never stretch the spring (PassiveAnchor.h:
-//     passive at the sampled-data bound).
+//     passive at the sampled-data bound);
+//  7. a new place that shows the tool inside the target, where last frame's
+//     did not, goes back along the move to the farthest free place.
 // In a crease, where this frame's projection would cross the last frame's
 // constraint plane, the proxy goes to the nearest point on both planes (the
 // god-object with two constraints, Zilles and Salisbury) and the force points
@@ -89,6 +91,7 @@ struct ProxyCounters {
   uint64_t releases = 0;       // times the proxy was let go after a shape failure
   uint64_t heldAnchors = 0;    // frames whose anchor was held to the last one's distance from the device
   uint64_t startsInside = 0;   // starts (first valid device frame, tool changes) with the tool in the target
+  uint64_t heldOutside = 0;    // frames whose new place was inside the target: held at the last free one
 };
 
 // What the proxy keeps from one frame to the next.
