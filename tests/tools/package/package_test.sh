@@ -31,7 +31,8 @@ step() {  # step DESCRIPTION COMMAND...: runs COMMAND with its output in $log
 
 step "install $binary_dir into $prefix" "$cmake_command" --install "$binary_dir" --prefix "$prefix"
 for file in bin/trephine lib/cmake/Trephine/TrephineConfig.cmake lib/trephine/plugins/trephine_haptics.so \
-            lib/trephine/plugins/trephine_analytic.so include/trephine/framework/devices/HapticDevice.h; do
+            lib/trephine/plugins/trephine_analytic.so lib/trephine/plugins/trephine_voxel_skull.so \
+            include/trephine/framework/devices/HapticDevice.h include/trephine/framework/geometry/ShellTool.h; do
   [[ -e $prefix/$file ]] || fail "the installation lacks $file"
 done
 
@@ -51,6 +52,16 @@ step "run 0.2 s" env TREPHINE_PLUGIN_PATH="$plugin_dir" \
   "$prefix/bin/trephine" run "$scene" --duration 0.2 --out "$out" --quiet
 [[ -f $out/summary.json ]] || fail "the run wrote no summary.json"
 grep -q '"type": *"LissajousDevice"' "$out/summary.json" || { cp "$out/summary.json" "$log"; fail "summary.json does not name LissajousDevice"; }
+
+# A tool of the plugin's own (EllipsoidTool) against a VoxelSkull, through
+# GodObjectProxy: it touches, and its proxy never shows it inside the bone.
+tool_scene=$example_dir/ellipsoid.xml
+step "run the plugin's own tool 2 s" env TREPHINE_PLUGIN_PATH="$plugin_dir" \
+  "$prefix/bin/trephine" run "$tool_scene" --duration 2 --out "$out/tool" --quiet
+grep -q '"type": *"EllipsoidTool"' "$out/tool/summary.json" || { cp "$out/tool/summary.json" "$log"; fail "summary.json does not name EllipsoidTool"; }
+grep -q '"proxy_inside_frames": *0,' "$out/tool/summary.json" || { cp "$out/tool/summary.json" "$log"; fail "the ellipsoid's proxy was inside the bone"; }
+contacts=$(sed -n 's/.*"contact_frames": *\([0-9]*\).*/\1/p' "$out/tool/summary.json" | head -n 1)
+[[ ${contacts:-0} -gt 300 ]] || { cp "$out/tool/summary.json" "$log"; fail "the ellipsoid touched the bone in ${contacts:-0} frames (expected over 300)"; }
 
 echo "-- validate without TREPHINE_PLUGIN_PATH must fail"
 status=0
