@@ -100,20 +100,21 @@ class TLEDForceField final : public Component {
   Field<double> d_forceSmoothing{
       this,
       "forceSmoothing",
-      0.0,
+      0.005,
       {.help = "Time constant with which the tool's force on the nodes follows the latest from the haptic loop "
                "(0: at once). The haptic spring and a soft brain answer each other a frame late; where the brain's "
                "local stiffness is near the spring's, they chatter at half the frame rate, and a few milliseconds "
-               "of smoothing stops it",
+               "of smoothing stops it (the default, which every shipped scene uses)",
        .unit = "s",
        .min = 0.0}};
   Field<double> d_contactDamping{
       this,
       "contactDamping",
-      0.0,
+      0.002,
       {.help = "Viscous damping of the brain where the tool presses, shared among the pressed nodes as the force "
                "is. The haptic spring acts on the brain a frame or two late, and a spring k acting T late feeds "
-               "the surface like a negative damping of about k T; this returns it (0.3 N/mm and 1.5 ms: 0.00045)",
+               "the surface like a negative damping of about k T; this returns it (0.3 N/mm and 1.5 ms: 0.00045; "
+               "the default, 0.002, is what every shipped scene uses)",
        .unit = "N s/mm",
        .min = 0.0}};
   EnumField d_precision{this,

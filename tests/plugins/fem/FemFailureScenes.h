@@ -29,7 +29,8 @@ inline std::string cubePressScene(const std::filesystem::path& mesh, const std::
   <RequiredPlugin name="fem"/>
   <TetraBrain name="brain" file=")" +
          mesh.string() + R"("/>
-  <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" group="fem"/>
+  <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" forceSmoothing="0" contactDamping="0"
+                  rate="1000" group="fem"/>
   <FixedConstraint name="base" fem="@fem" box="-200 -200 -200 200 200 -9"/>
   <ScriptedDevice name="device" record="false" path="drill-in" target="@brain" direction="0 0 -1" center="0 0 0"
                   tipOffset="2.5" standoff="5" speed="20" depth="5" feedSpeed="4"/>
