@@ -104,6 +104,23 @@ pid_t startRun(const std::vector<std::string>& arguments) {
   return pid;
 }
 
+// A reader that goes away: stderr and stdout into a pipe closed at once
+// (`| true`). The progress line written after 5 s, and the summary, find no
+// reader; the run goes on and its files are whole (before, the first
+// progress line ended the process by SIGPIPE, with nothing written).
+TEST(RunFaultsTest, AReaderThatGoesAwayDoesNotEndTheRun) {
+  test::TempDir dir;
+  std::string output;
+  const std::string run = quote(test::programPath().string()) + " run " + quote(kPlaneTouch) +
+                          " --realtime --duration 5.6 --out " + quote((dir / "run").string());
+  // The pipeline's status is `true`'s; what counts is what the run left.
+  shell("bash -c " + quote(run + " 2>&1 | true"), output);
+  ASSERT_TRUE(fs::exists(dir / "run/summary.json")) << output;
+  EXPECT_NE(test::readFile(dir / "run/.trephine-run").find("finished"), std::string::npos)
+      << test::readFile(dir / "run/.trephine-run");
+  EXPECT_NE(test::readFile(dir / "run/summary.json").find("\"complete\": true"), std::string::npos);
+}
+
 TEST(RunFaultsTest, AKilledRunIsRecognisedAndARerunReplacesAllOfIt) {
   test::TempDir dir;
   const fs::path out = dir / "run";

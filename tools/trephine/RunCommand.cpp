@@ -121,6 +121,10 @@ int runCommand(const Arguments& a) {
     }
   }
 
+  // A reader of stderr or stdout that goes away (`trephine run ... 2>&1 | head`)
+  // must not end the run: the progress lines and the summary are then lost,
+  // the run's files are not.
+  std::signal(SIGPIPE, SIG_IGN);
   // Ctrl-C stops the run between steps; everything measured so far is written.
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);

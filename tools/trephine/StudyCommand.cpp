@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -252,6 +253,9 @@ void drawPareto(const std::filesystem::path& out) {
 }  // namespace
 
 int studyCommand(const Arguments& a) {
+  // A reader of its progress that goes away must not end the study (the
+  // settings' files are what counts).
+  std::signal(SIGPIPE, SIG_IGN);
   std::string error;
   auto request = readRequest(a, error);
   if (!request) {
