@@ -223,6 +223,16 @@ TEST(FemSceneTest, ALabelsMaterialGoesToItsElementsOnly) {
   Diagnostics d;
   EXPECT_FALSE(Simulation::fromFile(scene(R"(<LabelMaterial fem="@fem" label="7"/>)"), {}, d));
   EXPECT_NE(test::messages(d).find("no element of /bar has label 7"), std::string::npos) << test::messages(d);
+  // A label's material in the wrong unit is warned of at its own attribute.
+  Diagnostics slip;
+  SimulationOptions quick;
+  quick.duration = 0.001;
+  EXPECT_TRUE(Simulation::fromFile(
+      scene(R"(<LabelMaterial fem="@fem" label="2" density="1050" youngModulus="3"/>)"), quick, slip));
+  EXPECT_NE(test::messages(slip).find("scene.xml:6:"), std::string::npos) << test::messages(slip);
+  EXPECT_NE(test::messages(slip).find("density of LabelMaterial"), std::string::npos) << test::messages(slip);
+  EXPECT_NE(test::messages(slip).find("as kg/m^3 it would be 1.05e-06 kg/mm^3"), std::string::npos)
+      << test::messages(slip);
 }
 
 TEST(FemSceneTest, TheToolsForceDeformsTheBrainWhichComesBackWhenReleased) {
