@@ -184,7 +184,11 @@ Box3 boundsOf(const TriangleMesh& mesh) {
 AllocationHook::AllocationHook() { btAlignedAllocSetCustom(countingAlloc, countingFree); }
 
 BulletShaft::BulletShaft(const ToolSolid& solid)
-    : m_burrRadius(solid.radius), m_shape(btVector3(solid.shaftRadius, solid.shaftRadius, 0.5 * solid.shaftLength)) {
+    : m_burrRadius(solid.radius),
+      m_radius(solid.shaftRadius),
+      m_length(solid.shaftLength),
+      m_axis(solid.shaftAxis.normalized()),
+      m_shape(btVector3(solid.shaftRadius, solid.shaftRadius, 0.5 * solid.shaftLength)) {
   // Bullet's cylinder lies along its z axis, centred: turned onto the shaft's
   // axis and moved half its length along it.
   const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), solid.shaftAxis.normalized());
@@ -387,12 +391,26 @@ ShellContact BulletScene::toolContact(const Pose& X_WT, std::span<const ShellPoi
   if (c.contacts == 0) return burr;
   if (burr.points == 0) ++m_counts.contactFrames;
   ShellContact contact;
-  contact.penetration = std::max(burr.penetration, c.deepest);
   const Vec3 weighted = burr.penetration * burr.normal + c.weighted;
   contact.normal = weighted.norm() > 1e-12 ? Vec3(weighted.normalized()) : c.normal;
+  // Bullet's depth of a convex shape against a triangle is how far it must
+  // move to leave that triangle, which for a shaft buried deeper than its
+  // radius is through the triangle, about the radius, however deep it is. The
+  // depth is measured as every back-end measures it: the shaft's deepest
+  // point along the contact normal (its support point, on the rim of one of
+  // its ends), from there along the normal to the surface.
+  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
+  const Vec3 axis = R * shaft->m_axis;
+  const Vec3 down = -contact.normal;
+  const Vec3 across = down - down.dot(axis) * axis;
+  const Vec3 rim = across.norm() > 1e-9 ? Vec3(shaft->m_radius * across.normalized()) : Vec3::Zero();
+  const Vec3 lowest = X_WT.position + (axis.dot(down) > 0 ? Vec3(shaft->m_length * axis) : Vec3::Zero()) + rim;
+  double deepest = c.deepest;
+  if (inside(lowest))
+    if (const auto hit = raycast(lowest, contact.normal, farDistance())) deepest = std::max(deepest, hit->distance);
+  contact.penetration = std::max(burr.penetration, deepest);
   contact.primitives = burr.primitives + c.contacts;
   // The shaft's shell points beyond the plane of its deepest contact.
-  const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   int shaftPoints = 0;
   for (const ShellPoint& p : shell) {
     if (p.position.norm() <= (1 + 1e-9) * radius) continue;  // the burr's

@@ -61,6 +61,9 @@ class BulletShaft {
   friend class BulletScene;
   AllocationHook m_hook;
   double m_burrRadius = 0;  // mm
+  double m_radius = 0;      // mm, the shaft's
+  double m_length = 0;      // mm, from the burr's centre
+  Vec3 m_axis = Vec3::UnitZ();  // in the tool frame
   btTransform m_local;      // the cylinder's frame in the tool frame
   btCylinderShapeZ m_shape;
   mutable btCollisionObject m_object;

@@ -35,6 +35,13 @@ void NativeVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
   }
   reserved.inset.assign(pulled);
   for (const ShellPoint& p : shell) reserved.radius = std::max(reserved.radius, p.position.norm());
+  for (const ShellPoint& p : shell) reserved.sphere = reserved.sphere && p.position.norm() > (1 - 1e-9) * reserved.radius;
+  reserved.width.resize(shell.size());
+  for (size_t i = 0; i < shell.size(); ++i) {
+    double farthest = 0;
+    for (const ShellPoint& q : shell) farthest = std::max(farthest, (q.position - shell[i].position).dot(shell[i].inwardNormal));
+    reserved.width[i] = farthest;
+  }
   m_shells.push_back(std::move(reserved));
   const size_t n = std::max(shell.size(), m_hits.size());
   m_hits.resize(n);
@@ -42,6 +49,7 @@ void NativeVoxelBackend::reserveShell(std::span<const ShellPoint> shell) {
   m_solid.resize(n);
   m_depths.resize(n);
   m_normals.resize(n);
+  m_buried.resize(n);
   m_touched.resize(8 * n);
   m_groups.reserve(n);
   m_groupNormals.resize(n);

@@ -55,6 +55,12 @@ class NativeVoxelBackend final : public VoxelBackend {
     ShellArrays
         inset;  // the shell pulled one voxel inwards, points a voxel apart: the overlap test of a displayed proxy
     double radius = 0;  // mm, farthest point from the reference point
+    // mm, per point: how far the tool extends from it along its inward normal
+    // (its width there: 2 radii for a sphere, the shaft's diameter on a shaft's
+    // wall). A point whose normal stays in bone farther than that is buried: the
+    // whole tool is in bone along that line, and its normal says nothing.
+    std::vector<double> width;
+    bool sphere = true;  // every point at `radius` (to 1e-9): its normals meet at the centre
   };
   const ReservedShell* findShell(std::span<const ShellPoint> shell) const;
   std::vector<ReservedShell> m_shells;
@@ -70,6 +76,7 @@ class NativeVoxelBackend final : public VoxelBackend {
   mutable std::vector<uint8_t> m_solid;
   std::vector<double> m_depths;        // per hit, mm
   std::vector<Vec3> m_normals;         // per hit, unit, out of the bone
+  std::vector<uint8_t> m_buried;       // per hit: its normal stays in bone across the tool
   std::vector<int64_t> m_touched;      // the voxels the thesis's law cuts this frame (8 per hit at most)
   VoxelGroups m_groups;                // the hits grouped by voxel
   std::vector<Vec3> m_groupNormals;    // per group: sum of its points' normals

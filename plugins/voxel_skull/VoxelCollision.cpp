@@ -34,6 +34,24 @@ double depthToFreeVoxel(const SolidGrid& grid, const Vec3& p, int64_t voxel, con
   return reach * firstFreeOnSegment(grid, p, p + reach * n);
 }
 
+// The direction a point in bone pushes the tool, for the contact normal. A
+// sphere's inward normals meet at its centre, so their depth-weighted mean
+// is the way out of a locally flat surface. Other tools' do not: the wall of
+// a shaft pressed into bone at a tilt has normals square to the shaft, and
+// their mean leans from the surface's normal by the tilt (a pointshell's
+// known bias). For those, the density's gradient gives the surface's
+// direction, unless it points back into the tool (deeper than the surface's
+// first voxels, that is the bone's inner structure, not its surface).
+Vec3 contactDirection(const SolidGrid& grid, const Vec3& p, const Vec3& toolNormal, bool sphere) {
+  if (sphere) return toolNormal;
+  Vec3 gradient;
+  grid.codeAt(p, &gradient);
+  const double slope = gradient.norm();
+  if (!(slope * grid.smallestSide() > 1e-3 * std::max(1.0, std::abs(grid.isoCode)))) return toolNormal;
+  const Vec3 outward = -gradient / slope;
+  return outward.dot(toolNormal) > 0 ? outward : toolNormal;  // not pointing back into the tool
+}
+
 }  // namespace
 
 // The thesis's detection: which shell points are in bone (the point test over
@@ -97,6 +115,9 @@ VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const Shell
     const Vec3 offset = R * point.position;  // mm, from the tool's reference point
     const Vec3 p = offset + X_WT.position;
     Vec3 normal = R * point.inwardNormal;  // out of the bone, towards the tool centre
+    // Searched across the tool's width there and two voxels more (a voxel's
+    // quantisation at either end): farther, the tool is in bone along the line.
+    const double across = std::min(reach, reserved->width[m_hits[h].point] + 2 * grid().spacing.maxCoeff());
     if (algorithm1) {
       // McNeely tangent plane: through the voxel centre with the point's normal.
       m_groupDepths[group] -= offset.dot(normal);
@@ -116,17 +137,21 @@ VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const Shell
       if (hasGradient && firstOrderDepth <= 0.5 * grid().spacing.maxCoeff()) {
         normal = -gradient / slope;
         m_depths[h] = firstOrderDepth;
+        m_buried[h] = 0;
       } else {
-        m_depths[h] = reach * firstFreeOnSegment(grid(), p, p + reach * normal);
+        const double t = firstFreeOnSegment(grid(), p, p + across * normal);
+        m_depths[h] = across * t;
+        m_buried[h] = t >= 1.0;
       }
       m_normals[h] = normal;
     } else {
-      m_depths[h] = depthToFreeVoxel(grid(), p, m_hits[h].voxel, normal, reach);
+      m_depths[h] = depthToFreeVoxel(grid(), p, m_hits[h].voxel, normal, across);
+      m_buried[h] = m_depths[h] >= across;
       m_normals[h] = normal;
     }
     m_groupNormals[group] += normal;
     ++m_groupPoints[group];
-    if (!algorithm1) weightedSum += m_depths[h] * normal;
+    if (!algorithm1 && !m_buried[h]) weightedSum += m_depths[h] * contactDirection(grid(), p, normal, reserved->sphere);
   }
   Vec3 normalSum = Vec3::Zero();
   double penetration = 0;
@@ -166,9 +191,30 @@ VoxelContact NativeVoxelBackend::collide(const Pose& X_WT, std::span<const Shell
   const double weightedLength = weightedSum.norm();
   if (!algorithm1 && weightedLength > 1e-9) contact.normal = weightedSum / weightedLength;
   if (!algorithm1) {
-    // The deepest point measured along the contact normal.
-    for (size_t h = 0; h < hits; ++h)
-      penetration = std::max(penetration, m_depths[h] * std::max(0.0, m_normals[h].dot(contact.normal)));
+    // The deepest point measured along the contact normal. A buried point's
+    // own depth is not known (its normal never left the bone); the deepest of
+    // them along the normal (the lowest below a flat surface) is measured
+    // along the normal itself. Without a normal, every point is buried: the
+    // tool is in bone across its width wherever it is touched.
+    const bool directed = contact.normal.squaredNorm() > 0;
+    double lowest = std::numeric_limits<double>::infinity();
+    size_t deepestBuried = hits;
+    for (size_t h = 0; h < hits; ++h) {
+      if (!m_buried[h]) {
+        penetration = std::max(penetration, m_depths[h] * std::max(0.0, m_normals[h].dot(contact.normal)));
+        continue;
+      }
+      if (!directed) {
+        penetration = std::max(penetration, m_depths[h]);
+        continue;
+      }
+      const double height = (R * shell[m_hits[h].point].position).dot(contact.normal);
+      if (height < lowest) lowest = height, deepestBuried = h;
+    }
+    if (directed && deepestBuried < hits) {
+      const Vec3 p = R * shell[m_hits[deepestBuried].point].position + X_WT.position;
+      penetration = std::max(penetration, reach * firstFreeOnSegment(grid(), p, p + reach * contact.normal));
+    }
   }
   contact.primitives = voxels;
   contact.penetration = penetration;

@@ -215,15 +215,15 @@ TEST_P(VoxelBackendConformanceTest, ContactWithAPlaneFollowsTheClosedFormFromGra
 
 // A burr on a shaft (a capsule: 2.5 mm burr, 1 mm shaft 20 mm long) lying
 // almost along the tilted plane, its burr 4 mm above it and the shaft
-// dipping 9.3 to 10.7 degrees, so that only the shaft's end is in the bone,
-// 0.22 to 0.70 mm deep (shallower than the shaft's radius; deeper, two
-// back-ends are wrong, docs/results.md): the
-// penetration is the depth of the shaft's lowest point, centre_end . n less
-// r sqrt(1 - (d . n)^2), and the normal the plane's, on every back-end (each
-// takes the tool its own way: the native one and Embree point by point,
-// Bullet as a sphere and a cylinder). The shaft's wall is sampled in rings
-// 0.25 mm apart of 24 points: the lowest generator is missed by at most
-// r (1 - cos 7.5 deg), 0.009 mm.
+// dipping 9.3 to 25 degrees, so that only the shaft is in the bone, its end
+// 0.22 to 5.4 mm deep (shallower than the shaft's radius, the wall touches
+// with its lowest generator; deeper than its diameter, the end is all in
+// bone): the penetration is the depth of the shaft's lowest point,
+// centre_end . n less r sqrt(1 - (d . n)^2), and the normal the plane's, on
+// every back-end (each takes the tool its own way: the native one and
+// Embree point by point, Bullet as a sphere and a cylinder). The shaft's
+// wall is sampled in rings 0.25 mm apart of 24 points, the last at its end:
+// the lowest generator is missed by at most r (1 - cos 7.5 deg), 0.009 mm.
 TEST_P(VoxelBackendConformanceTest, ABurrOnAShaftTouchesWithItsShaftAsTheClosedFormSays) {
   const Backend& b = GetParam();
   const Vec3 n = Vec3(0.3, 0.2, 0.93).normalized();
@@ -232,16 +232,19 @@ TEST_P(VoxelBackendConformanceTest, ABurrOnAShaftTouchesWithItsShaftAsTheClosedF
   std::vector<ShellPoint> capsule;
   for (const Vec3& d : haptics::evenDirections(466))
     if (!(d.z() > 0 && (kBurr * d - kBurr * d.z() * Vec3::UnitZ()).norm() < kShaft)) capsule.push_back({kBurr * d, -d});
-  for (double z = std::sqrt(kBurr * kBurr - kShaft * kShaft); z <= kLength + 1e-9; z += 0.25)
+  const double wallStart = std::sqrt(kBurr * kBurr - kShaft * kShaft);
+  for (int ring = 0; wallStart + 0.25 * (ring - 1) < kLength; ++ring) {
+    const double z = std::min(wallStart + 0.25 * ring, kLength);
     for (int k = 0; k < 24; ++k) {
       const Vec3 radial(std::cos(k * M_PI / 12), std::sin(k * M_PI / 12), 0);
       capsule.push_back({kShaft * radial + z * Vec3::UnitZ(), -radial});
     }
+  }
   backend->reserveShell(capsule);
   backend->describeTool(capsule, {kBurr, kShaft, kLength, Vec3::UnitZ()});
   const Vec3 along = n.unitOrthogonal();
   double worst = 0;
-  for (const double degrees : {9.3, 10.0, 10.7}) {
+  for (const double degrees : {9.3, 10.0, 10.7, 12.0, 15.0, 20.0, 25.0}) {
     const double tilt = degrees * M_PI / 180;
     const Vec3 axis = std::cos(tilt) * along - std::sin(tilt) * n;  // the shaft, dipping into the plane
     const Quat orientation = Quat::FromTwoVectors(Vec3::UnitZ(), axis);
