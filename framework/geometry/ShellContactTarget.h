@@ -19,6 +19,7 @@
 // tools that share a target tick in one rate group (one thread).
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -141,6 +142,11 @@ class ShellContactTarget : public SurfaceTarget {
     (void)shell;
     return std::nullopt;
   }
+  // The finest detail the target's shape resolves (mm): its voxels' largest
+  // side, its tetrahedra's median edge. A study takes the setting that
+  // resolves its targets finest as the reference where there is no exact
+  // shape. NaN: the target does not say.
+  virtual double resolution() const { return std::numeric_limits<double>::quiet_NaN(); }
   // Whether tools cut this target (it is set to be drilled): material only
   // ever leaves it, so the space free of it only grows, and its cut surface is
   // rough at the scale of its primitives.

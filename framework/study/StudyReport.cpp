@@ -10,52 +10,13 @@
 #include "framework/core/AtomicFile.h"
 #include "framework/math/Math.h"
 #include "framework/study/StudySetting.h"
+#include "framework/study/StudyTable.h"
 
 namespace trephine::study {
 
 namespace {
 
-using Table = std::vector<std::vector<std::string>>;  // header first
-
 constexpr double kMismatchDepth = 0.1;  // mm
-
-std::vector<std::string> splitRow(const std::string& line) {
-  std::vector<std::string> cells;
-  std::istringstream row(line);
-  std::string cell;
-  while (std::getline(row, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-Table readTable(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot read");
-  Table table;
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty()) table.push_back(splitRow(line));
-  if (table.empty()) throw std::runtime_error(file.string() + ": empty");
-  for (size_t r = 1; r < table.size(); ++r)
-    if (table[r].size() != table[0].size())
-      throw std::runtime_error(file.string() + ":" + std::to_string(r + 1) + ": expected " +
-                               std::to_string(table[0].size()) + " columns");
-  return table;
-}
-
-size_t column(const Table& table, const std::string& name, const std::filesystem::path& file) {
-  const auto it = std::find(table[0].begin(), table[0].end(), name);
-  if (it == table[0].end()) throw std::runtime_error(file.string() + ": no column '" + name + "'");
-  return static_cast<size_t>(it - table[0].begin());
-}
-
-double toNumber(const std::string& text) {
-  try {
-    return std::stod(text);
-  } catch (const std::exception&) {
-    return std::nan("");
-  }
-}
 
 // One contact answer at a pose.
 struct Answer {
@@ -83,9 +44,14 @@ double percentile(std::vector<double> values, double q) {
   return values[std::clamp<size_t>(static_cast<size_t>(std::max(rank, 1.0)) - 1, 0, values.size() - 1)];
 }
 
-void compare(StudyRow& row, const std::vector<Answer>& measured, const std::vector<Answer>& reference) {
+// The accuracy at the poses `indices` (rows of poses.csv).
+void compare(PairAccuracy& row, const std::vector<Answer>& measured, const std::vector<Answer>& reference,
+             const std::vector<size_t>& indices) {
   std::vector<double> penetrationErrors, normalErrors;
-  for (size_t i = 0; i < measured.size() && i < reference.size(); ++i) {
+  for (const size_t i : indices) {
+    if (i >= measured.size()) continue;
+    ++row.poses;
+    if (i >= reference.size()) continue;  // no reference to compare with
     const Answer& m = measured[i];
     const Answer& r = reference[i];
     const bool inM = m.penetration > 0, inR = r.penetration > 0;
@@ -153,29 +119,60 @@ double StudyRow::runValue(const std::string& name) const {
 }
 
 StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
-                        int referenceIndex) {
+                        int referenceIndex, const std::string& referenceChoice) {
   StudyReport report;
   const std::filesystem::path posesFile = out / kPosesFile;
+  const Table poses = readTable(posesFile);
+  const size_t toolColumn = column(poses, "tool", posesFile), targetColumn = column(poses, "target", posesFile);
   const std::vector<Answer> exact = readAnswers(posesFile, "exact_penetration", "exact_nx", "exact_ny", "exact_nz");
-  const bool hasExact = !exact.empty() && std::isfinite(exact.front().penetration);
-  std::vector<Answer> reference = exact;
-  const StudySetting& referenceSetting = settings.at(static_cast<size_t>(referenceIndex));
-  if (hasExact) {
-    report.reference = "the exact shape of the phantom";
-  } else {
-    std::string why;
-    std::getline(std::ifstream(out / kNoExactShapeFile), why);
-    report.reference = "setting " + std::to_string(referenceIndex + 1) + " (" + referenceSetting.label() +
-                       "): no exact shape for this target" + (why.empty() ? std::string() : ": " + why);
-    try {
-      reference = readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
-    } catch (const std::exception& e) {
-      // The other settings' rows are still worth having (their time, their
-      // closed loop); their accuracy is unknown.
-      reference.clear();
-      report.reference += "; its answers cannot be read (" + std::string(e.what()) + "), so no error is measured";
-    }
+  // The pairs in the order of poses.csv (the studied one first), and their rows.
+  std::vector<std::vector<size_t>> rowsOfPair;
+  for (size_t r = 1; r < poses.size(); ++r) {
+    const std::string &tool = poses[r][toolColumn], &target = poses[r][targetColumn];
+    size_t p = 0;
+    while (p < report.pairs.size() && !(report.pairs[p].tool == tool && report.pairs[p].target == target)) ++p;
+    if (p == report.pairs.size()) report.pairs.push_back({tool, target, true, ""}), rowsOfPair.emplace_back();
+    rowsOfPair[p].push_back(r - 1);
   }
+  if (report.pairs.empty()) throw std::runtime_error(posesFile.string() + ": no pose");
+  // Why a pair has no exact contact: "TOOL on TARGET: why" lines.
+  std::vector<std::string> whyLines;
+  {
+    std::ifstream why(out / kNoExactShapeFile);
+    for (std::string line; std::getline(why, line);) whyLines.push_back(line);
+  }
+  const StudySetting& referenceSetting = settings.at(static_cast<size_t>(referenceIndex));
+  std::vector<Answer> settingReference;
+  std::string unreadable;
+  bool settingReferenceRead = false;
+  for (size_t p = 0; p < report.pairs.size(); ++p) {
+    StudiedPair& pair = report.pairs[p];
+    for (const size_t i : rowsOfPair[p]) pair.exact = pair.exact && std::isfinite(exact[i].penetration);
+    if (pair.exact) {
+      pair.reference = "the exact shape of the phantom";
+      continue;
+    }
+    std::string why;
+    const std::string prefix = pair.tool + " on " + pair.target + ": ";
+    for (const std::string& line : whyLines)
+      if (line.rfind(prefix, 0) == 0) why = line.substr(prefix.size());
+    pair.reference = "setting " + std::to_string(referenceIndex + 1) + " (" + referenceSetting.label() + ")" +
+                     (referenceChoice.empty() ? std::string() : ", " + referenceChoice) +
+                     ": no exact shape for this target" + (why.empty() ? std::string() : ": " + why);
+    if (!settingReferenceRead) {
+      settingReferenceRead = true;
+      try {
+        settingReference =
+            readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
+      } catch (const std::exception& e) {
+        // The other settings' rows are still worth having (their time, their
+        // closed loop); their accuracy is unknown.
+        unreadable = "; its answers cannot be read (" + std::string(e.what()) + "), so no error is measured";
+      }
+    }
+    pair.reference += unreadable;
+  }
+  report.reference = report.pairs.front().reference;
   for (const StudySetting& setting : settings) {
     StudyRow row;
     row.setting = setting;
@@ -191,8 +188,12 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
     }
     try {
       const std::vector<Answer> measured = readAnswers(directory / kProbeFile, "penetration", "nx", "ny", "nz");
-      row.poses = static_cast<int>(measured.size());
-      compare(row, measured, reference);
+      for (size_t p = 0; p < report.pairs.size(); ++p) {
+        PairAccuracy accuracy;
+        compare(accuracy, measured, report.pairs[p].exact ? exact : settingReference, rowsOfPair[p]);
+        row.pairs.push_back(accuracy);
+      }
+      static_cast<PairAccuracy&>(row) = row.pairs.front();
       const Table probe = readTable(directory / kProbeFile);
       const size_t q = column(probe, "query_us", directory / kProbeFile);
       const size_t b = column(probe, "broad_us", directory / kProbeFile);
@@ -219,7 +220,7 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
     }
     report.rows.push_back(std::move(row));
   }
-  markPareto(report.rows, hasExact);
+  markPareto(report.rows, report.pairs.front().exact);
   return report;
 }
 
@@ -235,7 +236,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   csv << "setting,label";
   if (!report.rows.empty())
     for (const auto& [field, value] : report.rows.front().setting.assignments) csv << ',' << csvQuoted(field);
-  csv << ",status,reference,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
+  csv << ",status,reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
          "normal_err_p50_deg,normal_err_p99_deg,query_p50_us,query_p99_us,broad_p50_us,narrow_p50_us,candidates_p50";
   for (const std::string& c : runColumns) csv << ',' << c;
   csv << ",pareto\n";
@@ -243,7 +244,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
     csv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label());
     for (const auto& [field, value] : row.setting.assignments) csv << ',' << csvQuoted(value);
     csv << ',' << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << (row.isReference ? 1 : 0) << ','
-        << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
+        << csvQuoted(report.pairs.front().tool) << ',' << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
     for (double v : {row.penetrationErrorP50, row.penetrationErrorP99, row.penetrationErrorMax, row.normalErrorP50,
                      row.normalErrorP99, row.queryP50, row.queryP99, row.broadP50, row.narrowP50, row.candidatesP50})
       csv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
@@ -254,12 +255,34 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
     csv << ',' << (row.pareto ? 1 : 0) << '\n';
   }
 
+  // A row per setting and pair.
+  std::ostringstream pairsCsv;
+  pairsCsv << "setting,label,status,tool,target,exact_reference,poses,compared_poses,contact_mismatches,"
+              "pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,normal_err_p50_deg,normal_err_p99_deg\n";
+  for (const StudyRow& row : report.rows)
+    for (size_t p = 0; p < report.pairs.size(); ++p) {
+      const StudiedPair& pair = report.pairs[p];
+      pairsCsv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label()) << ','
+               << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << csvQuoted(pair.tool) << ','
+               << csvQuoted(pair.target) << ',' << (pair.exact ? 1 : 0);
+      if (p >= row.pairs.size()) {
+        pairsCsv << ",0,0,0,nan,nan,nan,nan,nan\n";
+        continue;
+      }
+      const PairAccuracy& a = row.pairs[p];
+      pairsCsv << ',' << a.poses << ',' << a.comparedPoses << ',' << a.contactMismatches;
+      for (double v : {a.penetrationErrorP50, a.penetrationErrorP99, a.penetrationErrorMax, a.normalErrorP50,
+                       a.normalErrorP99})
+        pairsCsv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+      pairsCsv << '\n';
+    }
+
   std::ostringstream md;
   int poses = 0;
   for (const StudyRow& row : report.rows) poses = std::max(poses, row.poses);
   md << "# Study of " << scene << "\n\n"
-     << "Accuracy at " << poses
-     << " tool poses (proxy and device positions of the reference setting's contact frames), against "
+     << "Accuracy of " << report.pairs.front().tool << " on " << report.pairs.front().target << " at " << poses
+     << " tool poses (proxy and device positions of the reference setting's frames where they touched), against "
      << report.reference << ". Time: the haptic step of each setting's own run (µs) and one target query at the "
      << "poses (µs), split into its broad phase alone (the search for candidates: shell points in bone, triangles in "
         "reach) and the rest. Contact mismatches: poses where one side finds no contact and the other one deeper than "
@@ -289,13 +312,36 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
        << format(row.runValue("proxy_inside_frames"), 0) << " | " << format(row.runValue("nan_frames"), 0) << " | "
        << format(row.runValue("removed"), 0) << " | " << (row.pareto ? "yes" : "") << " |\n";
   }
+  if (report.pairs.size() > 1) {
+    md << "\n## Every tool on every target it touched\n\n"
+       << "The table above is of " << report.pairs.front().tool << " on " << report.pairs.front().target
+       << ". Each tool and target that touched in the reference's run, at poses from their own frames in contact:\n\n"
+       << "| # | setting | tool | target | pen. error p50 / p99 / max (mm) | normal error p50 / p99 (deg) | contact "
+          "mismatches |\n"
+       << "|---:|---|---|---|---:|---:|---:|\n";
+    for (const StudyRow& row : report.rows)
+      for (size_t p = 0; p < report.pairs.size() && p < row.pairs.size(); ++p) {
+        const PairAccuracy& a = row.pairs[p];
+        md << "| " << row.setting.index + 1 << " | " << row.setting.label() << " | " << report.pairs[p].tool << " | "
+           << report.pairs[p].target << " | " << format(a.penetrationErrorP50, 3) << " / "
+           << format(a.penetrationErrorP99, 3) << " / " << format(a.penetrationErrorMax, 3) << " | "
+           << format(a.normalErrorP50, 2) << " / " << format(a.normalErrorP99, 2) << " | " << a.contactMismatches
+           << " of " << a.comparedPoses << " |\n";
+      }
+    md << "\nReferences:\n\n";
+    for (const StudiedPair& pair : report.pairs)
+      md << "- " << pair.tool << " on " << pair.target << ": " << pair.reference << "\n";
+  }
+  AtomicFile pairsFile(out / "pairs.csv");
+  pairsFile.write(pairsCsv.str());
+  pairsFile.commit();
   AtomicFile csvFile(out / "study.csv");
   csvFile.write(csv.str());
   csvFile.commit();
   AtomicFile mdFile(out / "study.md");
   mdFile.write(md.str());
   mdFile.commit();
-  return {"study.csv", "study.md"};
+  return {"study.csv", "pairs.csv", "study.md"};
 }
 
 }  // namespace trephine::study

@@ -14,6 +14,7 @@
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/runtime/Scheduler.h"
 #include "framework/study/ExactSphereContact.h"
+#include "framework/study/StudyTable.h"
 
 namespace trephine::study {
 
@@ -25,8 +26,10 @@ struct SettingError : std::runtime_error {
 };
 
 struct StudyPose {
-  std::string kind;  // "proxy" or "device"
-  Vec3 position;     // mm
+  std::string kind;    // "proxy" or "device"
+  std::string tool;    // the path of the tool the pose is of
+  std::string target;  // and of the target it touched
+  Vec3 position;       // mm
   double exactPenetration = std::nan("");
   Vec3 exactNormal = Vec3::Constant(std::nan(""));
 };
@@ -77,23 +80,73 @@ const ShellTool& findTool(const Simulation& simulation, const std::string& path 
   const ShellTool* tool = nullptr;
   for (Component* c : simulation.scene().components())
     if (auto* t = dynamic_cast<const ShellTool*>(c)) {
-      if (tool)
-        throw SettingError("the scene has several pointshell tools and none touched the target in the reference run");
+      if (tool) throw SettingError("the scene has several pointshell tools and its renderer does not say which touched");
       tool = t;
     }
   if (!tool) throw SettingError("the scene has no pointshell tool to probe the target with");
   return *tool;
 }
 
-// The path of the tool the run's frames in contact with `target` used (the
-// first such frame's), or "" when the renderer does not say.
-std::string toolTouching(const Simulation& simulation, const ShellContactTarget* target) {
-  const HapticFrameLog& log = simulation.hapticLog();
-  for (size_t i = 0; i < log.size(); ++i)
-    if (log[i].contacts > 0 && log[i].target == target && log[i].tool)
-      for (Component* c : simulation.scene().components())
-        if (static_cast<const void*>(dynamic_cast<const ShellTool*>(c)) == log[i].tool) return c->path();
+// The path of the component whose ShellTool (or ShellContactTarget) is at
+// `identity`, as the haptic log names it; "" when none is.
+template <typename Role>
+std::string pathOf(const Simulation& simulation, const void* identity) {
+  for (Component* c : simulation.scene().components())
+    if (static_cast<const void*>(dynamic_cast<const Role*>(c)) == identity) return c->path();
   return "";
+}
+
+// A tool and a target that touched in a run, with its frames in contact.
+struct ContactPair {
+  std::string tool, target;  // component paths
+  std::vector<size_t> frames;
+};
+
+// Every (tool, target) pair in contact in the run, the studied one first: the
+// target of --target (only its pairs), else that of the first varied field
+// when it is a target, then by frames in contact. A renderer that does not
+// say which tool and target touched stands for the scene's only tool and the
+// studied target.
+std::vector<ContactPair> pairsFromRun(const Simulation& simulation, const StudyOptions& options,
+                                      const StudySetting& setting) {
+  const HapticFrameLog& log = simulation.hapticLog();
+  std::vector<ContactPair> pairs;
+  std::string fallbackTool, fallbackTarget;
+  for (size_t i = 0; i < log.size(); ++i) {
+    if (log[i].contacts <= 0) continue;
+    std::string tool = log[i].tool ? pathOf<ShellTool>(simulation, log[i].tool) : "";
+    std::string target = log[i].target ? pathOf<ShellContactTarget>(simulation, log[i].target) : "";
+    if (tool.empty()) {
+      if (fallbackTool.empty())
+        fallbackTool = dynamic_cast<const Component&>(findTool(simulation)).path();
+      tool = fallbackTool;
+    }
+    if (target.empty()) {
+      if (fallbackTarget.empty()) fallbackTarget = findTarget(simulation, options, setting).second->path();
+      target = fallbackTarget;
+    }
+    auto it = std::find_if(pairs.begin(), pairs.end(),
+                           [&](const ContactPair& p) { return p.tool == tool && p.target == target; });
+    if (it == pairs.end()) it = pairs.insert(pairs.end(), ContactPair{tool, target, {}});
+    it->frames.push_back(i);
+  }
+  for (const ContactPair& p : pairs)
+    if (p.tool.find(',') != std::string::npos || p.target.find(',') != std::string::npos)
+      throw SettingError("a study names tools and targets in its CSV files; rename the component with a comma in " +
+                         (p.tool.find(',') != std::string::npos ? p.tool : p.target));
+  if (!options.target.empty())
+    std::erase_if(pairs, [&](const ContactPair& p) { return p.target != options.target; });
+  std::string studied;
+  if (options.target.empty() && !setting.assignments.empty()) {
+    const std::string& field = setting.assignments.front().first;
+    studied = field.substr(0, field.rfind('.'));
+  }
+  std::stable_sort(pairs.begin(), pairs.end(), [&](const ContactPair& a, const ContactPair& b) {
+    const bool aStudied = a.target == studied, bStudied = b.target == studied;
+    if (aStudied != bStudied) return aStudied;
+    return a.frames.size() > b.frames.size();
+  });
+  return pairs;
 }
 
 // The rate group that runs the component writing the haptic log: the haptic loop.
@@ -104,19 +157,16 @@ const RateGroup* hapticGroup(const Simulation& simulation) {
   return nullptr;
 }
 
-// Poses from the frames in contact with `target` (after a tool change the
-// proxy touches another target: its poses say nothing of this one).
-std::vector<StudyPose> posesFromRun(const Simulation& simulation, int perKind, const ShellContactTarget* target) {
+// Poses from the frames of one pair (after a tool change the proxy touches
+// another target: its poses say nothing of the first).
+std::vector<StudyPose> posesOfPair(const Simulation& simulation, const ContactPair& pair, int perKind) {
   const HapticFrameLog& log = simulation.hapticLog();
-  std::vector<size_t> contactFrames;
-  for (size_t i = 0; i < log.size(); ++i)
-    if (log[i].contacts > 0 && (log[i].target == nullptr || log[i].target == target)) contactFrames.push_back(i);
   std::vector<StudyPose> poses;
-  const size_t count = std::min<size_t>(contactFrames.size(), static_cast<size_t>(perKind));
+  const size_t count = std::min<size_t>(pair.frames.size(), static_cast<size_t>(perKind));
   for (const char* kind : {"proxy", "device"})
     for (size_t j = 0; j < count; ++j) {
-      const HapticFrame& frame = log[contactFrames[j * contactFrames.size() / count]];
-      poses.push_back({kind, std::string(kind) == "proxy" ? frame.proxy : frame.device});
+      const HapticFrame& frame = log[pair.frames[j * pair.frames.size() / count]];
+      poses.push_back({kind, pair.tool, pair.target, std::string(kind) == "proxy" ? frame.proxy : frame.device});
     }
   return poses;
 }
@@ -151,9 +201,9 @@ std::string addExactContacts(std::vector<StudyPose>& poses, const Component& tar
 
 void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses) {
   std::ostringstream s;
-  s << "kind,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz\n";
+  s << "kind,tool,target,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz\n";
   for (const StudyPose& p : poses)
-    s << p.kind << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
+    s << p.kind << ',' << p.tool << ',' << p.target << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
       << ',' << number(p.exactPenetration) << ',' << number(p.exactNormal.x()) << ',' << number(p.exactNormal.y())
       << ',' << number(p.exactNormal.z()) << '\n';
   AtomicFile out(file);  // other processes wait for it: it appears whole or not at all
@@ -161,61 +211,62 @@ void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>&
   out.commit();
 }
 
-std::vector<Vec3> readPositions(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SettingError("cannot read " + file.string());
-  std::string line;
-  std::getline(in, line);
-  std::vector<Vec3> positions;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    std::string kind, x, y, z;
-    if (!std::getline(row, kind, ',') || !std::getline(row, x, ',') || !std::getline(row, y, ',') ||
-        !std::getline(row, z, ','))
-      throw SettingError(file.string() + ": malformed row '" + line + "'");
-    double v[3];
-    const std::string* cells[3] = {&x, &y, &z};
-    for (int a = 0; a < 3; ++a) {
-      const std::string& cell = *cells[a];
-      const auto result = std::from_chars(cell.data(), cell.data() + cell.size(), v[a]);
-      if (result.ec != std::errc() || result.ptr != cell.data() + cell.size())
-        throw SettingError(file.string() + ":" + std::to_string(positions.size() + 2) + ": expected a number, got '" +
-                           cell + "'");
-    }
-    positions.emplace_back(v[0], v[1], v[2]);
+std::vector<StudyPose> readPoses(const std::filesystem::path& file) {
+  Table table;
+  try {
+    table = readTable(file);
+  } catch (const std::exception& e) {
+    throw SettingError(e.what());
   }
-  return positions;
+  const size_t kind = column(table, "kind", file), tool = column(table, "tool", file),
+               target = column(table, "target", file), x = column(table, "x", file), y = column(table, "y", file),
+               z = column(table, "z", file);
+  std::vector<StudyPose> poses;
+  for (size_t r = 1; r < table.size(); ++r) {
+    const Vec3 position(toNumber(table[r][x]), toNumber(table[r][y]), toNumber(table[r][z]));
+    if (!position.allFinite())
+      throw SettingError(file.string() + ":" + std::to_string(r + 1) + ": expected a position of three numbers");
+    poses.push_back({table[r][kind], table[r][tool], table[r][target], position});
+  }
+  return poses;
 }
 
-// Queries the pristine target at every pose, the tool held in the world's
-// orientation (the spherical burr does not depend on it): first the broad
+// Queries the pristine targets at every pose with the pose's tool, held in
+// the world's orientation (the study's poses are positions): first the broad
 // phase alone at every pose (when the target splits its query), then the
 // whole query, each timed (two passes, so neither warms the other's caches
 // pose by pose).
-void probe(Simulation& simulation, const StudyOptions& options, const StudySetting& setting,
-           const std::vector<Vec3>& positions, const std::filesystem::path& file) {
-  auto [target, component] = findTarget(simulation, options, setting);
-  std::string toolPath;
-  std::getline(std::ifstream(options.out / kProbeToolFile), toolPath);
-  const ShellTool& tool = findTool(simulation, toolPath);
-  target->beginFrame(0.0);
+void probe(Simulation& simulation, const std::vector<StudyPose>& poses, const std::filesystem::path& file) {
+  struct Probed {
+    ShellContactTarget* target;
+    std::span<const ShellPoint> shell;
+  };
+  std::vector<Probed> probed;
+  for (const StudyPose& pose : poses) {
+    auto* target = dynamic_cast<ShellContactTarget*>(simulation.scene().findComponent(pose.target));
+    if (!target) throw SettingError(pose.target + ": no collision target there in this setting");
+    probed.push_back({target, findTool(simulation, pose.tool).shellPoints()});
+  }
+  for (const Probed& p : probed) p.target->beginFrame(0.0);  // again for a target already begun: no change
   using Clock = std::chrono::steady_clock;
   const auto microseconds = [](Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); };
-  std::vector<double> broadUs(positions.size(), std::nan(""));
-  std::vector<double> candidates(positions.size(), std::nan(""));
-  for (size_t i = 0; i < positions.size(); ++i) {
+  std::vector<double> broadUs(poses.size(), std::nan(""));
+  std::vector<double> candidates(poses.size(), std::nan(""));
+  for (size_t i = 0; i < poses.size(); ++i) {
     const auto start = Clock::now();
-    const std::optional<size_t> found = target->broadPhase(Pose{positions[i], Quat::Identity()}, tool.shellPoints());
+    const std::optional<size_t> found = probed[i].target->broadPhase(Pose{poses[i].position, Quat::Identity()},
+                                                                     probed[i].shell);
     const double us = microseconds(Clock::now() - start);
-    if (!found) break;
+    if (!found) continue;
     broadUs[i] = us;
     candidates[i] = double(*found);
   }
   std::ostringstream s;
   s << "penetration,nx,ny,nz,query_us,broad_us,candidates\n";
-  for (size_t i = 0; i < positions.size(); ++i) {
+  for (size_t i = 0; i < poses.size(); ++i) {
     const auto start = Clock::now();
-    const ShellContact contact = target->collide(Pose{positions[i], Quat::Identity()}, tool.shellPoints(), false);
+    const ShellContact contact =
+        probed[i].target->collide(Pose{poses[i].position, Quat::Identity()}, probed[i].shell, false);
     const double us = microseconds(Clock::now() - start);
     const bool touching = contact.points > 0;
     const Vec3 n = touching ? contact.normal : Vec3::Zero();
@@ -259,38 +310,39 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
     // never run, so that the probe neither changes the run it measures (its
     // counters, caches, warm starts) nor sees a drilled or deformed target.
     auto simulation = load(options, setting, directory);
-    std::vector<Vec3> positions;
     if (isReference) {
-      // The reference's run gives the poses.
+      // The reference's run gives the poses: of every tool and target that
+      // touched, each from its own frames in contact.
       simulation->run();
-      const auto [ranTarget, ranComponent] = findTarget(*simulation, options, setting);
-      std::vector<StudyPose> poses = posesFromRun(*simulation, options.posesPerKind, ranTarget);
-      if (poses.empty())
-        throw SettingError("the reference run has no frame in contact with " + ranComponent->path() +
+      const std::vector<ContactPair> pairs = pairsFromRun(*simulation, options, setting);
+      if (pairs.empty()) {
+        const std::string what =
+            options.target.empty() ? std::string("any collision target") : options.target;
+        throw SettingError("the reference run has no frame in contact with " + what +
                            ": there are no poses to compare");
-      const std::string toolPath = toolTouching(*simulation, ranTarget);
-      std::filesystem::remove(options.out / kProbeToolFile, ec);
-      if (!toolPath.empty()) {
-        AtomicFile tool(options.out / kProbeToolFile);
-        tool.write(toolPath + "\n");
-        tool.commit();
       }
       auto probed = load(options, setting);
-      auto [target, component] = findTarget(*probed, options, setting);
-      const std::string noExactShape = addExactContacts(poses, *component, findTool(*probed, toolPath));
+      std::vector<StudyPose> poses;
+      std::string noExactShape;  // why, per pair, for study.md (none: the exact shape)
+      for (const ContactPair& pair : pairs) {
+        std::vector<StudyPose> ofPair = posesOfPair(*simulation, pair, options.posesPerKind);
+        const Component* target = probed->scene().findComponent(pair.target);
+        if (!target) throw SettingError(pair.target + ": no component there in a fresh load of the scene");
+        const std::string why = addExactContacts(ofPair, *target, findTool(*probed, pair.tool));
+        if (!why.empty()) noExactShape += pair.tool + " on " + pair.target + ": " + why + "\n";
+        poses.insert(poses.end(), ofPair.begin(), ofPair.end());
+      }
       writePoses(posesFile, poses);
-      // Why the reference is a setting, for study.md (none: the exact shape).
       std::filesystem::remove(options.out / kNoExactShapeFile, ec);
       if (!noExactShape.empty()) {
         AtomicFile why(options.out / kNoExactShapeFile);
-        why.write(noExactShape + "\n");
+        why.write(noExactShape);
         why.commit();
       }
-      for (const StudyPose& p : poses) positions.push_back(p.position);
-      probe(*probed, options, setting, positions, directory / kProbeFile);
+      probe(*probed, poses, directory / kProbeFile);
     } else {
       auto probed = load(options, setting);
-      probe(*probed, options, setting, readPositions(posesFile), directory / kProbeFile);
+      probe(*probed, readPoses(posesFile), directory / kProbeFile);
       probed.reset();
       simulation->run();
     }

@@ -8,8 +8,9 @@
 //   result.csv   one row: closed-loop figures and time per frame of the run
 //   error.txt    instead of result.csv when the setting cannot be loaded or run
 // The reference setting runs first and also writes poses.csv at the top of the
-// study's directory: tool positions from its run's contact frames, with the
-// exact contact at each when the target has an exact shape.
+// study's directory: for every tool and target that touched in its run, tool
+// positions from their frames in contact, with the exact contact at each when
+// the target has an exact shape and the tool is a sphere.
 #include <filesystem>
 #include <string>
 
@@ -22,18 +23,16 @@ struct StudyOptions {
   std::filesystem::path scene;
   std::filesystem::path out;
   SimulationOptions simulation;  // duration, seed and the study's own --set overrides
-  std::string target;            // path of the target to probe; empty: the scene's only one
+  std::string target;            // path of the one target to study; empty: every target a tool touched
   int referenceIndex = 0;        // setting whose run gives the poses (and the reference without an exact shape)
   int posesPerKind = 200;        // proxy poses and as many device poses, evenly over the contact frames
 };
 
 inline constexpr const char* kPosesFile = "poses.csv";
 inline constexpr const char* kProbeFile = "probe.csv";
-// Written by the reference's run when the target has no exact shape: why.
+// Written by the reference's run when a tool and target it studies have no
+// exact contact: a line "TOOL on TARGET: why" for each such pair.
 inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
-// Written by the reference's run: the path of the tool it touched the target
-// with, which every setting probes with (a scene may have several).
-inline constexpr const char* kProbeToolFile = "probe_tool.txt";
 inline constexpr const char* kResultFile = "result.csv";
 inline constexpr const char* kErrorFile = "error.txt";
 

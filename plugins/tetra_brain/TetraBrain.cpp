@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -97,6 +98,17 @@ TetQueryOptions TetraBrain::queryOptions() const {
   options.contactDepth = d_contactDepth.value();
   options.deformable = m_positions.has_value();
   return options;
+}
+
+double TetraBrain::resolution() const {
+  std::vector<double> edges;
+  edges.reserve(6 * m_mesh.tets.size());
+  for (const TetIndices& t : m_mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) edges.push_back((m_mesh.nodes[size_t(t[a])] - m_mesh.nodes[size_t(t[b])]).norm());
+  if (edges.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+  return edges[edges.size() / 2];
 }
 
 LevelSet TetraBrain::exactShape() const {

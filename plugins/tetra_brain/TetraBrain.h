@@ -47,6 +47,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return d_contactDepth.value(); }
+  double resolution() const override;  // mm, the median edge of the tetrahedra at rest
   TargetFrame beginFrame(double t) override;
   uint64_t shapeFailures() const override { return m_shapeFailures; }
   // The node forces: the sum of this frame's responses, published with each

@@ -51,6 +51,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return 0.1 * m_grid.smallestSide(); }
+  double resolution() const override { return m_volume.spacing().maxCoeff(); }  // mm, the voxels' largest side
   // Applies the cuts the tools asked for in the frame before (once a frame).
   TargetFrame beginFrame(double t) override;
   // Queues the tool's cut for the start of the next frame: every cut of a

@@ -166,8 +166,10 @@ TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
                        &out),
             0)
       << out;
-  EXPECT_NE(out.find("reference: setting 1 (pointSpacing=0.4): no exact shape for this target: the tool is not a "
-                     "sphere (its bounding radius"),
+  // Setting 1 is the reference as the finer of the two shells.
+  EXPECT_NE(out.find("reference: setting 1 (pointSpacing=0.4), the finest (the target /patient/skull 1 mm, the shell "
+                     "of /tool/burr 0.39 mm): no exact shape for this target: the tool is not a sphere (its bounding "
+                     "radius"),
             std::string::npos)
       << out;
   EXPECT_NE(test::readFile(dir / "study/study.md").find("the tool is not a sphere"), std::string::npos);
@@ -213,6 +215,104 @@ TEST(StudyCommandTest, AfterAToolChangeTheStudiedTargetIsProbedOnlyWhereTheToolT
     // 20 mm and more of a pose in the cube's phase.
     EXPECT_LT(number(row, "pen_err_max_mm"), 0.2) << row.at("label");
   }
+}
+
+// A procedure as a user writes it from the docs: a burr on a shaft on a
+// tilted half-space of bone (0.7 mm voxels), a tool change, then a probe
+// pressing a soft cube under the TLED FEM. The study varies the skull's
+// back-end and voxel size. Every tool is measured on every target it
+// touched, at poses from their own frames: the probe on the brain against
+// the cube's exact shape, the capsule on the skull (no exact contact: it is
+// not a sphere) against the finest setting, chosen as such; errors of the
+// order of the voxel size (before, 38 to 40 mm: the skull was probed at the
+// brain phase's poses and the coarse setting was the reference).
+TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) {
+  test::TempDir dir("trephine-study");
+  std::string backends = "/patient/skull.backend=native", plugins;
+#ifdef TREPHINE_HAS_EMBREE_BACKEND
+  backends += ",embree";
+  plugins += R"(<RequiredPlugin name="embree"/>)";
+#endif
+#ifdef TREPHINE_HAS_BULLET_BACKEND
+  backends += ",bullet";
+  plugins += R"(<RequiredPlugin name="bullet"/>)";
+#endif
+  const auto scene = dir.write("procedure.xml", R"(<Node name="root" units="mm">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="fem"/>)" + plugins + R"(
+  <Node name="patient">
+    <VoxelSkull name="skull" file="phantom:halfspace?voxel=1.4&amp;nx=0.3&amp;ny=0.2&amp;nz=0.93&amp;size=40"
+                isovalue="500"/>
+    <TetraBrain name="brain" file="phantom:cube?cells=6&amp;size=20" translation="0 0 -40"/>
+    <TLEDForceField name="fem" mesh="@brain" density="1e-6" youngModulus="3" poissonRatio="0.45" damping="50"
+                    dt="0.33e-3" massScaling="true" rate="1000" group="fem"/>
+    <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -45"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="waypoints" rate="1000" record="false"
+                    waypoints="0 0 0 5  0.4 0 0 1.8  0.8 4 2 1.5  1.0 4 2 5  1.1 0 0 -25  1.5 0 0 -28.5  2 2 0 -28.5"/>
+    <CapsuleTool name="burr" radius="2.5" shaftLength="20" device="@device"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <ToolChange name="change" time="1.0" rate="1000"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull" toolChange="@change" nextTool="@probe"
+                    nextTarget="@/patient/brain" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" damping="0.002" nextStiffness="0.3"
+                   nextDamping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+</Node>)");
+  const std::string voxels =
+      "/patient/skull.file=phantom:halfspace?voxel=1.4&nx=0.3&ny=0.2&nz=0.93&size=40,"
+      "phantom:halfspace?voxel=0.7&nx=0.3&ny=0.2&nz=0.93&size=40";
+  std::vector<std::string> args = {"study", scene.string(), "--vary", backends, "--vary", voxels,
+                                   "--poses", "40", "--jobs", "2"};
+  std::string out;
+  auto studyArgs = args;
+  studyArgs.insert(studyArgs.end(), {"--out", (dir / "study").string()});
+  ASSERT_EQ(runProgram(studyArgs, &out), 0) << out;
+  // The reference: the first setting with 0.7 mm voxels, the finest.
+  EXPECT_NE(out.find("reference: setting 2 (backend=native, file=phantom:halfspace?voxel=0.7"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("the finest (the target /patient/skull 0.7 mm"), std::string::npos) << out;
+  const auto pairs = readStudy(dir / "study/pairs.csv");
+  const size_t settings = pairs.size() / 2;
+  ASSERT_EQ(pairs.size(), 2 * settings);
+  ASSERT_GE(settings, 2u);
+  for (const auto& row : pairs) {
+    ASSERT_EQ(row.at("status"), "ok") << row.at("label");
+    EXPECT_EQ(number(row, "poses"), 80) << row.at("label") << ", " << row.at("tool");
+    EXPECT_GT(number(row, "compared_poses"), 40) << row.at("label") << ", " << row.at("tool");
+    const bool coarse = row.at("label").find("voxel=1.4") != std::string::npos;
+    if (row.at("tool") == "/tool/burr") {
+      EXPECT_EQ(row.at("target"), "/patient/skull");
+      EXPECT_EQ(row.at("exact_reference"), "0") << "a burr on a shaft has no exact contact";
+      // Of the order of the voxel size: within the coarser voxel's half-diagonal.
+      EXPECT_LT(number(row, "pen_err_max_mm"), (coarse ? 1.4 : 0.7) * std::sqrt(3.0) / 2) << row.at("label");
+    } else {
+      EXPECT_EQ(row.at("tool"), "/tool/probe");
+      EXPECT_EQ(row.at("target"), "/patient/brain");
+      EXPECT_EQ(row.at("exact_reference"), "1") << "a sphere on the cube: the exact contact";
+      // The brain is the same in every setting; the native tetrahedral
+      // method on a flat face is exact to rounding.
+      EXPECT_LT(number(row, "pen_err_max_mm"), 1e-6) << row.at("label");
+    }
+  }
+  const std::string md = test::readFile(dir / "study/study.md");
+  EXPECT_NE(md.find("## Every tool on every target it touched"), std::string::npos) << md;
+  EXPECT_NE(md.find("- /tool/probe on /patient/brain: the exact shape of the phantom"), std::string::npos) << md;
+  // Setting 1 (1.4 mm voxels) asked for as the reference is refused, as
+  // coarser than setting 2; with --coarse-reference it is taken.
+  auto coarse = args;
+  coarse.insert(coarse.end(), {"--reference", "1", "--out", (dir / "coarse").string()});
+  EXPECT_EQ(runProgram(coarse, &out), 2) << out;
+  EXPECT_NE(out.find("the reference setting 1 (backend=native, file=phantom:halfspace?voxel=1.4"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("the target /patient/skull 1.4 mm against 0.7 mm"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "coarse/settings")) << "nothing is run";
+  coarse.push_back("--coarse-reference");
+  EXPECT_EQ(runProgram(coarse, &out), 0) << out;
+  EXPECT_NE(out.find("chosen with --coarse-reference"), std::string::npos) << out;
 }
 
 TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {

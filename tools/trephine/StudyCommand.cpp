@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "framework/core/Strings.h"
+#include "framework/study/ReferenceChoice.h"
 #include "framework/study/StudyReport.h"
 #include "framework/study/StudySetting.h"
 #include "tools/trephine/PlotScript.h"
@@ -32,7 +33,8 @@ namespace {
 
 constexpr const char* kUsageLine =
     "usage: trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N] [--duration S]\n"
-    "                     [--seed N] [--set path.field=value ...] [--target PATH] [--reference K] [--poses N]\n";
+    "                     [--seed N] [--set path.field=value ...] [--target PATH] [--reference K]\n"
+    "                     [--coarse-reference] [--poses N]\n";
 
 // This process's place among the ranks of an MPI launch (mpirun sets these
 // variables; Open MPI, then MPICH and Intel MPI): rank 0 of 1 otherwise.
@@ -72,6 +74,8 @@ struct StudyRequest {
   std::vector<std::string> variationTexts;
   int jobs = 1;
   std::optional<int> onlySetting;  // --setting K: run that one here (the study's worker processes)
+  std::optional<int> askedReference;  // --reference K, 0-based
+  bool coarseReference = false;       // --coarse-reference: a reference coarser than another setting is meant
 };
 
 std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) {
@@ -105,7 +109,11 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   request.options.simulation = *simulation;
   const int count = static_cast<int>(request.settings.size());
   if (auto jobs = positiveInteger(a, "--jobs", error)) request.jobs = *jobs;
-  if (auto reference = positiveInteger(a, "--reference", error)) request.options.referenceIndex = *reference - 1;
+  if (auto reference = positiveInteger(a, "--reference", error)) {
+    request.options.referenceIndex = *reference - 1;
+    request.askedReference = *reference - 1;
+  }
+  request.coarseReference = a.has("--coarse-reference");
   if (auto poses = positiveInteger(a, "--poses", error)) request.options.posesPerKind = *poses;
   if (auto only = positiveInteger(a, "--setting", error)) request.onlySetting = *only - 1;
   if (!error.empty()) return std::nullopt;
@@ -262,20 +270,31 @@ int studyCommand(const Arguments& a) {
     std::cerr << "trephine: " << error << "\n" << kUsageLine;
     return kUsage;
   }
-  const StudyOptions& options = request->options;
   if (request->onlySetting)
-    return runStudySetting(options, request->settings[*request->onlySetting]) ? kOk : kRuntimeFailure;
+    return runStudySetting(request->options, request->settings[*request->onlySetting]) ? kOk : kRuntimeFailure;
   const auto started = Clock::now() - std::chrono::seconds(10);
-  // The scene must load before anything is run (a typo in a field shows here).
-  {
-    Diagnostics diagnostics;
-    SimulationOptions check = options.simulation;
-    for (const std::string& o : request->settings.front().overrides()) check.overrides.push_back(o);
-    if (!Simulation::fromFile(options.scene, check, diagnostics)) {
-      diagnostics.print(std::cerr);
-      return kSceneError;
-    }
+  // The first setting is loaded before anything is run (a typo in a field
+  // shows here). Unless the reference has an exact shape for every target and
+  // tool, every setting is: what each resolves decides the reference.
+  std::vector<SettingResolution> resolutions(request->settings.size());
+  resolutions[0] = describeSetting(request->options, request->settings[0]);
+  if (!resolutions[0].loaded) {
+    std::cerr << resolutions[0].loadError;
+    return kSceneError;
   }
+  const size_t candidate = size_t(request->askedReference.value_or(0));
+  if (candidate != 0) resolutions[candidate] = describeSetting(request->options, request->settings[candidate]);
+  if (!(resolutions[candidate].loaded && resolutions[candidate].exactEverywhere))
+    for (size_t i = 1; i < resolutions.size(); ++i)
+      if (i != candidate) resolutions[i] = describeSetting(request->options, request->settings[i]);
+  const ReferenceChoice reference =
+      chooseReference(request->settings, resolutions, request->askedReference, request->coarseReference);
+  if (!reference.error.empty()) {
+    std::cerr << "trephine: " << reference.error << "\n";
+    return kUsage;
+  }
+  request->options.referenceIndex = reference.index;
+  const StudyOptions& options = request->options;
   const Rank rank = mpiRank();
   std::error_code ec;
   std::filesystem::create_directories(options.out, ec);
@@ -284,7 +303,7 @@ int studyCommand(const Arguments& a) {
     return kSceneError;
   }
   if (rank.size == 1)
-    for (const char* stale : {kPosesFile, kNoExactShapeFile, kProbeToolFile, "study.csv", "study.md", "pareto.png"})
+    for (const char* stale : {kPosesFile, kNoExactShapeFile, "study.csv", "pairs.csv", "study.md", "pareto.png"})
       std::filesystem::remove(options.out / stale, ec);
 
   const int count = static_cast<int>(request->settings.size());
@@ -317,7 +336,7 @@ int studyCommand(const Arguments& a) {
   std::vector<std::string> written;
   StudyReport report;
   try {
-    report = gatherStudy(options.out, request->settings, referenceIndex);
+    report = gatherStudy(options.out, request->settings, referenceIndex, reference.reason);
     written = writeStudy(report, options.out, options.scene.string());
   } catch (const std::exception& e) {
     std::cerr << "trephine: " << e.what() << "\n";

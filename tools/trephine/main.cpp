@@ -69,22 +69,28 @@ const std::vector<Command>& commands() {
       {"study",
        R"(  trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N]
                       [--duration S] [--seed N] [--set path.field=value ...] [--target PATH]
-                      [--reference K] [--poses N]
+                      [--reference K [--coarse-reference]] [--poses N]
       Run the scene once per setting of the varied fields (their cartesian
       product, the first field varying slowest) on the same device motion, and
-      compare: the target's penetration and normal at the same tool poses (the
-      contact frames of setting K, default 1; 2N poses, default N = 200)
-      against the exact shape of a phantom, or against setting K when the
-      target has none; force steps, proxy inside, NaN; time per frame. Writes
-      study.csv, study.md, pareto.png (python3-matplotlib) and settings/NNN/
-      to DIR (default runs/study-<scene name>). --jobs runs N settings at a
+      compare, for every tool on every target it touched (--target: that
+      target only): the penetration and normal at the same tool poses (2N
+      from the reference setting's frames where they touched, default
+      N = 200) against the exact shape of a phantom, or against the
+      reference setting where there is none; force steps, proxy inside, NaN;
+      time per frame. The reference is the setting that resolves every
+      target and tool finest (voxels, tetrahedra, shell spacing), else
+      setting 1; --reference K names another, refused when it is coarser
+      than another setting unless --coarse-reference. Writes study.csv (the
+      first pair), pairs.csv (every pair), study.md, pareto.png
+      (python3-matplotlib) and settings/NNN/ to DIR (default
+      runs/study-<scene name>). --jobs runs N settings at a
       time (their timings then share the cores). Under mpirun -n R each rank
       takes every R-th setting and rank 0 gathers (DIR on a shared file
       system).
 )",
        {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference", "--poses",
         "--setting"},
-       {},
+       {"--coarse-reference"},
        studyCommand},
       {"components",
        R"(  trephine components [NAME] [--json | --markdown | --xsd]
