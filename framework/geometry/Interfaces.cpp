@@ -2,12 +2,14 @@
 // (TREPHINE_INTERFACE): their type information lives in this library alone.
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
+#include "framework/geometry/HeldTools.h"
 #include "framework/geometry/TriangleEngine.h"
 
 namespace trephine {
 
 DeformableMesh::~DeformableMesh() = default;
 DrillableVolume::~DrillableVolume() = default;
+HeldTools::~HeldTools() = default;
 TriangleEngine::~TriangleEngine() = default;
 
 }  // namespace trephine

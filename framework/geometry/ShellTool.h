@@ -6,6 +6,7 @@
 #include <span>
 #include <string_view>
 
+#include "framework/data/TriangleMesh.h"
 #include "framework/devices/HapticDevice.h"
 #include "framework/math/Math.h"
 
@@ -56,6 +57,10 @@ class ShellTool {
   virtual CuttingBurr cuttingBurr() const { return {}; }
   // The solid the shell samples: by default the sphere of leadingRadius().
   virtual ToolSolid solid() const { return {leadingRadius(), 0, 0, Vec3::UnitZ()}; }
+  // What the tool looks like (tool frame, mm), for the files and the viewer:
+  // by default the surface of solid() (ToolSurface.h); a tool of another
+  // shape returns its own. Called once, at initialisation.
+  virtual TriangleMesh displaySurface() const;
 };
 
 }  // namespace trephine

@@ -43,7 +43,7 @@ double ForceFeedback::damping() const { return l_proxy->changedTools() ? damping
 std::vector<std::string> ForceFeedback::sampleColumns() const {
   return {"device_x", "device_y", "device_z", "proxy_x",  "proxy_y",     "proxy_z",         "force_x", "force_y",
           "force_z",  "normal_x", "normal_y", "normal_z", "penetration", "penetration_raw", "points",  "primitives",
-          "tool_radius"};
+          "tool_radius", "tool_in_hand", "tool_qw", "tool_qx", "tool_qy", "tool_qz"};
 }
 
 void ForceFeedback::tick(const TickContext& context) {
@@ -125,6 +125,11 @@ void ForceFeedback::tick(const TickContext& context) {
   // the viewer draws and whose surface the contact point is on; a capsule's
   // bounding radius is its shaft's length.
   sample.values[k++] = proxy.tool().leadingRadius();
+  // Which of heldTools() is in hand, and its orientation: the viewer and the
+  // files draw its surface (ShellTool::displaySurface) at the proxy.
+  sample.values[k++] = proxy.toolIndex();
+  const Quat& q = proxy.orientation();
+  for (const double c : {q.w(), q.x(), q.y(), q.z()}) sample.values[k++] = c;
   m_samples->publish(sample);
 }
 

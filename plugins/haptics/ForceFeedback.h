@@ -17,11 +17,12 @@
 #include "framework/channels/Channel.h"
 #include "framework/core/SampleSource.h"
 #include "framework/logs/HapticFrameLog.h"
+#include "framework/geometry/HeldTools.h"
 #include "plugins/haptics/GodObjectProxy.h"
 
 namespace trephine::haptics {
 
-class ForceFeedback final : public Component, public SampleSource {
+class ForceFeedback final : public Component, public SampleSource, public HeldTools {
  public:
   static constexpr std::string_view kTypeName = "ForceFeedback";
 
@@ -32,6 +33,7 @@ class ForceFeedback final : public Component, public SampleSource {
   double damping() const;
   void reportCounters(std::vector<Counter>& counters) const override;
   std::vector<std::string> sampleColumns() const override;
+  std::vector<const ShellTool*> heldTools() const override { return l_proxy->tools(); }
 
   const Vec3& force() const { return m_force; }
 

@@ -74,7 +74,10 @@ void GodObjectProxy::tick(const TickContext& context) {
   input.frame = m_target->beginFrame(context.t);
   const DeviceState& device = m_tool->device().state();
   input.deviceValid = device.valid;
-  if (device.valid) input.toolPose = m_tool->toolPose(device.pose);
+  if (device.valid) {
+    input.toolPose = m_tool->toolPose(device.pose);
+    m_orientation = input.toolPose.orientation;
+  }
   input.cutting = d_drillButton.value() == 0 || (device.buttons >> (d_drillButton.value() - 1)) & 1u;
   input.shell = m_tool->shellPoints();
   input.leadingRadius = m_tool->leadingRadius();
@@ -86,6 +89,12 @@ void GodObjectProxy::tick(const TickContext& context) {
   if (m_frame.letGo && context.events)
     context.events->log(context.t, "haptic_released", "the target's shape failed: proxy released to the device",
                         this);
+}
+
+std::vector<const ShellTool*> GodObjectProxy::tools() const {
+  std::vector<const ShellTool*> tools = {&*l_tool};
+  if (l_nextTool && &*l_nextTool != &*l_tool) tools.push_back(&*l_nextTool);
+  return tools;
 }
 
 void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {

@@ -25,7 +25,14 @@ class GodObjectProxy final : public Component {
   const ProxySettings& settings() const { return m_settings; }
   // The tool and target of this frame (the next ones after a tool change).
   ShellTool& tool() const { return *m_tool; }
+  // Every tool the proxy moves: the tool, then the one after the change.
+  std::vector<const ShellTool*> tools() const;
+  // Which of tools() is in hand (no allocation: for the haptic loop).
+  int toolIndex() const { return m_tool == &*l_tool ? 0 : 1; }
   bool changedTools() const { return m_changedTools; }
+  // The displayed tool's orientation (the device's; the proxy moves its
+  // position only): the last valid device pose's, identity before.
+  const Quat& orientation() const { return m_orientation; }
   bool hasToolChange() const { return bool(l_toolChange); }
   // What this frame's target takes (ShellContactTarget::respond, with the
   // tool's shell) once the force rendered to the user is known (N, on the
@@ -73,6 +80,7 @@ class GodObjectProxy final : public Component {
   ShellTool* m_tool = nullptr;        // l_tool, then l_nextTool
   ShellContactTarget* m_target = nullptr;  // l_target, then l_nextTarget
   bool m_changedTools = false;
+  Quat m_orientation = Quat::Identity();
 
   ProxySettings m_settings;  // the fields, read once at init
   ProxyMemory m_memory;

@@ -122,4 +122,15 @@ void LiveStream::sendSkullBlock(size_t block, const TriangleMesh& mesh) {
   m_server->send("block/" + std::to_string(block), blockMessage(block, mesh.vertices, mesh.triangles), true);
 }
 
+void LiveStream::sendToolSurface(std::span<const Vec3> points, std::span<const std::array<int32_t, 3>> triangles) {
+  m_message.clear();
+  put(m_message, uint32_t(5));
+  put(m_message, uint32_t(points.size()));
+  put(m_message, uint32_t(triangles.size()));
+  for (const Vec3& p : points) putVec(m_message, p);
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) put(m_message, uint32_t(t[k]));
+  m_server->send("toolshape", m_message, true);
+}
+
 }  // namespace trephine::viewer

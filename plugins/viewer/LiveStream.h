@@ -10,6 +10,9 @@
 //   3 cells   u32 tetrahedron count m, i32 corners[4m]
 //   4 block   u32 block, u32 point count p, u32 triangle count q,
 //             f32 points[3p] (mm), u32 corners[3q]
+//   5 tool's surface  u32 point count p, u32 triangle count q, f32
+//             points[3p] (mm, in the world), u32 corners[3q]: the tool in
+//             hand in its true shape (part "toolshape")
 // The parts are in the manifest the server gives the page. The skull starts as every block clustered (VertexClustering, at most
 // `skullTriangles` in all, the clusters shared so the blocks join), and each
 // block the drill changes is sent whole. Messages are keyed (LiveServer): a
@@ -48,6 +51,7 @@ class LiveStream {
   // Every block of `blocks`, clustered to at most `triangles` in all.
   void sendSkullClustered(const TriangleBlocks& blocks, size_t triangles);
   void sendSkullBlock(size_t block, const TriangleMesh& mesh);
+  void sendToolSurface(std::span<const Vec3> points, std::span<const std::array<int32_t, 3>> triangles);
 
  private:
   std::unique_ptr<LiveServer> m_server;

@@ -6,6 +6,7 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
+#include "framework/geometry/HeldTools.h"
 #include "plugins/viewer/LiveServer.h"
 
 namespace trephine::viewer {
@@ -64,6 +65,10 @@ void VtkExporter::init(InitContext& context) {
     m_normal = columnOf(columns, "normal_x");
     m_penetration = columnOf(columns, "penetration");
     m_toolRadius = columnOf(columns, "tool_radius");
+    m_toolInHand = columnOf(columns, "tool_in_hand");
+    m_toolOrientation = columnOf(columns, "tool_qw");
+    if (const auto* held = dynamic_cast<const HeldTools*>(l_force.boundComponent()))
+      for (const ShellTool* tool : held->heldTools()) m_toolSurfaces.push_back(tool->displaySurface());
     if (m_device < 0 || m_proxy < 0 || m_forceColumn < 0)
       context.error(l_force, "publishes no device_x, proxy_x and force_x columns (a ForceFeedback does)");
     m_samples = context.channels().subscribe<Sample>(*l_force.boundComponent(), kSampleChannel);
@@ -161,6 +166,27 @@ void VtkExporter::writeTool(double t) {
   attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { formats::writePolyData(tool, f); });
 }
 
+bool VtkExporter::placeToolSurface(const Sample& s) {
+  if (m_toolSurfaces.empty() || m_toolInHand < 0 || m_toolOrientation < 0) return false;
+  const double index = s.values[m_toolInHand];
+  if (!(index >= 0 && index < double(m_toolSurfaces.size()))) return false;
+  const TriangleMesh& surface = m_toolSurfaces[size_t(index)];
+  const Quat q(s.values[m_toolOrientation], s.values[m_toolOrientation + 1], s.values[m_toolOrientation + 2],
+               s.values[m_toolOrientation + 3]);
+  if (!(q.norm() > 0.5)) return false;
+  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
+  const Vec3 proxy(s.values[m_proxy], s.values[m_proxy + 1], s.values[m_proxy + 2]);
+  m_toolShape.points.resize(surface.vertices.size());
+  for (size_t i = 0; i < surface.vertices.size(); ++i) m_toolShape.points[i] = proxy + R * surface.vertices[i];
+  m_toolShape.triangles = surface.triangles;
+  return true;
+}
+
+void VtkExporter::writeToolShape(double t) {
+  attempt(numbered("toolshape", m_frames, ".vtp"), t, 3,
+          [&](const std::filesystem::path& f) { formats::writePolyData(m_toolShape, f); });
+}
+
 bool VtkExporter::applySkullEdits() {
   if (!m_edits) return false;
   std::array<int64_t, 3> first{INT64_MAX, INT64_MAX, INT64_MAX}, last{INT64_MIN, INT64_MIN, INT64_MIN};
@@ -229,8 +255,11 @@ void VtkExporter::tick(const TickContext& context) {
   }
   if (l_force) {
     m_samples->fetch();
+    const bool shaped = placeToolSurface(m_samples->read());
     if (files) writeTool(context.t);
+    if (files && shaped) writeToolShape(context.t);
     if (m_live) sendTool(context.t);
+    if (m_live && shaped) m_live->sendToolSurface(m_toolShape.points, m_toolShape.triangles);
   }
   if (l_skull && files && m_skullChanged && context.t - m_lastSkullWrite >= d_skullInterval.value())
     writeSkull(context.t);
@@ -259,6 +288,7 @@ void VtkExporter::startLiveView(const RunPlan& plan) {
   if (l_brain) names.push_back("brain"), kinds.push_back("mesh");
   if (l_force) names.push_back("tool"), kinds.push_back("tool");
   if (l_skull) names.push_back("skull"), kinds.push_back("blocks");
+  if (!m_toolSurfaces.empty()) names.push_back("toolshape"), kinds.push_back("polydata");
   m_live = std::make_unique<LiveStream>(plan.liveViewPort, path(), plan.duration, names, kinds);
   if (l_brain) {
     m_live->sendCells(l_brain->mesh().tets);

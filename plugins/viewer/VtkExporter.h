@@ -11,6 +11,10 @@
 //                    along the contact normal), with the force rendered to
 //                    the hand (N), the contact normal, the penetration (mm)
 //                    and the radius of the tool in hand (mm);
+//   toolshape_NNNNN.vtp  the tool in hand in its true shape at the proxy, in
+//                    the device's orientation (ShellTool::displaySurface: a
+//                    burr and its shaft; a plugin's tool, the surface it
+//                    declares), when `force` holds its tools (HeldTools);
 //   skull_NNNNN.vtm  the skull's surface (the isosurface of its interpolated
 //                    density, as the mesh back-ends see it), block by block:
 //                    each block of 16^3 cells in skull/bBBBBB_NNNNN.vtp, at
@@ -115,6 +119,13 @@ class VtkExporter final : public Component {
   // Tool: the source's columns, by name.
   std::optional<ChannelReader<Sample>> m_samples;
   int m_device = -1, m_proxy = -1, m_forceColumn = -1, m_normal = -1, m_penetration = -1, m_toolRadius = -1;
+  int m_toolInHand = -1, m_toolOrientation = -1;
+  std::vector<TriangleMesh> m_toolSurfaces;  // tool frame, one per held tool (HeldTools' order)
+  formats::VtkPolyData m_toolShape;          // the one in hand this frame, in the world
+  // The surface of the tool in hand at the sample's proxy and orientation
+  // into m_toolShape; false when there is none to draw.
+  bool placeToolSurface(const Sample& s);
+  void writeToolShape(double t);
 
   // Skull: a copy of its codes, kept current from the drill's changes (the
   // haptic thread pushes them into m_edits), and its surface in blocks.

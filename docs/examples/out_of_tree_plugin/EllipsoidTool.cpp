@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "framework/geometry/ToolSurface.h"
+
 namespace lissajous {
 
 void EllipsoidTool::init(trephine::InitContext&) {
@@ -19,6 +21,13 @@ void EllipsoidTool::init(trephine::InitContext&) {
     const trephine::Vec3 outward = p.cwiseQuotient(axes.cwiseProduct(axes)).normalized();
     m_shell.push_back({p, -outward});
   }
+}
+
+trephine::TriangleMesh EllipsoidTool::displaySurface() const {
+  // A unit sphere's surface stretched onto the ellipsoid.
+  trephine::TriangleMesh surface = trephine::solidSurface({1.0, 0, 0, trephine::Vec3::UnitZ()});
+  for (trephine::Vec3& v : surface.vertices) v = v.cwiseProduct(d_semiAxes.value());
+  return surface;
 }
 
 }  // namespace lissajous

@@ -16,7 +16,10 @@
 //     semi-axis);
 //   - the solid it samples, for back-ends that test solids (Bullet): the
 //     default, a sphere of the leading radius, would be wrong, so it
-//     describes none and Bullet refuses it at load.
+//     describes none and Bullet refuses it at load;
+//   - what it looks like, for VtkExporter's files and the viewer: the
+//     default draws the solid, so it gives its own surface (a sphere's,
+//     stretched onto the ellipsoid).
 #include <string_view>
 #include <vector>
 
@@ -37,6 +40,7 @@ class EllipsoidTool final : public trephine::Component, public trephine::ShellTo
   double leadingRadius() const override { return d_semiAxes.value().minCoeff(); }
   double boundingRadius() const override { return d_semiAxes.value().maxCoeff(); }
   trephine::ToolSolid solid() const override { return {0, 0, 0, trephine::Vec3::UnitZ()}; }
+  trephine::TriangleMesh displaySurface() const override;
 
  private:
   trephine::Link<trephine::HapticDevice> l_device{

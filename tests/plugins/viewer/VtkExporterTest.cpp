@@ -292,5 +292,50 @@ TEST(VtkExporterTest, ACapsulesBurrIsDrawnWithItsOwnRadius) {
   EXPECT_GT(inContact, 3);
 }
 
+// The tool in hand is also drawn in its true shape (toolshape_NNNNN.vtp):
+// the burr's sphere at the proxy and the shaft from it along the tool's axis
+// (here the device's +z, its orientation the identity), 40 mm long and of
+// the shaft's radius, closed at its end. Every point lies on that surface,
+// and the surface reaches the shaft's end.
+TEST(VtkExporterTest, ACapsuleIsDrawnWithItsShaft) {
+  test::TempDir dir;
+  std::string xml = scene(kExporter);
+  const size_t at = xml.find("<PointshellTool");
+  xml.replace(at, xml.find("/>", at) + 2 - at,
+              R"(<CapsuleTool name="probe" radius="2" shaftRadius="0.8" shaftLength="40" device="@device"/>)");
+  xml.replace(xml.find(R"(tipOffset="2.5")"), 15, R"(tipOffset="2")");
+  runInto(dir, xml, "1.0");
+  const auto pointsOf = [](const std::string& text) {
+    const size_t points = text.find("<Points>");
+    return test::appendedArray<float>(text, std::stoull(text.substr(text.find("offset=\"", points) + 8)));
+  };
+  int shapes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk")) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with("toolshape_")) continue;
+    ++shapes;
+    const std::vector<float> tool = pointsOf(test::readFile(dir / "run" / "vtk" / ("tool_" + name.substr(10))));
+    ASSERT_GE(tool.size(), 6u) << name;
+    const Vec3 proxy(tool[3], tool[4], tool[5]);
+    const std::string text = test::readFile(entry.path());
+    EXPECT_NE(text.find("<Polys>"), std::string::npos) << name;
+    const std::vector<float> xyz = pointsOf(text);
+    ASSERT_GT(xyz.size(), 300u) << name;
+    double farthest = 0;
+    for (size_t i = 0; i + 2 < xyz.size(); i += 3) {
+      const Vec3 p = Vec3(xyz[i], xyz[i + 1], xyz[i + 2]) - proxy;
+      const bool onBurr = std::abs(p.norm() - 2.0) < 1e-4;
+      const double along = p.z(), across = std::hypot(p.x(), p.y());
+      const bool onShaft = along > -1e-4 && along < 40 + 1e-4 && across < 0.8 + 1e-4 &&
+                           (std::abs(across - 0.8) < 1e-4 || std::abs(along - 40) < 1e-4);
+      EXPECT_TRUE(onBurr || onShaft) << name << ": " << p.transpose();
+      farthest = std::max(farthest, p.norm());
+    }
+    EXPECT_NEAR(farthest, std::hypot(40.0, 0.8), 1e-3) << name << ": the shaft's end is drawn";
+  }
+  EXPECT_GT(shapes, 10);
+  EXPECT_NE(test::readFile(dir / "run" / "vtk.pvd").find("toolshape_00000.vtp"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace trephine

@@ -62,6 +62,10 @@ grep -q '"type": *"EllipsoidTool"' "$out/tool/summary.json" || { cp "$out/tool/s
 grep -q '"proxy_inside_frames": *0,' "$out/tool/summary.json" || { cp "$out/tool/summary.json" "$log"; fail "the ellipsoid's proxy was inside the bone"; }
 contacts=$(sed -n 's/.*"contact_frames": *\([0-9]*\).*/\1/p' "$out/tool/summary.json" | head -n 1)
 [[ ${contacts:-0} -gt 300 ]] || { cp "$out/tool/summary.json" "$log"; fail "the ellipsoid touched the bone in ${contacts:-0} frames (expected over 300)"; }
+# Drawn in its own shape: the surface it declares, in every frame's file.
+shape=$out/tool/vtk/toolshape_00000.vtp
+[[ -f $shape ]] || fail "the ellipsoid's surface was not written (vtk/toolshape_00000.vtp)"
+grep -q 'NumberOfPolys="[1-9][0-9]*"' "$shape" || { cp "$shape" "$log"; fail "the ellipsoid's surface has no triangles"; }
 
 echo "-- validate without TREPHINE_PLUGIN_PATH must fail"
 status=0

@@ -102,6 +102,20 @@ export function startLive(manifest, scene, plots, status, report) {
     dirty = true;
   };
 
+  // The tool in hand in its true shape (a burr on its shaft), in the world.
+  const toolShape = Object.keys(kinds).find((name) => name === 'toolshape');
+  const onToolSurface = (buffer) => {
+    const view = new DataView(buffer);
+    const points = view.getUint32(4, true);
+    const triangles = view.getUint32(8, true);
+    if (!toolShape) return;
+    scene.setPieces(scene.partFor(toolShape, 'polydata'), [{
+      points: new Float32Array(buffer.slice(12, 12 + 12 * points)),
+      triangles: new Uint32Array(buffer.slice(12 + 12 * points, 12 + 12 * points + 12 * triangles)),
+    }]);
+    dirty = true;
+  };
+
   const socket = new WebSocket(`ws://${window.location.host}/stream`);
   socket.binaryType = 'arraybuffer';
   socket.onmessage = (event) => {
@@ -113,6 +127,7 @@ export function startLive(manifest, scene, plots, status, report) {
     else if (type === 2) onNodes(buffer);
     else if (type === 3) onCells(buffer);
     else if (type === 4) onBlock(buffer);
+    else if (type === 5) onToolSurface(buffer);
     else report(new Error(`live view: a message of unknown type ${type}`));
   };
   socket.onclose = () => {

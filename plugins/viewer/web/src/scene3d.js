@@ -92,7 +92,7 @@ export class Scene3d {
     const id = kind === 'blocks' && level === 'still' ? `${name}@still` : name;
     let part = this.parts.get(id);
     if (!part) {
-      part = this.createPart(kind);
+      part = this.createPart(kind, name);
       part.name = name;
       if (kind === 'blocks') part.level = level;
       this.parts.set(id, part);
@@ -113,7 +113,8 @@ export class Scene3d {
     return [...this.parts.values()].filter((part) => part.name === name);
   }
 
-  createPart(kind) {
+  // `name`: the tool's true shape (toolshape) takes the proxy's colour.
+  createPart(kind, name) {
     if (kind === 'tool') {
       const proxySource = vtkSphereSource.newInstance({ thetaResolution: 24, phiResolution: 16 });
       const deviceSource = vtkSphereSource.newInstance({ thetaResolution: 16, phiResolution: 12 });
@@ -142,7 +143,8 @@ export class Scene3d {
       for (const actor of [part.proxy, part.device, part.contact, part.arrow]) this.renderer.addActor(actor);
       return part;
     }
-    const colour = kind === 'mesh' ? kColours.brain : kind === 'blocks' ? kColours.skull : kColours.surface;
+    const colour = kind === 'mesh' ? kColours.brain : kind === 'blocks' ? kColours.skull
+      : name === 'toolshape' ? kColours.proxy : kColours.surface;
     const part = surfaceActor(colour);
     this.renderer.addActor(part.actor);
     return part;
@@ -261,7 +263,7 @@ export class Scene3d {
   partFor(name, kind) {
     let part = this.parts.get(name);
     if (!part) {
-      part = this.createPart(kind);
+      part = this.createPart(kind, name);
       part.name = name;
       this.parts.set(name, part);
       if (this.opacity.has(name)) this.setOpacity(name, this.opacity.get(name));
