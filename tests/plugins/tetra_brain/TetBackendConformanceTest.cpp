@@ -317,6 +317,56 @@ TEST(TetBackendFieldTest, ABurrOnAShaftMeasuresTheClosedFormAtAnyDepth) {
   }
 }
 
+// A tool a plugin defines (an ellipsoid of semi-axes 4, 2 and 2 mm, 600
+// points, as the out-of-tree EllipsoidTool), turned three ways and pressed
+// 0.3 to 1.5 mm into the cube's top face: the native back-end takes it point
+// by point and measures the closed form (the ellipsoid's support along the
+// face's normal less the centre's height) with the face's normal; the mesh
+// back-ends take spheres (and Bullet shafts) only and refuse it when it is
+// described, naming the back-end.
+TEST(TetBackendFieldTest, APluginsOwnToolShapeMeasuresTheClosedFormOrIsRefused) {
+  const Vec3 axes(4, 2, 2);
+  std::vector<ShellPoint> ellipsoid;
+  const int count = 600;
+  const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / count, r = std::sqrt(1 - z * z);
+    const Vec3 p = Vec3(r * std::cos(golden * i), r * std::sin(golden * i), z).cwiseProduct(axes);
+    ellipsoid.push_back({p, -p.cwiseQuotient(axes.cwiseProduct(axes)).normalized()});
+  }
+  const ToolSolid none{0, 0, 0, Vec3::UnitZ()};
+  for (const Backend& backend : backends()) {
+    TetraBrain brain;
+    brain.setBackend(backend.create());
+    shapes::cubeBrain(brain, kCells);
+    if (backend.name != "native") {
+      try {
+        brain.reserveShell(ellipsoid);
+        brain.describeTool(ellipsoid, none);
+        ADD_FAILURE() << backend.name << " took a tool it cannot measure";
+      } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("backend=\"" + backend.name + "\""), std::string::npos) << e.what();
+      }
+      continue;
+    }
+    brain.reserveShell(ellipsoid);
+    brain.describeTool(ellipsoid, none);
+    double worst = 0;
+    for (const Quat& turn : {Quat::Identity(), Quat(Eigen::AngleAxisd(0.6, Vec3(1, 2, 0.5).normalized())),
+                             Quat(Eigen::AngleAxisd(1.3, Vec3(-0.4, 0.3, 1).normalized()))})
+      for (const double press : {0.3, 0.8, 1.5}) {
+        const double support = axes.cwiseProduct(turn.conjugate() * Vec3::UnitZ()).norm();
+        const Vec3 centre(3, -2, 100 + support - press);
+        const ShellContact c = brain.collide({centre, turn}, ellipsoid, false);
+        ASSERT_GT(c.points, 0) << press;
+        EXPECT_NEAR(c.penetration, press, 0.02) << press;
+        EXPECT_GT(c.normal.z(), std::cos(0.06)) << press << ": " << c.normal.transpose();
+        worst = std::max(worst, std::abs(c.penetration - press));
+      }
+    RecordProperty("ellipsoid_worst_penetration_error_mm", std::to_string(worst));
+  }
+}
+
 TEST(TetBackendFieldTest, AnUnknownBackEndOrANativeOptionElsewhereIsALoadErrorAtItsAttribute) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(pulsatingScene("nonesuch"), d));

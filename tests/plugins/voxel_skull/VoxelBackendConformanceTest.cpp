@@ -263,6 +263,53 @@ TEST_P(VoxelBackendConformanceTest, ABurrOnAShaftTouchesWithItsShaftAsTheClosedF
   RecordProperty("capsule_worst_penetration_error_mm", std::to_string(worst));
 }
 
+// A tool a plugin defines, neither a sphere nor a burr on a shaft: an
+// ellipsoid (semi-axes 4, 2 and 2 mm, 600 points on a stretched Fibonacci
+// spiral, as the out-of-tree example's EllipsoidTool), turned three ways and
+// pressed 0.2 to 1.6 mm into the tilted plane. Its lowest point along the
+// normal n is sqrt(sum_i (a_i (R^T n)_i)^2) below its centre (the support of
+// the ellipsoid), so the penetration is that less the centre's height, and
+// the normal the plane's. The native back-end and Embree take it point by
+// point; Bullet takes only spheres and shafts and refuses it when described.
+TEST_P(VoxelBackendConformanceTest, APluginsOwnToolShapeTouchesAsTheClosedFormSays) {
+  const Backend& b = GetParam();
+  const Vec3 n = Vec3(0.3, 0.2, 0.93).normalized();
+  bindSolid([&](const Vec3& p) { return -p.dot(n); });
+  const Vec3 axes(4, 2, 2);
+  std::vector<ShellPoint> ellipsoid;
+  const int count = 600;
+  const double golden = M_PI * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / count, r = std::sqrt(1 - z * z);
+    const Vec3 p = Vec3(r * std::cos(golden * i), r * std::sin(golden * i), z).cwiseProduct(axes);
+    ellipsoid.push_back({p, -p.cwiseQuotient(axes.cwiseProduct(axes)).normalized()});
+  }
+  backend->reserveShell(ellipsoid);
+  if (b.name == "bullet") {
+    EXPECT_THROW(backend->describeTool(ellipsoid, {0, 0, 0, Vec3::UnitZ()}), std::runtime_error);
+    return;
+  }
+  backend->describeTool(ellipsoid, {0, 0, 0, Vec3::UnitZ()});
+  double worst = 0;
+  for (const Quat& turn : {Quat::Identity(), Quat(Eigen::AngleAxisd(0.6, Vec3(1, 2, 0.5).normalized())),
+                           Quat(Eigen::AngleAxisd(1.3, Vec3(-0.4, 0.3, 1).normalized()))})
+    for (const double depth : {0.2, 0.8, 1.6}) {
+      const Vec3 local = turn.conjugate() * n;
+      const double support = axes.cwiseProduct(local).norm();
+      const Vec3 centre = Vec3(1.3, -0.7, 0) - (Vec3(1.3, -0.7, 0).dot(n)) * n + (support - depth) * n;
+      const VoxelContact c = backend->collide({centre, turn}, ellipsoid, false);
+      ASSERT_GT(c.contact.points, 0) << b.name << ", depth " << depth;
+      const double error = std::abs(c.contact.penetration - depth);
+      EXPECT_LT(error, b.penetration + b.perDepth * depth + 0.02) << b.name << ", depth " << depth << ": "
+                                                                  << c.contact.penetration;
+      EXPECT_GT(c.contact.normal.dot(n), std::cos(b.angle)) << b.name << ", depth " << depth;
+      worst = std::max(worst, error);
+      // Lifted 0.05 mm clear: no contact.
+      EXPECT_EQ(backend->collide({centre + (depth + 0.05) * n, turn}, ellipsoid, false).contact.points, 0) << b.name;
+    }
+  RecordProperty("ellipsoid_worst_penetration_error_mm", std::to_string(worst));
+}
+
 // A plate 2 mm thick (thinner than the burr's radius) seen from both sides:
 // pressed 0.3 mm into its top or its bottom, the normal points out of the
 // side the burr is on and the penetration is that of the face it presses.
