@@ -49,7 +49,9 @@ TEST(MeshCommandTest, TheSameSurfaceGivesTheSameFile) {
 
 // A segmentation as NRRD (unsigned 8-bit, 1 mm voxels): a ball of label 42
 // inside a ball of label 3, and a block of label 7 apart.
-std::string segmentation(int n, bool fractional = false) {
+// `specks`: single voxels of label 9 on a 4-voxel lattice outside the balls
+// and the block (as a segmentation's stray voxels), some 200 at n = 34.
+std::string segmentation(int n, bool fractional = false, bool specks = false) {
   std::string header = "NRRD0004\ntype: " + std::string(fractional ? "float" : "uchar") +
                        "\ndimension: 3\nsizes: " + std::to_string(n) + " " + std::to_string(n) + " " +
                        std::to_string(n) + "\nspacings: 1 1 1\nencoding: raw\nendian: little\n\n";
@@ -58,7 +60,8 @@ std::string segmentation(int n, bool fractional = false) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const double r = Vec3(i - 14.5, j - 14.5, k - 14.5).norm();
-        const int label = r < 6 ? 42 : r < 12 ? 3 : (i > n - 6 && j > n - 6 && k > n - 6) ? 7 : 0;
+        int label = r < 6 ? 42 : r < 12 ? 3 : (i > n - 6 && j > n - 6 && k > n - 6) ? 7 : 0;
+        if (specks && label == 0 && r > 13 && i % 4 == 1 && j % 4 == 1 && k % 4 == 1) label = 9;
         if (fractional) {
           const float value = label + 0.5f;
           data.append(reinterpret_cast<const char*>(&value), 4);
@@ -115,6 +118,41 @@ TEST(MeshCommandTest, ALabelledImageMeshesWithItsLabels) {
                        &out),
             2);
   EXPECT_NE(out.find("--labels is for a labelled image"), std::string::npos) << out;
+}
+
+// A segmentation's stray voxels: each is meshed on its own, whatever the
+// cell size, so the count asked for cannot be met and the command says why;
+// --min-region gives them the label around them (here, outside) and the
+// count is met.
+TEST(MeshCommandTest, SpecksOfALabelSetAFloorThatMinRegionRemoves) {
+  test::TempDir dir;
+  dir.write("specks.nrrd", segmentation(34, false, true));
+  std::string out;
+  ASSERT_EQ(runProgram({"mesh", (dir / "specks.nrrd").string(), "--tets", "3000", "--out",
+                        (dir / "specks.mesh").string()},
+                       &out),
+            0)
+      << out;
+  const TetMesh floor = formats::readTetMesh(dir / "specks.mesh");
+  EXPECT_GT(double(floor.tetCount()), 1.1 * 3000) << out;
+  EXPECT_NE(out.find("regions have fewer than 27 voxels"), std::string::npos) << out;
+  EXPECT_NE(out.find("--min-region 27"), std::string::npos) << out;
+  ASSERT_EQ(runProgram({"mesh", (dir / "specks.nrrd").string(), "--tets", "3000", "--min-region", "27", "--out",
+                        (dir / "merged.mesh").string()},
+                       &out),
+            0)
+      << out;
+  const TetMesh merged = formats::readTetMesh(dir / "merged.mesh");
+  EXPECT_NEAR(double(merged.tetCount()), 3000.0, 0.05 * 3000) << out;
+  const std::set<int32_t> labels(merged.labels.begin(), merged.labels.end());
+  EXPECT_EQ(labels, (std::set<int32_t>{3, 7, 42})) << "the specks are outside now: " << out;
+  EXPECT_NE(out.find("had fewer than 27 voxels"), std::string::npos) << out;
+  EXPECT_EQ(out.find("note:"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"mesh", (dir / "specks.nrrd").string(), "--tets", "3000", "--min-region", "0", "--out",
+                        (dir / "x.mesh").string()},
+                       &out),
+            2);
+  EXPECT_NE(out.find("--min-region takes a voxel count"), std::string::npos) << out;
 }
 
 TEST(MeshCommandTest, BadArgumentsAndSurfacesAreClearErrors) {

@@ -8,7 +8,7 @@
 #include <map>
 
 #include "framework/core/SourceSpec.h"
-#include "framework/meshing/TetMeshing.h"
+#include "framework/meshing/LabelRegions.h"
 #include "framework/meshing/TetMeshing.h"
 #include "framework/meshing/SurfaceSolid.h"
 #include "framework/formats/surface/SurfaceReader.h"
@@ -20,7 +20,8 @@ namespace trephine::cli {
 namespace {
 
 constexpr const char* kUsageLine =
-    "usage: trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,L,...] [--tets N | --size S]\n"
+    "usage: trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,L,...] [--min-region V]\n"
+    "                     [--tets N | --size S]\n"
     "  INPUT: a closed surface (.off, .obj, .stl, .ply), phantom:sphere?radius=R (a ball, mm), or a labelled\n"
     "  image (a segmentation: .nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd or a DICOM series' directory)\n";
 
@@ -54,10 +55,22 @@ Solid solidOf(const std::string& name) {
                                std::to_string(std::abs(surface.volume())) + " mm^3 (inside: the winding number)"};
 }
 
+// Regions smaller than this (voxels; a cube of 3) are meshed on their own
+// with a few dozen tetrahedra whatever the cell size.
+constexpr size_t kSmallRegion = 27;
+
 int meshLabelledImageFile(const std::string& input, const std::string& out, const std::vector<int32_t>& keep, int tets,
-                          double size) {
+                          double size, size_t minRegion) {
   try {
-    const LabelledImageInput labelled = readLabelledImage(input, keep);
+    LabelledImageInput labelled = readLabelledImage(input, keep);
+    if (minRegion > 0) {
+      const LabelRegionCount merged = mergeSmallLabelRegions(labelled.image, minRegion);
+      labelled.labelledVoxels = 0;
+      for (const int32_t label : labelled.image.labels) labelled.labelledVoxels += label != 0;
+      std::cout << input << ": " << merged.small << " of its " << merged.regions << " regions had fewer than "
+                << minRegion << " voxels (" << merged.smallVoxels
+                << " voxels in all): each took the label most of its neighbours have\n";
+    }
     const auto start = std::chrono::steady_clock::now();
     const TetMesh mesh = tets > 0 ? meshLabelledImage(labelled.image, tets)
                                          : meshLabelledImageAtSize(labelled.image, size);
@@ -73,6 +86,17 @@ int meshLabelledImageFile(const std::string& input, const std::string& out, cons
               << " labelled voxels of " << labelled.image.labels.size() << "\n  tetrahedra per label:";
     for (const auto& [label, count] : perLabel) std::cout << " " << label << ": " << count;
     std::cout << "\n";
+    if (tets > 0 && double(mesh.tetCount()) > 1.1 * tets) {
+      // Above the count asked for: small regions are a floor no cell size lowers.
+      const LabelRegionCount regions = countLabelRegions(labelled.image, kSmallRegion);
+      if (regions.small > 0)
+        std::cout << "  note: " << regions.small << " of the image's " << regions.regions << " regions have fewer than "
+                  << kSmallRegion << " voxels (" << regions.smallVoxels
+                  << " voxels in all); each is meshed on its own, whatever the cell size, which keeps the count "
+                     "above "
+                  << tets << ". --min-region " << kSmallRegion
+                  << " gives them the label around them (or --labels keeps only the regions wanted).\n";
+    }
   } catch (const std::exception& e) {
     std::cerr << "trephine mesh: " << e.what() << "\n";
     return kSceneError;
@@ -102,6 +126,13 @@ int meshCommand(const Arguments& a) {
     if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !(size > 0) || !std::isfinite(size))
       error = "--size takes a positive length in mm, not '" + t + "'";
   }
+  long minRegion = 0;
+  if (error.empty() && a.has("--min-region")) {
+    const std::string t = *a.get("--min-region");
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), minRegion);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size() || minRegion < 1 || minRegion > 1000000)
+      error = "--min-region takes a voxel count from 1 to 1000000, not '" + t + "'";
+  }
   std::vector<int32_t> keep;
   if (error.empty() && a.has("--labels")) {
     try {
@@ -112,12 +143,14 @@ int meshCommand(const Arguments& a) {
   }
   const bool isImage = error.empty() && !isSurfaceName(a.positional[0]) && a.positional[0].rfind("phantom:", 0) != 0;
   if (error.empty() && a.has("--labels") && !isImage) error = "--labels is for a labelled image, not a surface";
+  if (error.empty() && a.has("--min-region") && !isImage)
+    error = "--min-region is for a labelled image, not a surface";
   if (!error.empty()) {
     std::cerr << "trephine mesh: " << error << "\n" << kUsageLine;
     return kUsage;
   }
   const std::string input = a.positional[0], out = *a.get("--out");
-  if (isImage) return meshLabelledImageFile(input, out, keep, int(tets), size);
+  if (isImage) return meshLabelledImageFile(input, out, keep, int(tets), size, size_t(minRegion));
   try {
     const Solid solid = solidOf(input);
     const TetMesh mesh =

@@ -113,7 +113,8 @@ const std::vector<Command>& commands() {
        {"--raw"},
        phantomCommand},
       {"mesh",
-       R"(  trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,...] [--tets N | --size S]
+       R"(  trephine mesh INPUT --out OUT.mesh|OUT.mesh.gz|OUT.vtu [--labels L,...] [--min-region V]
+                     [--tets N | --size S]
       Mesh a closed surface (.off, .obj, .stl, .ply), phantom:sphere?radius=R
       or a labelled image into tetrahedra with CGAL Mesh_3, at about N
       tetrahedra (within 3% from a few thousand up) or at cells of
@@ -123,9 +124,13 @@ const std::vector<Command>& commands() {
       segmentation: NRRD, NIfTI, MetaImage or a DICOM series of whole labels,
       0 outside) is meshed region by region, each tetrahedron keeping its
       label (TetraBrain's labels, LabelMaterial's label); --labels keeps only
-      those listed. Needs the meshing plugin (CGAL, GPL-3.0-or-later).
+      those listed. Each region of a label (its voxels joined across faces)
+      is meshed on its own, so a segmentation's specks set a floor on the
+      count that no cell size lowers (the command says so); --min-region V
+      gives every region of fewer than V voxels the label most of its
+      neighbours have. Needs the meshing plugin (CGAL, GPL-3.0-or-later).
 )",
-       {"--out", "--tets", "--size", "--labels"},
+       {"--out", "--tets", "--size", "--labels", "--min-region"},
        {},
        meshCommand},
       {"cellsize",
