@@ -147,6 +147,10 @@ class ShellContactTarget : public SurfaceTarget {
   // resolves its targets finest as the reference where there is no exact
   // shape. NaN: the target does not say.
   virtual double resolution() const { return std::numeric_limits<double>::quiet_NaN(); }
+  // Whether the target's shape moves by itself (a deformation model drives
+  // it): its surface may push the tool, so a proxy's spring follows it at
+  // once. A rigid target's surface moves only where tools cut it.
+  virtual bool deforms() const { return false; }
   // Whether tools cut this target (it is set to be drilled): material only
   // ever leaves it, so the space free of it only grows, and its cut surface is
   // rough at the scale of its primitives.

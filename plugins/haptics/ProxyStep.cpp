@@ -327,14 +327,14 @@ ProxyFrame Frame::contactFrame() {
   // anchor, a step the hand's motion does not explain. So held, it changes
   // by at most k kCatchUp beyond what the motion explains (0.04 N at 2 N/mm),
   // and the anchor catches up over the next frames.
-  if (s.contact && s.penetration > 0 && m.hadDevice && m_target.drills()) {
+  if (s.contact && s.penetration > 0 && m.hadDevice && !m_target.deforms()) {
     const Vec3 proposed = D + s.penetration * s.normal;
     const Vec3 lastSpring = m.state.penetration * m.state.normal;
     const Vec3 change = (proposed - D) - lastSpring;
     const double allowance = (D - m.lastDevice).norm() + kCatchUp;
     const Vec3 wanted =
         change.norm() > allowance ? Vec3(D + lastSpring + allowance / change.norm() * change) : proposed;
-    const Vec3 anchor = passiveAnchor(m.lastDevice + lastSpring, wanted, D);
+    const Vec3 anchor = m_target.drills() ? passiveAnchor(m.lastDevice + lastSpring, wanted, D) : wanted;
     if (anchor != proposed) {
       if ((anchor - proposed).norm() > kSamePlace) ++counters.heldAnchors;  // not a rounding
       P2 += anchor - proposed;

@@ -65,6 +65,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   bool isDeformable() const { return m_positions.has_value(); }
   // The component that deforms this mesh (followDeformation), or null.
   const Component* deformer() const override { return m_deformer; }
+  bool deforms() const override { return m_deformer != nullptr; }
   // Called by a TetGridRebuild in its init(): from then on the grids it
   // publishes on its "grids" channel are adopted at the start of a frame.
   std::optional<std::string> followGridRebuild(const Component& rebuilder, ChannelHub& channels);

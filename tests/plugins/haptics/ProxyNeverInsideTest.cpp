@@ -161,22 +161,33 @@ TEST_P(ProxyNeverInsideTest, OnRandomPathsTheProxyStaysOutAndNoFrameIsNaN) {
   EXPECT_GT(contactFrames, 250u * paths) << "the paths must touch the target for the property to mean something";
 }
 
-// A path the property found on the brain phantom: with the line sweep the
-// proxy slid 0.55 mm into a fold in one frame (the sweep probes only the
-// leading point's path), shown inside it for that frame; it now goes back
-// along its move to the last free place (counter held_outside_frames).
-TEST(ProxyNeverInsideTest, AFoldTheLineSweepMissesDoesNotTakeTheProxyIn) {
-  const Case c{"brain", "native", "line"};
-  Diagnostics d;
-  auto simulation = test::loadScene(
-      scene(c, R"(direction="0.3066 0.6031 -0.7364" center="22.12 11.99 0" depth="2.790" path="random-walk" )"
-               R"(radius="4" walkDuration="1.5" seed="5")"),
-      d);
-  ASSERT_TRUE(simulation) << test::messages(d);
-  simulation->run();
-  EXPECT_GT(simulation->hapticLog().stats().contactFrames, 2000u);
-  EXPECT_EQ(simulation->hapticLog().stats().proxyInsideFrames, 0u);
-  EXPECT_GE(test::componentCounter(*simulation, "GodObjectProxy", "held_outside_frames"), 1);
+// A path the property found on the brain phantom, a random walk pressed
+// 2.8 mm into a fold at the force limit: with the line sweep the proxy slid
+// 0.55 mm into the fold in one frame (the sweep probes only the leading
+// point's path), and then chattered between the fold's walls, its spring
+// swinging 30 to 40 degrees a frame while the device moved 0.003 mm: force
+// steps beyond the device's motion of p99 1.06 N, max 1.65 N. On a rigid
+// target the spring now changes by no more than the device's own move plus
+// 0.02 mm a frame (as on a drilled one): never inside, and the steps within
+// the brief's hard-case bounds (p99 0.05 N, max 0.3 N), on every sweep.
+TEST(ProxyNeverInsideTest, AFoldTheLineSweepMissesNeitherTakesTheProxyInNorChatters) {
+  for (const char* sweep : {"line", "cylinder"}) {
+    const Case c{"brain", "native", sweep};
+    Diagnostics d;
+    auto simulation = test::loadScene(
+        scene(c, R"(direction="0.3066 0.6031 -0.7364" center="22.12 11.99 0" depth="2.790" path="random-walk" )"
+                 R"(radius="4" walkDuration="1.5" seed="5")"),
+        d);
+    ASSERT_TRUE(simulation) << test::messages(d);
+    simulation->run();
+    const HapticStats stats = simulation->hapticLog().stats();
+    EXPECT_GT(stats.contactFrames, 2000u) << sweep;
+    EXPECT_EQ(stats.proxyInsideFrames, 0u) << sweep;
+    ASSERT_TRUE(stats.hasUnexplainedSteps);
+    EXPECT_LE(stats.unexplainedStepP99, 0.05) << sweep;
+    EXPECT_LE(stats.unexplainedStepMax, 0.3) << sweep;
+    EXPECT_EQ(stats.forceReversals, 0u) << sweep;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryTargetBackEndAndSweep, ProxyNeverInsideTest, testing::ValuesIn(cases()),
