@@ -107,6 +107,7 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"released_holds", double(c.releasedHolds)});
   counters.push_back({"releases", double(c.releases)});
   counters.push_back({"held_anchor_frames", double(c.heldAnchors)});
+  counters.push_back({"faded_release_frames", double(c.fadedReleases)});
   counters.push_back({"starts_inside", double(c.startsInside)});
   counters.push_back({"held_outside_frames", double(c.heldOutside)});
   if (c.nonFiniteFrames) counters.push_back({"non_finite_frames", double(c.nonFiniteFrames)});

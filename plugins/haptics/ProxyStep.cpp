@@ -342,6 +342,29 @@ ProxyFrame Frame::contactFrame() {
       if (s.penetration > 0) s.normal = (anchor - D) / s.penetration;
     }
   }
+  // 6b. A contact that ends on a rigid target, with a spring longer than the
+  // pace it may change a frame (the device's move plus kCatchUp): the spring
+  // fades at that pace instead of dropping at once. A proxy that lagged
+  // (held against the wall of a fissure and lifted over its rim, a drag at
+  // the force limit) would otherwise let go of newtons in a frame that the
+  // hand's motion does not explain; the true god-object's spring shrinks to
+  // nothing as the device leaves the rounded rim. A device that jumped lets
+  // go at once (its move is the pace), and so does a spring longer than the
+  // tool's leading radius (a proxy left behind a device that jumped away
+  // belongs to no contact: the plane stands for the surface only over the
+  // contact patch); a drilled target's breakthrough and a deforming target's
+  // surface moving away are real and drop at once.
+  if (!s.contact && m.state.contact && m.state.penetration > 0 && m.state.penetration <= m_input.leadingRadius &&
+      m.hadDevice && !m_target.deforms() && !m_target.drills()) {
+    const double fade = m.state.penetration - ((D - m.lastDevice).norm() + kCatchUp);
+    if (fade > 0) {
+      s.contact = true;
+      s.normal = m.state.normal;
+      s.penetration = fade;
+      P2 = D + fade * s.normal;
+      ++counters.fadedReleases;
+    }
+  }
   if (s.contact) ++counters.contactFrames;
   // The constraint plane of this frame, for the next one.
   m.hadPlane = hasPlane;

@@ -92,6 +92,7 @@ struct ProxyCounters {
   uint64_t heldAnchors = 0;    // frames whose anchor was held to the last one's distance from the device
   uint64_t startsInside = 0;   // starts (first valid device frame, tool changes) with the tool in the target
   uint64_t heldOutside = 0;    // frames whose new place was inside the target: held at the last free one
+  uint64_t fadedReleases = 0;  // frames whose ended contact's spring faded at the pace it may change
 };
 
 // What the proxy keeps from one frame to the next.
