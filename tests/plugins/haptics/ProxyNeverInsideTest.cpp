@@ -39,7 +39,8 @@ std::filesystem::path sharedData(const std::filesystem::path& file) {
 }
 bool real(const Case& c) { return c.target == "ct_head" || c.target == "atlas"; }
 
-std::vector<Case> cases() {
+// Every collision back-end built.
+std::vector<std::string> builtBackends() {
   std::vector<std::string> backends{"native"};
 #ifdef TREPHINE_TEST_EMBREE
   backends.push_back("embree");
@@ -47,6 +48,11 @@ std::vector<Case> cases() {
 #ifdef TREPHINE_TEST_BULLET
   backends.push_back("bullet");
 #endif
+  return backends;
+}
+
+std::vector<Case> cases() {
+  const std::vector<std::string> backends = builtBackends();
   std::vector<Case> all;
   for (const char* target : {"skull", "cube"})
     for (const std::string& backend : backends)
@@ -200,13 +206,7 @@ TEST(ProxyNeverInsideTest, AFoldTheLineSweepMissesNeitherTakesTheProxyInNorChatt
 // no NaN, and force steps beyond the device's motion within the brief's
 // hard-case bounds (p99 0.05 N, max 0.3 N).
 TEST(ProxyNeverInsideTest, UpASteepWallAndAlongAndAcrossTheFissureTheProxyStaysOut) {
-  std::vector<std::string> backends{"native"};
-#ifdef TREPHINE_TEST_EMBREE
-  backends.push_back("embree");
-#endif
-#ifdef TREPHINE_TEST_BULLET
-  backends.push_back("bullet");
-#endif
+  const std::vector<std::string> backends = builtBackends();
   Diagnostics loaded;
   auto alone = test::loadScene(scene({"brain", "native", "line"}, ""), loaded);
   ASSERT_TRUE(alone) << test::messages(loaded);
