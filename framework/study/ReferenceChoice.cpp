@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
 
+#include "framework/core/AtomicFile.h"
 #include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/geometry/ShellTool.h"
@@ -93,6 +96,49 @@ SettingResolution describeSetting(const StudyOptions& options, const StudySettin
       const double size = shellSpacing(tool->shellPoints());
       if (std::isfinite(size)) r.sizes.emplace_back("the shell of " + c->path(), size);
       r.exactEverywhere = r.exactEverywhere && tool->boundingRadius() == tool->leadingRadius();
+    }
+  }
+  return r;
+}
+
+void writeSettingResolution(const SettingResolution& resolution, const std::filesystem::path& file) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "loaded\t" << (resolution.loaded ? 1 : 0) << "\nexact\t" << (resolution.exactEverywhere ? 1 : 0) << "\n";
+  for (const auto& [name, size] : resolution.sizes) text << "size\t" << name << "\t" << size << "\n";
+  std::string error = resolution.loadError;
+  for (char& c : error)
+    if (c == '\n') c = '\x1f';  // one line; read back as newlines
+  if (!error.empty()) text << "error\t" << error << "\n";
+  AtomicFile out(file);
+  out.write(text.str());
+  out.commit();
+}
+
+SettingResolution readSettingResolution(const std::filesystem::path& file) {
+  SettingResolution r;
+  std::ifstream in(file);
+  if (!in) {
+    r.loadError = "the setting's description was not written (" + file.string() + "): its process ended first\n";
+    return r;
+  }
+  for (std::string line; std::getline(in, line);) {
+    const size_t tab = line.find('\t');
+    const std::string key = line.substr(0, tab), rest = tab == std::string::npos ? "" : line.substr(tab + 1);
+    if (key == "loaded") r.loaded = rest == "1";
+    if (key == "exact") r.exactEverywhere = rest == "1";
+    if (key == "error") {
+      r.loadError = rest;
+      for (char& c : r.loadError)
+        if (c == '\x1f') c = '\n';
+    }
+    if (key == "size") {
+      const size_t last = rest.rfind('\t');
+      if (last == std::string::npos) continue;
+      char* end = nullptr;
+      const std::string number = rest.substr(last + 1);
+      const double size = std::strtod(number.c_str(), &end);
+      if (end != number.c_str() && *end == '\0' && std::isfinite(size)) r.sizes.emplace_back(rest.substr(0, last), size);
     }
   }
   return r;

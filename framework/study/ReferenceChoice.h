@@ -3,6 +3,7 @@
 // shape: the one that resolves every target and tool finest (the targets'
 // voxels or tetrahedra, the tools' shell spacing). Against a coarser one the
 // finer settings' accuracy would be measured by the coarser's own error.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,13 @@ struct SettingResolution {
 };
 
 SettingResolution describeSetting(const StudyOptions& options, const StudySetting& setting);
+
+// A description as a file, so that each setting is loaded in a process of its
+// own (a setting whose load crashes ends only that process): lines of
+// tab-separated fields, "loaded 1|0", "exact 1|0", "size NAME MM", "error TEXT".
+void writeSettingResolution(const SettingResolution& resolution, const std::filesystem::path& file);
+// What the file says; not loaded, with the reason, when it is missing or unreadable.
+SettingResolution readSettingResolution(const std::filesystem::path& file);
 
 struct ReferenceChoice {
   int index = 0;

@@ -74,6 +74,8 @@ struct StudyRequest {
   std::vector<std::string> variationTexts;
   int jobs = 1;
   std::optional<int> onlySetting;  // --setting K: run that one here (the study's worker processes)
+  std::optional<int> describeOnly;  // --describe K: load that one and write what it resolves into --describe-to
+  std::string describeTo;
   std::optional<int> askedReference;  // --reference K, 0-based
   bool coarseReference = false;       // --coarse-reference: a reference coarser than another setting is meant
 };
@@ -116,8 +118,12 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   request.coarseReference = a.has("--coarse-reference");
   if (auto poses = positiveInteger(a, "--poses", error)) request.options.posesPerKind = *poses;
   if (auto only = positiveInteger(a, "--setting", error)) request.onlySetting = *only - 1;
+  if (auto describe = positiveInteger(a, "--describe", error)) request.describeOnly = *describe - 1;
+  request.describeTo = a.get("--describe-to").value_or("");
+  if (request.describeOnly && request.describeTo.empty()) error = "--describe needs --describe-to FILE";
   if (!error.empty()) return std::nullopt;
-  if (request.options.referenceIndex >= count || (request.onlySetting && *request.onlySetting >= count)) {
+  if (request.options.referenceIndex >= count || (request.onlySetting && *request.onlySetting >= count) ||
+      (request.describeOnly && *request.describeOnly >= count)) {
     error = "--reference and --setting take a setting number from 1 to " + std::to_string(count);
     return std::nullopt;
   }
@@ -141,6 +147,44 @@ std::vector<std::string> workerArguments(const StudyRequest& request, int index)
                            std::to_string(request.options.posesPerKind), "--out", request.options.out.string(),
                            "--setting", std::to_string(index + 1)});
   return args;
+}
+
+// The command line of the process that describes setting `index` into `file`.
+std::vector<std::string> describerArguments(const StudyRequest& request, int index, const std::filesystem::path& file) {
+  std::vector<std::string> args = {"/proc/self/exe", "study", request.options.scene.string()};
+  for (const std::string& v : request.variationTexts) args.insert(args.end(), {"--vary", v});
+  for (const std::string& o : request.options.simulation.overrides) args.insert(args.end(), {"--set", o});
+  if (!request.options.target.empty()) args.insert(args.end(), {"--target", request.options.target});
+  args.insert(args.end(), {"--describe", std::to_string(index + 1), "--describe-to", file.string()});
+  return args;
+}
+
+// What each of `indices` resolves, each setting loaded in a process of its
+// own, at most `jobs` at a time (a setting whose load crashes ends only its
+// process, and its description says so). The files go to `folder`.
+void describeSettings(const StudyRequest& request, const std::vector<int>& indices, int jobs,
+                      const std::filesystem::path& folder, std::vector<SettingResolution>& resolutions) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  const auto fileOf = [&](int index) { return folder / (std::to_string(index + 1) + ".txt"); };
+  std::map<pid_t, int> running;
+  size_t next = 0;
+  while (next < indices.size() || !running.empty()) {
+    while (next < indices.size() && static_cast<int>(running.size()) < jobs) {
+      const int index = indices[next++];
+      std::filesystem::remove(fileOf(index), ec);
+      const pid_t pid = spawn(describerArguments(request, index, fileOf(index)), false);
+      if (pid >= 0) running[pid] = index;
+    }
+    if (running.empty()) continue;
+    int status = 0;
+    const pid_t ended = waitpid(-1, &status, 0);
+    if (ended < 0 && errno == EINTR) continue;
+    if (ended < 0) break;
+    running.erase(ended);
+  }
+  for (const int index : indices) resolutions[size_t(index)] = readSettingResolution(fileOf(index));
+  std::filesystem::remove_all(folder, ec);
 }
 
 // A worker that ended without saying why (killed, crashed, not started)
@@ -272,21 +316,40 @@ int studyCommand(const Arguments& a) {
   }
   if (request->onlySetting)
     return runStudySetting(request->options, request->settings[*request->onlySetting]) ? kOk : kRuntimeFailure;
+  if (request->describeOnly) {
+    writeSettingResolution(describeSetting(request->options, request->settings[*request->describeOnly]),
+                           request->describeTo);
+    return kOk;
+  }
   const auto started = Clock::now() - std::chrono::seconds(10);
   // The first setting is loaded before anything is run (a typo in a field
   // shows here). Unless the reference has an exact shape for every target and
-  // tool, every setting is: what each resolves decides the reference.
+  // tool, every setting is: what each resolves decides the reference. Each
+  // is loaded in a process of its own (under MPI, every rank describes them
+  // alike, into a folder of its own).
+  std::error_code ec;
+  std::filesystem::create_directories(request->options.out, ec);
+  if (!std::filesystem::is_directory(request->options.out)) {
+    std::cerr << "trephine: --out " << request->options.out.string() << ": cannot create a directory there\n";
+    return kSceneError;
+  }
   std::vector<SettingResolution> resolutions(request->settings.size());
-  resolutions[0] = describeSetting(request->options, request->settings[0]);
+  const std::filesystem::path describing =
+      request->options.out / (".describe-" + std::to_string(getpid()));
+  const size_t candidate = size_t(request->askedReference.value_or(0));
+  std::vector<int> first = {0};
+  if (candidate != 0) first.push_back(int(candidate));
+  describeSettings(*request, first, request->jobs, describing, resolutions);
   if (!resolutions[0].loaded) {
     std::cerr << resolutions[0].loadError;
     return kSceneError;
   }
-  const size_t candidate = size_t(request->askedReference.value_or(0));
-  if (candidate != 0) resolutions[candidate] = describeSetting(request->options, request->settings[candidate]);
-  if (!(resolutions[candidate].loaded && resolutions[candidate].exactEverywhere))
+  if (!(resolutions[candidate].loaded && resolutions[candidate].exactEverywhere)) {
+    std::vector<int> rest;
     for (size_t i = 1; i < resolutions.size(); ++i)
-      if (i != candidate) resolutions[i] = describeSetting(request->options, request->settings[i]);
+      if (i != candidate) rest.push_back(int(i));
+    describeSettings(*request, rest, request->jobs, describing, resolutions);
+  }
   const ReferenceChoice reference =
       chooseReference(request->settings, resolutions, request->askedReference, request->coarseReference);
   if (!reference.error.empty()) {
@@ -296,12 +359,6 @@ int studyCommand(const Arguments& a) {
   request->options.referenceIndex = reference.index;
   const StudyOptions& options = request->options;
   const Rank rank = mpiRank();
-  std::error_code ec;
-  std::filesystem::create_directories(options.out, ec);
-  if (!std::filesystem::is_directory(options.out)) {
-    std::cerr << "trephine: --out " << options.out.string() << ": cannot create a directory there\n";
-    return kSceneError;
-  }
   if (rank.size == 1)
     for (const char* stale : {kPosesFile, kNoExactShapeFile, "study.csv", "pairs.csv", "study.md", "pareto.png"})
       std::filesystem::remove(options.out / stale, ec);

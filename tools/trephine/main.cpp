@@ -89,7 +89,7 @@ const std::vector<Command>& commands() {
       system).
 )",
        {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference", "--poses",
-        "--setting"},
+        "--setting", "--describe", "--describe-to"},
        {"--coarse-reference"},
        studyCommand},
       {"components",

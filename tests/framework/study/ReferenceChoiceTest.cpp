@@ -2,6 +2,8 @@
 // finest in every target and tool; a coarser one only when asked for so.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "framework/study/ReferenceChoice.h"
 
 namespace trephine::study {
@@ -78,6 +80,31 @@ TEST(ReferenceChoiceTest, SettingsAlikeOrTradingOneSizeForAnotherAreSaidSo) {
   study = voxelsAndBackends();
   study.resolutions[2].loaded = study.resolutions[3].loaded = false;
   EXPECT_EQ(chooseReference(study.settings, study.resolutions, std::nullopt, false).index, 0);
+}
+
+// Each setting is described in a process of its own, through a file: what
+// is written is read back, a missing file is a setting that did not load,
+// with the reason.
+TEST(ReferenceChoiceTest, ADescriptionSurvivesItsFileAndAMissingOneSaysWhy) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "trephine-resolution-test.txt";
+  SettingResolution written;
+  written.loaded = true;
+  written.exactEverywhere = false;
+  written.sizes = {{"the target /patient/skull", 0.7}, {"the shell of /tool/a, b", 0.123456789012345}};
+  writeSettingResolution(written, file);
+  const SettingResolution read = readSettingResolution(file);
+  EXPECT_TRUE(read.loaded);
+  EXPECT_FALSE(read.exactEverywhere);
+  EXPECT_EQ(read.sizes, written.sizes);
+  SettingResolution failed;
+  failed.loadError = "scene.xml:3: no component Foo\nscene.xml:4: another\n";
+  writeSettingResolution(failed, file);
+  EXPECT_FALSE(readSettingResolution(file).loaded);
+  EXPECT_EQ(readSettingResolution(file).loadError, failed.loadError);
+  std::filesystem::remove(file);
+  const SettingResolution missing = readSettingResolution(file);
+  EXPECT_FALSE(missing.loaded);
+  EXPECT_NE(missing.loadError.find("was not written"), std::string::npos) << missing.loadError;
 }
 
 }  // namespace
