@@ -63,9 +63,12 @@ std::vector<Case> cases() {
   // Bullet cast the whole sphere for every sweep).
   for (const std::string& backend : backends)
     for (const char* sweep : {"line", "cylinder"}) all.push_back({"brain", backend, sweep});
-  for (const char* target : {"ct_head", "atlas"})
-    for (const std::string& backend : backends)
-      for (const char* sweep : {"line", "cylinder"}) all.push_back({target, backend, sweep});
+  // Real data: the CT head with every sweep, the atlas brain with the line
+  // and cylinder (a brain's spheres sweep is its cylinder's, as above).
+  for (const std::string& backend : backends) {
+    for (const char* sweep : {"line", "cylinder", "spheres"}) all.push_back({"ct_head", backend, sweep});
+    for (const char* sweep : {"line", "cylinder"}) all.push_back({"atlas", backend, sweep});
+  }
   return all;
 }
 
