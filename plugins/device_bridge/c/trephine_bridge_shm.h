@@ -1,0 +1,48 @@
+/* SPDX-License-Identifier: MIT
+ *
+ * The Trephine device bridge over shared memory (one machine): a POSIX
+ * shared memory object holding the latest pose and the latest force, each
+ * in a slot that one side writes and the other reads without waiting or
+ * locking (a sequence lock: the writer marks the slot odd while it writes;
+ * a reader that saw the mark change, or odd, tries again at its next tick).
+ * Either side's loop takes the latest value and never waits on the other.
+ * The slots hold encoded packets (trephine_bridge.h), so the reader decodes
+ * and checks what it reads like any packet. Needs C11 atomics and POSIX
+ * shm_open/mmap (link -lrt on old C libraries).
+ */
+#ifndef TREPHINE_BRIDGE_SHM_H
+#define TREPHINE_BRIDGE_SHM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "trephine_bridge.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct trephine_bridge_shm trephine_bridge_shm;
+
+/* Opens the shared memory object `name` ("/trephine-bridge" and the like: a
+ * leading slash, no other), creating it (owner-only permissions) when
+ * `create` is non-zero. Returns NULL and sets *error (an errno value, or
+ * EPROTO for an object that is not a bridge of this version) on failure. */
+trephine_bridge_shm* trephine_bridge_shm_open(const char* name, int create, int* error);
+/* Unmaps it; the side that created it also removes the name when `unlink` is non-zero. */
+void trephine_bridge_shm_close(trephine_bridge_shm* shm, const char* name, int unlink);
+
+/* The device side writes poses and reads forces; the simulation the other way. */
+void trephine_bridge_shm_write_pose(trephine_bridge_shm* shm, const unsigned char packet[TREPHINE_BRIDGE_POSE_SIZE]);
+void trephine_bridge_shm_write_force(trephine_bridge_shm* shm, const unsigned char packet[TREPHINE_BRIDGE_FORCE_SIZE]);
+/* Copies the slot's latest packet into `out`; returns 1 when the copy is
+ * whole, 0 when a write was under way (nothing usable: try at the next tick)
+ * or nothing was ever written. */
+int trephine_bridge_shm_read_pose(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_POSE_SIZE]);
+int trephine_bridge_shm_read_force(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_FORCE_SIZE]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TREPHINE_BRIDGE_SHM_H */
