@@ -325,6 +325,8 @@ TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--reference", "2"}, &out), 2);
   EXPECT_NE(out.find("from 1 to 1"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--jobs", "0"}, &out), 2);
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--coarse-reference"}, &out), 2);
+  EXPECT_NE(out.find("--coarse-reference goes with --reference K"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.radiuss=2", "--out", dir.path().string()}, &out),
             1);
   EXPECT_NE(out.find("radiuss"), std::string::npos) << out;

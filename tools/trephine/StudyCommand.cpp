@@ -116,6 +116,8 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
     request.askedReference = *reference - 1;
   }
   request.coarseReference = a.has("--coarse-reference");
+  if (request.coarseReference && !request.askedReference)
+    error = "--coarse-reference goes with --reference K (the coarser setting meant as the reference)";
   if (auto poses = positiveInteger(a, "--poses", error)) request.options.posesPerKind = *poses;
   if (auto only = positiveInteger(a, "--setting", error)) request.onlySetting = *only - 1;
   if (auto describe = positiveInteger(a, "--describe", error)) request.describeOnly = *describe - 1;
