@@ -202,6 +202,42 @@ TEST(ProxyNeverInsideTest, AFoldTheLineSweepMissesNeitherTakesTheProxyInNorChatt
   }
 }
 
+// The same fold in closed loop: a simulated hand (HandDevice, its defaults)
+// whose intent is that random walk pressed 25 mm deep, so that its grip
+// presses the probe at up to the force limit, the proxy and the force at
+// their defaults. Before the spring's change was held on rigid targets, the
+// native back-end's force stepped 2.35 N beyond the hand's motion here.
+TEST(ProxyNeverInsideTest, AHandPressingIntoTheFoldAtTheLimitFeelsNoStep) {
+  for (const std::string& backend : builtBackends()) {
+    const std::string plugin = backend == "native" ? "" : "<RequiredPlugin name=\"" + backend + "\"/>";
+    Diagnostics d;
+    auto simulation = test::loadScene(R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  )" + plugin + R"(
+  <TetraBrain name="target" file="phantom:brain?tets=22000" backend=")" + backend + R"("/>
+  <ScriptedDevice name="intent" target="@target" tipOffset="2.5" record="false" rate="1000"
+                  direction="0.3066 0.6031 -0.7364" center="22.12 11.99 0" depth="25" path="random-walk"
+                  radius="4" walkDuration="1.5" seed="5"/>
+  <HandDevice name="hand" intent="@intent" rate="1000"/>
+  <PointshellTool name="burr" radius="2.5" angleStep="15" device="@hand"/>
+  <GodObjectProxy name="proxy" tool="@burr" target="@target" rate="1000"/>
+  <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" damping="0.002" maxForce="3.3" rate="1000"/>
+</Node>)",
+                                      d);
+    ASSERT_TRUE(simulation) << test::messages(d);
+    simulation->run();
+    const HapticStats stats = simulation->hapticLog().stats();
+    EXPECT_GT(stats.contactFrames, 1000u) << backend;
+    EXPECT_EQ(stats.proxyInsideFrames, 0u) << backend;
+    EXPECT_EQ(stats.nanFrames, 0u) << backend;
+    EXPECT_EQ(stats.forceReversals, 0u) << backend;
+    ASSERT_TRUE(stats.hasUnexplainedSteps);
+    EXPECT_LE(stats.unexplainedStepP99, 0.05) << backend;
+    EXPECT_LE(stats.unexplainedStepMax, 0.3) << backend;
+  }
+}
+
 // The brain phantom's hard places, on every back-end: a probe pressed 1 mm
 // into the side of a hemisphere and slid 12 mm up its steep wall (the native
 // back-end's proxy once jumped 1 mm into the brain there and stayed for 226
