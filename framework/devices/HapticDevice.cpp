@@ -15,7 +15,10 @@ void HapticDevice::prepare(const RunPlan& plan) {
 }
 
 void HapticDevice::tick(const TickContext& context) {
+  m_tickEvents = context.events;
   const DeviceSample raw = readSample(context.t);
+  m_tickEvents = nullptr;
+  if (!connected()) return;
   ++m_samples;
   if (m_recordedSize < m_recorded.size()) m_recorded[m_recordedSize++] = raw;
 

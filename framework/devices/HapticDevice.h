@@ -57,6 +57,12 @@ class HapticDevice : public Component {
  protected:
   // The raw device reading at time t (s). Must not allocate or throw.
   virtual DeviceSample readSample(double t) = 0;
+  // The run's event log during tick() (readSample may log through it), else null.
+  EventLog* tickEvents() const { return m_tickEvents; }
+  // Whether a device is there to read. A device outside the process is not
+  // until its first sample has come: tick() then takes nothing from
+  // readSample (the state stays invalid, nothing is counted or recorded).
+  virtual bool connected() const { return true; }
   // The next sample is taken as it comes, without the jump test (an intended
   // discontinuity, such as a looping replay starting over).
   void forgetLastSample() { m_filter.forget(); }
@@ -79,6 +85,7 @@ class HapticDevice : public Component {
   size_t m_recordedSize = 0;
   uint64_t m_samples = 0, m_rejectedNonFinite = 0, m_rejectedJump = 0;
   bool m_rejecting = false;  // inside a streak of rejected samples
+  EventLog* m_tickEvents = nullptr;
 };
 
 }  // namespace trephine

@@ -130,6 +130,11 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
       writeTiming(json, g.wakeLateness);
       json.field("skipped_ticks", static_cast<unsigned long long>(g.skippedTicks));
       json.field("realtime_priority", g.realtimePriority);
+      if (g.pacer) {
+        // Frames started by the device's input, and by the clock's bound with none come.
+        json.field("paced_frames", static_cast<unsigned long long>(g.pacedFrames));
+        json.field("unpaced_frames", static_cast<unsigned long long>(g.unpacedFrames));
+      }
     }
     json.endObject();
   }

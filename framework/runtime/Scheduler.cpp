@@ -13,6 +13,8 @@
 #include <mutex>
 #include <thread>
 
+#include "framework/core/FramePacer.h"
+
 namespace trephine {
 
 namespace {
@@ -77,6 +79,11 @@ Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& p
   std::sort(m_groups.begin(), m_groups.end(), [](const RateGroup& a, const RateGroup& b) {
     return a.rateHz != b.rateHz ? a.rateHz > b.rateHz : a.name < b.name;
   });
+  // The first member that paces its group, if any (FramePacer.h).
+  for (RateGroup& g : m_groups)
+    for (GroupMember& m : g.members)
+      if (auto* pacer = dynamic_cast<FramePacer*>(m.component); pacer && pacer->pacesFrames() && !g.pacer)
+        g.pacer = pacer;
   // Indexed by tick; a tick skipped in real time stays NaN and is left out of timings.csv.
   for (RateGroup& g : m_groups)
     for (GroupMember& m : g.members) m.callUs.assign(g.plannedCalls, std::numeric_limits<float>::quiet_NaN());
@@ -175,6 +182,31 @@ void Scheduler::runVirtual(const std::atomic<bool>& stop) {
   m_progress.store(m_simulatedTime, std::memory_order_relaxed);
 }
 
+void Scheduler::stepPaced(RateGroup& g, uint64_t k, uint64_t t0, const std::atomic<bool>& stop) {
+  const double periodNs = g.periodS * 1e9;
+  // The first frame at the common start; then within [3/4, 3/2] of a period
+  // after the last start, as soon as the pacer's input has come.
+  const uint64_t earliest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(0.75 * periodNs);
+  const uint64_t latest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(1.5 * periodNs);
+  sleepUntilNs(earliest, spinMarginNs(g.periodS));
+  bool input = g.pacer->frameInputWaiting();
+  while (!input && nowNs() < latest && !stop.load(std::memory_order_relaxed)) {
+    // The other threads (and the device's process) share the cores.
+    sched_yield();
+    input = g.pacer->frameInputWaiting();
+  }
+  if (input) {
+    ++g.pacedFrames;
+  } else {
+    ++g.unpacedFrames;
+  }
+  const uint64_t start = nowNs();
+  if (g.calls == 0) g.firstStartNs = start;
+  g.lastStartNs = start;
+  step(g, k);
+  if (static_cast<double>(nowNs() - start) > periodNs) ++g.deadlineMisses;
+}
+
 void Scheduler::runRealtime(const std::atomic<bool>& stop) {
   std::mutex failureMutex;  // taken only on the failure path, never per tick
   std::atomic<bool> abort{false};
@@ -192,6 +224,12 @@ void Scheduler::runRealtime(const std::atomic<bool>& stop) {
       uint64_t k = 0;
       try {
         while (k < g.plannedCalls && !stop.load(std::memory_order_relaxed) && !abort.load(std::memory_order_relaxed)) {
+          if (g.pacer) {
+            stepPaced(g, k, t0, stop);
+            if (i == 0) m_progress.store(static_cast<double>(k + 1) / g.rateHz, std::memory_order_relaxed);
+            ++k;
+            continue;
+          }
           const uint64_t deadline = t0 + static_cast<uint64_t>(static_cast<double>(k) * periodNs);
           // Slow groups sleep in slices so that a stop request is seen within 50 ms.
           while (deadline > nowNs() + kStopCheckNs && !stop.load(std::memory_order_relaxed) &&

@@ -9,7 +9,12 @@
 // Real time: one thread per group, each paced to absolute deadlines
 // t0 + k / rate. A step that ends after the next deadline is a deadline miss;
 // after a stall the group skips the ticks it missed (counted as misses)
-// instead of bursting to catch up.
+// instead of bursting to catch up. A group with a member that paces it (a
+// FramePacer: a device outside the process) starts each frame when that
+// member's input has come, not sooner than 3/4 of a period after the last
+// frame's start and not later than 1.5 periods after it, so the answer goes
+// back within the device's own frame; frames that waited out the bound are
+// counted as unpaced.
 //
 // The scheduler times every call (one clock read per call: the end of one
 // call is the start of the next). Components of one group share a thread;
@@ -25,6 +30,8 @@
 #include "framework/runtime/TimingHistogram.h"
 
 namespace trephine {
+
+class FramePacer;
 
 struct GroupMember {
   Component* component = nullptr;
@@ -55,6 +62,10 @@ struct RateGroup {
                : 0.0;
   }
   bool realtimePriority = false;
+  // Real time, a paced group: frames started by the pacer's input, and
+  // frames started by the clock's bound with none come.
+  FramePacer* pacer = nullptr;
+  uint64_t pacedFrames = 0, unpacedFrames = 0;
   const GroupMember* current = nullptr;  // the member being ticked
   double currentT = 0;                   // s, scheduled time of the step being run
 };
@@ -83,6 +94,8 @@ class Scheduler {
   void runRealtime(const std::atomic<bool>& stop);
   // Runs one step of `group` at call index k; returns its duration (ns).
   uint64_t step(RateGroup& group, uint64_t k);
+  // Real time: frame k of a paced group, started as FramePacer.h says.
+  void stepPaced(RateGroup& group, uint64_t k, uint64_t t0, const std::atomic<bool>& stop);
   // "path: what", and a tick_failed event.
   std::string describeFailure(const RateGroup& group, const char* what);
 

@@ -74,6 +74,27 @@ int runProgram(const std::vector<std::string>& arguments, std::string* output, c
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+int startProgram(const std::vector<std::string>& arguments) {
+  const std::string program = programPath().string();
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(program.c_str()));
+  for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    execv(program.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+int waitForProgram(int pid) {
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 FakeViewerAssets::FakeViewerAssets() {
   std::ofstream(dir.path() / "index.html") << "<html></html>";
   std::ofstream(dir.path() / "viewer.js") << "// viewer";

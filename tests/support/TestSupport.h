@@ -43,6 +43,12 @@ std::string messages(const Diagnostics& diagnostics);
 int runProgram(const std::vector<std::string>& arguments, std::string* output = nullptr,
                const std::string& environment = "");
 
+// Starts `trephine` with arguments in the background (its output discarded);
+// returns its process id, for kill() and waitForProgram().
+int startProgram(const std::vector<std::string>& arguments);
+// Waits for a program startProgram started: its exit code, or -1 when a signal ended it.
+int waitForProgram(int pid);
+
 std::string readFile(const std::filesystem::path& file);
 
 // A stand-in for the browser viewer's assets, so that tests of `trephine

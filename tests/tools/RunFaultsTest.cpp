@@ -87,22 +87,6 @@ TEST(RunFaultsTest, AFullDiskFailsTheRunLoudlyAndLeavesNoFileCutShort) {
   EXPECT_NE(test::readFile(copied / ".trephine-run").find("state incomplete"), std::string::npos);
 }
 
-// Starts `trephine run` in the background; returns its process id.
-pid_t startRun(const std::vector<std::string>& arguments) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    const std::string program = test::programPath().string();
-    argv.push_back(const_cast<char*>(program.c_str()));
-    for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    freopen("/dev/null", "w", stdout);
-    freopen("/dev/null", "w", stderr);
-    execv(program.c_str(), argv.data());
-    _exit(127);
-  }
-  return pid;
-}
 
 // A reader that goes away: stderr and stdout into a pipe closed at once
 // (`| true`). The progress line written after 5 s, and the summary, find no
@@ -131,7 +115,7 @@ TEST(RunFaultsTest, AKilledRunIsRecognisedAndARerunReplacesAllOfIt) {
   EXPECT_NE(test::readFile(out / ".trephine-run").find("state finished"), std::string::npos);
 
   // A second, long run into the same folder, killed while it writes frames.
-  const pid_t pid = startRun({"run", kIntegrated, "--duration", "60", "--out", out.string(), "--quiet"});
+  const pid_t pid = test::startProgram({"run", kIntegrated, "--duration", "60", "--out", out.string(), "--quiet"});
   ASSERT_GT(pid, 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (std::chrono::steady_clock::now() < deadline &&
@@ -171,7 +155,7 @@ TEST(RunFaultsTest, AKilledRunIsRecognisedAndARerunReplacesAllOfIt) {
 TEST(RunFaultsTest, AnotherLiveRunsFolderIsRefused) {
   test::TempDir dir;
   const fs::path out = dir / "run";
-  const pid_t pid = startRun({"run", kIntegrated, "--duration", "60", "--out", out.string(), "--quiet"});
+  const pid_t pid = test::startProgram({"run", kIntegrated, "--duration", "60", "--out", out.string(), "--quiet"});
   ASSERT_GT(pid, 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (std::chrono::steady_clock::now() < deadline && !fs::exists(out / "vtk" / "tool_00003.vtp"))

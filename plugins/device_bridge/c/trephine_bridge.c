@@ -86,7 +86,7 @@ trephine_bridge_status trephine_bridge_encode_pose(const trephine_bridge_pose* p
   for (int i = 0; i < 3; ++i) put_f64(out + 24 + 8 * i, pose->position_mm[i]);
   for (int i = 0; i < 4; ++i) put_f64(out + 48 + 8 * i, pose->orientation_wxyz[i]);
   put_u32(out + 80, pose->buttons);
-  put_u32(out + 84, 0);
+  put_u32(out + 84, pose->round_trip_ns);
   return TREPHINE_BRIDGE_OK;
 }
 
@@ -108,13 +108,13 @@ trephine_bridge_status trephine_bridge_decode_pose(const unsigned char* in, size
   if (!in || !out) return TREPHINE_BRIDGE_NULL;
   trephine_bridge_status status = check_header(in, size, TREPHINE_BRIDGE_POSE_SIZE, TREPHINE_BRIDGE_KIND_POSE);
   if (status != TREPHINE_BRIDGE_OK) return status;
-  if (get_u32(in + 84) != 0) return TREPHINE_BRIDGE_RESERVED_SET;
   trephine_bridge_pose pose;
   pose.sequence = get_u64(in + 8);
   pose.device_time_ns = get_u64(in + 16);
   for (int i = 0; i < 3; ++i) pose.position_mm[i] = get_f64(in + 24 + 8 * i);
   for (int i = 0; i < 4; ++i) pose.orientation_wxyz[i] = get_f64(in + 48 + 8 * i);
   pose.buttons = get_u32(in + 80);
+  pose.round_trip_ns = get_u32(in + 84);
   status = check_pose(&pose);
   if (status == TREPHINE_BRIDGE_OK) *out = pose;
   return status;

@@ -8,8 +8,10 @@
  * Two packets, little-endian, of fixed size:
  *   pose  (device -> simulation, 88 bytes): the device point (mm), its
  *         orientation (unit quaternion w, x, y, z), the buttons (bit i:
- *         button i + 1 held), the device's clock (ns) and a sequence number
- *         the device increases by one a sample;
+ *         button i + 1 held), the device's clock (ns), a sequence number
+ *         the device increases by one a sample, and the round trip the
+ *         device last measured (so the simulation can report what the
+ *         device sees);
  *   force (simulation -> device, 72 bytes): the force on the device (N), the
  *         sequence and device time of the pose it was computed from (so the
  *         device measures the round trip), the simulation's own sequence and
@@ -28,7 +30,7 @@
  *  48  f64[4]       orientation (w, x, y, z)
  *  64                                         flags (u32), reserved (u32, 0)
  *  80  u32          buttons
- *  84  u32          reserved (0)
+ *  84  u32          last round trip (ns, saturating at 2^32 - 1; 0: none measured yet)
  *
  * Decoding checks everything a packet can get wrong (its size, magic,
  * version, kind, a value that is not a number or out of range) and says
@@ -66,6 +68,9 @@ typedef struct trephine_bridge_pose {
   double position_mm[3];
   double orientation_wxyz[4];
   uint32_t buttons;
+  /* From sending a pose to receiving the force that answers it (its
+   * answered_sequence), as the device measured it last (ns; 0: none yet). */
+  uint32_t round_trip_ns;
 } trephine_bridge_pose;
 
 typedef struct trephine_bridge_force {

@@ -130,3 +130,10 @@ int trephine_bridge_shm_read_pose(const trephine_bridge_shm* shm, unsigned char 
 int trephine_bridge_shm_read_force(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_FORCE_SIZE]) {
   return read_slot(&shm->force.sequence, shm->force.words, FORCE_WORDS, out, TREPHINE_BRIDGE_FORCE_SIZE);
 }
+
+uint64_t trephine_bridge_shm_pose_writes(const trephine_bridge_shm* shm) {
+  return atomic_load_explicit((_Atomic uint64_t*)&shm->pose.sequence, memory_order_acquire) / 2u;
+}
+uint64_t trephine_bridge_shm_force_writes(const trephine_bridge_shm* shm) {
+  return atomic_load_explicit((_Atomic uint64_t*)&shm->force.sequence, memory_order_acquire) / 2u;
+}

@@ -41,6 +41,11 @@ void trephine_bridge_shm_write_force(trephine_bridge_shm* shm, const unsigned ch
 int trephine_bridge_shm_read_pose(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_POSE_SIZE]);
 int trephine_bridge_shm_read_force(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_FORCE_SIZE]);
 
+/* How many times the pose (force) slot was written so far, in one atomic
+ * load: a cheap test for a new packet in a loop that polls for one. */
+uint64_t trephine_bridge_shm_pose_writes(const trephine_bridge_shm* shm);
+uint64_t trephine_bridge_shm_force_writes(const trephine_bridge_shm* shm);
+
 #ifdef __cplusplus
 }
 #endif
