@@ -41,6 +41,11 @@ class HapticDevice : public Component {
   virtual std::optional<double> physicalDamping() const { return std::nullopt; }
   virtual std::string physicalDampingFields() const { return {}; }
 
+  // Whether the device is outside the process (a device program, a tracker):
+  // it moves in wall time, so a run without --realtime does not wait for it
+  // and the load warns (such a device opens its connections only in real time).
+  virtual bool outsideTheProcess() const { return false; }
+
   // Subclasses that override these must call the HapticDevice versions
   // (they allocate the recording and report the rejection counters).
   void prepare(const RunPlan& plan) override;

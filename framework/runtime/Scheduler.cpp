@@ -188,10 +188,14 @@ void Scheduler::stepPaced(RateGroup& g, uint64_t k, uint64_t t0, const std::atom
   // after the last start, as soon as the pacer's input has come.
   const uint64_t earliest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(0.75 * periodNs);
   const uint64_t latest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(1.5 * periodNs);
+  // Sleeps to 200 µs before the earliest start, then polls. Polling the whole
+  // wait would spare the wake-up (a thread that sleeps wakes on a virtual
+  // machine into a stall of 100 to 200 µs in about 1% of its frames), but a
+  // real-time thread that never sleeps is stopped by the kernel for 50 ms
+  // of every second (sched_rt_runtime_us): docs/results.md.
   sleepUntilNs(earliest, spinMarginNs(g.periodS));
   bool input = g.pacer->frameInputWaiting();
   while (!input && nowNs() < latest && !stop.load(std::memory_order_relaxed)) {
-    // The other threads (and the device's process) share the cores.
     sched_yield();
     input = g.pacer->frameInputWaiting();
   }

@@ -9,7 +9,7 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/CollisionBackend.h"
-#include "framework/core/FramePacer.h"
+#include "framework/devices/HapticDevice.h"
 #include "framework/core/Strings.h"
 #include "framework/runtime/Recorder.h"
 #include "framework/runtime/RunFolder.h"
@@ -120,14 +120,14 @@ void warnOfOvercommittedCores(const std::vector<Component*>& components, const R
 
 // A device outside the process moves in wall time: in virtual time the run
 // is over before it has moved.
-void warnOfPacersInVirtualTime(const std::vector<Component*>& components, const RunPlan& plan,
-                               Diagnostics& diagnostics) {
+void warnOfOutsideDevicesInVirtualTime(const std::vector<Component*>& components, const RunPlan& plan,
+                                       Diagnostics& diagnostics) {
   if (plan.realtime) return;
   for (const Component* c : components)
-    if (const auto* pacer = dynamic_cast<const FramePacer*>(c); pacer && pacer->pacesFrames())
+    if (const auto* device = dynamic_cast<const HapticDevice*>(c); device && device->outsideTheProcess())
       diagnostics.warning(c->location(), c->typeName() + " '" + c->name() +
-                                             "' takes its input from outside the process at the device's pace: "
-                                             "run with --realtime (in virtual time the run does not wait for it)");
+                                             "' is a device outside the process: run with --realtime (in virtual "
+                                             "time the run does not wait for it, and it opens no connection)");
 }
 
 }  // namespace
@@ -292,7 +292,7 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   checkDeclaredOutputs(components, diagnostics);
   if (diagnostics.hasErrors()) return nullptr;
   warnOfOvercommittedCores(components, s.m_plan, diagnostics, s.m_scene->root().location());
-  warnOfPacersInVirtualTime(components, s.m_plan, diagnostics);
+  warnOfOutsideDevicesInVirtualTime(components, s.m_plan, diagnostics);
 
   // The output folder becomes the run's before any component writes there
   // (an exporter creates its folder when it prepares): what an earlier run

@@ -34,6 +34,7 @@ class BridgeDevice final : public HapticDevice, public FramePacer {
   void reportCounters(std::vector<Counter>& counters) const override;
   void reportFacts(std::vector<Fact>& facts) const override;
 
+  bool outsideTheProcess() const override { return true; }
   bool pacesFrames() const override { return d_pace.value(); }
   bool frameInputWaiting() const override { return m_transport && m_transport->waiting(); }
 

@@ -68,7 +68,9 @@ void BridgeDeviceSide::tick(const TickContext& context) {
       m_answered = false;
       ++m_posesSent;
       // Poll for the answer, as a servo loop that sends first and commands last.
-      const uint64_t until = now + static_cast<uint64_t>(d_awaitAnswer.value() * 1e9);
+      // At most half the frame: the rest is the hand's and the clock's.
+      const double wait = std::min(d_awaitAnswer.value(), 0.5 / rateHz());
+      const uint64_t until = now + static_cast<uint64_t>(wait * 1e9);
       while (!m_answered && now < until) {
         if (m_transport->waiting()) takeForces(now = monotonicNs());
         now = monotonicNs();

@@ -49,7 +49,8 @@ class BridgeDeviceSide final : public Component {
                               "awaitAnswer",
                               0.0005,
                               {.help = "After sending a pose, how long to poll for the force that answers it "
-                                       "before commanding the newest one at hand (0: do not wait)",
+                                       "before commanding the newest one at hand (0: do not wait; at most half "
+                                       "a period)",
                                .unit = "s",
                                .min = 0.0,
                                .max = 0.1}};

@@ -1,0 +1,89 @@
+#include "plugins/openigtlink/IGTLinkDevice.h"
+
+#include <arpa/inet.h>
+
+#include "framework/core/Lifecycle.h"
+
+namespace trephine::openigtlink {
+
+void IGTLinkDevice::init(InitContext& context) {
+  in_addr parsed{};
+  if (inet_pton(AF_INET, d_host.value().c_str(), &parsed) != 1)
+    context.error(d_host, "'" + d_host.value() + "' is not a dotted IPv4 address (names are not looked up)");
+  for (const Field<std::string>* name : {&d_transformName, &d_forceName, &d_buttonsName}) {
+    const std::string& text = name->value();
+    if (text.size() > kDeviceNameSize)
+      context.error(*name, "'" + text + "' is longer than OpenIGTLink's 20-byte device names");
+    for (const char c : text)
+      if (c < 0x20 || c > 0x7e) context.error(*name, "a device name is printable ASCII");
+  }
+  if (d_transformName.value().empty()) context.error(d_transformName, "the TRANSFORM's device name is needed");
+  if (d_forceName.value().empty()) context.error(d_forceName, "the SENSOR's device name is needed");
+}
+
+void IGTLinkDevice::prepare(const RunPlan& plan) {
+  HapticDevice::prepare(plan);
+  IgtlServerOptions options;
+  options.host = d_host.value();
+  options.port = static_cast<uint16_t>(d_port.value());
+  options.maxClients = static_cast<size_t>(d_maxClients.value());
+  options.transformName = d_transformName.value();
+  options.forceName = d_forceName.value();
+  options.buttonsName = d_buttonsName.value();
+  // In virtual time (validate, a run without --realtime) no server: the load warned.
+  if (plan.realtime) m_server = std::make_unique<IgtlServer>(options);  // throws, naming the address
+}
+
+DeviceSample IGTLinkDevice::readSample(double t) {
+  m_t = t;
+  if (!m_server) return DeviceSample{t};
+  TripleBuffer<ReceivedPose>& poses = m_server->poses();
+  if (poses.fetch()) {
+    m_pose = poses.read();
+    m_connected = m_pose.sequence > 0;
+  }
+  DeviceSample sample;
+  sample.t = t;
+  sample.position = m_pose.transform.translation;
+  sample.orientation = Quat(m_pose.transform.rotation);
+  sample.buttons = m_pose.buttons;
+  return sample;
+}
+
+void IGTLinkDevice::applyForce(const Vec3& force_N) {
+  HapticDevice::applyForce(force_N);
+  // In every frame after a pose has arrived (the contract); a force that is
+  // not finite goes as zero.
+  if (m_connected && m_server) m_server->postForce(force_N.allFinite() ? force_N : Vec3::Zero(), m_t);
+}
+
+void IGTLinkDevice::finish(FinishContext& context) {
+  m_server.reset();  // stops serving before the files are written
+  HapticDevice::finish(context);
+}
+
+void IGTLinkDevice::reportCounters(std::vector<Counter>& counters) const {
+  HapticDevice::reportCounters(counters);
+  if (!m_server) return;
+  const ServerCounters& c = m_server->counters();
+  const auto add = [&](const char* name, uint64_t value) {
+    counters.push_back({name, static_cast<double>(value)});
+  };
+  add("transforms_received", c.transforms);
+  add("bad_transforms", c.badTransforms);
+  add("button_messages", c.buttonMessages);
+  add("other_messages", c.otherMessages);
+  add("clients_accepted", c.clientsAccepted);
+  add("clients_refused", c.clientsRefused);
+  add("clients_broken", c.clientsBroken);
+  add("clients_slow", c.clientsSlow);
+  add("sensors_sent", c.sensorsSent);
+  add("sensors_dropped", c.sensorsDropped);
+  add("forces_dropped", m_server->forcesDropped());
+}
+
+void IGTLinkDevice::reportFacts(std::vector<Fact>& facts) const {
+  if (m_server) facts.push_back({"listening", d_host.value() + ":" + std::to_string(m_server->port())});
+}
+
+}  // namespace trephine::openigtlink

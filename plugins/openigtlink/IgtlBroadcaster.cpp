@@ -1,0 +1,126 @@
+#include "plugins/openigtlink/IgtlBroadcaster.h"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace trephine::openigtlink {
+
+IgtlBroadcaster::IgtlBroadcaster(const std::string& host, uint16_t port, size_t maxClients, size_t maxQueued)
+    : m_maxClients(maxClients), m_maxQueued(maxQueued) {
+  const std::string where = host + ":" + std::to_string(port);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(port);
+  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1)
+    throw std::runtime_error("host '" + host + "' is not a dotted IPv4 address");
+  m_listener = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (m_listener < 0) throw std::runtime_error("cannot open a socket: " + std::string(std::strerror(errno)));
+  const int yes = 1;
+  setsockopt(m_listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  socklen_t length = sizeof address;
+  if (bind(m_listener, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 || listen(m_listener, 8) != 0 ||
+      getsockname(m_listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::close(m_listener);
+    throw std::runtime_error("cannot listen on " + where + ": " + reason);
+  }
+  m_port = ntohs(address.sin_port);
+}
+
+IgtlBroadcaster::~IgtlBroadcaster() {
+  for (auto& c : m_clients) close(*c);
+  ::close(m_listener);
+}
+
+void IgtlBroadcaster::close(Client& client) {
+  if (client.fd >= 0) ::close(client.fd);
+  client.fd = -1;
+  client.queue.clear();
+  client.queuedBytes = 0;
+}
+
+size_t IgtlBroadcaster::poll() {
+  for (auto& c : m_clients) c->fresh = false;
+  size_t fresh = 0;
+  for (;;) {
+    const int fd = accept4(m_listener, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) break;
+    if (m_clients.size() >= m_maxClients) {
+      ++m_refused;
+      ::close(fd);
+      continue;
+    }
+    const int yes = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+    auto client = std::make_unique<Client>();
+    client->fd = fd;
+    client->fresh = true;
+    m_clients.push_back(std::move(client));
+    ++m_accepted;
+    ++fresh;
+  }
+  unsigned char sink[4096];
+  for (auto& c : m_clients) {
+    // What a client sends (a viewer's queries) is read and let go; end of stream: it left.
+    for (;;) {
+      const ssize_t got = recv(c->fd, sink, sizeof sink, MSG_DONTWAIT);
+      if (got > 0) continue;
+      if (got == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) close(*c);
+      break;
+    }
+    if (c->fd >= 0) flush(*c);
+  }
+  std::erase_if(m_clients, [](const std::unique_ptr<Client>& c) { return c->fd < 0; });
+  return fresh;
+}
+
+void IgtlBroadcaster::broadcast(std::shared_ptr<const std::vector<unsigned char>> message) {
+  for (auto& c : m_clients) {
+    if (c->fd < 0) continue;
+    c->queue.push_back(message);
+    c->queuedBytes += message->size();
+    if (c->queuedBytes > m_maxQueued) {
+      ++m_dropped;
+      close(*c);
+      continue;
+    }
+    flush(*c);
+  }
+}
+
+void IgtlBroadcaster::sendToNew(std::shared_ptr<const std::vector<unsigned char>> message) {
+  for (auto& c : m_clients)
+    if (c->fresh && c->fd >= 0) {
+      c->queue.push_back(message);
+      c->queuedBytes += message->size();
+      flush(*c);
+    }
+}
+
+void IgtlBroadcaster::flush(Client& c) {
+  while (c.fd >= 0 && !c.queue.empty()) {
+    const auto& front = *c.queue.front();
+    const ssize_t sent = send(c.fd, front.data() + c.sentOfFront, front.size() - c.sentOfFront,
+                              MSG_DONTWAIT | MSG_NOSIGNAL);
+    if (sent < 0) {
+      if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) close(c);
+      return;
+    }
+    c.sentOfFront += static_cast<size_t>(sent);
+    if (c.sentOfFront < front.size()) return;  // the socket is full: the rest at the next poll
+    c.queuedBytes -= front.size();
+    c.queue.pop_front();
+    c.sentOfFront = 0;
+    ++m_sent;
+  }
+}
+
+}  // namespace trephine::openigtlink

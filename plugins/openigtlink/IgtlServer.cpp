@@ -1,0 +1,218 @@
+#include "plugins/openigtlink/IgtlServer.h"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+
+#include "plugins/openigtlink/IgtlStreamReader.h"
+
+namespace trephine::openigtlink {
+
+namespace {
+
+uint64_t steadyNs() {
+  return static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+          .count());
+}
+
+constexpr uint64_t kSlowClientNs = 1'000'000'000;  // a full send buffer for this long: disconnected
+
+}  // namespace
+
+struct IgtlServer::Client {
+  int fd = -1;
+  std::unique_ptr<IgtlStreamReader> reader;
+  uint64_t blockedSinceNs = 0;  // 0: its last send went through
+};
+
+IgtlServer::IgtlServer(IgtlServerOptions options) : m_options(std::move(options)) {
+  const std::string where = m_options.host + ":" + std::to_string(m_options.port);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(m_options.port);
+  if (inet_pton(AF_INET, m_options.host.c_str(), &address.sin_addr) != 1)
+    throw std::runtime_error("host '" + m_options.host + "' is not a dotted IPv4 address");
+  m_listener = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (m_listener < 0) throw std::runtime_error("cannot open a socket: " + std::string(std::strerror(errno)));
+  const int yes = 1;
+  setsockopt(m_listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  socklen_t length = sizeof address;
+  if (bind(m_listener, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
+      listen(m_listener, 8) != 0 || getsockname(m_listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
+    const std::string reason = std::strerror(errno);
+    close(m_listener);
+    throw std::runtime_error("cannot listen on " + where + ": " + reason);
+  }
+  m_port = ntohs(address.sin_port);
+  m_wake = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  if (m_wake < 0) {
+    close(m_listener);
+    throw std::runtime_error("cannot make an eventfd: " + std::string(std::strerror(errno)));
+  }
+  m_clients.reserve(m_options.maxClients);
+  m_thread = std::thread([this] { run(); });
+}
+
+IgtlServer::~IgtlServer() {
+  m_stop = true;
+  const uint64_t one = 1;
+  [[maybe_unused]] const ssize_t written = write(m_wake, &one, sizeof one);
+  if (m_thread.joinable()) m_thread.join();
+  for (auto& c : m_clients) close(c->fd);
+  close(m_listener);
+  close(m_wake);
+}
+
+void IgtlServer::postForce(const Vec3& force_N, double t) {
+  m_forces.push({force_N, t});
+  const uint64_t one = 1;
+  // A non-blocking eventfd: the write never waits (its counter cannot fill at 1 kHz).
+  [[maybe_unused]] const ssize_t written = write(m_wake, &one, sizeof one);
+}
+
+void IgtlServer::run() {
+  std::vector<pollfd> fds;
+  fds.reserve(2 + m_options.maxClients);
+  while (!m_stop.load(std::memory_order_relaxed)) {
+    fds.clear();
+    fds.push_back({m_listener, POLLIN, 0});
+    fds.push_back({m_wake, POLLIN, 0});
+    for (const auto& c : m_clients) fds.push_back({c->fd, POLLIN, 0});
+    if (poll(fds.data(), fds.size(), 50) < 0 && errno != EINTR) break;
+    if (fds[1].revents & POLLIN) {
+      uint64_t count;
+      [[maybe_unused]] const ssize_t got = read(m_wake, &count, sizeof count);
+    }
+    // Clients first (their fds are in the same order as m_clients), then forces, then new clients.
+    for (size_t i = 0; i < m_clients.size(); ++i)
+      if (fds[2 + i].revents & (POLLIN | POLLHUP | POLLERR)) readClient(*m_clients[i]);
+    sendForces();
+    std::erase_if(m_clients, [&](const std::unique_ptr<Client>& c) {
+      if (c->fd >= 0) return false;
+      return true;
+    });
+    m_clientCount.store(m_clients.size(), std::memory_order_relaxed);
+    if (fds[0].revents & POLLIN) acceptClients();
+  }
+}
+
+void IgtlServer::acceptClients() {
+  for (;;) {
+    const int fd = accept4(m_listener, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) return;
+    if (m_clients.size() >= m_options.maxClients) {
+      ++m_counters.clientsRefused;
+      close(fd);
+      continue;
+    }
+    const int yes = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);  // a force is 92 bytes: send each at once
+    auto client = std::make_unique<Client>();
+    client->fd = fd;
+    client->reader = std::make_unique<IgtlStreamReader>(
+        [this](const MessageHeader& h) {
+          const bool transform = h.typeName() == "TRANSFORM" && h.deviceName() == m_options.transformName;
+          const bool buttons = !m_options.buttonsName.empty() && h.deviceName() == m_options.buttonsName &&
+                               (h.typeName() == "STRING" || h.typeName() == "STATUS");
+          if (!transform && !buttons) ++m_counters.otherMessages;
+          return transform || buttons;
+        },
+        [this](const MessageHeader& h, std::span<const unsigned char> content) {
+          if (h.typeName() == "TRANSFORM") {
+            const auto transform = decodeTransform(content);
+            if (!transform) {
+              ++m_counters.badTransforms;
+              return;
+            }
+            ReceivedPose& pose = m_poses.writeSlot();
+            pose.sequence = ++m_poseSequence;
+            pose.transform = *transform;
+            pose.buttons = m_buttons;
+            m_poses.publish();
+            ++m_counters.transforms;
+            return;
+          }
+          // Buttons: a STRING holding the mask as a number, or a STATUS's subcode.
+          if (h.typeName() == "STRING") {
+            const auto text = decodeString(content);
+            if (!text) return;
+            uint32_t mask = 0;
+            for (const char c : *text) {
+              if (c < '0' || c > '9') return;
+              mask = mask * 10 + static_cast<uint32_t>(c - '0');
+            }
+            m_buttons = mask;
+          } else if (const auto subcode = decodeStatusSubcode(content)) {
+            m_buttons = static_cast<uint32_t>(*subcode);
+          }
+          ++m_counters.buttonMessages;
+        });
+    m_clients.push_back(std::move(client));
+    ++m_counters.clientsAccepted;
+  }
+}
+
+void IgtlServer::readClient(Client& client) {
+  unsigned char buffer[16384];
+  for (;;) {
+    const ssize_t got = recv(client.fd, buffer, sizeof buffer, MSG_DONTWAIT);
+    if (got > 0) {
+      if (!client.reader->feed({buffer, static_cast<size_t>(got)})) {
+        ++m_counters.clientsBroken;
+        close(client.fd);
+        client.fd = -1;
+        return;
+      }
+      continue;
+    }
+    if (got == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+      close(client.fd);  // gone
+      client.fd = -1;
+    }
+    return;
+  }
+}
+
+void IgtlServer::sendForces() {
+  std::array<unsigned char, kForceSensorMessageSize> message{};
+  m_forces.drain([&](const PostedForce& f) {
+    encodeForceSensor(m_options.forceName, toTimestamp(f.t), f.force, message);
+    for (auto& c : m_clients) {
+      if (c->fd < 0) continue;
+      const ssize_t sent = send(c->fd, message.data(), message.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
+      if (sent == static_cast<ssize_t>(message.size())) {
+        ++m_counters.sensorsSent;
+        c->blockedSinceNs = 0;
+        continue;
+      }
+      if (sent > 0 || (sent < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
+        // Part of a message went (the stream is now cut mid-message), or the socket failed: let it go.
+        ++m_counters.clientsSlow;
+        close(c->fd);
+        c->fd = -1;
+        continue;
+      }
+      ++m_counters.sensorsDropped;
+      const uint64_t now = steadyNs();
+      if (c->blockedSinceNs == 0) c->blockedSinceNs = now;
+      if (now - c->blockedSinceNs > kSlowClientNs) {
+        ++m_counters.clientsSlow;
+        close(c->fd);
+        c->fd = -1;
+      }
+    }
+  });
+}
+
+}  // namespace trephine::openigtlink

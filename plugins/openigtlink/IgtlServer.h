@@ -1,0 +1,97 @@
+#pragma once
+// The OpenIGTLink server behind IGTLinkDevice: a thread of its own that
+// listens on host:port (127.0.0.1 unless asked), accepts up to `maxClients`
+// connections, reads each client's TRANSFORM (and button) messages and hands
+// the newest pose to the haptic loop through a triple buffer, and sends every
+// client each force the haptic loop posts, as a SENSOR. The haptic loop only
+// fetches, pushes to a ring and bumps an eventfd: it never waits on the
+// network. A client that breaks the protocol, or does not read its forces
+// until its socket's buffer is full for a second, is disconnected; the others
+// go on. Counters are atomics any thread may read.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "framework/channels/ChangeQueue.h"
+#include "framework/channels/TripleBuffer.h"
+#include "framework/math/Math.h"
+#include "plugins/openigtlink/IgtlMessages.h"
+
+namespace trephine::openigtlink {
+
+struct IgtlServerOptions {
+  std::string host = "127.0.0.1";
+  uint16_t port = 18944;  // 0: any free port
+  size_t maxClients = 4;
+  std::string transformName = "Tool";
+  std::string forceName = "Force";
+  std::string buttonsName;  // "" for none
+};
+
+struct ReceivedPose {
+  uint64_t sequence = 0;  // 0: none yet
+  Transform transform;
+  uint32_t buttons = 0;
+};
+
+struct ServerCounters {
+  std::atomic<uint64_t> transforms{0};      // poses taken
+  std::atomic<uint64_t> badTransforms{0};   // TRANSFORM bodies that are not a rigid transform
+  std::atomic<uint64_t> buttonMessages{0};  // STRING/STATUS taken as buttons
+  std::atomic<uint64_t> otherMessages{0};   // messages of other types or names, skipped
+  std::atomic<uint64_t> clientsAccepted{0};
+  std::atomic<uint64_t> clientsRefused{0};  // over maxClients
+  std::atomic<uint64_t> clientsBroken{0};   // disconnected for breaking the protocol
+  std::atomic<uint64_t> clientsSlow{0};     // disconnected for not reading
+  std::atomic<uint64_t> sensorsSent{0};     // SENSOR messages, summed over clients
+  std::atomic<uint64_t> sensorsDropped{0};  // not sent: the client's buffer was full
+};
+
+class IgtlServer {
+ public:
+  // Binds and listens; throws std::runtime_error naming the address and the reason.
+  explicit IgtlServer(IgtlServerOptions options);
+  ~IgtlServer();
+  IgtlServer(const IgtlServer&) = delete;
+  IgtlServer& operator=(const IgtlServer&) = delete;
+
+  uint16_t port() const { return m_port; }
+  // The haptic loop's side: the newest pose (fetch, then read).
+  TripleBuffer<ReceivedPose>& poses() { return m_poses; }
+  // The haptic loop's side: this frame's force (N) at time t (s). Never waits.
+  void postForce(const Vec3& force_N, double t);
+  const ServerCounters& counters() const { return m_counters; }
+  // Forces the ring could not hold (the network thread fell behind).
+  uint64_t forcesDropped() const { return m_forces.dropped(); }
+  // Clients connected now.
+  size_t clients() const { return m_clientCount.load(std::memory_order_relaxed); }
+
+ private:
+  struct Client;
+  struct PostedForce {
+    Vec3 force = Vec3::Zero();
+    double t = 0;
+  };
+  void run();
+  void acceptClients();
+  void readClient(Client& client);
+  void sendForces();
+
+  IgtlServerOptions m_options;
+  int m_listener = -1;
+  int m_wake = -1;  // eventfd: a force was posted, or stop
+  uint16_t m_port = 0;
+  std::atomic<bool> m_stop{false};
+  TripleBuffer<ReceivedPose> m_poses;
+  ChangeQueue<PostedForce> m_forces{4096};
+  ServerCounters m_counters;
+  std::atomic<size_t> m_clientCount{0};
+  std::vector<std::unique_ptr<Client>> m_clients;  // the network thread's
+  uint64_t m_poseSequence = 0;
+  uint32_t m_buttons = 0;
+  std::thread m_thread;
+};
+
+}  // namespace trephine::openigtlink

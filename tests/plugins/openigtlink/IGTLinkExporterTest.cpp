@@ -1,0 +1,186 @@
+// IGTLinkExporter streaming a drilling scene to a client on Debian's
+// libopenigtlink (as 3D Slicer's OpenIGTLinkIF receives it): the whole skull
+// as an IMAGE when the client connects, then the drilled blocks as
+// sub-volumes which, laid over the first image, give the drilled skull voxel
+// for voxel; the brain's boundary as POLYDATA; the device's and proxy's
+// TRANSFORMs and the force's SENSOR at the exporter's rate, every message's
+// CRC checked by the library.
+#include <gtest/gtest.h>
+#include <igtlClientSocket.h>
+#include <igtlImageMessage.h>
+#include <igtlPolyDataMessage.h>
+#include <igtlSensorMessage.h>
+#include <igtlTransformMessage.h>
+
+#include <cstring>
+#include <set>
+#include <thread>
+#include <vector>
+
+#include "framework/data/TetTopology.h"
+#include "framework/devices/HapticDevice.h"
+#include "framework/geometry/DeformableMesh.h"
+#include "framework/geometry/DrillableVolume.h"
+#include "plugins/openigtlink/IGTLinkExporter.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine::test {
+namespace {
+
+const std::string kScene = R"(<Node name="root" units="mm">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="openigtlink"/>
+  <Node name="patient">
+    <VoxelSkull name="skull" file="phantom:skull?voxel=2" isovalue="400" drill="true"/>
+    <TetraBrain name="brain" file="phantom:cube?cells=6&amp;size=20"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="drill-in" target="@/patient/skull" direction="0 0 -1"
+                    tipOffset="2.5" standoff="4" speed="20" depth="6" feedSpeed="4"
+                    buttonTimes="0.3 1.3" rate="1000"/>
+    <PointshellTool name="burr" radius="2.5" angleStep="10" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/patient/skull" sweep="cylinder" drillButton="1" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="2.0" damping="0.002" maxForce="3.3" rate="1000"/>
+  </Node>
+  <Node name="stream">
+    <IGTLinkExporter name="slicer" port="0" force="@/tool/force" skull="@/patient/skull" brain="@/patient/brain"
+                     imageInterval="0.2" rate="30"/>
+  </Node>
+</Node>)";
+
+struct Received {
+  std::vector<int16_t> volume;  // the client's copy of the skull
+  int dims[3] = {0, 0, 0};
+  int wholeImages = 0, partialImages = 0, polydata = 0, transforms = 0, sensors = 0, badCrc = 0;
+  int polygons = 0, points = 0;
+  std::array<float, 3> firstPoint{};
+  float lastDevice[3] = {0, 0, 0};
+};
+
+void readAll(igtl::ClientSocket* socket, Received& r) {
+  for (;;) {
+    auto header = igtl::MessageHeader::New();
+    header->InitPack();
+    if (socket->Receive(header->GetPackPointer(), header->GetPackSize()) != header->GetPackSize()) return;
+    header->Unpack();
+    const std::string type = header->GetDeviceType();
+    igtl::MessageBase::Pointer body;
+    igtl::ImageMessage::Pointer image;
+    igtl::PolyDataMessage::Pointer poly;
+    igtl::TransformMessage::Pointer transform;
+    if (type == "IMAGE") body = image = igtl::ImageMessage::New();
+    else if (type == "POLYDATA") body = poly = igtl::PolyDataMessage::New();
+    else if (type == "TRANSFORM") body = transform = igtl::TransformMessage::New();
+    else if (type == "SENSOR") body = igtl::SensorMessage::New();
+    else {
+      socket->Skip(header->GetBodySizeToRead(), 0);
+      continue;
+    }
+    body->SetMessageHeader(header);
+    body->AllocatePack();
+    if (socket->Receive(body->GetPackBodyPointer(), body->GetPackBodySize()) != body->GetPackBodySize()) return;
+    if (body->Unpack(1) != igtl::MessageHeader::UNPACK_BODY) {
+      ++r.badCrc;
+      continue;
+    }
+    if (image) {
+      int size[3], offset[3];
+      image->GetDimensions(r.dims);
+      image->GetSubVolume(size, offset);
+      const bool whole = size[0] == r.dims[0] && size[1] == r.dims[1] && size[2] == r.dims[2];
+      if (whole) {
+        ++r.wholeImages;
+        r.volume.assign(size_t(r.dims[0]) * r.dims[1] * r.dims[2], 0);
+      } else {
+        ++r.partialImages;
+      }
+      EXPECT_EQ(image->GetScalarType(), igtl::ImageMessage::TYPE_INT16);
+      // The library leaves the scalars in the message's byte order, which it declares (as Slicer reads it).
+      EXPECT_EQ(image->GetEndian(), igtl::ImageMessage::ENDIAN_BIG);
+      const auto* bytes = static_cast<const unsigned char*>(image->GetScalarPointer());
+      size_t n = 0;
+      for (int k = 0; k < size[2]; ++k)
+        for (int j = 0; j < size[1]; ++j)
+          for (int i = 0; i < size[0]; ++i) {
+            const size_t at = size_t(offset[0] + i) + size_t(r.dims[0]) * (size_t(offset[1] + j) + size_t(r.dims[1]) * (offset[2] + k));
+            r.volume[at] = static_cast<int16_t>((bytes[2 * n] << 8) | bytes[2 * n + 1]);
+            ++n;
+          }
+    } else if (poly) {
+      ++r.polydata;
+      r.points = poly->GetPoints()->GetNumberOfPoints();
+      r.polygons = static_cast<int>(poly->GetPolygons()->GetNumberOfCells());
+      poly->GetPoints()->GetPoint(0, r.firstPoint.data());
+    } else if (transform) {
+      ++r.transforms;
+      if (std::strcmp(transform->GetDeviceName(), "TrephineDevice") == 0) {
+        igtl::Matrix4x4 m;
+        transform->GetMatrix(m);
+        for (int c = 0; c < 3; ++c) r.lastDevice[c] = m[c][3];
+      }
+    } else {
+      ++r.sensors;
+    }
+  }
+}
+
+TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrainPosesAndForce) {
+  SimulationOptions options;
+  options.duration = 2.0;
+  options.realtime = true;
+  Diagnostics diagnostics;
+  auto simulation = loadScene(kScene, diagnostics, options);
+  ASSERT_TRUE(simulation) << messages(diagnostics);
+  const auto* exporter =
+      dynamic_cast<const openigtlink::IGTLinkExporter*>(simulation->scene().findComponent("/stream/slicer"));
+  ASSERT_NE(exporter, nullptr);
+  auto socket = igtl::ClientSocket::New();
+  ASSERT_EQ(socket->ConnectToServer("127.0.0.1", exporter->listeningPort()), 0);
+  Received received;
+  std::thread reader([&] { readAll(socket, received); });
+  simulation->run();
+  const auto* skull = dynamic_cast<const DrillableVolume*>(simulation->scene().findComponent("/patient/skull"));
+  const auto* brain = dynamic_cast<const DeformableMesh*>(simulation->scene().findComponent("/patient/brain"));
+  ASSERT_TRUE(skull && brain);
+  const VoxelGrid& grid = skull->voxelGrid();
+  const std::vector<int16_t> drilled(grid.codes, grid.codes + grid.voxelCount());
+  const double removed = componentCounterAt(*simulation, "/patient/skull", "voxels_removed");
+  const TetMesh mesh = brain->mesh();
+  const Vec3 device = dynamic_cast<const HapticDevice*>(simulation->scene().findComponent("/tool/device"))->state().pose.position;
+  simulation.reset();  // the server closes: the reader ends
+  reader.join();
+
+  EXPECT_EQ(received.badCrc, 0);
+  EXPECT_EQ(received.wholeImages, 1) << "the whole skull once, when the client connected";
+  EXPECT_GT(removed, 0) << "the burr drilled";
+  EXPECT_GT(received.partialImages, 0) << "then the drilled blocks";
+  EXPECT_EQ(received.dims[0], grid.nx);
+  EXPECT_EQ(received.dims[2], grid.nz);
+  // The first image with every sub-volume laid over it is the drilled skull, voxel for voxel.
+  ASSERT_EQ(received.volume.size(), drilled.size());
+  size_t differ = 0, firstDiffer = 0;
+  for (size_t i = 0; i < drilled.size(); ++i)
+    if (received.volume[i] != drilled[i] && differ++ == 0) firstDiffer = i;
+  EXPECT_EQ(differ, 0u) << "first at " << firstDiffer << ": " << received.volume[firstDiffer] << " against "
+                        << drilled[firstDiffer];
+  // The brain's boundary (a rigid brain: sent once, at rest): its triangles and the nodes on them only.
+  const TetTopology topology(mesh);
+  std::set<int32_t> onBoundary;
+  for (const BoundaryFace& f : topology.boundaryFaces())
+    for (int c = 1; c <= 3; ++c) onBoundary.insert(mesh.tets[size_t(f.tet)][(f.face + c) % 4]);
+  EXPECT_EQ(received.polydata, 1);
+  EXPECT_EQ(received.points, static_cast<int>(onBoundary.size()));
+  EXPECT_LT(onBoundary.size(), mesh.nodeCount()) << "the cube has nodes inside";
+  EXPECT_EQ(received.polygons, static_cast<int>(topology.boundaryFaces().size()));
+  const BoundaryFace& first = topology.boundaryFaces().front();
+  EXPECT_NEAR(received.firstPoint[0], mesh.nodes[size_t(mesh.tets[size_t(first.tet)][(first.face + 1) % 4])].x(), 1e-4);
+  // Poses and the force at about 30 Hz for 2 s, two TRANSFORMs a frame.
+  EXPECT_GT(received.sensors, 40);
+  EXPECT_EQ(received.transforms, 2 * received.sensors);
+  EXPECT_NEAR(received.lastDevice[2], device.z(), 1e-3);
+}
+
+}  // namespace
+}  // namespace trephine::test
