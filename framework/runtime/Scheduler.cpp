@@ -43,7 +43,12 @@ void sleepUntilNs(uint64_t deadline, uint64_t spinNs) {
 // each deadline: 20% of a core at 1 kHz, bought for sub-microsecond wake-ups.
 // With 100 µs, about 1% of the sleeps on this kind of machine still overshot
 // the deadline by tens of microseconds (docs/results.md).
-uint64_t spinMarginNs(double periodS) { return periodS <= 0.002 ? 200'000 : 0; }
+// At 4 kHz and more, a quarter of the period: a real-time thread that never
+// sleeps is stopped by the kernel for 50 ms of every second
+// (sched_rt_runtime_us).
+uint64_t spinMarginNs(double periodS) {
+  return periodS <= 0.002 ? std::min<uint64_t>(200'000, static_cast<uint64_t>(periodS * 0.25e9)) : 0;
+}
 
 constexpr uint64_t kStopCheckNs = 50'000'000;
 

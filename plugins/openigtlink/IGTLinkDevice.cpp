@@ -58,7 +58,7 @@ void IGTLinkDevice::applyForce(const Vec3& force_N) {
 }
 
 void IGTLinkDevice::finish(FinishContext& context) {
-  m_server.reset();  // stops serving before the files are written
+  if (m_server) m_server->stop();  // stops serving before the files are written; the counters stay
   HapticDevice::finish(context);
 }
 

@@ -36,6 +36,10 @@ class IGTLinkDevice final : public HapticDevice {
   // The port it listens on (the one asked for, or the one given for port 0); 0 before prepare, and in
   // virtual time (the server starts only in real time).
   uint16_t listeningPort() const { return m_server ? m_server->port() : 0; }
+  // Stops serving (as at the end of a run): clients are disconnected, the counters stay.
+  void stopServing() {
+    if (m_server) m_server->stop();
+  }
 
  protected:
   DeviceSample readSample(double t) override;

@@ -186,7 +186,13 @@ void IGTLinkExporter::finish(FinishContext& context) {
   if (m_edits && m_edits->dropped())
     context.error(*this, "fell behind the drill: " + std::to_string(m_edits->dropped()) +
                              " voxel changes were not streamed; the skull a client holds is stale");
-  m_server.reset();
+  if (m_server) {
+    m_accepted = m_server->accepted();
+    m_refused = m_server->refused();
+    m_slow = m_server->dropped();
+    m_sent = m_server->messagesSent();
+  }
+  m_server.reset();  // clients are disconnected; the counters were kept
 }
 
 void IGTLinkExporter::reportCounters(std::vector<Counter>& counters) const {
@@ -195,12 +201,10 @@ void IGTLinkExporter::reportCounters(std::vector<Counter>& counters) const {
   add("images_whole", m_images);
   add("images_partial", m_subvolumes);
   add("surfaces", m_surfaces);
-  if (m_server) {
-    add("clients_accepted", m_server->accepted());
-    add("clients_refused", m_server->refused());
-    add("clients_slow", m_server->dropped());
-    add("messages_sent", m_server->messagesSent());
-  }
+  add("clients_accepted", m_server ? m_server->accepted() : m_accepted);
+  add("clients_refused", m_server ? m_server->refused() : m_refused);
+  add("clients_slow", m_server ? m_server->dropped() : m_slow);
+  add("messages_sent", m_server ? m_server->messagesSent() : m_sent);
 }
 
 void IGTLinkExporter::reportFacts(std::vector<Fact>& facts) const {

@@ -105,6 +105,7 @@ class IGTLinkExporter final : public Component {
   bool m_brainMoved = false;
   double m_lastSurface = -INFINITY;
   uint64_t m_images = 0, m_subvolumes = 0, m_surfaces = 0, m_poses = 0;
+  uint64_t m_accepted = 0, m_refused = 0, m_slow = 0, m_sent = 0;  // the server's, kept when it closes
 };
 
 }  // namespace trephine::openigtlink

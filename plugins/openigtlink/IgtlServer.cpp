@@ -5,6 +5,8 @@
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
+#include <signal.h>
+#include <time.h>
 #include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -27,6 +29,9 @@ uint64_t steadyNs() {
 }
 
 constexpr uint64_t kSlowClientNs = 1'000'000'000;  // a full send buffer for this long: disconnected
+// How often the network thread looks for forces the haptic loop posted: a
+// force reaches the clients within this (and the socket's) delay.
+constexpr uint64_t kForcePollNs = 200'000;
 
 }  // namespace
 
@@ -65,20 +70,28 @@ IgtlServer::IgtlServer(IgtlServerOptions options) : m_options(std::move(options)
 }
 
 IgtlServer::~IgtlServer() {
-  m_stop = true;
-  const uint64_t one = 1;
-  [[maybe_unused]] const ssize_t written = write(m_wake, &one, sizeof one);
-  if (m_thread.joinable()) m_thread.join();
-  for (auto& c : m_clients) close(c->fd);
-  close(m_listener);
+  stop();
   close(m_wake);
 }
 
-void IgtlServer::postForce(const Vec3& force_N, double t) {
-  m_forces.push({force_N, t});
+void IgtlServer::stop() {
+  if (!m_thread.joinable()) return;
+  m_stop = true;
   const uint64_t one = 1;
-  // A non-blocking eventfd: the write never waits (its counter cannot fill at 1 kHz).
   [[maybe_unused]] const ssize_t written = write(m_wake, &one, sizeof one);
+  m_thread.join();
+  for (auto& c : m_clients) close(c->fd);
+  m_clients.clear();
+  m_clientCount = 0;
+  close(m_listener);
+  m_listener = -1;
+}
+
+void IgtlServer::postForce(const Vec3& force_N, double t) {
+  // Only the ring: waking the network thread (an eventfd write) cost the
+  // haptic frame 20 µs on a virtual machine (docs/results.md). The thread
+  // looks at the ring every kForcePollNs instead.
+  m_forces.push({force_N, t});
 }
 
 void IgtlServer::run() {
@@ -89,7 +102,8 @@ void IgtlServer::run() {
     fds.push_back({m_listener, POLLIN, 0});
     fds.push_back({m_wake, POLLIN, 0});
     for (const auto& c : m_clients) fds.push_back({c->fd, POLLIN, 0});
-    if (poll(fds.data(), fds.size(), 50) < 0 && errno != EINTR) break;
+    const timespec wait{0, static_cast<long>(kForcePollNs)};
+    if (ppoll(fds.data(), fds.size(), &wait, nullptr) < 0 && errno != EINTR) break;
     if (fds[1].revents & POLLIN) {
       uint64_t count;
       [[maybe_unused]] const ssize_t got = read(m_wake, &count, sizeof count);

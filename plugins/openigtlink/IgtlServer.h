@@ -4,8 +4,8 @@
 // connections, reads each client's TRANSFORM (and button) messages and hands
 // the newest pose to the haptic loop through a triple buffer, and sends every
 // client each force the haptic loop posts, as a SENSOR. The haptic loop only
-// fetches, pushes to a ring and bumps an eventfd: it never waits on the
-// network. A client that breaks the protocol, or does not read its forces
+// fetches and pushes to a ring, which the network thread looks at every
+// 200 µs: it never waits on the network, nor wakes a thread. A client that breaks the protocol, or does not read its forces
 // until its socket's buffer is full for a second, is disconnected; the others
 // go on. Counters are atomics any thread may read.
 #include <atomic>
@@ -58,9 +58,11 @@ class IgtlServer {
   IgtlServer& operator=(const IgtlServer&) = delete;
 
   uint16_t port() const { return m_port; }
+  // Stops serving: the thread ends and every socket closes; the counters stay.
+  void stop();
   // The haptic loop's side: the newest pose (fetch, then read).
   TripleBuffer<ReceivedPose>& poses() { return m_poses; }
-  // The haptic loop's side: this frame's force (N) at time t (s). Never waits.
+  // The haptic loop's side: this frame's force (N) at time t (s). Never waits, never wakes a thread.
   void postForce(const Vec3& force_N, double t);
   const ServerCounters& counters() const { return m_counters; }
   // Forces the ring could not hold (the network thread fell behind).
@@ -81,7 +83,7 @@ class IgtlServer {
 
   IgtlServerOptions m_options;
   int m_listener = -1;
-  int m_wake = -1;  // eventfd: a force was posted, or stop
+  int m_wake = -1;  // eventfd: stop
   uint16_t m_port = 0;
   std::atomic<bool> m_stop{false};
   TripleBuffer<ReceivedPose> m_poses;

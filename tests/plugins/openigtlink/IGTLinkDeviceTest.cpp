@@ -169,9 +169,13 @@ TEST(IGTLinkDeviceTest, ATrackersPosesPressASphereAndEveryFrameAfterTheFirstSend
   ASSERT_NE(device, nullptr);
   EXPECT_EQ(device->state().buttons, 1u) << "the pedal's STRING";
   EXPECT_EQ(componentCounterAt(simulation, "/tool/device", "button_messages"), 1);
-  // The server stops when the run's outputs are written, or (here) when the scene goes: the client's reader ends.
-  loaded.simulation.reset();
+  // The server stops when the run's outputs are written (the client's reader ends), and its figures stay for
+  // the summary.
+  TempDir out;
+  loaded.simulation->writeOutputs(out.path());
   tracker.finish();
+  EXPECT_EQ(componentCounterAt(simulation, "/tool/device", "transforms_received"), static_cast<double>(transforms));
+  EXPECT_NE(readFile(out / "summary.json").find("\"transforms_received\""), std::string::npos);
 
   EXPECT_EQ(tracker.badSensors, 0);
   EXPECT_GT(transforms, 50u);
