@@ -1,15 +1,11 @@
 #include "plugins/openigtlink/IGTLinkDevice.h"
 
-#include <arpa/inet.h>
-
 #include "framework/core/Lifecycle.h"
 
 namespace trephine::openigtlink {
 
 void IGTLinkDevice::init(InitContext& context) {
-  in_addr parsed{};
-  if (inet_pton(AF_INET, d_host.value().c_str(), &parsed) != 1)
-    context.error(d_host, "'" + d_host.value() + "' is not a dotted IPv4 address (names are not looked up)");
+  if (const std::string problem = d_server.hostProblem(); !problem.empty()) context.error(d_server.host, problem);
   for (const Field<std::string>* name : {&d_transformName, &d_forceName, &d_buttonsName}) {
     const std::string& text = name->value();
     if (text.size() > kDeviceNameSize)
@@ -24,9 +20,9 @@ void IGTLinkDevice::init(InitContext& context) {
 void IGTLinkDevice::prepare(const RunPlan& plan) {
   HapticDevice::prepare(plan);
   IgtlServerOptions options;
-  options.host = d_host.value();
-  options.port = static_cast<uint16_t>(d_port.value());
-  options.maxClients = static_cast<size_t>(d_maxClients.value());
+  options.host = d_server.host.value();
+  options.port = d_server.portNumber();
+  options.maxClients = static_cast<size_t>(d_server.maxClients.value());
   options.transformName = d_transformName.value();
   options.forceName = d_forceName.value();
   options.buttonsName = d_buttonsName.value();
@@ -83,7 +79,7 @@ void IGTLinkDevice::reportCounters(std::vector<Counter>& counters) const {
 }
 
 void IGTLinkDevice::reportFacts(std::vector<Fact>& facts) const {
-  if (m_server) facts.push_back({"listening", d_host.value() + ":" + std::to_string(m_server->port())});
+  if (m_server) facts.push_back({"listening", d_server.host.value() + ":" + std::to_string(m_server->port())});
 }
 
 }  // namespace trephine::openigtlink

@@ -18,6 +18,7 @@
 
 #include "framework/devices/HapticDevice.h"
 #include "plugins/openigtlink/IgtlServer.h"
+#include "plugins/openigtlink/IgtlServerFields.h"
 
 namespace trephine::openigtlink {
 
@@ -46,17 +47,8 @@ class IGTLinkDevice final : public HapticDevice {
   bool connected() const override { return m_connected; }
 
  private:
-  Field<int> d_port{this,
-                    "port",
-                    18944,
-                    {.help = "TCP port of the OpenIGTLink server (18944: the protocol's usual one; 0: any free one)",
-                     .min = 0.0,
-                     .max = 65535.0}};
-  Field<std::string> d_host{
-      this,
-      "host",
-      "127.0.0.1",
-      {.help = "Address the server binds: loopback unless another (a dotted IPv4 address) is asked for"}};
+  IgtlServerFields d_server{
+      this, 18944, "TCP port of the OpenIGTLink server (18944: the protocol's usual one; 0: any free one)"};
   Field<std::string> d_transformName{
       this, "transformName", "Tool", {.help = "Device name of the TRANSFORM messages that carry the pose"}};
   Field<std::string> d_forceName{
@@ -67,8 +59,6 @@ class IGTLinkDevice final : public HapticDevice {
       "",
       {.help = "Device name of STRING (a decimal mask) or STATUS (its subcode) messages that set the buttons; "
                "empty: none"}};
-  Field<int> d_maxClients{
-      this, "maxClients", 4, {.help = "Connections served at once; more are refused", .min = 1.0, .max = 64.0}};
 
   std::unique_ptr<IgtlServer> m_server;
   ReceivedPose m_pose;

@@ -1,7 +1,5 @@
 #include "plugins/openigtlink/IGTLinkExporter.h"
 
-#include <arpa/inet.h>
-
 #include <algorithm>
 #include <stdexcept>
 
@@ -26,9 +24,7 @@ std::shared_ptr<const Message> shared(Message m) { return std::make_shared<const
 }  // namespace
 
 void IGTLinkExporter::init(InitContext& context) {
-  in_addr parsed{};
-  if (inet_pton(AF_INET, d_host.value().c_str(), &parsed) != 1)
-    context.error(d_host, "'" + d_host.value() + "' is not a dotted IPv4 address (names are not looked up)");
+  if (const std::string problem = d_server.hostProblem(); !problem.empty()) context.error(d_server.host, problem);
   for (const Field<std::string>* name : {&d_deviceName, &d_proxyName, &d_forceName, &d_skullName, &d_brainName})
     if (name->value().empty() || name->value().size() > kDeviceNameSize)
       context.error(*name, "an OpenIGTLink device name has 1 to 20 characters");
@@ -85,8 +81,8 @@ void IGTLinkExporter::prepare(const RunPlan& plan) {
   m_server.reset();
   // In virtual time there is no one to stream to.
   if (plan.realtime)
-    m_server = std::make_unique<IgtlBroadcaster>(d_host.value(), static_cast<uint16_t>(d_port.value()),
-                                                 static_cast<size_t>(d_maxClients.value()), kMaxQueuedBytes);
+    m_server = std::make_unique<IgtlBroadcaster>(d_server.host.value(), d_server.portNumber(),
+                                                 static_cast<size_t>(d_server.maxClients.value()), kMaxQueuedBytes);
 }
 
 bool IGTLinkExporter::applySkullEdits() {
@@ -208,7 +204,7 @@ void IGTLinkExporter::reportCounters(std::vector<Counter>& counters) const {
 }
 
 void IGTLinkExporter::reportFacts(std::vector<Fact>& facts) const {
-  if (m_server) facts.push_back({"listening", d_host.value() + ":" + std::to_string(m_server->port())});
+  if (m_server) facts.push_back({"listening", d_server.host.value() + ":" + std::to_string(m_server->port())});
 }
 
 }  // namespace trephine::openigtlink

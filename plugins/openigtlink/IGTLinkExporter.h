@@ -25,6 +25,7 @@
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
 #include "plugins/openigtlink/IgtlBroadcaster.h"
+#include "plugins/openigtlink/IgtlServerFields.h"
 
 namespace trephine::openigtlink {
 
@@ -53,17 +54,7 @@ class IGTLinkExporter final : public Component {
   Link<DeformableMesh> l_brain{
       this, "brain", {.help = "Brain whose boundary surface is streamed as POLYDATA", .initOnly = true}};
   RateField d_rate{this, 30.0, "Messages per second of the poses and the force"};
-  Field<int> d_port{this,
-                    "port",
-                    18945,
-                    {.help = "TCP port 3D Slicer's OpenIGTLinkIF connects to (0: any free one)",
-                     .min = 0.0,
-                     .max = 65535.0}};
-  Field<std::string> d_host{
-      this,
-      "host",
-      "127.0.0.1",
-      {.help = "Address the server binds: loopback unless another (a dotted IPv4 address) is asked for"}};
+  IgtlServerFields d_server{this, 18945, "TCP port 3D Slicer's OpenIGTLinkIF connects to (0: any free one)"};
   Field<std::string> d_deviceName{this, "deviceName", "TrephineDevice", {.help = "TRANSFORM of the device"}};
   Field<std::string> d_proxyName{this, "proxyName", "TrephineProxy", {.help = "TRANSFORM of the proxy"}};
   Field<std::string> d_forceName{this, "forceName", "TrephineForce", {.help = "SENSOR of the force (N)"}};
@@ -81,8 +72,6 @@ class IGTLinkExporter final : public Component {
                                   {.help = "While the brain moves, its surface is sent at most this often",
                                    .unit = "s",
                                    .min = 0.0}};
-  Field<int> d_maxClients{
-      this, "maxClients", 4, {.help = "Connections served at once; more are refused", .min = 1.0, .max = 64.0}};
 
   std::unique_ptr<IgtlBroadcaster> m_server;
   // The force's samples.

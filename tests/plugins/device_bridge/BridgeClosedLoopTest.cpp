@@ -22,18 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kTimingChecked = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kTimingChecked = false;
-#else
-constexpr bool kTimingChecked = true;
-#endif
-#else
-constexpr bool kTimingChecked = true;
-#endif
-
 const std::string kSimulationScene = (sourceDir() / "scenes/devices/bridge_drill.xml").string();
 const std::string kEmulatorScene = (sourceDir() / "scenes/devices/hand_emulator_drill.xml").string();
 

@@ -19,21 +19,6 @@
 namespace trephine::test {
 namespace {
 
-// Under a sanitizer every thread runs several times slower: what the wall
-// clock decides (the share of paced frames, the round trip, how many poses
-// came in the time) is checked only in the plain build.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kTimingChecked = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kTimingChecked = false;
-#else
-constexpr bool kTimingChecked = true;
-#endif
-#else
-constexpr bool kTimingChecked = true;
-#endif
-
 constexpr double kStiffness = 2.0;  // N/mm, the scene's spring
 constexpr double kTimeout = 0.02, kRamp = 0.02;  // s, BridgeDevice's defaults
 

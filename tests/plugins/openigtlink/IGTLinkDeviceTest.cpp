@@ -30,18 +30,6 @@ namespace {
 
 using openigtlink::IGTLinkDevice;
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kTimingChecked = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kTimingChecked = false;
-#else
-constexpr bool kTimingChecked = true;
-#endif
-#else
-constexpr bool kTimingChecked = true;
-#endif
-
 std::string pressScene(const std::string& attributes = "") {
   return R"(<Node name="root" units="mm">
   <RequiredPlugin name="analytic"/>
