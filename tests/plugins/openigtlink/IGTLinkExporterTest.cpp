@@ -56,6 +56,7 @@ struct Received {
   int wholeImages = 0, partialImages = 0, polydata = 0, transforms = 0, sensors = 0, badCrc = 0;
   int polygons = 0, points = 0;
   std::array<float, 3> firstPoint{};
+  std::vector<std::vector<std::array<float, 3>>> surfaces;  // the points of every POLYDATA
   float lastDevice[3] = {0, 0, 0};
 };
 
@@ -113,6 +114,8 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
       r.points = poly->GetPoints()->GetNumberOfPoints();
       r.polygons = static_cast<int>(poly->GetPolygons()->GetNumberOfCells());
       poly->GetPoints()->GetPoint(0, r.firstPoint.data());
+      auto& points = r.surfaces.emplace_back(size_t(r.points));
+      for (int i = 0; i < r.points; ++i) poly->GetPoints()->GetPoint(unsigned(i), points[size_t(i)].data());
     } else if (transform) {
       ++r.transforms;
       if (std::strcmp(transform->GetDeviceName(), "TrephineDevice") == 0) {
@@ -180,6 +183,74 @@ TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrai
   EXPECT_GT(received.sensors, 40);
   EXPECT_EQ(received.transforms, 2 * received.sensors);
   EXPECT_NEAR(received.lastDevice[2], device.z(), 1e-3);
+}
+
+// A cube of tissue on the TLED FEM, fixed at its base, pressed 4 mm by a probe.
+const std::string kDeformingScene = R"(<Node name="root" units="mm">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="fem"/>
+  <RequiredPlugin name="openigtlink"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file="phantom:cube?cells=6&amp;size=40" forceSpread="10"/>
+    <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" group="fem"/>
+    <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -19"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="0 0 0"
+                    tipOffset="2.5" standoff="3" speed="20" depth="4" feedSpeed="8" rate="1000"/>
+    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
+  </Node>
+  <Node name="stream">
+    <IGTLinkExporter name="slicer" port="0" force="@/tool/force" brain="@/patient/brain" rate="30"/>
+  </Node>
+</Node>)";
+
+TEST(IGTLinkExporterTest, ADeformingBrainsSurfaceIsSentAgainAsItMoves) {
+  SimulationOptions options;
+  options.duration = 1.5;
+  options.realtime = true;
+  Diagnostics diagnostics;
+  auto simulation = loadScene(kDeformingScene, diagnostics, options);
+  ASSERT_TRUE(simulation) << messages(diagnostics);
+  const auto* exporter =
+      dynamic_cast<const openigtlink::IGTLinkExporter*>(simulation->scene().findComponent("/stream/slicer"));
+  ASSERT_NE(exporter, nullptr);
+  auto socket = igtl::ClientSocket::New();
+  ASSERT_EQ(socket->ConnectToServer("127.0.0.1", exporter->listeningPort()), 0);
+  Received received;
+  std::thread reader([&] { readAll(socket, received); });
+  simulation->run();
+  const auto* brain = dynamic_cast<const DeformableMesh*>(simulation->scene().findComponent("/patient/brain"));
+  ASSERT_NE(brain, nullptr);
+  const TetMesh rest = brain->mesh();
+  simulation.reset();
+  reader.join();
+
+  EXPECT_EQ(received.badCrc, 0);
+  EXPECT_GT(received.polydata, 3) << "sent when the client connected, then as the cube moved";
+  // The surface's points are the boundary's nodes in the order its faces first meet them.
+  std::vector<int32_t> order, seen(rest.nodeCount(), 0);
+  const TetTopology topology(rest);
+  for (const BoundaryFace& f : topology.boundaryFaces())
+    for (int c = 1; c <= 3; ++c) {
+      const int32_t node = rest.tets[size_t(f.tet)][(f.face + c) % 4];
+      if (!seen[size_t(node)]++) order.push_back(node);
+    }
+  // The first surface is the cube at rest; those sent after it show the dent under the probe.
+  std::vector<double> largest;
+  for (const auto& surface : received.surfaces) {
+    ASSERT_EQ(surface.size(), order.size());
+    double d = 0;
+    for (size_t i = 0; i < order.size(); ++i)
+      d = std::max(d, (Vec3(surface[i][0], surface[i][1], surface[i][2]) - rest.nodes[size_t(order[i])]).norm());
+    largest.push_back(d);
+  }
+  ASSERT_FALSE(largest.empty());
+  EXPECT_LT(largest.front(), 1e-4) << "mm: at rest when the client connected";
+  EXPECT_GT(*std::max_element(largest.begin(), largest.end()), 1.0) << "mm: the probe pressed the cube";
 }
 
 }  // namespace
