@@ -126,10 +126,11 @@ TEST(BridgeClosedLoopTest, ASimulationKilledMidContactLeavesTheHandNoForceWithin
   const int simulation = startProgram(concat(
       {"run", kSimulationScene, "--realtime", "--duration", "20", "--out", (dir / "sim").string()},
       transportArguments("shm", channel, 0)));
-  const int emulator = startProgram(
-      concat({"run", kEmulatorScene, "--realtime", "--duration", "3", "--out", (dir / "emulator").string()},
-             emulatorTransport("shm", channel, 0)));
-  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+  // Under a sanitizer the two take seconds to load: the kill comes later, the emulator runs longer.
+  const int emulator = startProgram(concat({"run", kEmulatorScene, "--realtime", "--duration", kTimingChecked ? "3" : "8",
+                                            "--out", (dir / "emulator").string()},
+                                           emulatorTransport("shm", channel, 0)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(kTimingChecked ? 2000 : 5000));
   ASSERT_EQ(kill(simulation, SIGKILL), 0);
   waitForProgram(simulation);
   ASSERT_EQ(waitForProgram(emulator), 0) << "the emulator outlives the simulation";
