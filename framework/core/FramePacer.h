@@ -4,7 +4,9 @@
 // group starts a frame as soon as that input has come, instead of at the
 // clock's deadline, so the answer goes back within the device's frame. The
 // clock still bounds the pace (Scheduler.h): no frame sooner than 3/4 of a
-// period after the last, none later than 1.5 periods, input or not.
+// period after the last, none later than 1.5 periods, input or not (one
+// period once two frames went without input, so that a run with no device
+// keeps the clock's time).
 #include "framework/core/Interface.h"
 
 namespace trephine {

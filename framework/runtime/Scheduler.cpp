@@ -191,8 +191,11 @@ void Scheduler::stepPaced(RateGroup& g, uint64_t k, uint64_t t0, const std::atom
   const double periodNs = g.periodS * 1e9;
   // The first frame at the common start; then within [3/4, 3/2] of a period
   // after the last start, as soon as the pacer's input has come.
+  // With no input for two frames running (no device, or it stopped), the
+  // clock paces the group, so that simulated time keeps up with the wall.
+  const double bound = g.unpacedRun >= 2 ? 1.0 : 1.5;
   const uint64_t earliest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(0.75 * periodNs);
-  const uint64_t latest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(1.5 * periodNs);
+  const uint64_t latest = k == 0 ? t0 : g.lastStartNs + static_cast<uint64_t>(bound * periodNs);
   // Sleeps to 200 µs before the earliest start, then polls. Polling the whole
   // wait would spare the wake-up (a thread that sleeps wakes on a virtual
   // machine into a stall of 100 to 200 µs in about 1% of its frames), but a
@@ -206,8 +209,10 @@ void Scheduler::stepPaced(RateGroup& g, uint64_t k, uint64_t t0, const std::atom
   }
   if (input) {
     ++g.pacedFrames;
+    g.unpacedRun = 0;
   } else {
     ++g.unpacedFrames;
+    ++g.unpacedRun;
   }
   const uint64_t start = nowNs();
   if (g.calls == 0) g.firstStartNs = start;

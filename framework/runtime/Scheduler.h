@@ -12,9 +12,10 @@
 // instead of bursting to catch up. A group with a member that paces it (a
 // FramePacer: a device outside the process) starts each frame when that
 // member's input has come, not sooner than 3/4 of a period after the last
-// frame's start and not later than 1.5 periods after it, so the answer goes
-// back within the device's own frame; frames that waited out the bound are
-// counted as unpaced.
+// frame's start and not later than 1.5 periods after it (one period after
+// two frames without input: the clock's pace), so the answer goes back within
+// the device's own frame; frames that waited out the bound are counted as
+// unpaced.
 //
 // The scheduler times every call (one clock read per call: the end of one
 // call is the start of the next). Components of one group share a thread;
@@ -66,6 +67,7 @@ struct RateGroup {
   // frames started by the clock's bound with none come.
   FramePacer* pacer = nullptr;
   uint64_t pacedFrames = 0, unpacedFrames = 0;
+  uint64_t unpacedRun = 0;  // unpaced frames in a row
   const GroupMember* current = nullptr;  // the member being ticked
   double currentT = 0;                   // s, scheduled time of the step being run
 };

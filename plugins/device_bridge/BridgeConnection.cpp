@@ -67,15 +67,14 @@ BridgeConnectionFields::BridgeConnectionFields(FieldOwner* owner, BridgeSide sid
 
 std::string BridgeConnectionFields::problem() const {
   std::string error;
-  if (transport.is("shm")) {
-    const std::string& name = channel.value();
-    if (name.size() < 2 || name[0] != '/' || name.find('/', 1) != std::string::npos || name.size() > NAME_MAX)
-      return "channel '" + name + "' is not a shared memory name: a leading slash, then a name without one";
-    return {};
-  }
+  // Every field is checked whatever the transport, so a mistake shows before the transport is switched.
+  const std::string& name = channel.value();
+  if (name.size() < 2 || name[0] != '/' || name.find('/', 1) != std::string::npos || name.size() > NAME_MAX)
+    return "channel '" + name + "' is not a shared memory name: a leading slash, then a name without one";
   if (!parseHostPort(address.value(), error, side == BridgeSide::Device)) return "address: " + error;
-  if (side == BridgeSide::Device && peer.value().empty()) return "peer: the simulation's HOST:PORT is needed";
   if (!peer.value().empty() && !parseHostPort(peer.value(), error)) return "peer: " + error;
+  if (transport.is("udp") && side == BridgeSide::Device && peer.value().empty())
+    return "peer: the simulation's HOST:PORT is needed";
   return {};
 }
 

@@ -19,7 +19,9 @@ void BridgeDeviceSide::prepare(const RunPlan& plan) {
   m_frames.assign(d_record.value() ? plan.callsAt(rateHz()) : 0, Frame{});
   m_frameCount = 0;
   trephine_bridge_watchdog_init(&m_watchdog, d_connection.timeout.value(), d_connection.rampTime.value());
-  m_transport = d_connection.open();
+  // In virtual time the device side sends nothing: the simulation it talks to runs in wall time.
+  m_transport.reset();
+  if (plan.realtime) m_transport = d_connection.open();
 }
 
 void BridgeDeviceSide::takeForces(uint64_t now) {
@@ -38,6 +40,7 @@ void BridgeDeviceSide::takeForces(uint64_t now) {
 }
 
 void BridgeDeviceSide::tick(const TickContext& context) {
+  if (!m_transport) return;
   HapticDevice& device = *l_device;
   const DeviceState& state = device.state();
   uint64_t now = monotonicNs();

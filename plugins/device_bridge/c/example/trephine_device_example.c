@@ -41,6 +41,37 @@ static void read_device(double t, double position_mm[3], double orientation_wxyz
 static double last_commanded[3];
 static void command_force(const double force_n[3]) { memcpy(last_commanded, force_n, sizeof last_commanded); }
 
+/* How long a tick polls for the answer to its pose (ns): half a 1 kHz frame. */
+static const uint64_t kAwaitNs = 500000u;
+
+/* The newest valid force from the simulation that came since the last call,
+ * into *force; returns 0 when none did. */
+static int take_force(trephine_bridge_shm* shm, trephine_bridge_udp* socket, const trephine_bridge_address* simulation,
+                      uint64_t* seen_writes, const trephine_bridge_force* latest, int have_latest,
+                      trephine_bridge_force* force) {
+  unsigned char in[128];
+  if (shm) {
+    const uint64_t writes = trephine_bridge_shm_force_writes(shm);
+    if (writes == *seen_writes || !trephine_bridge_shm_read_force(shm, in)) return 0;
+    *seen_writes = writes;
+    return trephine_bridge_decode_force(in, TREPHINE_BRIDGE_FORCE_SIZE, force) == TREPHINE_BRIDGE_OK;
+  }
+  /* Every datagram that waits; the newest valid force from the simulation wins. */
+  int have = 0;
+  trephine_bridge_address from;
+  trephine_bridge_force candidate;
+  long size;
+  while ((size = trephine_bridge_udp_receive(socket, in, sizeof in, &from)) >= 0)
+    if (trephine_bridge_address_equal(&from, simulation) &&
+        trephine_bridge_decode_force(in, (size_t)size, &candidate) == TREPHINE_BRIDGE_OK &&
+        (!(have || have_latest) ||
+         trephine_bridge_is_newer(have ? force->sequence : latest->sequence, candidate.sequence))) {
+      *force = candidate;
+      have = 1;
+    }
+  return have;
+}
+
 int main(int argc, char** argv) {
   const double seconds = argc > 1 ? atof(argv[1]) : 5.0;
   const int udp = argc > 4 && strcmp(argv[2], "udp") == 0;
@@ -65,7 +96,9 @@ int main(int argc, char** argv) {
   trephine_bridge_watchdog_init(&watchdog, 0.02, 0.02);
   trephine_bridge_force latest;
   memset(&latest, 0, sizeof latest);
+  /* A force left in the shared memory by an earlier run is not news. */
   uint64_t sequence = 0, sent_at = 0, round_trip = 0, seen_forces = shm ? trephine_bridge_shm_force_writes(shm) : 0;
+  int answered = 0;
   unsigned long poses = 0, forces = 0, round_trips = 0;
   double round_trip_max_us = 0, force_max_n = 0;
   const uint64_t start = clock_ns();
@@ -76,64 +109,46 @@ int main(int argc, char** argv) {
     }
     next += 1000000u;
     const uint64_t now = clock_ns();
-
-    /* 1. The newest force, if one came. */
-    unsigned char in[128];
-    trephine_bridge_force force;
-    int have = 0;
-    if (shm) {
-      const uint64_t writes = trephine_bridge_shm_force_writes(shm);
-      if (writes != seen_forces && trephine_bridge_shm_read_force(shm, in) &&
-          trephine_bridge_decode_force(in, TREPHINE_BRIDGE_FORCE_SIZE, &force) == TREPHINE_BRIDGE_OK) {
-        seen_forces = writes;
-        have = 1;
-      }
-    } else {
-      /* Every datagram that waits; the newest valid force from the simulation wins. */
-      trephine_bridge_address from;
-      trephine_bridge_force candidate;
-      long size;
-      while ((size = trephine_bridge_udp_receive(socket, in, sizeof in, &from)) >= 0)
-        if (trephine_bridge_address_equal(&from, &simulation) &&
-            trephine_bridge_decode_force(in, (size_t)size, &candidate) == TREPHINE_BRIDGE_OK &&
-            (!(forces || have) || trephine_bridge_is_newer(have ? force.sequence : latest.sequence,
-                                                            candidate.sequence))) {
-          force = candidate;
-          have = 1;
-        }
-    }
-    if (have) {
-      latest = force;
-      ++forces;
-      trephine_bridge_watchdog_heard(&watchdog, now);
-      if (force.answered_sequence == sequence && sent_at) {
-        round_trip = now - sent_at;
-        ++round_trips;
-        if (round_trip * 1e-3 > round_trip_max_us) round_trip_max_us = (double)round_trip * 1e-3;
-      }
-    }
-
-    /* 2. This tick's pose, with the round trip of the last one answered. */
+    /* 1. This tick's pose, with the round trip of the last one answered (0: none). */
     trephine_bridge_pose pose;
     memset(&pose, 0, sizeof pose);
     read_device((double)(now - start) * 1e-9, pose.position_mm, pose.orientation_wxyz, &pose.buttons);
     pose.sequence = ++sequence;
     pose.device_time_ns = now;
-    pose.round_trip_ns = round_trip > 0xffffffffu ? 0xffffffffu : (uint32_t)round_trip;
+    pose.round_trip_ns = answered ? (round_trip > 0xffffffffu ? 0xffffffffu : (uint32_t)round_trip) : 0;
     unsigned char out[TREPHINE_BRIDGE_POSE_SIZE];
-    if (trephine_bridge_encode_pose(&pose, out) == TREPHINE_BRIDGE_OK) {
-      if (shm) {
-        trephine_bridge_shm_write_pose(shm, out);
-      } else {
-        trephine_bridge_udp_send(socket, &simulation, out, sizeof out);
+    if (trephine_bridge_encode_pose(&pose, out) != TREPHINE_BRIDGE_OK) {
+      fprintf(stderr, "trephine_device_example: the device's pose cannot be sent (not finite, or not a unit quaternion)\n");
+      return 1;
+    }
+    if (shm) {
+      trephine_bridge_shm_write_pose(shm, out);
+    } else {
+      trephine_bridge_udp_send(socket, &simulation, out, sizeof out);
+    }
+    sent_at = now;
+    answered = 0;
+    ++poses;
+
+    /* 2. The force that answers it, polled for at most kAwaitNs (the simulation
+     * answers within its frame); else the newest force at hand. */
+    for (uint64_t t = now; !answered && t - now < kAwaitNs; t = clock_ns()) {
+      trephine_bridge_force force;
+      if (!take_force(shm, socket, &simulation, &seen_forces, &latest, forces > 0, &force)) continue;
+      latest = force;
+      ++forces;
+      trephine_bridge_watchdog_heard(&watchdog, t);
+      if (force.answered_sequence == sequence) {
+        answered = 1;
+        round_trip = t - sent_at;
+        ++round_trips;
+        if ((double)round_trip * 1e-3 > round_trip_max_us) round_trip_max_us = (double)round_trip * 1e-3;
       }
-      sent_at = now;
-      ++poses;
     }
 
     /* 3. The force to command: the watchdog's gain, the device's limit. */
     double commanded[3];
-    trephine_bridge_watchdog_update(&watchdog, now, NULL);
+    trephine_bridge_watchdog_update(&watchdog, clock_ns(), NULL);
     trephine_bridge_guard_force(&watchdog, latest.force_n, 3.3, commanded);
     command_force(commanded);
     const double magnitude = sqrt(commanded[0] * commanded[0] + commanded[1] * commanded[1] + commanded[2] * commanded[2]);
