@@ -1,5 +1,7 @@
 #include "plugins/device_bridge/BridgeTransport.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -20,12 +22,21 @@ class SharedMemoryTransport final : public BridgeTransport {
                                (error == EPROTO ? std::string("it holds something other than a device bridge of "
                                                               "this version (remove it: rm /dev/shm" + m_name + ")")
                                                 : std::string(std::strerror(error))));
+    // One simulation a channel: a second would answer the same device.
+    if (m_side == BridgeSide::Simulation) {
+      if (const long holder = trephine_bridge_shm_claim(m_shm, static_cast<long>(getpid()))) {
+        trephine_bridge_shm_close(m_shm, m_name.c_str(), 0);
+        throw std::runtime_error("the shared memory object " + m_name + " is in use by another simulation (process " +
+                                 std::to_string(holder) + "): give this one another channel");
+      }
+    }
     // What the other side wrote before this side opened it (a device program
     // of an earlier run, now gone) is not news.
     m_lastSeen = incomingWrites();
   }
   ~SharedMemoryTransport() override {
-    trephine_bridge_shm_close(m_shm, m_name.c_str(), m_side == BridgeSide::Simulation);
+    if (m_side == BridgeSide::Simulation) trephine_bridge_shm_release(m_shm, static_cast<long>(getpid()));
+    trephine_bridge_shm_close(m_shm, m_name.c_str(), 0);
   }
 
   size_t receive(std::span<BridgeDatagram> into, bool& more) override {

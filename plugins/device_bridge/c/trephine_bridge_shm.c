@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <signal.h>
 #include <unistd.h>
 
 #define POSE_WORDS ((TREPHINE_BRIDGE_POSE_SIZE + 7u) / 8u)
@@ -32,6 +33,7 @@ struct trephine_bridge_shm {
   uint32_t version;
   pose_slot pose;
   force_slot force;
+  _Atomic int64_t simulation; /* the process id of the simulation that claimed it; 0: none */
 };
 
 trephine_bridge_shm* trephine_bridge_shm_open(const char* name, int create, int* error) {
@@ -136,4 +138,21 @@ uint64_t trephine_bridge_shm_pose_writes(const trephine_bridge_shm* shm) {
 }
 uint64_t trephine_bridge_shm_force_writes(const trephine_bridge_shm* shm) {
   return atomic_load_explicit((_Atomic uint64_t*)&shm->force.sequence, memory_order_acquire) / 2u;
+}
+
+long trephine_bridge_shm_claim(trephine_bridge_shm* shm, long pid) {
+  for (;;) {
+    int64_t holder = atomic_load_explicit(&shm->simulation, memory_order_acquire);
+    if (holder == pid) return 0;
+    /* A holder still alive keeps it (kill with signal 0 only asks whether it exists). */
+    if (holder != 0 && (kill((pid_t)holder, 0) == 0 || errno == EPERM)) return (long)holder;
+    if (atomic_compare_exchange_strong_explicit(&shm->simulation, &holder, (int64_t)pid, memory_order_acq_rel,
+                                                memory_order_acquire))
+      return 0;
+  }
+}
+
+void trephine_bridge_shm_release(trephine_bridge_shm* shm, long pid) {
+  int64_t expected = pid;
+  atomic_compare_exchange_strong_explicit(&shm->simulation, &expected, 0, memory_order_acq_rel, memory_order_acquire);
 }

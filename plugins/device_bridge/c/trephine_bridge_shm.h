@@ -41,6 +41,14 @@ void trephine_bridge_shm_write_force(trephine_bridge_shm* shm, const unsigned ch
 int trephine_bridge_shm_read_pose(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_POSE_SIZE]);
 int trephine_bridge_shm_read_force(const trephine_bridge_shm* shm, unsigned char out[TREPHINE_BRIDGE_FORCE_SIZE]);
 
+/* The simulation's side claims the object, so that a second simulation on
+ * the same name is refused instead of answering the same device: returns 0
+ * when this process (`pid`) holds it now, or the process id of the live
+ * simulation that does. A holder that has died is replaced. */
+long trephine_bridge_shm_claim(trephine_bridge_shm* shm, long pid);
+/* Gives the claim up (when `pid` holds it). */
+void trephine_bridge_shm_release(trephine_bridge_shm* shm, long pid);
+
 /* How many times the pose (force) slot was written so far, in one atomic
  * load: a cheap test for a new packet in a loop that polls for one. */
 uint64_t trephine_bridge_shm_pose_writes(const trephine_bridge_shm* shm);

@@ -6,6 +6,7 @@
 // zero by itself and keeps its outputs.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -53,6 +54,14 @@ std::vector<std::string> emulatorTransport(const std::string& transport, const s
 
 int testPort() { return 27300 + static_cast<int>(getpid() % 1000); }
 
+// A test's shared memory channel, removed from /dev/shm when the test ends
+// (the simulation leaves it for a device program that keeps it open).
+struct Channel {
+  std::string name;
+  explicit Channel(const std::string& what) : name("/trephine-test-" + what + "-" + std::to_string(getpid())) {}
+  ~Channel() { shm_unlink(name.c_str()); }
+};
+
 std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
@@ -62,7 +71,8 @@ class BridgeClosedLoopTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BridgeClosedLoopTest, TheEmulatorInAnotherProcessPressesTheBurrIntoTheSkullThroughTheBridge) {
   const std::string transport = GetParam();
-  const std::string channel = "/trephine-test-loop-" + std::to_string(getpid());
+  const Channel owned("loop");
+  const std::string& channel = owned.name;
   TempDir dir;
   const int simulation =
       startProgram(concat({"run", kSimulationScene, "--realtime", "--duration", "3", "--out", (dir / "sim").string()},
@@ -122,7 +132,8 @@ std::vector<Row> readBridgeRecord(const fs::path& file) {
 }
 
 TEST(BridgeClosedLoopTest, ASimulationKilledMidContactLeavesTheHandNoForceWithinTheEmulatorsTimeAndRamp) {
-  const std::string channel = "/trephine-test-kill-" + std::to_string(getpid());
+  const Channel owned("kill");
+  const std::string& channel = owned.name;
   TempDir dir;
   const int simulation = startProgram(concat(
       {"run", kSimulationScene, "--realtime", "--duration", "20", "--out", (dir / "sim").string()},
@@ -154,10 +165,42 @@ TEST(BridgeClosedLoopTest, ASimulationKilledMidContactLeavesTheHandNoForceWithin
   EXPECT_GT(zero, 100u);
   const std::string emu = readFile(dir / "emulator/summary.json");
   EXPECT_EQ(jsonNumber(emu, "watchdog_trips", "/tool/device"), 1);
+  // The killed simulation still holds the channel; a new one takes it over.
+  std::string output;
+  EXPECT_EQ(runProgram(concat({"run", kSimulationScene, "--realtime", "--duration", "0.3", "--quiet", "--out",
+                               (dir / "again").string()},
+                              transportArguments("shm", channel, 0)),
+                       &output),
+            0)
+      << output;
+}
+
+TEST(BridgeClosedLoopTest, ASecondSimulationOnTheSameChannelIsRefusedNamingTheFirst) {
+  const Channel owned("twice");
+  TempDir dir;
+  const int first = startProgram(concat({"run", kSimulationScene, "--realtime", "--duration", "20", "--out",
+                                         (dir / "first").string()},
+                                        transportArguments("shm", owned.name, 0)));
+  // The first holds the channel once its object exists (it claims it as it creates it).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (std::chrono::steady_clock::now() < deadline && !fs::exists("/dev/shm" + owned.name))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::string output;
+  const int second = runProgram(concat({"run", kSimulationScene, "--realtime", "--duration", "1", "--out",
+                                        (dir / "second").string()},
+                                       transportArguments("shm", owned.name, 0)),
+                                &output);
+  kill(first, SIGTERM);
+  waitForProgram(first);
+  EXPECT_EQ(second, 1) << output;
+  EXPECT_NE(output.find("in use by another simulation (process " + std::to_string(first) + ")"), std::string::npos)
+      << output;
 }
 
 TEST(BridgeClosedLoopTest, ADeviceKilledMidContactTripsTheSimulationsWatchdogAndItsOutputsStayWhole) {
-  const std::string channel = "/trephine-test-cut-" + std::to_string(getpid());
+  const Channel owned("cut");
+  const std::string& channel = owned.name;
   TempDir dir;
   const int simulation = startProgram(
       concat({"run", kSimulationScene, "--realtime", "--duration", "3", "--out", (dir / "sim").string()},
