@@ -134,32 +134,49 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
   }
 }
 
-TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrainPosesAndForce) {
+// Runs `xml` in real time for `duration` with a client connected to its
+// exporter (/stream/slicer) from the start; `inspect` sees the scene after the
+// run, before it goes (which closes the server and ends the client's reading).
+template <class Inspect>
+Received runStreamed(const std::string& xml, double duration, Inspect&& inspect) {
   SimulationOptions options;
-  options.duration = 2.0;
+  options.duration = duration;
   options.realtime = true;
   Diagnostics diagnostics;
-  auto simulation = loadScene(kScene, diagnostics, options);
-  ASSERT_TRUE(simulation) << messages(diagnostics);
+  Received received;
+  auto simulation = loadScene(xml, diagnostics, options);
+  EXPECT_TRUE(simulation) << messages(diagnostics);
+  if (!simulation) return received;
   const auto* exporter =
       dynamic_cast<const openigtlink::IGTLinkExporter*>(simulation->scene().findComponent("/stream/slicer"));
-  ASSERT_NE(exporter, nullptr);
+  EXPECT_NE(exporter, nullptr);
+  if (!exporter) return received;
   auto socket = igtl::ClientSocket::New();
-  ASSERT_EQ(socket->ConnectToServer("127.0.0.1", exporter->listeningPort()), 0);
-  Received received;
+  EXPECT_EQ(socket->ConnectToServer("127.0.0.1", exporter->listeningPort()), 0);
   std::thread reader([&] { readAll(socket, received); });
   simulation->run();
-  const auto* skull = dynamic_cast<const DrillableVolume*>(simulation->scene().findComponent("/patient/skull"));
-  const auto* brain = dynamic_cast<const DeformableMesh*>(simulation->scene().findComponent("/patient/brain"));
-  ASSERT_TRUE(skull && brain);
-  const VoxelGrid grid = skull->voxelGrid();  // its codes go with the scene: copied below
-  const std::vector<int16_t> drilled(grid.codes, grid.codes + grid.voxelCount());
-  const double removed = componentCounterAt(*simulation, "/patient/skull", "voxels_removed");
-  const TetMesh mesh = brain->mesh();
-  const Vec3 device = dynamic_cast<const HapticDevice*>(simulation->scene().findComponent("/tool/device"))->state().pose.position;
-  simulation.reset();  // the server closes: the reader ends
+  inspect(*simulation);
+  simulation.reset();
   reader.join();
+  return received;
+}
 
+TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrainPosesAndForce) {
+  VoxelGrid grid;
+  std::vector<int16_t> drilled;
+  double removed = 0;
+  TetMesh mesh;
+  Vec3 device = Vec3::Zero();
+  const Received received = runStreamed(kScene, 2.0, [&](const Simulation& simulation) {
+    const auto* skull = dynamic_cast<const DrillableVolume*>(simulation.scene().findComponent("/patient/skull"));
+    const auto* brain = dynamic_cast<const DeformableMesh*>(simulation.scene().findComponent("/patient/brain"));
+    ASSERT_TRUE(skull && brain);
+    grid = skull->voxelGrid();  // its codes go with the scene: copied
+    drilled.assign(grid.codes, grid.codes + grid.voxelCount());
+    removed = componentCounterAt(simulation, "/patient/skull", "voxels_removed");
+    mesh = brain->mesh();
+    device = dynamic_cast<const HapticDevice*>(simulation.scene().findComponent("/tool/device"))->state().pose.position;
+  });
   EXPECT_EQ(received.badCrc, 0);
   EXPECT_EQ(received.wholeImages, 1) << "the whole skull once, when the client connected";
   EXPECT_GT(removed, 0) << "the burr drilled";
@@ -214,26 +231,12 @@ const std::string kDeformingScene = R"(<Node name="root" units="mm">
 </Node>)";
 
 TEST(IGTLinkExporterTest, ADeformingBrainsSurfaceIsSentAgainAsItMoves) {
-  SimulationOptions options;
-  options.duration = 1.5;
-  options.realtime = true;
-  Diagnostics diagnostics;
-  auto simulation = loadScene(kDeformingScene, diagnostics, options);
-  ASSERT_TRUE(simulation) << messages(diagnostics);
-  const auto* exporter =
-      dynamic_cast<const openigtlink::IGTLinkExporter*>(simulation->scene().findComponent("/stream/slicer"));
-  ASSERT_NE(exporter, nullptr);
-  auto socket = igtl::ClientSocket::New();
-  ASSERT_EQ(socket->ConnectToServer("127.0.0.1", exporter->listeningPort()), 0);
-  Received received;
-  std::thread reader([&] { readAll(socket, received); });
-  simulation->run();
-  const auto* brain = dynamic_cast<const DeformableMesh*>(simulation->scene().findComponent("/patient/brain"));
-  ASSERT_NE(brain, nullptr);
-  const TetMesh rest = brain->mesh();
-  simulation.reset();
-  reader.join();
-
+  TetMesh rest;
+  const Received received = runStreamed(kDeformingScene, 1.5, [&](const Simulation& simulation) {
+    const auto* brain = dynamic_cast<const DeformableMesh*>(simulation.scene().findComponent("/patient/brain"));
+    ASSERT_NE(brain, nullptr);
+    rest = brain->mesh();
+  });
   EXPECT_EQ(received.badCrc, 0);
   EXPECT_GT(received.polydata, 3) << "sent when the client connected, then as the cube moved";
   // The surface's points are the boundary's nodes in the order its faces first meet them.
