@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """What accuracy costs in time, from the study.csv `trephine study` writes.
 
-usage: tools/plot_study.py DIR/study.csv
+usage: tools/plot_study.py DIR/study.csv [--budget-us US]
 
 Writes DIR/pareto.png: for every setting that ran, time per haptic frame
 (median, with a bar to its p99) against the penetration error at the study's
 poses (p99), each point labelled with its setting; the Pareto front (no other
-setting both faster and more accurate) is joined and its points filled.
+setting both faster and more accurate) is joined and its points filled; the
+haptic frame's budget (US, 1000 by default: a 1 kHz loop) is a dashed line.
 """
 import csv
 import math
@@ -33,7 +34,11 @@ def number(text):
 
 
 def main(argv):
-    if len(argv) != 2:
+    budget_us = 1000.0
+    if len(argv) == 4 and argv[2] == "--budget-us":
+        budget_us = number(argv[3])
+        argv = argv[:2]
+    if len(argv) != 2 or not budget_us > 0:
         sys.exit(__doc__)
     source = Path(argv[1])
     with open(source, newline="") as f:
@@ -45,7 +50,7 @@ def main(argv):
             points.append((t50, t99, err, r["setting"] + ": " + r["label"], r["pareto"] == "1"))
     if not points:
         sys.exit(f"plot_study.py: {source}: no setting with both a time and an error")
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    fig, ax = plt.subplots(figsize=(8, 6.2))
     for t50, t99, err, label, on_front in points:
         ax.errorbar([t50], [err], xerr=[[0], [max(0.0, t99 - t50)]], fmt="o", color="C0" if on_front else "C7",
                     mfc="C0" if on_front else "white", capsize=3)
@@ -53,7 +58,13 @@ def main(argv):
     front = sorted((p for p in points if p[4]), key=lambda p: p[0])
     if len(front) > 1:
         ax.plot([p[0] for p in front], [p[2] for p in front], "-", color="C0", label="Pareto front")
-        ax.legend(loc="upper right")
+    # What the markers mean, and the frame's budget.
+    ax.plot([], [], "o", color="C0", label="on the front: no setting both faster and more accurate")
+    ax.plot([], [], "o", color="C7", mfc="white", label="off the front")
+    ax.axvline(budget_us, color="black", linestyle="--", linewidth=1.0,
+               label=f"haptic frame budget ({budget_us:g} µs)")
+    # Below the axes, clear of the settings' labels.
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize="small", frameon=False)
     ax.set_xscale("log")
     ax.set_xlabel("haptic step (µs): median, bar to p99")
     ax.set_ylabel("penetration error p99 (mm)")
