@@ -96,10 +96,15 @@ TEST_P(BridgeClosedLoopTest, TheEmulatorInAnotherProcessPressesTheBurrIntoTheSku
   EXPECT_GE(jsonNumber(sim, "min_energy_in_mJ"), 0) << "passive";
   // The hand on the far side felt the force: the simulation's, at most the limit.
   EXPECT_GT(jsonNumber(sim, "max", "force_N"), 1.0);
-  EXPECT_LE(jsonNumber(sim, "max", "force_N"), 3.3 + 1e-9);
+  // Force steps beyond what the device's own motion explains: the hard-case bounds of the in-process
+  // closed loop (ProxyNeverInsideTest), across the process boundary.
+  EXPECT_LE(jsonNumber(sim, "p99", "force_step_unexplained_N"), 0.05);
+  EXPECT_LE(jsonNumber(sim, "max", "force_step_unexplained_N"), 0.3);
+  // What the device measured reaches the simulation's summary: one round trip per answered pose.
   EXPECT_GT(jsonNumber(emu, "round_trips_measured", "/tool/device"), 500);
-  EXPECT_EQ(jsonNumber(sim, "round_trips_measured", "/tool/device"),
-            jsonNumber(sim, "round_trips_measured", "/tool/device"));
+  EXPECT_GT(jsonNumber(sim, "round_trips_measured", "/tool/device"), 500);
+  EXPECT_LE(jsonNumber(sim, "round_trips_measured", "/tool/device"),
+            jsonNumber(emu, "round_trips_measured", "/tool/device"));
   if (!kTimingChecked) return;
   // 3 s at 1 kHz: nearly every pose taken and answered within its frame.
   EXPECT_GT(jsonNumber(sim, "poses_received", "/tool/device"), 2500);
