@@ -31,6 +31,13 @@ class ChannelHub {
     return getOrCreate<T>(publisher, name).addReader();
   }
 
+  // Whether `publisher` has published a channel under `name` (so far: call it
+  // from a component initialised after the publisher).
+  bool published(const Component& publisher, const std::string& name) const {
+    const auto at = m_channels.find({&publisher, name});
+    return at != m_channels.end() && at->second->hasPublisher;
+  }
+
   // "component/name" of every channel that has readers but nobody publishing.
   std::vector<std::string> unpublished() const {
     std::vector<std::string> names;

@@ -17,6 +17,7 @@ namespace trephine {
 
 inline constexpr const char* kNodePositionsChannel = "node_positions";
 inline constexpr const char* kNodeForcesChannel = "node_forces";
+inline constexpr const char* kElementStressChannel = "element_stress";
 
 struct NodePositions {
   uint64_t step = 0;             // the producer's tick count; 0 before the first
@@ -51,6 +52,17 @@ struct NodeForces {
   // reserved at 4 nodes per shell point, so a copy never allocates and costs
   // only the entries in use.
   std::vector<NodeForce> forces;
+};
+
+// The stress of each element of a deformable mesh, which a deformer that
+// computes stresses (the TLED FEM) publishes on its "element_stress" channel
+// only while a component reads it (a viewer colouring the brain by stress),
+// and then at most every so often: the element loop never pays for it.
+struct ElementStress {
+  double t = 0;  // s, the deformer's time when computed
+  // kPa, one per tetrahedron in the mesh's order: the von Mises equivalent
+  // of the Cauchy (true) stress, sqrt(3/2 s:s) with s its deviatoric part.
+  std::vector<float> vonMises;
 };
 
 }  // namespace trephine

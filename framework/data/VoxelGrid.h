@@ -26,6 +26,7 @@ struct VoxelGrid {
   Vec3 inverseSpacing = Vec3::Ones();  // 1/mm
   double isoCode = 0;      // the isovalue in code units (the smooth surface's)
   double outsideCode = 0;  // code of the space around the grid (the volume's lowest)
+  DensityEncoding encoding;  // a code's density (for exports; the queries work in codes)
 
   // The codes of `volume` in place, with the isovalue (in the volume's
   // densities) in code units.
@@ -39,6 +40,7 @@ struct VoxelGrid {
     g.corner = volume.origin() - 0.5 * g.spacing;
     g.inverseSpacing = g.spacing.cwiseInverse();
     g.isoCode = (isovalue - volume.encoding().offset) / volume.encoding().scale;
+    g.encoding = volume.encoding();
     g.outsideCode =
         volume.voxelCount() ? (volume.minDensity() - volume.encoding().offset) / volume.encoding().scale : 0;
     return g;

@@ -12,6 +12,7 @@
 // These scalar forms are the reference for the vectorised kernel
 // (TLEDKernel.cpp) and give the strain energy the tests and reports use.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 
 namespace trephine::fem {
@@ -57,6 +58,17 @@ inline Mat3 neoHookeanStress(const Mat3& F, const ElasticModuli& m) {
   const double I1 = F.squaredNorm();
   const double Jm23 = std::pow(J, -2.0 / 3.0);
   return m.mu * Jm23 * F + (m.kappa * (J - 1) - m.mu * I1 * Jm23 / (3 * J)) * cofactor(F);
+}
+
+// The von Mises equivalent of the Cauchy (true) stress sigma = P F^T / J,
+// sqrt(3/2 s:s) with s = sigma - tr(sigma) / 3 I, kPa; J is taken at least
+// `minJ` (a squeezed or inverted element has no meaningful true stress).
+// Uniaxial stretch F = diag(l, 1, 1) gives mu l^(-5/3) (l^2 - 1).
+inline double neoHookeanVonMises(const Mat3& F, const ElasticModuli& m, double minJ) {
+  const double J = std::max(F.determinant(), minJ);
+  const Mat3 sigma = neoHookeanStress(F, m) * F.transpose() / J;
+  const Mat3 s = sigma - sigma.trace() / 3 * Mat3::Identity();
+  return std::sqrt(1.5 * s.squaredNorm());
 }
 
 }  // namespace trephine::fem

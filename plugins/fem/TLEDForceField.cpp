@@ -47,6 +47,7 @@ void TLEDForceField::init(InitContext& context) {
   if (auto error = checkTimeStep()) context.error(d_dt, *error);
 
   m_channel = &context.channels().publish<NodePositions>(*this, kNodePositionsChannel);
+  m_stressChannel = &context.channels().publish<ElementStress>(*this, kElementStressChannel);
   if (auto error = brain.followDeformation(*this, context.channels())) {
     context.error(l_mesh, *error);
     return;
@@ -104,6 +105,27 @@ void TLEDForceField::prepare(const RunPlan&) {
   m_applying.assign(n, 0);
   m_targetNodes.reserve(n);
   m_appliedNodes.reserve(n);
+  // Stresses only for a reader (every reader subscribed at init).
+  m_stress = {};
+  if (m_stressChannel->readerCount() > 0) {
+    m_stress.vonMises.assign(m_model->elementCount(), 0.0f);
+    m_stressChannel->reserve(m_stress);
+  }
+  m_lastStress = -INFINITY;
+  m_stressAtRest = false;
+  m_stressUpdates = 0;
+}
+
+void TLEDForceField::publishStress(double t) {
+  if (m_stress.vonMises.empty() || t - m_lastStress < d_stressInterval.value()) return;
+  const bool resting = m_state->resting();
+  if (resting && m_stressAtRest) return;  // zero, and published so
+  m_state->vonMisesStress(m_stress.vonMises);
+  m_stress.t = t;
+  m_stressChannel->publish(m_stress);
+  m_lastStress = t;
+  m_stressAtRest = resting;
+  ++m_stressUpdates;
 }
 
 void TLEDForceField::tick(const TickContext& context) {
@@ -174,7 +196,7 @@ void TLEDForceField::tick(const TickContext& context) {
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
   // At rest and published so: the brain already has this shape (the rest
   // shape before the first frame).
-  if (m_state->resting() && m_publishedRest) return;
+  if (m_state->resting() && m_publishedRest) return publishStress(context.t + context.dt);
   const TLEDState::WrittenShape shape = m_state->writePositions(m_frame.positions);
   const double largest = shape.largestDisplacement;
   // A node farther from rest than the mesh is large has diverged as surely
@@ -200,6 +222,7 @@ void TLEDForceField::tick(const TickContext& context) {
   ++m_frame.step;
   m_channel->publish(m_frame);
   m_publishedRest = m_state->resting();
+  publishStress(context.t + context.dt);  // of a shape that did not diverge
 }
 
 void TLEDForceField::dropToolLoad() {
@@ -237,6 +260,7 @@ void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"dropped_forces", double(m_droppedForces)});
   counters.push_back({"non_finite_ticks", double(m_nonFinite)});
   counters.push_back({"published_steps", double(m_frame.step)});
+  counters.push_back({"stress_updates", double(m_stressUpdates)});  // only while a component reads them
   counters.push_back({"resting_steps", double(m_state->restingSteps())});  // at rest, no load: not computed
 }
 

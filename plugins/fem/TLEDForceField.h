@@ -131,10 +131,20 @@ class TLEDForceField final : public Component {
       {.help = "Selective mass scaling: the elements whose own critical time step is below dt get the density that "
                "makes it dt (the rest keep theirs), so that dt is stable on a mesh with a few small or flat "
                "elements. The added mass is reported (added_mass_fraction)"}};
+  Field<double> d_stressInterval{
+      this,
+      "stressInterval",
+      1.0 / 30,
+      {.help = "While a component reads the elements' stresses (element_stress: a VtkExporter colouring the brain "
+               "by von Mises stress), they are computed at most this often; with no reader, never",
+       .unit = "s",
+       .min = 0.0}};
   RateField d_rate{this, 1000.0, "Rate of the FEM's group: each tick advances the model by one period"};
 
   // After a divergence: the tool's forces, fetched and applied, are dropped.
   void dropToolLoad();
+  // Publishes the elements' stresses when read and due (stressInterval).
+  void publishStress(double t);
 
   std::unique_ptr<TLEDModel> m_model;
   std::optional<TLEDState> m_state;  // made at prepare(), once the components that link here have set the model
@@ -147,6 +157,11 @@ class TLEDForceField final : public Component {
   std::vector<int32_t> m_targetNodes, m_appliedNodes;
   Channel<NodePositions>* m_channel = nullptr;
   NodePositions m_frame;
+  Channel<ElementStress>* m_stressChannel = nullptr;
+  ElementStress m_stress;  // sized at prepare() when read
+  double m_lastStress = -INFINITY;  // s
+  bool m_stressAtRest = false;  // the stress last published is the rest shape's (zero)
+  uint64_t m_stressUpdates = 0;
   bool m_movesKnown = true;  // m_frame.positions holds the shape last published
   bool m_publishedRest = true;  // the brain's shape is the rest shape (nothing published yet, or rest)
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;

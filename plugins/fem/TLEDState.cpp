@@ -208,21 +208,35 @@ double TLEDState::kineticEnergy() const {
   return 0.5 * twice / (m_model->m_dt * m_model->m_dt);
 }
 
+Mat3 TLEDState::deformationGradient(size_t k) const {
+  const TLEDElements& el = m_model->m_elements;
+  Mat3 F = Mat3::Identity();
+  const double* u0 = &m_u[size_t(el.nodeOffset[0][k])];
+  for (int a = 1; a < 4; ++a) {
+    const double* ua = &m_u[size_t(el.nodeOffset[a][k])];
+    const Vec3 d(ua[0] - u0[0], ua[1] - u0[1], ua[2] - u0[2]);
+    const Eigen::RowVector3d g(el.grad[3 * (a - 1)][k], el.grad[3 * (a - 1) + 1][k], el.grad[3 * (a - 1) + 2][k]);
+    F += d * g;
+  }
+  return F;
+}
+
 double TLEDState::strainEnergy() const {
   const TLEDElements& el = m_model->m_elements;
   double energy = 0;
-  for (size_t k = 0; k < el.count; ++k) {
-    Mat3 F = Mat3::Identity();
-    const double* u0 = &m_u[size_t(el.nodeOffset[0][k])];
-    for (int a = 1; a < 4; ++a) {
-      const double* ua = &m_u[size_t(el.nodeOffset[a][k])];
-      const Vec3 d(ua[0] - u0[0], ua[1] - u0[1], ua[2] - u0[2]);
-      const Eigen::RowVector3d g(el.grad[3 * (a - 1)][k], el.grad[3 * (a - 1) + 1][k], el.grad[3 * (a - 1) + 2][k]);
-      F += d * g;
-    }
-    energy += neoHookeanEnergy(F, {el.muVolume[k], el.kappaVolume[k]});  // the volume is in the moduli
-  }
+  for (size_t k = 0; k < el.count; ++k)
+    energy += neoHookeanEnergy(deformationGradient(k), {el.muVolume[k], el.kappaVolume[k]});  // the volume is in the moduli
   return energy;
+}
+
+void TLEDState::vonMisesStress(std::span<float> out) const {
+  const TLEDElements& el = m_model->m_elements;
+  for (size_t e = 0; e < el.count && e < out.size(); ++e) {
+    const size_t k = size_t(m_model->m_elementInternal[e]);
+    const double volume = m_model->m_volume[k];
+    const ElasticModuli moduli{el.muVolume[k] / volume, el.kappaVolume[k] / volume};
+    out[e] = float(neoHookeanVonMises(deformationGradient(k), moduli, kMinIsochoricJ));
+  }
 }
 
 }  // namespace trephine::fem

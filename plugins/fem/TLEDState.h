@@ -72,6 +72,10 @@ class TLEDState {
   // strain from the neo-Hookean energy of every element (slow: reports and tests).
   double kineticEnergy() const;
   double strainEnergy() const;
+  // The von Mises equivalent of each element's true stress (kPa), one per
+  // element in the mesh's order, into `out` (elementCount() entries). About
+  // a tenth of a step's cost: for viewers, at their rate. Allocation-free.
+  void vonMisesStress(std::span<float> out) const;
 
   // Running totals of the element loop.
   const ElementStepCounts& counts() const { return m_counts; }
@@ -79,7 +83,8 @@ class TLEDState {
   uint64_t invertedNow() const { return m_invertedNow; }
 
  private:
-  bool loaded() const;  // a force, an acceleration or a held displacement would move it from rest
+  bool loaded() const;
+  Mat3 deformationGradient(size_t k) const;  // of internal element k  // a force, an acceleration or a held displacement would move it from rest
 
   const TLEDModel* m_model = nullptr;
   // kNodeStride doubles per internal node:

@@ -13,7 +13,9 @@
 #include "framework/runtime/JsonWriter.h"
 #include "framework/formats/vtk/VtkSurfaceReader.h"
 #include "framework/data/VertexClustering.h"
+#include "plugins/viewer/MeshColourRanges.h"
 #include "plugins/viewer/ViewerAssets.h"
+#include "plugins/viewer/ViewerVolume.h"
 
 namespace trephine::viewer {
 
@@ -40,7 +42,16 @@ struct Part {
   std::string name, kind;
   std::vector<double> times;
   std::vector<PartState> states;
+  fs::path folder;  // of its exporter, in the run
+  std::map<std::string, double> ranges;  // mesh: the largest of each colour quantity (MeshColourRanges)
+  std::string volume, removed;           // blocks: the packed skull volume's files (ViewerVolume), or none
+  int volumeFactor = 1;
+  size_t removedVoxels = 0;
 };
+
+// A skull's volume in the viewer: at most this many voxels (128^3; an
+// eighth of a 0.5 mm head CT's), 4 MB before base64.
+constexpr size_t kVolumeVoxels = size_t(1) << 21;
 
 std::string readBytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -314,7 +325,13 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
       std::string name = seriesName(entry.file);
       if (indexes.size() > 1) name = pvd.stem().string() + "/" + name;
       auto [at, added] = partOf.try_emplace(name, parts.size());
-      if (added) parts.push_back({name, kindOf(entry.file, seriesName(entry.file)), {}, {}});
+      if (added) {
+        Part part;
+        part.name = name;
+        part.kind = kindOf(entry.file, seriesName(entry.file));
+        part.folder = run / pvd.stem();
+        parts.push_back(std::move(part));
+      }
       Part& part = parts[at->second];
       if (!part.times.empty() && entry.time < part.times.back())
         throw ViewerDataError(pvd.string() + ": " + entry.file + " goes back in time (" +
@@ -322,7 +339,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
       if (!fs::is_regular_file(run / entry.file))
         throw ViewerDataError(pvd.string() + ": lists " + entry.file + ", which is missing");
       part.times.push_back(entry.time);
-      part.states.push_back({entry.file, {}});
+      part.states.push_back({entry.file, {}, {}});
       times.push_back(entry.time);
     }
   }
@@ -363,6 +380,24 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
     summary.stillTriangles += still.drawnTriangles;
     summary.coarseCell = std::max(summary.coarseCell, moving.coarseCell);
     summary.drilledCell = std::max(summary.drilledCell, moving.drilledCell);
+  }
+
+  // Colour ranges of the meshes; the skull's volume, packed.
+  for (Part& part : parts) {
+    if (part.kind == "mesh") {
+      std::vector<fs::path> files;
+      for (const PartState& state : part.states) files.push_back(run / state.file);
+      part.ranges = meshColourRanges(files);
+    } else if (part.kind == "blocks") {
+      if (auto packed = packSkullVolume(part.folder, kVolumeVoxels)) {
+        part.volume = part.name + "/volume.vol";
+        part.removed = part.name + "/removed.rmv";
+        generated[part.volume] = std::move(packed->density);
+        generated[part.removed] = std::move(packed->removed);
+        part.volumeFactor = packed->factor;
+        part.removedVoxels = packed->removedVoxels;
+      }
+    }
   }
 
   // Frames: each part's latest state at each time.
@@ -422,6 +457,12 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
       if (frame[p] >= 0 && parts[p].kind == "blocks")
         for (const auto& change : parts[p].states[frame[p]].stillChanges) pack(change.second);
   closeChunk();
+  // Last, what only some views ask for: the skull's volume.
+  for (const Part& part : parts) {
+    pack(part.volume);
+    pack(part.removed);
+  }
+  closeChunk();
 
   double end = times.empty() ? 0 : times.back();
   Plots plots;
@@ -436,6 +477,16 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   json.key("parts").beginArray();
   for (const Part& part : parts) {
     json.beginObject().field("name", part.name).field("kind", part.kind);
+    if (!part.ranges.empty()) {
+      json.key("ranges").beginObject();
+      for (const auto& [quantity, largest] : part.ranges) json.field(quantity, largest);
+      json.endObject();
+    }
+    if (!part.volume.empty()) {
+      json.key("volume").beginObject().field("density", part.volume).field("removed", part.removed);
+      json.field("factor", static_cast<long long>(part.volumeFactor));
+      json.field("removedVoxels", static_cast<unsigned long long>(part.removedVoxels)).endObject();
+    }
     json.key("states").beginArray();
     for (const PartState& state : part.states) {
       if (part.kind != "blocks") {
@@ -477,6 +528,10 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   }
   json.endObject();
   manifest << ";\n";
+  // The run's summary (its events, for the plots and the time slider), as
+  // text the viewer parses: JSON.parse, never run as script.
+  if (fs::is_regular_file(run / "summary.json"))
+    manifest << "window.trephineSummary = \"" << JsonWriter::escape(readBytes(run / "summary.json")) << "\";\n";
   writeText(data / "manifest.js", manifest.str());
 
   summary.frames = frames.size();

@@ -6,6 +6,7 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
+#include "framework/formats/volume/VolumeWriter.h"
 #include "framework/geometry/HeldTools.h"
 #include "plugins/viewer/LiveServer.h"
 
@@ -55,6 +56,11 @@ void VtkExporter::init(InitContext& context) {
     m_force.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
     if (brain.deformer())
       m_positions = context.channels().subscribe<NodePositions>(*brain.deformer(), kNodePositionsChannel);
+    // Stresses from a deformer that computes them (it does so only when read).
+    if (brain.deformer() && context.channels().published(*brain.deformer(), kElementStressChannel)) {
+      m_elementStress = context.channels().subscribe<ElementStress>(*brain.deformer(), kElementStressChannel);
+      m_vonMises.values.assign(mesh.tets.size(), 0.0f);
+    }
     m_nodeForces = context.channels().subscribe<NodeForces>(*l_brain.boundComponent(), kNodeForcesChannel);
   }
   if (l_force) {
@@ -90,10 +96,49 @@ void VtkExporter::prepare(const RunPlan& plan) {
   std::fill(m_blockChanged.begin(), m_blockChanged.end(), 1);
   m_lastSkullWrite = -INFINITY;
   m_skullEdits = m_skullFiles = 0;
+  m_removed.clear();
   if (m_root.empty()) return;
   std::error_code ec;
   std::filesystem::create_directories(m_root / d_directory.value(), ec);
   if (ec) throw std::runtime_error("cannot create " + (m_root / d_directory.value()).string() + ": " + ec.message());
+  if (l_skull) writeSkullVolume();
+}
+
+void VtkExporter::writeSkullVolume() {
+  const VoxelGrid& g = m_skullGrid;
+  DensityVolume volume({g.nx, g.ny, g.nz}, g.spacing, g.corner + 0.5 * g.spacing, g.encoding);
+  std::copy(m_skullCodes.begin(), m_skullCodes.end(), volume.codes());
+  // Not listed in the index (it does not change in time): beside it.
+  try {
+    formats::writeMetaImage(volume, m_root / d_directory.value() / "skull_density.mhd", /*compress=*/true);
+    // What the volume alone does not say: the skull's isovalue.
+    writeFileAtomically(m_root / d_directory.value() / "skull_volume.json", [&](std::ostream& out) {
+      out.precision(9);
+      out << "{\"density\": \"skull_density.mhd\", \"removed\": \"skull_removed.csv\", \"isovalue\": "
+          << g.encoding.density(0) + g.encoding.scale * g.isoCode << "}\n";
+    });
+    m_files += 3;
+  } catch (const std::exception& e) {
+    if (m_failed++ == 0) m_firstFailure = e.what();
+  }
+}
+
+void VtkExporter::writeRemovedVoxels() {
+  const int64_t nx = m_skullGrid.nx, ny = m_skullGrid.ny;
+  try {
+    writeFileAtomically(m_root / d_directory.value() / "skull_removed.csv", [&](std::ostream& out) {
+      out << "i,j,k,t\n";
+      char line[96];
+      for (const RemovedVoxel& r : m_removed) {
+        std::snprintf(line, sizeof line, "%lld,%lld,%lld,%.9g\n", static_cast<long long>(r.voxel % nx),
+                      static_cast<long long>((r.voxel / nx) % ny), static_cast<long long>(r.voxel / (nx * ny)), r.t);
+        out << line;
+      }
+    });
+    ++m_files;
+  } catch (const std::exception& e) {
+    if (m_failed++ == 0) m_firstFailure = e.what();
+  }
 }
 
 template <class Write>
@@ -112,10 +157,16 @@ bool VtkExporter::updateBrain() {
   const std::vector<Vec3>& rest = brain.mesh().nodes;
   const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
   const bool newForces = m_nodeForces->fetch();  // every frame: a deforming brain's files carry them too
+  bool newStress = false;
+  if (m_elementStress && m_elementStress->fetch() &&
+      m_elementStress->read().vonMises.size() == m_vonMises.values.size()) {
+    newStress = m_elementStress->read().vonMises != m_vonMises.values;
+    m_vonMises.values = m_elementStress->read().vonMises;
+  }
   const std::vector<Vec3>& nodes = moved ? m_positions->read().positions : rest;
   // A brain at rest between touches (the FEM still publishes) is not written
   // again: its last file stands.
-  if (m_brainWritten && !newForces && nodes == m_writtenNodes) return false;
+  if (m_brainWritten && !newForces && !newStress && nodes == m_writtenNodes) return false;
   m_writtenNodes = nodes;
   for (size_t i = 0; i < nodes.size(); ++i)
     for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);
@@ -129,7 +180,9 @@ bool VtkExporter::updateBrain() {
 
 void VtkExporter::writeBrain(double t) {
   attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const std::filesystem::path& f) {
-    formats::writeTetGrid(m_writtenNodes, *m_cells, {m_displacement, m_force}, {}, f);
+    formats::writeTetGrid(m_writtenNodes, *m_cells, {m_displacement, m_force},
+                          m_elementStress ? std::vector<formats::VtkDataArray>{m_vonMises} : std::vector<formats::VtkDataArray>{},
+                          f);
   });
 }
 
@@ -187,12 +240,15 @@ void VtkExporter::writeToolShape(double t) {
           [&](const std::filesystem::path& f) { formats::writePolyData(m_toolShape, f); });
 }
 
-bool VtkExporter::applySkullEdits() {
+bool VtkExporter::applySkullEdits(double t) {
   if (!m_edits) return false;
   std::array<int64_t, 3> first{INT64_MAX, INT64_MAX, INT64_MAX}, last{INT64_MIN, INT64_MIN, INT64_MIN};
   const int64_t nx = m_skullGrid.nx, ny = m_skullGrid.ny;
+  const double iso = m_skullGrid.isoCode;
   const size_t n = m_edits->drain([&](const VoxelEdit& e) {
-    m_skullCodes[size_t(e.voxel)] = e.code;
+    VoxelCode& code = m_skullCodes[size_t(e.voxel)];
+    if (code >= iso && e.code < iso) m_removed.push_back({int64_t(e.voxel), float(t)});
+    code = e.code;
     const std::array<int64_t, 3> ijk{e.voxel % nx, (e.voxel / nx) % ny, e.voxel / (nx * ny)};
     for (int a = 0; a < 3; ++a) {
       first[a] = std::min(first[a], ijk[a]);
@@ -246,7 +302,7 @@ void VtkExporter::writeSkull(double t) {
 }
 
 void VtkExporter::tick(const TickContext& context) {
-  if (l_skull) m_skullChanged = applySkullEdits() || m_skullChanged;  // the copy follows even with no files
+  if (l_skull) m_skullChanged = applySkullEdits(context.t) || m_skullChanged;  // the copy follows even with no files
   const bool files = !m_root.empty();
   if (!files && !m_live) return;  // the run writes no files and streams nothing
   if (l_brain && updateBrain()) {
@@ -312,7 +368,8 @@ void VtkExporter::declareOutputs(std::vector<OutputFile>& outputs) const {
 void VtkExporter::finish(FinishContext& context) {
   if (l_skull && !m_root.empty()) {
     // The drill's last changes: the skull as the run left it.
-    if (applySkullEdits() || m_skullChanged) writeSkull(context.simulatedTime());
+    if (applySkullEdits(context.simulatedTime()) || m_skullChanged) writeSkull(context.simulatedTime());
+    writeRemovedVoxels();
   }
   if (m_edits && m_edits->dropped())
     context.error(*this, "fell behind the drill: " + std::to_string(m_edits->dropped()) +

@@ -4,7 +4,9 @@
 // of its own, it reads the latest state through channels and writes
 //   brain_NNNNN.vtu  the brain's mesh at its current node positions, with the
 //                    node displacements (mm), the tool's forces on the nodes
-//                    (N) and the tissue labels;
+//                    (N), the tissue labels and, when its deformer computes
+//                    stresses (the TLED FEM's element_stress), each
+//                    element's von Mises stress (kPa, "von_mises");
 //   tool_NNNNN.vtp   the device and the proxy (mm), joined by a line, and in
 //                    contact the contact point (where the displayed tool
 //                    meets the surface: the proxy less the tool's radius
@@ -22,6 +24,12 @@
 //                    removes bone (at most every `skullInterval`), only for
 //                    the blocks it changed; each .vtm lists every block's
 //                    latest file;
+//   skull_density.mhd/.zraw  the skull's densities as the run starts
+//                    (MetaImage, zlib), for a viewer's colours and its volume
+//                    rendering, with skull_volume.json giving its isovalue;
+//   skull_removed.csv  every voxel the drill took below the isovalue: i,j,k
+//                    (its index in that volume) and t (s, the exporter frame
+//                    that saw it go), written at the end;
 // into the directory `directory` of the run, and `directory`.pvd beside it
 // listing every file with its time. Only what the links name is written. The
 // haptic and FEM threads only copy into the channels' slots; the files are
@@ -71,8 +79,11 @@ class VtkExporter final : public Component {
   std::optional<Vec3> contactPoint(const Sample& s) const;
   void startLiveView(const RunPlan& plan);
   void writeTool(double t);
-  // Applies the drill's changes to the copy of the codes; true if any.
-  bool applySkullEdits();
+  // Applies the drill's changes to the copy of the codes, noting the voxels
+  // that went below the isovalue at `t` (s); true if any.
+  bool applySkullEdits(double t);
+  void writeSkullVolume();
+  void writeRemovedVoxels();
   void writeSkull(double t);
   // Writes through `write`, keeping the first failure for finish() instead of
   // stopping the run (what was written so far stays listed).
@@ -112,8 +123,10 @@ class VtkExporter final : public Component {
   // Brain.
   std::optional<ChannelReader<NodePositions>> m_positions;  // none: a rigid brain
   std::optional<ChannelReader<NodeForces>> m_nodeForces;
+  std::optional<ChannelReader<ElementStress>> m_elementStress;  // none: the deformer computes none
   std::optional<formats::VtkTetCells> m_cells;  // compressed once
   formats::VtkDataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
+  formats::VtkDataArray m_vonMises{"von_mises", 1, {}};  // kPa, per element
   bool m_brainWritten = false;
   std::vector<Vec3> m_writtenNodes;  // the positions of the last file
   // Tool: the source's columns, by name.
@@ -138,6 +151,11 @@ class VtkExporter final : public Component {
   bool m_skullChanged = false;
   double m_lastSkullWrite = -INFINITY;  // s
   uint64_t m_skullEdits = 0, m_skullFiles = 0;
+  struct RemovedVoxel {
+    int64_t voxel;  // linear index
+    float t;        // s
+  };
+  std::vector<RemovedVoxel> m_removed;  // in the order they went
 
   // The live view (trephine run --view): its server, and the blocks changed
   // since they were last sent.

@@ -4,6 +4,8 @@
 // itself is tested by tests/plugins/viewer/browser.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -117,6 +119,32 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
     EXPECT_NE(manifest.find(std::string("skull/") + level + "_drilled_"), std::string::npos)
         << level << ": the drill changed blocks after 0.8 s";
   }
+  // The colour maps' ranges (the brain rests in the first 3 s: zero), the
+  // skull's volume with the voxels cut, and the run's summary as a string.
+  EXPECT_TRUE(std::regex_search(manifest, std::regex("\"ranges\": \\{\\s*\"displacement\": [0-9.e-]+,\\s*\"force\": [0-9.e-]+,\\s*\"von_mises\": [0-9.e-]+\\s*\\}")))
+      << manifest.substr(0, 400);
+  ASSERT_TRUE(std::regex_search(manifest, numbers, std::regex("\"removedVoxels\": (\\d+)")));
+  EXPECT_GT(std::stoi(numbers[1]), 0) << "the burr cut bone";
+  EXPECT_NE(manifest.find("\"density\": \"skull/volume.vol\""), std::string::npos);
+  EXPECT_NE(manifest.find("window.trephineSummary = \"{"), std::string::npos);
+
+  // A summary is text the viewer parses, never script: quotes and a line
+  // break in it are escaped. A list of cut voxels that does not fit the
+  // volume is an error naming the file and the line.
+  std::ofstream(run / "summary.json") << "{\"events\": [{\"t\": 1, \"kind\": \"x\", \"detail\": \"\\\"; alert(1); //\"}]}\n\";alert(2);//";
+  ASSERT_EQ(runProgram({"view", run.string()}, &out, assets.environment()), 0) << out;
+  const std::string hostile = test::readFile(run / "view/data/manifest.js");
+  const std::string embedded = hostile.substr(hostile.find("window.trephineSummary = "));
+  // Between the literal's quotes, every quote is escaped.
+  const size_t open = embedded.find('"'), close = embedded.rfind('"');
+  ASSERT_LT(open, close);
+  for (size_t q = embedded.find('"', open + 1); q < close; q = embedded.find('"', q + 1))
+    EXPECT_EQ(embedded[q - 1], '\\') << embedded.substr(0, q + 1);
+  EXPECT_NE(embedded.find("\\\";alert(2)"), std::string::npos) << embedded;
+  EXPECT_EQ(std::count(embedded.begin(), embedded.end(), '\n'), 1) << "one line: the break is escaped";
+  std::ofstream(run / "vtk/skull_removed.csv") << "i,j,k,t\n1,2,3,0.5\n1,2,99999,0.6\n";
+  EXPECT_EQ(runProgram({"view", run.string()}, &out, assets.environment()), 1);
+  EXPECT_NE(out.find("skull_removed.csv:3: expected i,j,k inside the"), std::string::npos) << out;
 }
 
 TEST(ViewCommandTest, RunsItCannotShowAreClearErrors) {

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <regex>
+#include <set>
+#include <sstream>
 
 #include "plugins/tetra_brain/CubePhantom.h"
 #include "framework/formats/mesh/TetMeshReader.h"
@@ -199,7 +201,7 @@ TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
   const std::string output = runInto(dir, drillScene(true), "0.6");
   std::vector<std::filesystem::path> skulls;
   for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk"))
-    if (entry.path().filename().string().starts_with("skull_")) skulls.push_back(entry.path());
+    if (std::regex_match(entry.path().filename().string(), std::regex("skull_[0-9]{5}\\.vtm"))) skulls.push_back(entry.path());
   std::sort(skulls.begin(), skulls.end());
   ASSERT_GE(skulls.size(), 2u) << "the start and at least one drilled state";
   EXPECT_LE(skulls.size(), 8u) << "at most every 0.1 s, and the end";
@@ -220,6 +222,39 @@ TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
   const TriangleMesh merged = expected.merged();
   EXPECT_EQ(polysOfFrame(skulls.back()), int(merged.triangles.size()));
   EXPECT_NE(polysOfFrame(skulls.front()), polysOfFrame(skulls.back())) << "the drill changed the surface";
+  // The volume as the run started and the voxels the drill cut, against the
+  // volume the skull saved at the end: a voxel is listed exactly when it was
+  // bone (600 and up) at the start and is not at the end, and every voxel
+  // not listed is as it started or only lowered while staying bone.
+  const DensityVolume start = formats::readVolume(dir / "run" / "vtk" / "skull_density.mhd");
+  ASSERT_EQ(start.dims(), drilled.dims());
+  EXPECT_EQ(start.origin(), drilled.origin());
+  std::set<size_t> listed;
+  {
+    std::istringstream csv(test::readFile(dir / "run" / "vtk" / "skull_removed.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "i,j,k,t");
+    double lastT = 0;
+    while (std::getline(csv, line)) {
+      int i, j, k;
+      double t;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%d,%lf", &i, &j, &k, &t), 4) << line;
+      EXPECT_GE(t, lastT) << "in time order";
+      EXPECT_LE(t, 0.6 + 1e-6);  // s, float
+      lastT = t;
+      EXPECT_TRUE(listed.insert(start.index(i, j, k)).second) << "listed once: " << line;
+    }
+  }
+  size_t cut = 0;
+  for (size_t v = 0; v < start.voxelCount(); ++v) {
+    const double before = start.encoding().density(start.code(v)), after = drilled.encoding().density(drilled.code(v));
+    const bool wentBelow = before >= 600 && after < 600;
+    cut += wentBelow;
+    ASSERT_EQ(listed.count(v) == 1, wentBelow) << "voxel " << v << ": " << before << " then " << after;
+    ASSERT_LE(after, before) << "voxel " << v;
+  }
+  EXPECT_GT(cut, 10u);
   const std::string summary = test::readFile(dir / "run" / "summary.json");
   const size_t at = summary.find("\"skull_edits\": ");
   ASSERT_NE(at, std::string::npos) << summary;
@@ -231,8 +266,11 @@ TEST(VtkExporterTest, ASkullNotDrilledIsWrittenOnce) {
   const std::string output = runInto(dir, drillScene(false), "0.3");
   int skulls = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk"))
-    skulls += entry.path().filename().string().starts_with("skull_");
+    skulls += std::regex_match(entry.path().filename().string(), std::regex("skull_[0-9]{5}\\.vtm"));
   EXPECT_EQ(skulls, 1);
+  // Its volume, and no voxel cut.
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "run" / "vtk" / "skull_density.mhd"));
+  EXPECT_EQ(test::readFile(dir / "run" / "vtk" / "skull_removed.csv"), "i,j,k,t\n");
 }
 
 // A file the exporter cannot write (here a folder stands at its name; a
@@ -335,6 +373,72 @@ TEST(VtkExporterTest, ACapsuleIsDrawnWithItsShaft) {
   }
   EXPECT_GT(shapes, 10);
   EXPECT_NE(test::readFile(dir / "run" / "vtk.pvd").find("toolshape_00000.vtp"), std::string::npos);
+}
+
+// With the TLED FEM deforming the cube under the probe, each brain file
+// carries every element's von Mises stress (kPa): zero at the start, and
+// under the probe the most stressed element is the one it presses (near the
+// top face's middle). The FEM computes stresses only for such a reader.
+TEST(VtkExporterTest, TheFemsStressesReachTheBrainFilesOnlyWhenExported) {
+  const std::string fem = R"(<TetraBrain name="brain" file="phantom:cube?cells=6"/>
+    <TLEDForceField name="fem" mesh="@brain" rate="500")";
+  auto withFem = [&](const std::string& exporter) {
+    std::string xml = scene(exporter);
+    xml.replace(xml.find(R"(<TetraBrain name="brain" file="phantom:cube?cells=6"/>)"),
+                std::string(R"(<TetraBrain name="brain" file="phantom:cube?cells=6"/>)").size(), fem + "/>");
+    xml.insert(xml.find(R"(<RequiredPlugin name="viewer"/>)"), R"(<RequiredPlugin name="fem"/>
+  )");
+    xml.erase(xml.find("<ScriptedDeformation"), xml.find("/>", xml.find("<ScriptedDeformation")) + 2 -
+                                                   xml.find("<ScriptedDeformation"));
+    return xml;
+  };
+  test::TempDir dir;
+  const std::string output = runInto(dir, withFem(kExporter), "1.5");
+  const TetMesh rest = tetra::makeCubeMesh(6);
+  double peak = 0;
+  Vec3 peakAt = Vec3::Zero();
+  int files = 0;
+  bool firstAtRest = false;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk")) {
+    if (!entry.path().filename().string().starts_with("brain_")) continue;
+    const std::string text = test::readFile(entry.path());
+    const std::vector<float> stress = test::appendedArray<float>(text, test::appendedOffset(text, "von_mises"));
+    ASSERT_EQ(stress.size(), rest.tetCount()) << entry.path();
+    ++files;
+    if (entry.path().filename() == "brain_00000.vtu")
+      firstAtRest = *std::max_element(stress.begin(), stress.end()) == 0.0f;
+    for (size_t e = 0; e < stress.size(); ++e) {
+      ASSERT_TRUE(std::isfinite(stress[e]) && stress[e] >= 0) << entry.path() << " element " << e;
+      if (stress[e] > peak) {
+        peak = stress[e];
+        peakAt = Vec3::Zero();
+        for (int32_t node : rest.tets[e]) peakAt += rest.nodes[node] / 4;
+      }
+    }
+  }
+  ASSERT_GT(files, 5) << output;
+  EXPECT_TRUE(firstAtRest);
+  EXPECT_GT(peak, 0.01) << "kPa";
+  // The probe presses the top face (z = 100 mm) at x = y = 0; elements are
+  // 33 mm across: the most stressed one touches that point's cell.
+  EXPECT_LT(std::hypot(peakAt.x(), peakAt.y()), 34.0) << peakAt.transpose();
+  EXPECT_GT(peakAt.z(), 100 - 34.0) << peakAt.transpose();
+  // Read by the exporter: computed at most every stressInterval (1/30 s) of
+  // the 1.5 s. Without it: never.
+  test::TempDir none;
+  dir.write("plain.xml", withFem(R"(<VtkExporter name="vtk" force="@/tool/force"/>)"));
+  auto stressUpdates = [](const std::filesystem::path& run) {
+    const std::string summary = test::readFile(run / "summary.json");
+    const size_t at = summary.find("\"stress_updates\"");
+    return at == std::string::npos ? -1.0 : std::stod(summary.substr(summary.find(':', at) + 1));
+  };
+  const double exported = stressUpdates(dir / "run");
+  EXPECT_GT(exported, 5);
+  EXPECT_LE(exported, 1.5 * 30 + 1);
+  std::string plainOutput;
+  ASSERT_EQ(test::runProgram({"run", (dir / "plain.xml").string(), "--quiet", "--duration", "0.5", "--out",
+                              (none / "run").string()}, &plainOutput), 0) << plainOutput;
+  EXPECT_EQ(stressUpdates(none / "run"), 0.0);
 }
 
 }  // namespace

@@ -38,7 +38,9 @@ export function startLive(manifest, scene, plots, status, report) {
       status.openSeconds = performance.now() / 1000;
     }
     document.getElementById('clock').textContent = `${time.toFixed(3)} s`;
-    plots.end = Math.max(kPlotSeconds, time);
+    // The last kPlotSeconds, or the run so far.
+    plots.start = Math.max(0, time - kPlotSeconds);
+    plots.end = Math.max(time, 1e-3);
     plots.curves = null;  // new samples: draw the curves again
     plots.setTime(time);
   };

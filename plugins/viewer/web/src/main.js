@@ -1,16 +1,24 @@
-// The viewer of a trephine run: the 3D view, a time slider, a play button and
-// the plots. URL parameters (for links and tests): t=SECONDS starts there,
-// play=1 starts playing, speed=X plays X times real time, hide=a,b hides
-// those parts, opacity=X draws the skull at that opacity (0..1), scale=X
-// draws at X of the display's pixels, playScale=X while playing (0.35).
+// The viewer of a trephine run: the 3D view, a time slider with the run's
+// events, a play button, the colour maps and their legends, the view's
+// controls (viewControls.js) and the plots. URL parameters (for links and
+// tests): t=SECONDS starts there, play=1 starts playing, speed=X plays X
+// times real time, hide=a,b hides those parts, opacity=X draws the skull at
+// that opacity (0..1), brain=MODE and skull=MODE colour them (colouring.js),
+// view=NAME opens a standard view, scale=X draws at X of the display's
+// pixels, playScale=X while playing (0.35).
 // window.trephineViewer reports its state: ready (the first frame drawn),
 // openSeconds, time, frame, framesDrawn, triangles per part, levels (of
-// the block parts: 'moving' or 'still'), renderer,
-// errors; and seek(t).
+// the block parts: 'moving' or 'still'), colouring and legends, the triad
+// and scale bar, events, the plots' read-out, renderer, errors; and
+// seek(t).
 import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
-import { Plots } from './plots.js';
+import { Plots, eventColours } from './plots.js';
 import { startLive } from './live.js';
+import { Legend } from './legend.js';
+import { ViewControls } from './viewControls.js';
+import { SkullVolume } from './skullVolume.js';
+import { kMeshModes, kSkullModes, meshModesOf, densityRange } from './colouring.js';
 
 const status = {
   ready: false,
@@ -40,7 +48,7 @@ function rendererName() {
 }
 
 // A checkbox per part, and the skull's opacity (to see the brain inside).
-function addPartToggles(manifest, scene, parameters) {
+function addPartToggles(manifest, scene, parameters, legend = null) {
   const toggles = document.getElementById('parts');
   const hidden = new Set((parameters.get('hide') || '').split(',').filter(Boolean));
   for (const part of manifest.parts) {
@@ -49,13 +57,18 @@ function addPartToggles(manifest, scene, parameters) {
     box.type = 'checkbox';
     box.checked = !hidden.has(part.name);
     scene.setHidden(part.name, !box.checked);
+    if (legend) legend.setVisible(part.name, box.checked);
     box.addEventListener('change', () => {
       scene.setHidden(part.name, !box.checked);
+      if (legend) legend.setVisible(part.name, box.checked);
       scene.render();
     });
     label.append(box, ` ${part.name}`);
     toggles.append(label);
     if (part.kind === 'blocks') {
+      const opacityLabel = document.createElement('label');
+      opacityLabel.className = 'opacity';
+      opacityLabel.textContent = `${part.name} opacity `;
       const opacity = document.createElement('input');
       opacity.type = 'range';
       opacity.min = '0.1';
@@ -68,8 +81,161 @@ function addPartToggles(manifest, scene, parameters) {
         scene.setOpacity(part.name, Number(opacity.value));
         scene.render();
       });
-      toggles.append(opacity);
+      opacityLabel.append(opacity);
+      toggles.append(opacityLabel);
     }
+  }
+}
+
+// A labelled select in the header's controls; `onChange(value)`.
+function addSelect(container, labelText, options, value, onChange, id) {
+  const label = document.createElement('label');
+  label.textContent = `${labelText} `;
+  const select = document.createElement('select');
+  if (id) select.id = id;
+  for (const [key, text] of options) {
+    const option = document.createElement('option');
+    option.value = key;
+    option.textContent = text;
+    select.append(option);
+  }
+  select.value = value;
+  select.addEventListener('change', () => onChange(select.value));
+  label.append(select);
+  container.append(label);
+  return select;
+}
+
+// The colour of each part: a select per colourable part, its legend, and
+// the skull's volume loaded when a mode needs it.
+function addColourControls(manifest, scene, legend, parameters, data, redraw) {
+  const container = document.getElementById('colours');
+  for (const part of manifest.parts) {
+    if (part.kind === 'mesh') {
+      const modes = meshModesOf(part);
+      if (modes.length < 2) continue;
+      const wanted = parameters.get(part.name) || parameters.get('brain');
+      const initial = modes.includes(wanted) ? wanted : modes.includes('displacement') ? 'displacement' : modes[0];
+      const apply = (mode) => {
+        scene.setColouring(part.name, mode, part.ranges);
+        const spec = kMeshModes[mode];
+        if (spec) legend.show(part.name, spec.title, 0, part.ranges[spec.range] || 1);
+        else legend.hide(part.name);
+        redraw();
+      };
+      addSelect(container, `${part.name} colour`, modes.map((m) => [m, kMeshModes[m] ? kMeshModes[m].title : 'tissue']),
+                initial, apply, `colour-${part.name}`);
+      apply(initial);
+    } else if (part.kind === 'blocks' && part.volume) {
+      const modes = Object.keys(kSkullModes);
+      const wanted = parameters.get(part.name) || parameters.get('skull');
+      const initial = modes.includes(wanted) ? wanted : 'bone';
+      let loading = null;
+      const volume = () => {
+        if (!loading) {
+          loading = data.require([part.volume.density, part.volume.removed]).then(() => {
+            scene.volume = new SkullVolume(data.bytes(part.volume.density), data.bytes(part.volume.removed), part.volume.density);
+            return scene.volume;
+          });
+        }
+        return loading;
+      };
+      const apply = (mode) => {
+        if (!kSkullModes[mode]) {
+          scene.setColouring(part.name, mode);
+          legend.hide(part.name);
+          redraw();
+          return;
+        }
+        volume().then((v) => {
+          scene.setColouring(part.name, mode);
+          if (mode === 'density') legend.show(part.name, kSkullModes[mode].title, ...densityRange(v));
+          else legend.show(part.name, kSkullModes[mode].title, 0, manifest.end);
+          status.volumeLoaded = true;
+          redraw();
+        }, report);
+      };
+      addSelect(container, `${part.name} colour`, modes.map((m) => [m, kSkullModes[m] ? kSkullModes[m].title : 'bone']),
+                initial, apply, `colour-${part.name}`);
+      apply(initial);
+    }
+  }
+}
+
+// Standard views, reset, and the clipping plane.
+function addViewButtons(controls, parameters) {
+  const container = document.getElementById('views');
+  const names = { anterior: 'Anterior', posterior: 'Posterior', left: 'Left', right: 'Right', superior: 'Superior' };
+  for (const [name, text] of Object.entries(names)) {
+    const button = document.createElement('button');
+    button.textContent = text;
+    button.dataset.view = name;
+    button.title = `Look at the head from ${name === 'superior' ? 'above' : 'the ' + name}`;
+    button.addEventListener('click', () => controls.standardView(name));
+    container.append(button);
+  }
+  const reset = document.createElement('button');
+  reset.textContent = 'Reset view';
+  reset.dataset.view = 'reset';
+  reset.title = 'Back to the view the viewer opened with';
+  reset.addEventListener('click', () => controls.reset());
+  container.append(reset);
+  let axis = null;
+  const position = document.createElement('input');
+  position.type = 'range';
+  position.min = '0';
+  position.max = '1';
+  position.step = '0.01';
+  position.value = '0.5';
+  position.id = 'clip-position';
+  const flip = document.createElement('input');
+  flip.type = 'checkbox';
+  flip.id = 'clip-flip';
+  const update = () => controls.setClipping(axis, Number(position.value), flip.checked);
+  addSelect(container, 'clip', [['off', 'off'], ['0', 'left-right (x)'], ['1', 'front-back (y)'], ['2', 'top-bottom (z)']],
+            'off', (value) => {
+              axis = value === 'off' ? null : Number(value);
+              update();
+            }, 'clip-axis');
+  const at = document.createElement('label');
+  at.textContent = 'at ';
+  at.append(position);
+  const side = document.createElement('label');
+  side.append(flip, ' other side');
+  position.addEventListener('input', update);
+  flip.addEventListener('change', update);
+  container.append(at, side);
+}
+
+// The run's events (its summary.json), as {t, kind, detail}.
+function runEvents() {
+  if (typeof window.trephineSummary !== 'string') return [];
+  let summary;
+  try {
+    summary = JSON.parse(window.trephineSummary);
+  } catch (error) {
+    report(new Error(`the run's summary.json is not JSON (${error.message}): no events shown`));
+    return [];
+  }
+  const events = Array.isArray(summary.events) ? summary.events : [];
+  return events.filter((e) => e && Number.isFinite(e.t) && typeof e.kind === 'string')
+    .map((e) => ({ t: e.t, kind: e.kind, detail: typeof e.detail === 'string' ? e.detail : '' }));
+}
+
+// Marks under the time slider, one per event: a click goes to its time.
+function addEventMarks(events, end, seek) {
+  const marks = document.getElementById('marks');
+  const colours = eventColours(events);
+  for (const e of events) {
+    const mark = document.createElement('button');
+    mark.className = 'mark';
+    mark.style.left = `${(100 * e.t) / Math.max(end, 1e-9)}%`;
+    mark.style.background = colours[e.kind];
+    mark.title = `${e.t.toFixed(3)} s: ${e.kind.replace(/_/g, ' ')}${e.detail ? ' (' + e.detail + ')' : ''}`;
+    mark.dataset.t = String(e.t);
+    mark.dataset.kind = e.kind;
+    mark.addEventListener('click', () => seek(e.t));
+    marks.append(mark);
   }
 }
 
@@ -79,6 +245,10 @@ async function start() {
   document.getElementById('title').textContent = manifest.name;
   status.renderer = rendererName();
   const scene = new Scene3d(document.getElementById('view'));
+  const controls = new ViewControls(scene, document.getElementById('view'));
+  const legend = new Legend(document.getElementById('view'));
+  status.controls = controls.state;
+  Object.defineProperty(status, 'legends', { get: () => legend.state(), enumerable: true });
   if (manifest.live) {
     // Served by trephine run --view: no files, a stream.
     document.getElementById('play').style.display = 'none';
@@ -99,7 +269,11 @@ async function start() {
   slider.max = String(end);
   slider.step = String(Math.max(end / 2000, 1e-4));
 
-  const plots = new Plots(document.getElementById('plots'), manifest.plots, end, (t) => seek(t));
+  const events = runEvents();
+  status.events = events;
+  scene.end = end;
+  const plots = new Plots(document.getElementById('plots'), manifest.plots, end, (t) => seek(t), events);
+  status.plots = plots;
   let maxForce = 0;
   if (manifest.plots && manifest.plots.force) for (const f of manifest.plots.force) maxForce = Math.max(maxForce, f);
 
@@ -117,6 +291,8 @@ async function start() {
       for (const part of scene.parts.values()) if (part.proxySource) part.key = undefined;
       drawFrameParts(index);
       scene.resetCameraOnce();
+      controls.rememberHome();
+      if (parameters.get('view')) controls.standardView(parameters.get('view'));
     }
     const before = performance.now();
     scene.render();
@@ -165,6 +341,7 @@ async function start() {
     slider.value = String(time);
     label.textContent = `${time.toFixed(3)} s`;
     plots.setTime(time);
+    scene.setTime(time);
     const index = data.frameAt(time);
     if (index === shown) return;
     const names = data.namesOf(index);
@@ -181,6 +358,35 @@ async function start() {
   };
   const seek = (t) => showTime(t);
   status.seek = seek;
+  // Where the tool's proxy is drawn: CSS pixels in the view, and its radius
+  // in pixels (for tests and links), or null when there is no tool.
+  status.toolOnScreen = () => {
+    const tool = [...scene.parts.values()].find((part) => part.proxySource && part.hasTool);
+    if (!tool) return null;
+    const centre = tool.proxySource.getCenter();
+    const radius = tool.proxySource.getRadius();
+    const camera = scene.renderer.getActiveCamera();
+    const up = camera.getViewUp();
+    const onScreen = (p) => {
+      const gl = scene.view.getApiSpecificRenderWindow();
+      const [x, y] = gl.worldToDisplay(...p, scene.renderer);
+      const [width, height] = gl.getSize();
+      const box = scene.view.getContainer().getBoundingClientRect();
+      return [(x / width) * box.width, (1 - y / height) * box.height];
+    };
+    const a = onScreen(centre);
+    const b = onScreen(centre.map((v, k) => v + radius * up[k]));
+    return { x: a[0], y: a[1], radius: Math.hypot(a[0] - b[0], a[1] - b[1]) };
+  };
+  // Zooms the camera by `factor` about the focal point (tests of the scale bar).
+  status.zoomForTest = (factor) => {
+    scene.renderer.getActiveCamera().zoom(factor);
+    scene.render();
+  };
+  status.camera = () => {
+    const camera = scene.renderer.getActiveCamera();
+    return { position: camera.getPosition(), focalPoint: camera.getFocalPoint(), viewUp: camera.getViewUp() };
+  };
   // Renders again (for measuring the drawing alone).
   status.render = () => {
     const before = performance.now();
@@ -238,7 +444,13 @@ async function start() {
     if (event.key === ' ') setPlaying(!playing);
   });
 
-  addPartToggles(manifest, scene, parameters);
+  addPartToggles(manifest, scene, parameters, legend);
+  addColourControls(manifest, scene, legend, parameters, data, () => {
+    status.colouring = Object.fromEntries([...scene.colouring].map(([name, c]) => [name, c.mode]));
+    if (shown >= 0) scene.render();
+  });
+  addViewButtons(controls, parameters);
+  addEventMarks(events, end, seek);
   speed = Number(parameters.get('speed') || 1);
   if (fullScale !== 1) scene.setPixelScale(fullScale);
   showTime(Number(parameters.get('t') || 0));

@@ -6,6 +6,10 @@
 //             the state before (still: the finer level, drawn when still);
 //     frames: [{t (s), states: [per part: its state, -1 before its first]}],
 //     files:  {file: chunk}, plots: {t, force, penetration} or null}
+//   a mesh part has ranges {displacement (mm), force (N), von_mises (kPa)}:
+//   the largest of each over the run; a blocks part may have a volume
+//   {density: file, removed: file} (skullVolume.js reads them);
+//   window.trephineSummary = the run's summary.json, as a string (its events).
 //   data/chunk_N.js    trephineChunk(N, {"vtk/brain_00012.vtu": "<base64>", ...})
 // Chunks are scripts, not fetched files, so that the viewer opens from the
 // disk (file://) with nothing installed and no server.
@@ -86,6 +90,14 @@ export class RunData {
       this.files.set(name, file);
     }
     return file;
+  }
+
+  // The raw bytes of a file (the skull's volume), once.
+  bytes(name) {
+    const text = this.encoded.get(name);
+    if (text === undefined) throw new Error(`${name}: not loaded`);
+    this.encoded.delete(name);
+    return bytesFromBase64(text);
   }
 
   // Every file frame `index` shows; `still`: the still level of its blocks.

@@ -8,7 +8,9 @@ import vtkMapper from '@kitware/vtk.js/Rendering/Core/Mapper';
 import vtkPolyData from '@kitware/vtk.js/Common/DataModel/PolyData';
 import vtkSphereSource from '@kitware/vtk.js/Filters/Sources/SphereSource';
 import vtkArrowSource from '@kitware/vtk.js/Filters/Sources/ArrowSource';
+import vtkDataArray from '@kitware/vtk.js/Common/Core/DataArray';
 import { tetBoundary } from './tetSurface.js';
+import { meshColours, skullColours } from './colouring.js';
 
 // Colours (RGB, 0..1); the browser test looks for them.
 export const kColours = {
@@ -78,6 +80,49 @@ export class Scene3d {
     this.levels = new Map();  // block part name -> the level drawn
     this.cameraSet = false;
     this.forceScale = 10;  // mm of arrow per N; set from the run's largest force
+    this.colouring = new Map();  // part name -> {mode, ranges}: what it is coloured by
+    this.volume = null;  // the skull's SkullVolume, once loaded
+    this.time = 0;       // s, the time shown (the skull's cuts up to it)
+    this.end = 0;        // s, the run's end (the cut times' colour range)
+  }
+
+  // Colours part `name` by `mode` (colouring.js; null or a plain mode: its
+  // own colour); `ranges`: a mesh's ranges of each quantity.
+  setColouring(name, mode, ranges = {}) {
+    this.colouring.set(name, { mode, ranges });
+    for (const part of this.partsNamed(name)) this.applyColours(part);
+  }
+
+  // The time shown: a skull coloured by its cuts shows those made by then.
+  setTime(t) {
+    if (t === this.time) return;
+    this.time = t;
+    for (const part of this.parts.values())
+      if (part.pieces && this.colouring.get(part.name)?.mode === 'cut') this.applyColours(part);
+  }
+
+  applyColours(part) {
+    if (!part.polyData) return;
+    const colouring = this.colouring.get(part.name);
+    let colours = null;
+    if (colouring && part.file) colours = meshColours(part.file, colouring.mode, part.faceCells, colouring.ranges);
+    else if (colouring && part.pieces)
+      colours = { bytes: skullColours(part.pieces, colouring.mode, this.volume, this.time, this.end, kColours.skull), cells: false };
+    const mapper = part.actor.getMapper();
+    if (!colours || !colours.bytes) {
+      mapper.setScalarVisibility(false);
+      part.coloured = false;
+      return;
+    }
+    const scalars = vtkDataArray.newInstance({ name: 'colour', numberOfComponents: 3, values: colours.bytes });
+    part.polyData.getPointData().setScalars(colours.cells ? null : scalars);
+    part.polyData.getCellData().setScalars(colours.cells ? scalars : null);
+    mapper.setColorModeToDirectScalars();
+    if (colours.cells) mapper.setScalarModeToUseCellData();
+    else mapper.setScalarModeToUsePointData();
+    mapper.setScalarVisibility(true);
+    part.polyData.modified();
+    part.coloured = true;
   }
 
   setForceScale(maxForce, sceneSize) {
@@ -155,13 +200,16 @@ export class Scene3d {
     const topology = `${file.count('NumberOfPoints')}/${file.count('NumberOfCells')}`;
     if (part.topology !== topology) {
       part.topology = topology;
-      const polys = tetBoundary(points, file.array('Cells', 'connectivity'), file.array('Cells', 'offsets'),
-                                file.array('Cells', 'types'));
+      const { polys, faceCells } = tetBoundary(points, file.array('Cells', 'connectivity'), file.array('Cells', 'offsets'),
+                                               file.array('Cells', 'types'));
       part.polyData.getPolys().setData(polys, 1);
+      part.faceCells = faceCells;
     }
     part.polyData.getPoints().setData(points, 3);
     part.polyData.modified();
     part.hasData = true;
+    part.file = file;
+    this.applyColours(part);
     this.applyVisibility(part);
   }
 
@@ -220,6 +268,8 @@ export class Scene3d {
     part.polyData.getPolys().setData(polys, 1);
     part.polyData.modified();
     part.hasData = triangleCount > 0;
+    part.pieces = pieces;
+    this.applyColours(part);
     this.applyVisibility(part);
     part.triangleCount = triangleCount;
   }
@@ -278,7 +328,7 @@ export class Scene3d {
       const tets = corners.length / 4;
       const offsets = new Int32Array(tets);
       for (let i = 0; i < tets; ++i) offsets[i] = 4 * (i + 1);
-      part.polyData.getPolys().setData(tetBoundary(points, corners, offsets, new Uint8Array(tets).fill(10)), 1);
+      part.polyData.getPolys().setData(tetBoundary(points, corners, offsets, new Uint8Array(tets).fill(10)).polys, 1);
     }
     part.polyData.getPoints().setData(points, 3);
     part.polyData.modified();

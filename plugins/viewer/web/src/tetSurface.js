@@ -13,13 +13,19 @@ const kFaces = [
   [0, 2, 1],
 ];
 
-// Returns the triangles as [3, a, b, c, 3, ...] (vtk.js cell array layout).
+// Returns the triangles as [3, a, b, c, 3, ...] (vtk.js cell array layout),
+// and the cell each triangle is a face of (`faceCells`: to colour the surface
+// by a quantity of the cells).
 export function tetBoundary(points, connectivity, offsets, types) {
   const tets = [];
+  const cells = [];
   let start = 0;
   for (let cell = 0; cell < offsets.length; ++cell) {
     const end = offsets[cell];
-    if (types[cell] === kTetra && end - start === 4) tets.push(start);
+    if (types[cell] === kTetra && end - start === 4) {
+      tets.push(start);
+      cells.push(cell);
+    }
     start = end;
   }
   const faceCount = tets.length * 4;
@@ -57,9 +63,11 @@ export function tetBoundary(points, connectivity, offsets, types) {
     i = j;
   }
   const polys = new Uint32Array(boundary.length * 4);
+  const faceCells = new Uint32Array(boundary.length);
   boundary.forEach((face, k) => {
     polys[4 * k] = 3;
     polys.set(corners.subarray(3 * face, 3 * face + 3), 4 * k + 1);
+    faceCells[k] = cells[Math.floor(face / 4)];
   });
-  return polys;
+  return { polys, faceCells };
 }

@@ -70,7 +70,7 @@ try {
     await page.evaluate(() => { window.trephineViewer.frozen = true; });
     const before = await state();
     const toggle = async (on) => {
-      const box = page.locator('#parts label', { hasText: 'skull' }).locator('input');
+      const box = page.locator('#parts label', { hasText: /^ ?skull$/ }).locator('input');
       if ((await box.isChecked()) !== on) await box.click();
     };
     let all = null;

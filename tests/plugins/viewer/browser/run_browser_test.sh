@@ -6,6 +6,9 @@
 # (TREPHINE_REQUIRE_BROWSER_TESTS_CONFIGURED, set by CMake).
 #   run_browser_test.sh recorded TREPHINE SOURCE_DIR OUT_DIR SCENE DURATION TIMES PARTS MIN_FPS
 #     runs the scene, writes its viewer (trephine view), loads it (viewerBrowserTest.mjs);
+#   run_browser_test.sh controls TREPHINE SOURCE_DIR OUT_DIR SCENE DURATION PRESS
+#     the same, then checks the colour maps, the view's controls and the
+#     events (viewerControlsTest.mjs; PRESS: a time the tool presses the brain);
 #   run_browser_test.sh live TREPHINE SOURCE_DIR OUT_DIR SCENE DURATION TIMES PARTS
 #     runs the scene in real time with --view and watches it (liveBrowserTest.mjs);
 #   run_browser_test.sh unavailable REASON
@@ -40,7 +43,7 @@ if [ "$mode" = live ]; then
   exec node "$here/liveBrowserTest.mjs" --web "$web" --trephine "$trephine" --scene "$source/$scene" \
     --duration "$duration" --times "$times" --parts "$parts" --out "$out"
 fi
-min_fps=$9
+min_fps=${9:-0}
 "$trephine" run "$source/$scene" --duration "$duration" --out "$out/run" --quiet
 if ! "$trephine" view "$out/run" > "$out/view.txt" 2>&1; then
   cat "$out/view.txt"
@@ -48,5 +51,8 @@ if ! "$trephine" view "$out/run" > "$out/view.txt" 2>&1; then
   exit 1
 fi
 cat "$out/view.txt"
+if [ "$mode" = controls ]; then
+  exec node "$here/viewerControlsTest.mjs" --web "$web" --view "$out/run/view" --out "$out" --press "$times"
+fi
 exec node "$here/viewerBrowserTest.mjs" --web "$web" --view "$out/run/view" \
   --out "$out" --times "$times" --parts "$parts" --min-fps "$min_fps" --open-limit 3

@@ -1,0 +1,265 @@
+// What a person checks in a run's viewer, in headless Chromium, on the
+// default scene (trephine view of a run of it):
+//   - colour maps: the brain is coloured by displacement at opening, with a
+//     legend whose range is the run's largest displacement; at the deepest
+//     press on the brain, the surface around the probe is in the warm half
+//     of the map and the brain far from it in the cold half (the dent is
+//     seen); each mode's legend says what it shows, hidden with its part;
+//   - orientation: the triad shows +z up at opening, looks down z from
+//     superior with anterior up, shows the patient's left on the right from
+//     anterior, and comes back with reset; the scale bar halves its mm per
+//     pixel when the view is zoomed twice; the wheel zooms toward the
+//     cursor (the point under it stays); hiding the skull keeps the camera;
+//     a clipping plane reveals the brain inside the opaque skull;
+//   - plots and events: every event of the run's summary has a mark on the
+//     time slider at its time, a click on it goes there, and the plots draw
+//     it in its kind's colour; the read-out under the cursor gives the
+//     plotted values at its time.
+// Screenshots and results.json go to --out.
+//   node viewerControlsTest.mjs --web plugins/viewer/web --view RUN/view --out DIR --press T
+import { createRequire } from 'node:module';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { classify } from './pixels.mjs';
+import { decodePng } from './png.mjs';
+
+const options = {};
+for (let i = 2; i < process.argv.length; i += 2) options[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
+for (const required of ['web', 'view', 'out', 'press']) {
+  if (!options[required]) {
+    console.error(`viewerControlsTest: --${required} is missing`);
+    process.exit(2);
+  }
+}
+const { chromium } = createRequire(path.resolve(options.web, 'package.json'))('playwright-core');
+mkdirSync(options.out, { recursive: true });
+const failures = [];
+const check = (ok, message) => {
+  if (!ok) failures.push(message);
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
+};
+
+// Hue (degrees) and saturation of an RGB pixel.
+function hueOf(r, g, b) {
+  const max = Math.max(r, g, b);
+  const min = Math.min(r, g, b);
+  if (max === min) return { hue: NaN, saturation: 0 };
+  const d = max - min;
+  let h = max === r ? ((g - b) / d) % 6 : max === g ? (b - r) / d + 2 : (r - g) / d + 4;
+  h *= 60;
+  if (h < 0) h += 360;
+  return { hue: h, saturation: d / max };
+}
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
+});
+const results = {};
+try {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 820 } });
+  const consoleErrors = [];
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+  const url = pathToFileURL(path.resolve(options.view, 'index.html')).href;
+  const frames = () => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+  const open = async (query) => {
+    await page.goto(`${url}?${query}`);
+    await page.waitForFunction(() => {
+      const v = window.trephineViewer;
+      return v && v.ready && Object.values(v.levels || {}).every((l) => l === 'still');
+    }, null, { timeout: 60000 });
+    await frames();
+    await frames();
+  };
+  const status = (what) => page.evaluate((w) => {
+    const v = window.trephineViewer;
+    return JSON.parse(JSON.stringify(w === 'tool' ? v.toolOnScreen() : w === 'camera' ? v.camera() : v[w]));
+  }, what);
+  const shoot = async (name) => {
+    const png = await page.locator('#view').screenshot();
+    writeFileSync(path.join(options.out, name), png);
+    return decodePng(png);
+  };
+  const toggle = async (part, on) => {
+    const box = page.locator('#parts label', { hasText: new RegExp(`^ ?${part}$`) }).locator('input');
+    if ((await box.isChecked()) !== on) await box.click();
+    await frames();
+  };
+  const manifest = async () => page.evaluate(() => window.trephineRun);
+
+  // Colour maps: the dent, at the deepest press, the skull and the tool hidden.
+  const press = Number(options.press);
+  await open(`t=${press}&hide=skull`);
+  const run = await manifest();
+  const brainPart = run.parts.find((p) => p.kind === 'mesh');
+  let legends = await status('legends');
+  check(legends.brain && /displacement/.test(legends.brain.title) && legends.brain.min === 0 &&
+        Math.abs(legends.brain.max - brainPart.ranges.displacement) < 1e-9,
+        `the brain opens coloured by displacement, its legend 0 to ${legends.brain && legends.brain.max} mm (the run's largest: ${brainPart.ranges.displacement})`);
+  check(await page.locator('.legend-entry[data-part=brain] .legend-title').innerText().then((t) => /\(mm\)/.test(t)),
+        'the legend names its unit');
+  const tool = await status('tool');
+  await toggle('tool', false);
+  await toggle('toolshape', false);
+  const dent = await shoot('dent_displacement.png');
+  const near = { warm: 0, all: 0 };
+  const far = { warm: 0, all: 0 };
+  for (let y = 0; y < dent.height; ++y) {
+    for (let x = 0; x < dent.width; ++x) {
+      const o = 4 * (y * dent.width + x);
+      const { hue, saturation } = hueOf(dent.pixels[o], dent.pixels[o + 1], dent.pixels[o + 2]);
+      if (saturation < 0.35 || Math.max(dent.pixels[o], dent.pixels[o + 1], dent.pixels[o + 2]) < 50) continue;  // background, legend text
+      if (x > dent.width - 260 && y < 300) continue;  // the legend
+      const distance = Math.hypot(x - tool.x, y - tool.y);
+      const bin = distance < 2.5 * tool.radius ? near : distance > 10 * tool.radius ? far : null;
+      if (!bin) continue;
+      bin.all += 1;
+      if (hue < 160) bin.warm += 1;  // green to red: the upper half of the map
+    }
+  }
+  results.dent = { tool, near, far };
+  check(near.all > 50 && near.warm / near.all > 0.5,
+        `around the probe ${near.warm} of ${near.all} brain pixels are in the warm half of the map (more than half)`);
+  check(far.all > 1000 && far.warm / far.all < 0.1,
+        `far from it ${far.warm} of ${far.all} are (less than a tenth)`);
+  // Stress, and a hidden part's legend.
+  await page.selectOption('#colour-brain', 'stress');
+  await frames();
+  legends = await status('legends');
+  check(legends.brain && /von Mises/.test(legends.brain.title) && legends.brain.max === brainPart.ranges.von_mises,
+        `stress: the legend says "${legends.brain && legends.brain.title}" up to ${legends.brain && legends.brain.max} kPa`);
+  await toggle('brain', false);
+  legends = await status('legends');
+  check(legends.brain && !legends.brain.shown && !(await page.locator('.legend-entry[data-part=brain]').isVisible()),
+        'hiding the brain hides its legend');
+  await toggle('brain', true);
+  // The skull by where it was cut, and by density.
+  const skullPart = run.parts.find((p) => p.kind === 'blocks');
+  if (skullPart && skullPart.volume) {
+    await page.selectOption('#colour-skull', 'cut');
+    await page.waitForFunction(() => window.trephineViewer.legends.skull, null, { timeout: 30000 });
+    legends = await status('legends');
+    check(/cut/.test(legends.skull.title) && legends.skull.max === run.end, `the skull's cuts: legend "${legends.skull.title}" 0 to ${legends.skull.max} s`);
+    await page.selectOption('#colour-skull', 'density');
+    await frames();
+    legends = await status('legends');
+    check(/density/.test(legends.skull.title) && legends.skull.max > legends.skull.min, `density: legend ${legends.skull.min} to ${legends.skull.max}`);
+  }
+
+  // Orientation.
+  await open('t=0&brain=tissue');
+  let controls = await status('controls');
+  const opening = controls.triad;
+  check(opening['z (S)'][1] > 0.8, `at opening +z points up the screen (${opening['z (S)'].map((v) => v.toFixed(2))})`);
+  await page.click('button[data-view=superior]');
+  await frames();
+  controls = await status('controls');
+  check(Math.hypot(...controls.triad['z (S)']) < 0.05 && controls.triad['y (P)'][1] < -0.95,
+        `superior: z points at the viewer, posterior down the screen (anterior up)`);
+  await page.click('button[data-view=anterior]');
+  await frames();
+  controls = await status('controls');
+  check(controls.triad['x (L)'][0] > 0.95 && controls.triad['z (S)'][1] > 0.95,
+        "anterior: the patient's left on the screen's right, superior up");
+  await page.click('button[data-view=reset]');
+  await frames();
+  controls = await status('controls');
+  check(Object.keys(opening).every((k) => Math.hypot(opening[k][0] - controls.triad[k][0], opening[k][1] - controls.triad[k][1]) < 1e-6),
+        'reset gives back the opening view');
+  // The scale bar against the camera: zoomed twice, half the mm per pixel.
+  const before = (await status('controls')).scaleBar;
+  await page.evaluate(() => {
+    const v = window.trephineViewer;
+    v.zoomForTest(2);
+  });
+  await frames();
+  const after = (await status('controls')).scaleBar;
+  check(Math.abs(after.mmPerPixel / before.mmPerPixel - 0.5) < 0.01 && after.pixels > 40 && after.pixels < 200,
+        `zoomed twice, the scale bar's mm per pixel goes from ${before.mmPerPixel.toFixed(4)} to ${after.mmPerPixel.toFixed(4)}; it is ${after.mm} mm over ${after.pixels.toFixed(0)} pixels`);
+  await page.click('button[data-view=reset]');
+  await frames();
+  // The wheel zooms toward the cursor: the tool under it stays there.
+  await open(`t=${press}&hide=skull&brain=tissue`);
+  const box = await page.locator('#view').boundingBox();
+  const under = await status('tool');
+  const scaleBefore = (await status('controls')).scaleBar.mmPerPixel;
+  await page.mouse.move(box.x + under.x, box.y + under.y);
+  for (let i = 0; i < 4; ++i) {
+    await page.mouse.wheel(0, -120);
+    await frames();
+  }
+  const moved = await status('tool');
+  const scaleAfter = (await status('controls')).scaleBar.mmPerPixel;
+  const centre = Math.hypot(under.x - box.width / 2, under.y - box.height / 2);
+  check(scaleAfter < 0.8 * scaleBefore && Math.hypot(moved.x - under.x, moved.y - under.y) < Math.max(6, 0.1 * centre),
+        `the wheel zooms in (${scaleBefore.toFixed(3)} to ${scaleAfter.toFixed(3)} mm per pixel) and the probe under the cursor moves ${Math.hypot(moved.x - under.x, moved.y - under.y).toFixed(1)} pixels (it is ${centre.toFixed(0)} from the centre)`);
+  // Hiding the skull keeps the camera.
+  await open('t=1');
+  const cameraBefore = await status('camera');
+  await toggle('skull', false);
+  await toggle('skull', true);
+  const cameraAfter = await status('camera');
+  check(JSON.stringify(cameraBefore) === JSON.stringify(cameraAfter), 'hiding and showing the skull keeps the camera');
+  // A clipping plane reveals the brain inside the opaque skull.
+  await open(`t=${press}&brain=tissue&hide=tool,toolshape`);
+  const closed = classify(await shoot('clip_off.png'));
+  await page.selectOption('#clip-axis', '1');
+  await frames();
+  const clipped = classify(await shoot('clip_y.png'));
+  const area = closed.labels.length;
+  check(closed.brain.count < 0.002 * area && clipped.brain.count > 0.02 * area,
+        `clipping front-back at half the depth shows the brain: ${closed.brain.count} brain pixels before, ${clipped.brain.count} after`);
+
+  // Events on the time slider and the plots.
+  await open('t=0');
+  const events = await status('events');
+  results.events = events;
+  const marks = await page.locator('#marks .mark').evaluateAll((nodes) => nodes.map((n) => {
+    const b = n.getBoundingClientRect();
+    return { t: Number(n.dataset.t), kind: n.dataset.kind, x: b.left + b.width / 2 };
+  }));
+  const track = await page.locator('#marks').boundingBox();
+  check(events.length > 0 && marks.length === events.length, `${marks.length} marks on the time slider for the run's ${events.length} events`);
+  check(marks.every((m, i) => m.t === events[i].t && Math.abs(m.x - (track.x + (track.width * m.t) / run.end)) < 2),
+        'each mark sits at its event\'s time along the slider');
+  if (marks.length) {
+    const last = marks.length - 1;
+    await page.locator('#marks .mark').nth(last).click();
+    const time = await status('time');
+    check(Math.abs(time - events[last].t) < 1e-9, `a click on the ${events[last].kind} mark goes to ${time} s (${events[last].t} s)`);
+    const plotsBox = await page.locator('#plots').boundingBox();
+    const png = decodePng(await page.locator('#plots').screenshot());
+    const colours = await page.evaluate(() => window.trephineViewer.plots.colours);
+    const want = colours[events[0].kind].match(/[0-9a-f]{2}/gi).map((h) => parseInt(h, 16));
+    const x = Math.round(await page.evaluate((t) => window.trephineViewer.plots.clientXOf(t), events[0].t) - plotsBox.x);
+    let found = 0;
+    for (let y = 0; y < png.height; ++y) {
+      for (const dx of [-1, 0, 1]) {
+        const o = 4 * (y * png.width + x + dx);
+        if (Math.abs(png.pixels[o] - want[0]) + Math.abs(png.pixels[o + 1] - want[1]) + Math.abs(png.pixels[o + 2] - want[2]) < 60) { ++found; break; }
+      }
+    }
+    check(found > 0.4 * png.height, `the plots mark the ${events[0].kind} at ${events[0].t} s in its colour (${found} of ${png.height} rows)`);
+    // The read-out at the cursor.
+    const t = run.end * 0.37;
+    await page.mouse.move(await page.evaluate((tt) => window.trephineViewer.plots.clientXOf(tt), t), plotsBox.y + plotsBox.height / 2);
+    const readout = await page.evaluate(() => window.trephineViewer.plots.readout);
+    const expected = await page.evaluate((tt) => {
+      const p = window.trephineRun.plots;
+      let i = 0;
+      while (i + 1 < p.t.length && p.t[i + 1] <= tt) ++i;
+      return { force: p.force[i], penetration: p.penetration[i] };
+    }, readout.t);
+    check(Math.abs(readout.t - t) < run.end / 500 && readout.force === expected.force && readout.penetration === expected.penetration,
+          `the read-out at ${t.toFixed(3)} s says t ${readout.t.toFixed(3)} s, |F| ${readout.force.toPrecision(3)} N, penetration ${readout.penetration.toPrecision(3)} mm (the plotted values)`);
+  }
+  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
+} finally {
+  await browser.close();
+}
+results.failures = failures;
+writeFileSync(path.join(options.out, 'results.json'), JSON.stringify(results, null, 2));
+process.exit(failures.length ? 1 : 0);
