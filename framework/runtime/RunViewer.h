@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <stdexcept>
 #include <string_view>
 
@@ -34,11 +35,14 @@ class TREPHINE_INTERFACE RunViewer {
   virtual ~RunViewer();
   // The folder of the built browser viewer (index.html, viewer.js), or empty.
   virtual std::filesystem::path assets() const = 0;
-  // Writes `dataDirectory` (emptied first) from `runDirectory`, surfaces of
-  // block parts simplified to at most `blockTriangles`. Throws ViewerDataError.
+  // Writes run `index` of the viewer's data into `dataDirectory` / `folder`
+  // (emptied first; `folder` "" for a viewer of one run, "run_K/" for the
+  // K-th of runs compared side by side, whose manifests the caller joins),
+  // surfaces of block parts simplified to at most `blockTriangles`. Throws
+  // ViewerDataError.
   virtual ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                            const std::filesystem::path& dataDirectory,
-                                            size_t blockTriangles) const = 0;
+                                            const std::filesystem::path& dataDirectory, const std::string& folder,
+                                            size_t index, size_t blockTriangles) const = 0;
 };
 
 }  // namespace trephine

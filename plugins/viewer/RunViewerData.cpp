@@ -307,8 +307,9 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
 
 }  // namespace
 
-ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, size_t blockTriangles,
-                                  uint64_t chunkBytes) {
+ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot, const std::string& folder,
+                                  size_t index, size_t blockTriangles, uint64_t chunkBytes) {
+  const fs::path data = dataRoot / folder;
   std::vector<fs::path> indexes;
   for (const auto& entry : fs::directory_iterator(run))
     if (entry.path().extension() == ".pvd") indexes.push_back(entry.path());
@@ -433,7 +434,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
     if (chunkSize >= chunkBytes) closeChunk();
     auto made = generated.find(file);
     const std::string bytes = made != generated.end() ? made->second : readBytes(run / file);
-    if (chunkEmpty) chunk << "trephineChunk(" << summary.chunks << ", {\n";
+    if (chunkEmpty) chunk << "trephineChunk(" << index << ", " << summary.chunks << ", {\n";
     chunk << (chunkEmpty ? "" : ",\n") << '"' << JsonWriter::escape(file) << "\": \"" << formats::encodeBase64(bytes) << '"';
     chunkEmpty = false;
     chunkSize += bytes.size();
@@ -469,10 +470,12 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   summary.plots = readPlots(run / "trace.csv", plots, end);
 
   std::ostringstream manifest;
-  manifest << "window.trephineRun = ";
+  manifest << "window.trephineRuns = window.trephineRuns || [];\nwindow.trephineRuns[" << index << "] = ";
   JsonWriter json(manifest);
   json.beginObject();
   json.field("name", fs::absolute(run).lexically_normal().filename().string());
+  json.field("source", run.string());
+  json.field("folder", folder);
   json.field("end", end);
   json.key("parts").beginArray();
   for (const Part& part : parts) {
@@ -531,7 +534,8 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& data, siz
   // The run's summary (its events, for the plots and the time slider), as
   // text the viewer parses: JSON.parse, never run as script.
   if (fs::is_regular_file(run / "summary.json"))
-    manifest << "window.trephineSummary = \"" << JsonWriter::escape(readBytes(run / "summary.json")) << "\";\n";
+    manifest << "window.trephineRuns[" << index << "].summary = \"" << JsonWriter::escape(readBytes(run / "summary.json"))
+             << "\";\n";
   writeText(data / "manifest.js", manifest.str());
 
   summary.frames = frames.size();
@@ -547,8 +551,9 @@ class BrowserRunViewer final : public RunViewer {
  public:
   std::filesystem::path assets() const override { return findViewerAssets(); }
   ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                    const std::filesystem::path& dataDirectory, size_t blockTriangles) const override {
-    return viewer::writeViewerData(runDirectory, dataDirectory, blockTriangles);
+                                    const std::filesystem::path& dataDirectory, const std::string& folder, size_t index,
+                                    size_t blockTriangles) const override {
+    return viewer::writeViewerData(runDirectory, dataDirectory, folder, index, blockTriangles);
   }
 };
 

@@ -1,9 +1,9 @@
 #pragma once
 // The data of a run's browser viewer, read from the .pvd indexes a
 // VtkExporter wrote (and from trace.csv for the plots), written as
-//   data/manifest.js  window.trephineRun = {name, end, parts, frames, files, plots}
-//                     (plugins/viewer/web/src/runData.js describes it)
-//   data/chunk_N.js   trephineChunk(N, {"vtk/brain_00003.vtu": "<base64>", ...})
+//   data/FOLDER/manifest.js  trephineRuns[K] = {name, source, folder, end, parts, frames, files,
+//                     plots, summary} (plugins/viewer/web/src/runData.js describes it)
+//   data/FOLDER/chunk_N.js   trephineChunk(K, N, {"vtk/brain_00003.vtu": "<base64>", ...})
 // A part is what one exporter file series shows (brain_, tool_, skull_); its
 // states are its files in time, a .vtm's as the blocks that changed. Files
 // go into chunks of about `chunkBytes` in the order the frames first need
@@ -32,10 +32,11 @@ namespace trephine::viewer {
 // The viewer's RunViewer service (ViewerPlugin.cpp registers it).
 std::shared_ptr<RunViewer> makeRunViewer();
 
-// Writes `dataDirectory` (emptied first) from `runDirectory`.
+// Writes `dataDirectory` / `folder` (emptied first) from `runDirectory`, as
+// run `index` of the viewer (RunViewer::writeViewerData).
 ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                  const std::filesystem::path& dataDirectory, size_t blockTriangles = 8000,
-                                  uint64_t chunkBytes = 4u << 20);
+                                  const std::filesystem::path& dataDirectory, const std::string& folder = "",
+                                  size_t index = 0, size_t blockTriangles = 8000, uint64_t chunkBytes = 4u << 20);
 
 
 }  // namespace trephine::viewer

@@ -74,7 +74,8 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   EXPECT_TRUE(fs::exists(run / "view/index.html"));
   EXPECT_TRUE(fs::exists(run / "view/viewer.js"));
   const std::string manifest = test::readFile(run / "view/data/manifest.js");
-  ASSERT_TRUE(manifest.starts_with("window.trephineRun = {")) << manifest.substr(0, 100);
+  ASSERT_TRUE(manifest.starts_with("window.trephineRuns = window.trephineRuns || [];\nwindow.trephineRuns[0] = {"))
+      << manifest.substr(0, 100);
   for (const char* part : {"\"skull\"", "\"brain\"", "\"tool\""}) EXPECT_NE(manifest.find(part), std::string::npos) << part;
   EXPECT_NE(manifest.find("\"plots\": {"), std::string::npos) << "trace.csv gives the plots";
 
@@ -126,7 +127,7 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   ASSERT_TRUE(std::regex_search(manifest, numbers, std::regex("\"removedVoxels\": (\\d+)")));
   EXPECT_GT(std::stoi(numbers[1]), 0) << "the burr cut bone";
   EXPECT_NE(manifest.find("\"density\": \"skull/volume.vol\""), std::string::npos);
-  EXPECT_NE(manifest.find("window.trephineSummary = \"{"), std::string::npos);
+  EXPECT_NE(manifest.find("window.trephineRuns[0].summary = \"{"), std::string::npos);
 
   // A summary is text the viewer parses, never script: quotes and a line
   // break in it are escaped. A list of cut voxels that does not fit the
@@ -134,7 +135,7 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   std::ofstream(run / "summary.json") << "{\"events\": [{\"t\": 1, \"kind\": \"x\", \"detail\": \"\\\"; alert(1); //\"}]}\n\";alert(2);//";
   ASSERT_EQ(runProgram({"view", run.string()}, &out, assets.environment()), 0) << out;
   const std::string hostile = test::readFile(run / "view/data/manifest.js");
-  const std::string embedded = hostile.substr(hostile.find("window.trephineSummary = "));
+  const std::string embedded = hostile.substr(hostile.find("window.trephineRuns[0].summary = "));
   // Between the literal's quotes, every quote is escaped.
   const size_t open = embedded.find('"'), close = embedded.rfind('"');
   ASSERT_LT(open, close);
@@ -142,6 +143,35 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
     EXPECT_EQ(embedded[q - 1], '\\') << embedded.substr(0, q + 1);
   EXPECT_NE(embedded.find("\\\";alert(2)"), std::string::npos) << embedded;
   EXPECT_EQ(std::count(embedded.begin(), embedded.end(), '\n'), 1) << "one line: the break is escaped";
+  // Side by side: the run with itself; several runs need --out, six at most.
+  ASSERT_EQ(runProgram({"view", run.string(), run.string(), "--out", (dir.path() / "both").string()}, &out,
+                       assets.environment()),
+            0)
+      << out;
+  const std::string both = test::readFile(dir.path() / "both/data/manifest.js");
+  EXPECT_NE(both.find("window.trephineRuns[1] = {"), std::string::npos);
+  EXPECT_NE(both.find("\"folder\": \"run_1/\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir.path() / "both/data/run_1/chunk_00000.js"));
+  EXPECT_TRUE(test::readFile(dir.path() / "both/data/run_1/chunk_00000.js").starts_with("trephineChunk(1, 0, {"));
+  EXPECT_EQ(runProgram({"view", run.string(), run.string()}, &out, assets.environment()), 2);
+  EXPECT_NE(out.find("need --out DIR"), std::string::npos) << out;
+  // A study's folder: its settings' runs, in order, into STUDY/view.
+  const fs::path study = dir.path() / "study";
+  for (const char* setting : {"settings/001", "settings/000"}) {
+    fs::create_directories(study / setting);
+    fs::copy(run, study / setting, fs::copy_options::recursive);
+    fs::remove_all(study / setting / "view");
+  }
+  std::ofstream(study / "study.csv") << "setting\n0\n1\n";
+  ASSERT_EQ(runProgram({"view", study.string()}, &out, assets.environment()), 0) << out;
+  const std::string studied = test::readFile(study / "view/data/manifest.js");
+  EXPECT_NE(studied.find("window.trephineRuns[1] = {"), std::string::npos);
+  EXPECT_LT(studied.find("settings/000"), studied.find("settings/001"));
+  std::vector<std::string> seven{"view"};
+  for (int i = 0; i < 7; ++i) seven.push_back(run.string());
+  seven.insert(seven.end(), {"--out", (dir.path() / "seven").string()});
+  EXPECT_EQ(runProgram(seven, &out, assets.environment()), 2);
+  EXPECT_NE(out.find("7 runs are more than 6 side by side"), std::string::npos) << out;
   std::ofstream(run / "vtk/skull_removed.csv") << "i,j,k,t\n1,2,3,0.5\n1,2,99999,0.6\n";
   EXPECT_EQ(runProgram({"view", run.string()}, &out, assets.environment()), 1);
   EXPECT_NE(out.find("skull_removed.csv:3: expected i,j,k inside the"), std::string::npos) << out;

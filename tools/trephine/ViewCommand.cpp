@@ -4,7 +4,13 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 
+#include "framework/core/AtomicFile.h"
 #include "framework/runtime/RunFolder.h"
 #include "framework/core/PluginLoader.h"
 #include "framework/core/Registry.h"
@@ -45,20 +51,56 @@ bool runOutputsUsable(const fs::path& run, bool partialAsked) {
   return true;
 }
 
+// Runs drawn side by side at most: each has a 3D view of its own.
+constexpr size_t kMostRuns = 6;
+
+// The runs a positional argument names: a run's folder, or a study's (its
+// settings' runs, settings/NNN, in order).
+std::vector<fs::path> runsNamed(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path / "study.csv", ec) || !fs::is_directory(path / "settings", ec)) return {path};
+  std::vector<fs::path> runs;
+  for (const auto& entry : fs::directory_iterator(path / "settings", ec))
+    if (entry.is_directory()) runs.push_back(entry.path());
+  std::sort(runs.begin(), runs.end());
+  return runs;
+}
+
 }  // namespace
 
 int viewCommand(const Arguments& arguments) {
-  if (arguments.positional.size() != 1) {
-    std::cerr << "usage: trephine view RUN_DIR [--triangles N] [--partial]\n";
+  if (arguments.positional.empty()) {
+    std::cerr << "usage: trephine view RUN_DIR [--triangles N] [--partial]\n"
+                 "       trephine view RUN_DIR RUN_DIR... --out DIR   (side by side; a study's folder: its settings)\n";
     return kUsage;
   }
-  const fs::path run = arguments.positional[0];
+  std::vector<fs::path> runs;
   std::error_code ec;
-  if (!fs::is_directory(run, ec)) {
-    std::cerr << "trephine view: " << run.string() << ": not a directory (the output directory of trephine run)\n";
+  for (const std::string& argument : arguments.positional) {
+    if (!fs::is_directory(argument, ec)) {
+      std::cerr << "trephine view: " << argument << ": not a directory (the output directory of trephine run, or "
+                   "of trephine study)\n";
+      return kSceneError;
+    }
+    for (const fs::path& run : runsNamed(argument)) runs.push_back(run);
+  }
+  if (runs.empty()) {
+    std::cerr << "trephine view: " << arguments.positional[0] << ": a study with no settings' runs\n";
     return kSceneError;
   }
-  if (!runOutputsUsable(run, arguments.has("--partial"))) return kSceneError;
+  if (runs.size() > kMostRuns) {
+    std::cerr << "trephine view: " << runs.size() << " runs are more than " << kMostRuns
+              << " side by side: name the runs to compare (a study's are in its settings/ folder)\n";
+    return kUsage;
+  }
+  const bool single = runs.size() == 1;
+  const bool study = arguments.positional.size() == 1 && !single;
+  if (!single && !study && !arguments.get("--out")) {
+    std::cerr << "trephine view: runs side by side need --out DIR (the folder of their viewer)\n";
+    return kUsage;
+  }
+  for (const fs::path& run : runs)
+    if (!runOutputsUsable(run, arguments.has("--partial"))) return kSceneError;
   // The viewer plugin provides the browser viewer and writes the run's data for it.
   PluginLoader loader;
   Registry registry;
@@ -77,7 +119,8 @@ int viewCommand(const Arguments& arguments) {
                  "them and the viewer's packages, then builds it). ParaView opens the run's .pvd files meanwhile.\n";
     return kRuntimeFailure;
   }
-  const fs::path view = run / "view";
+  const fs::path view = single ? runs[0] / "view" : study ? fs::path(arguments.positional[0]) / "view"
+                                                         : fs::path(*arguments.get("--out"));
   try {
     size_t triangles = 8000;
     if (auto value = arguments.get("--triangles")) {
@@ -89,22 +132,35 @@ int viewCommand(const Arguments& arguments) {
       }
       triangles = size_t(n);
     }
-    const ViewerDataSummary summary = viewer->writeViewerData(run, view / "data", triangles);
+    fs::create_directories(view);
+    std::string manifests;  // side by side: every run's, in data/manifest.js
+    if (!single) fs::remove_all(view / "data");
+    for (size_t k = 0; k < runs.size(); ++k) {
+      const std::string folder = single ? "" : "run_" + std::to_string(k) + "/";
+      const ViewerDataSummary summary = viewer->writeViewerData(runs[k], view / "data", folder, k, triangles);
+      if (!single) {
+        std::ifstream in(view / "data" / folder / "manifest.js", std::ios::binary);
+        manifests += std::string(std::istreambuf_iterator<char>(in), {});
+        std::cout << "run " << k << "     " << runs[k].string() << "\n";
+      }
+      std::cout << "          " << summary.frames << " frames over " << summary.end << " s, " << summary.parts
+                << " parts, " << summary.files << " files (" << summary.bytes / 1e6 << " MB) in " << summary.chunks
+                << " chunks" << (summary.plots ? ", plots from trace.csv" : ", no plots (no trace.csv)") << "\n";
+      if (summary.surfaceTriangles)
+        std::cout << "          skull: " << summary.surfaceTriangles << " triangles drawn as " << summary.drawnTriangles
+                  << " while playing or turning (untouched blocks clustered at " << summary.coarseCell
+                  << " mm, drilled ones "
+                  << (summary.drilledCell > 0 ? "at " + std::to_string(summary.drilledCell) + " mm" : "whole")
+                  << "; --triangles sets it), " << summary.stillTriangles << " when still\n";
+    }
+    if (!single) writeFileAtomically(view / "data" / "manifest.js", [&](std::ostream& out) { out << manifests; });
     for (const char* file : {"index.html", "viewer.js"})
       fs::copy_file(assets / file, view / file, fs::copy_options::overwrite_existing);
     // The licences of what the bundle holds, when the build wrote them.
     if (fs::is_regular_file(assets / "viewer.js.LICENSES.txt", ec))
       fs::copy_file(assets / "viewer.js.LICENSES.txt", view / "viewer.js.LICENSES.txt", fs::copy_options::overwrite_existing);
-    std::cout << "viewer    " << (view / "index.html").string() << " (open it in a browser)\n"
-              << "          " << summary.frames << " frames over " << summary.end << " s, " << summary.parts
-              << " parts, " << summary.files << " files (" << summary.bytes / 1e6 << " MB) in " << summary.chunks
-              << " chunks" << (summary.plots ? ", plots from trace.csv" : ", no plots (no trace.csv)") << "\n";
-    if (summary.surfaceTriangles)
-      std::cout << "          skull: " << summary.surfaceTriangles << " triangles drawn as " << summary.drawnTriangles
-                << " while playing or turning (untouched blocks clustered at " << summary.coarseCell
-                << " mm, drilled ones "
-                << (summary.drilledCell > 0 ? "at " + std::to_string(summary.drilledCell) + " mm" : "whole")
-                << "; --triangles sets it), " << summary.stillTriangles << " when still\n";
+    std::cout << "viewer    " << (view / "index.html").string() << " (open it in a browser"
+              << (single ? "" : "; the runs side by side on one clock") << ")\n";
   } catch (const ViewerDataError& e) {
     std::cerr << "trephine view: " << e.what() << "\n";
     return kSceneError;

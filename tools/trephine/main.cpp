@@ -161,19 +161,25 @@ const std::vector<Command>& commands() {
        cellSizeCommand},
       {"view",
        R"(  trephine view RUN_DIR [--triangles N] [--partial]
+  trephine view RUN_DIR RUN_DIR... --out DIR | STUDY_DIR
       Write the browser viewer of a run whose scene has a VtkExporter:
       RUN_DIR/view/index.html opens from the disk in a browser (nothing to
       install, no network) and shows the skull, the brain, the tool, the
-      proxy and the force arrow in time, with a slider, play, and the force
-      and penetration plots (from trace.csv); a click on a plot goes to its
-      time. While playing or turning, the skull is simplified to N
-      triangles (8000: what a browser without a graphics card, SwiftShader,
-      draws 30 times a second; give 500000 or more on a machine with one),
-      the blocks the drill changed kept whole while they fit in half of
-      that; standing still, to 10 N. Needs the viewer built (Node.js and
-      npm, see tools/setup).
+      proxy and the force arrow in time, coloured by displacement, stress,
+      density or cut with legends, with a slider marked with the run's
+      events, play, standard views, a clipping plane, and the force and
+      penetration plots (from trace.csv); a click on a plot goes to its
+      time. Several runs (up to 6), or a study's folder (its settings'
+      runs; the viewer goes to STUDY_DIR/view), are drawn side by side on
+      one clock with linked cameras, their plots overlaid with the
+      difference from the first. While playing or turning, the skull is
+      simplified to N triangles (8000: what a browser without a graphics
+      card, SwiftShader, draws 30 times a second; give 500000 or more on a
+      machine with one), the blocks the drill changed kept whole while they
+      fit in half of that; standing still, to 10 N. Needs the viewer built
+      (Node.js and npm, see tools/setup).
 )",
-       {"--triangles"},
+       {"--triangles", "--out"},
        {"--partial"},
        viewCommand},
   };

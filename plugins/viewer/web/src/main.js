@@ -13,7 +13,9 @@
 // seek(t).
 import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
-import { Plots, eventColours } from './plots.js';
+import { Plots } from './plots.js';
+import { addSelect, addEventMarks, runEvents } from './pageParts.js';
+import { startComparison } from './compare.js';
 import { startLive } from './live.js';
 import { Legend } from './legend.js';
 import { ViewControls } from './viewControls.js';
@@ -87,24 +89,6 @@ function addPartToggles(manifest, scene, parameters, legend = null) {
   }
 }
 
-// A labelled select in the header's controls; `onChange(value)`.
-function addSelect(container, labelText, options, value, onChange, id) {
-  const label = document.createElement('label');
-  label.textContent = `${labelText} `;
-  const select = document.createElement('select');
-  if (id) select.id = id;
-  for (const [key, text] of options) {
-    const option = document.createElement('option');
-    option.value = key;
-    option.textContent = text;
-    select.append(option);
-  }
-  select.value = value;
-  select.addEventListener('change', () => onChange(select.value));
-  label.append(select);
-  container.append(label);
-  return select;
-}
 
 // The colour of each part: a select per colourable part, its legend, and
 // the skull's volume loaded when a mode needs it.
@@ -207,41 +191,18 @@ function addViewButtons(controls, parameters) {
   container.append(at, side);
 }
 
-// The run's events (its summary.json), as {t, kind, detail}.
-function runEvents() {
-  if (typeof window.trephineSummary !== 'string') return [];
-  let summary;
-  try {
-    summary = JSON.parse(window.trephineSummary);
-  } catch (error) {
-    report(new Error(`the run's summary.json is not JSON (${error.message}): no events shown`));
-    return [];
-  }
-  const events = Array.isArray(summary.events) ? summary.events : [];
-  return events.filter((e) => e && Number.isFinite(e.t) && typeof e.kind === 'string')
-    .map((e) => ({ t: e.t, kind: e.kind, detail: typeof e.detail === 'string' ? e.detail : '' }));
-}
 
-// Marks under the time slider, one per event: a click goes to its time.
-function addEventMarks(events, end, seek) {
-  const marks = document.getElementById('marks');
-  const colours = eventColours(events);
-  for (const e of events) {
-    const mark = document.createElement('button');
-    mark.className = 'mark';
-    mark.style.left = `${(100 * e.t) / Math.max(end, 1e-9)}%`;
-    mark.style.background = colours[e.kind];
-    mark.title = `${e.t.toFixed(3)} s: ${e.kind.replace(/_/g, ' ')}${e.detail ? ' (' + e.detail + ')' : ''}`;
-    mark.dataset.t = String(e.t);
-    mark.dataset.kind = e.kind;
-    mark.addEventListener('click', () => seek(e.t));
-    marks.append(mark);
-  }
-}
 
 async function start() {
-  const manifest = window.trephineRun;
+  // The live view's manifest sets trephineRun; trephine view's, trephineRuns.
+  const runs = window.trephineRuns || (window.trephineRun ? [window.trephineRun] : []);
+  const manifest = runs[0];
   if (!manifest) throw new Error('data/manifest.js is missing: write the viewer with trephine view RUN_DIR');
+  window.trephineRun = manifest;
+  if (runs.length > 1) {
+    startComparison(runs, status, report);
+    return;
+  }
   document.getElementById('title').textContent = manifest.name;
   status.renderer = rendererName();
   const scene = new Scene3d(document.getElementById('view'));
@@ -269,7 +230,7 @@ async function start() {
   slider.max = String(end);
   slider.step = String(Math.max(end / 2000, 1e-4));
 
-  const events = runEvents();
+  const events = runEvents(manifest);
   status.events = events;
   scene.end = end;
   const plots = new Plots(document.getElementById('plots'), manifest.plots, end, (t) => seek(t), events);

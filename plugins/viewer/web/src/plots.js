@@ -66,8 +66,8 @@ export class Plots {
   }
 
   // Index of the last sample at or before t.
-  sampleAt(t) {
-    const times = this.plots ? this.plots.t : [];
+  sampleAt(t, plots = this.plots) {
+    const times = plots ? plots.t : [];
     let low = 0;
     let high = times.length - 1;
     if (high < 0) return -1;
@@ -110,8 +110,7 @@ export class Plots {
     this.readout = null;
     if (this.cursor !== null && this.cursor >= m.left && this.cursor <= width - m.right && this.plots) {
       const t = this.start + ((this.cursor - m.left) / plotWidth) * (this.end - this.start);
-      const i = this.sampleAt(t);
-      const values = Object.fromEntries(this.series().map((s) => [s.key, i >= 0 ? this.plots[s.key][i] : NaN]));
+      const values = this.valuesAt(t);
       this.readout = { t, ...values };
       g.strokeStyle = 'rgba(255,255,255,0.45)';
       g.setLineDash([3, 3]);
@@ -120,7 +119,7 @@ export class Plots {
       g.lineTo(this.cursor, height - m.bottom);
       g.stroke();
       g.setLineDash([]);
-      const text = `t ${t.toFixed(3)} s   ` + this.series().map((s) => `${s.label} ${values[s.key].toPrecision(3)} ${s.unit}`).join('   ');
+      const text = this.readoutLine(t, values);
       g.font = '11px sans-serif';
       const textWidth = g.measureText(text).width;
       const left = Math.min(Math.max(this.cursor + 8, m.left), width - m.right - textWidth - 6);
@@ -129,6 +128,16 @@ export class Plots {
       g.fillStyle = '#fff';
       g.fillText(text, left, 12);
     }
+  }
+
+  // The plotted values at time t (the last sample at or before it).
+  valuesAt(t) {
+    const i = this.sampleAt(t);
+    return Object.fromEntries(this.series().map((s) => [s.key, i >= 0 ? this.plots[s.key][i] : NaN]));
+  }
+
+  readoutLine(t, values) {
+    return `t ${t.toFixed(3)} s   ` + this.series().map((s) => `${s.label} ${values[s.key].toPrecision(3)} ${s.unit}`).join('   ');
   }
 
   series() {
@@ -190,6 +199,12 @@ export class Plots {
       g.stroke();
       g.lineWidth = 1;
     });
+    this.drawTimeAxisAndEvents(g, width, height, plotWidth, x);
+    return canvas;
+  }
+
+  drawTimeAxisAndEvents(g, width, height, plotWidth, x) {
+    const m = this.margin;
     // The time axis.
     const ticks = niceTicks(this.start, this.end, Math.max(2, Math.floor(plotWidth / 90)));
     g.fillStyle = '#aaa';
@@ -221,6 +236,5 @@ export class Plots {
       g.fillText(label, right + 11, 13);
       right -= 6;
     }
-    return canvas;
   }
 }

@@ -1,5 +1,6 @@
-// The run's data as `trephine view` wrote it next to the viewer:
-//   data/manifest.js   window.trephineRun = {
+// A run's data as `trephine view` wrote it next to the viewer (runs side by
+// side: run K's in data/run_K/, all manifests in data/manifest.js):
+//   data/manifest.js   window.trephineRuns[K] = {name, source, folder,
 //     parts:  [{name, kind: 'mesh' | 'tool' | 'polydata' | 'blocks', states}]
 //             a state is a file; for 'blocks' (a .vtm of blocks) it is
 //             {file, changes: [[block, file or ''], ...], still: [...]} against
@@ -9,15 +10,15 @@
 //   a mesh part has ranges {displacement (mm), force (N), von_mises (kPa)}:
 //   the largest of each over the run; a blocks part may have a volume
 //   {density: file, removed: file} (skullVolume.js reads them);
-//   window.trephineSummary = the run's summary.json, as a string (its events).
-//   data/chunk_N.js    trephineChunk(N, {"vtk/brain_00012.vtu": "<base64>", ...})
+//   summary: the run's summary.json, as a string (its events).
+//   data/FOLDER/chunk_N.js  trephineChunk(K, N, {"vtk/brain_00012.vtu": "<base64>", ...})
 // Chunks are scripts, not fetched files, so that the viewer opens from the
 // disk (file://) with nothing installed and no server.
 import { VtkXmlFile, bytesFromBase64 } from './vtkXmlFile.js';
 import { TriangleFile } from './triangleFile.js';
 
 export class RunData {
-  constructor(manifest) {
+  constructor(manifest, index = 0) {
     this.manifest = manifest;
     this.encoded = new Map();  // file -> base64, until decoded
     this.files = new Map();    // file -> VtkXmlFile
@@ -37,11 +38,19 @@ export class RunData {
         state.stillBlocks = still.filter((file) => file);
       }
     }
-    window.trephineChunk = (chunk, files) => {
-      for (const [name, text] of Object.entries(files)) this.encoded.set(name, text);
-      const resolve = this.chunkArrived.get(chunk);
-      if (resolve) resolve();
+    // Chunks call trephineChunk(run, chunk, files): to that run's data.
+    window.trephineChunkTargets = window.trephineChunkTargets || [];
+    window.trephineChunkTargets[index] = this;
+    window.trephineChunk = (run, chunk, files) => {
+      const target = window.trephineChunkTargets[run];
+      if (target) target.arrive(chunk, files);
     };
+  }
+
+  arrive(chunk, files) {
+    for (const [name, text] of Object.entries(files)) this.encoded.set(name, text);
+    const resolve = this.chunkArrived.get(chunk);
+    if (resolve) resolve();
   }
 
   get frames() {
@@ -54,7 +63,7 @@ export class RunData {
       load = new Promise((resolve, reject) => {
         this.chunkArrived.set(chunk, resolve);
         const script = document.createElement('script');
-        script.src = `data/chunk_${String(chunk).padStart(5, '0')}.js`;
+        script.src = `data/${this.manifest.folder || ''}chunk_${String(chunk).padStart(5, '0')}.js`;
         script.onerror = () => reject(new Error(`${script.src}: could not be loaded`));
         document.head.appendChild(script);
       });

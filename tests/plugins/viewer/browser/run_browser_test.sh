@@ -9,6 +9,9 @@
 #   run_browser_test.sh controls TREPHINE SOURCE_DIR OUT_DIR SCENE DURATION PRESS
 #     the same, then checks the colour maps, the view's controls and the
 #     events (viewerControlsTest.mjs; PRESS: a time the tool presses the brain);
+#   run_browser_test.sh compare TREPHINE SOURCE_DIR OUT_DIR SCENE DURATION PRESS SETTING
+#     runs the scene as it is and with --set SETTING, writes their viewer side
+#     by side (trephine view A B --out) and checks it (viewerCompareTest.mjs);
 #   run_browser_test.sh live TREPHINE SOURCE_DIR OUT_DIR SCENE DURATION TIMES PARTS
 #     runs the scene in real time with --view and watches it (liveBrowserTest.mjs);
 #   run_browser_test.sh unavailable REASON
@@ -42,6 +45,17 @@ mkdir -p "$out"
 if [ "$mode" = live ]; then
   exec node "$here/liveBrowserTest.mjs" --web "$web" --trephine "$trephine" --scene "$source/$scene" \
     --duration "$duration" --times "$times" --parts "$parts" --out "$out"
+fi
+if [ "$mode" = compare ]; then
+  "$trephine" run "$source/$scene" --duration "$duration" --out "$out/run_a" --quiet
+  "$trephine" run "$source/$scene" --duration "$duration" --out "$out/run_b" --quiet --set "$8"
+  if ! "$trephine" view "$out/run_a" "$out/run_b" --out "$out/view" > "$out/view.txt" 2>&1; then
+    cat "$out/view.txt"
+    grep -q "was not built" "$out/view.txt" && cannot_run "the viewer was not built"
+    exit 1
+  fi
+  cat "$out/view.txt"
+  exec node "$here/viewerCompareTest.mjs" --web "$web" --view "$out/view" --out "$out" --press "$times"
 fi
 min_fps=${9:-0}
 "$trephine" run "$source/$scene" --duration "$duration" --out "$out/run" --quiet
