@@ -20,6 +20,7 @@ import { startLive } from './live.js';
 import { Legend } from './legend.js';
 import { ViewControls } from './viewControls.js';
 import { SkullVolume } from './skullVolume.js';
+import { CtVolume } from './ctVolume.js';
 import { kMeshModes, kSkullModes, meshModesOf, densityRange } from './colouring.js';
 
 const status = {
@@ -90,6 +91,46 @@ function addPartToggles(manifest, scene, parameters, legend = null) {
 }
 
 
+// The skull's volume, loaded once when a view asks for it.
+const skullVolumes = new Map();  // part name -> Promise of its SkullVolume
+function loadSkullVolume(part, data, scene) {
+  let loading = skullVolumes.get(part.name);
+  if (!loading) {
+    loading = data.require([part.volume.density, part.volume.removed]).then(() => {
+      scene.volume = new SkullVolume(data.bytes(part.volume.density), data.bytes(part.volume.removed), part.volume.density);
+      return scene.volume;
+    });
+    skullVolumes.set(part.name, loading);
+  }
+  return loading;
+}
+
+// "CT volume": the CT drawn as a volume with the drilled region (ctVolume.js).
+function addCtToggle(manifest, scene, parameters, data, getTime, redraw) {
+  const part = manifest.parts.find((p) => p.kind === 'blocks' && p.volume);
+  if (!part) return;
+  const label = document.createElement('label');
+  const box = document.createElement('input');
+  box.type = 'checkbox';
+  box.id = 'ct-volume';
+  box.checked = parameters.get('ct') === '1';
+  label.title = 'The CT as a volume rendering, the drilled region in orange (slow without a graphics card)';
+  label.append(box, ' CT volume');
+  document.getElementById('parts').append(label);
+  const apply = () => {
+    if (!box.checked && !scene.ct) return;
+    loadSkullVolume(part, data, scene).then((volume) => {
+      if (!scene.ct) scene.ct = new CtVolume(scene.renderer, volume);
+      scene.ct.setVisible(box.checked);
+      scene.ct.setTime(getTime());
+      status.ct = { shown: box.checked, cutVoxels: scene.ct.cutVoxels };
+      redraw();
+    }, report);
+  };
+  box.addEventListener('change', apply);
+  apply();
+}
+
 // The colour of each part: a select per colourable part, its legend, and
 // the skull's volume loaded when a mode needs it.
 function addColourControls(manifest, scene, legend, parameters, data, redraw) {
@@ -114,16 +155,7 @@ function addColourControls(manifest, scene, legend, parameters, data, redraw) {
       const modes = Object.keys(kSkullModes);
       const wanted = parameters.get(part.name) || parameters.get('skull');
       const initial = modes.includes(wanted) ? wanted : 'bone';
-      let loading = null;
-      const volume = () => {
-        if (!loading) {
-          loading = data.require([part.volume.density, part.volume.removed]).then(() => {
-            scene.volume = new SkullVolume(data.bytes(part.volume.density), data.bytes(part.volume.removed), part.volume.density);
-            return scene.volume;
-          });
-        }
-        return loading;
-      };
+      const volume = () => loadSkullVolume(part, data, scene);
       const apply = (mode) => {
         if (!kSkullModes[mode]) {
           scene.setColouring(part.name, mode);
@@ -304,6 +336,12 @@ async function start() {
     plots.setTime(time);
     scene.setTime(time);
     const index = data.frameAt(time);
+    if (scene.ct) {
+      const before = scene.ct.cutVoxels;
+      scene.ct.setTime(time);
+      status.ct.cutVoxels = scene.ct.cutVoxels;
+      if (index === shown && before !== scene.ct.cutVoxels) scene.render();  // the cuts changed, the frame did not
+    }
     if (index === shown) return;
     const names = data.namesOf(index);
     if (data.isAtHand(names)) {
@@ -408,6 +446,9 @@ async function start() {
   addPartToggles(manifest, scene, parameters, legend);
   addColourControls(manifest, scene, legend, parameters, data, () => {
     status.colouring = Object.fromEntries([...scene.colouring].map(([name, c]) => [name, c.mode]));
+    if (shown >= 0) scene.render();
+  });
+  addCtToggle(manifest, scene, parameters, data, () => time, () => {
     if (shown >= 0) scene.render();
   });
   addViewButtons(controls, parameters);

@@ -26,6 +26,7 @@ export class SkullVolume {
     // The first time each voxel was cut (s); Infinity: never.
     this.removedAt = new Float32Array(count).fill(Infinity);
     this.removedTimes = [];
+    this.removedOrder = [];  // {voxel, t}, in time order (as the file lists them)
     if (removedBytes) {
       const r = new DataView(removedBytes.buffer, removedBytes.byteOffset, removedBytes.byteLength);
       if (String.fromCharCode(...removedBytes.subarray(0, 4)) !== 'RMV1') throw new Error(`${name}: not an RMV1 list`);
@@ -36,6 +37,7 @@ export class SkullVolume {
         const t = r.getFloat32(12 + 8 * i, true);
         if (voxel < count) this.removedAt[voxel] = Math.min(this.removedAt[voxel], t);
         this.removedTimes.push(t);
+        if (voxel < count) this.removedOrder.push({ voxel, t });
       }
     }
   }

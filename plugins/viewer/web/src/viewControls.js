@@ -170,7 +170,11 @@ export class ViewControls {
       g.moveTo(centre, centre);
       g.lineTo(endX, endY);
       g.stroke();
-      g.fillText(axis.label, endX + 4 * Math.sign(axis.x || 1) - (axis.x < 0 ? 26 : 0), endY - 4 * Math.sign(axis.y || 1) + (axis.y < 0 ? 10 : 0));
+      // The label beyond the axis' end, kept inside the canvas.
+      const textWidth = g.measureText(axis.label).width;
+      const labelX = Math.min(Math.max(axis.x < 0 ? endX - 4 - textWidth : endX + 4, 0), size - textWidth);
+      const labelY = Math.min(Math.max(axis.y < 0 ? endY + 12 : endY - 4, 10), size - 2);
+      g.fillText(axis.label, labelX, labelY);
       this.state.triad[axis.label] = [axis.x, axis.y];
     }
     // mm per CSS pixel at the focal point.

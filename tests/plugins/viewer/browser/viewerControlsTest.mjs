@@ -11,6 +11,8 @@
 //     pixel when the view is zoomed twice; the wheel zooms toward the
 //     cursor (the point under it stays); hiding the skull keeps the camera;
 //     a clipping plane reveals the brain inside the opaque skull;
+//   - the CT as a volume: drawn over much of the view, and the drilled
+//     region in orange where the drill cut by the time shown, none before;
 //   - plots and events: every event of the run's summary has a mark on the
 //     time slider at its time, a click on it goes there, and the plots draw
 //     it in its kind's colour; the read-out under the cursor gives the
@@ -212,6 +214,34 @@ try {
   const area = closed.labels.length;
   check(closed.brain.count < 0.002 * area && clipped.brain.count > 0.02 * area,
         `clipping front-back at half the depth shows the brain: ${closed.brain.count} brain pixels before, ${clipped.brain.count} after`);
+
+  // The CT volume, from above, everything else hidden: orange (the cut
+  // colour) only once the drill has cut, where it cut.
+  if (skullPart && skullPart.volume) {
+    const orange = (image) => {
+      let n = 0;
+      let lit = 0;
+      for (let i = 0; i < image.pixels.length; i += 4) {
+        const { hue, saturation } = hueOf(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
+        if (Math.max(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) > 70) ++lit;
+        if (saturation > 0.5 && hue > 15 && hue < 42 && image.pixels[i] > 120) ++n;
+      }
+      return { orange: n, lit };
+    };
+    const counts = [];
+    for (const t of [0, press]) {
+      await open(`t=${t}&ct=1&hide=skull,brain,tool,toolshape&view=superior`);
+      await page.waitForFunction(() => window.trephineViewer.ct && window.trephineViewer.ct.shown, null, { timeout: 30000 });
+      await frames();
+      const image = await shoot(`ct_t${t}.png`);
+      counts.push({ t, ...orange(image), area: image.width * image.height, cut: (await status('ct')).cutVoxels });
+    }
+    results.ct = counts;
+    check(counts[0].lit > 0.1 * counts[0].area, `the CT volume is drawn on ${counts[0].lit} pixels (a tenth of the view at least)`);
+    // (The craniotomy's first burr hole is small: 48 packed voxels, some 75 pixels at this zoom.)
+    check(counts[0].cut === 0 && counts[0].orange < 20 && counts[1].cut > 0 && counts[1].orange > Math.max(30, 10 * (counts[0].orange + 1)),
+          `the drilled region: ${counts[0].orange} orange pixels at 0 s (no voxel cut), ${counts[1].orange} at ${press} s (${counts[1].cut} voxels cut)`);
+  }
 
   // Events on the time slider and the plots.
   await open('t=0');
