@@ -48,6 +48,9 @@ class BlockedIsoSurface final : public TriangleBlocks {
                              const std::array<int64_t, 3>& last, const CellsWithoutSurface& skip = {});
 
   size_t blockCount() const override { return m_blocks.size(); }
+  // Blocks along x, y and z; block (x, y, z) is index x + nx (y + ny z) and
+  // holds the cells with base corners kBlockCells x - 1 to kBlockCells (x + 1) - 2.
+  const std::array<int64_t, 3>& blocksPerAxis() const { return m_blocksPerAxis; }
   const TriangleMesh& block(size_t index) const override { return m_blocks[index]; }
   // Every block's triangles in one mesh (the vertices of block faces repeated).
   TriangleMesh merged() const;

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "framework/runtime/JsonWriter.h"
-#include "framework/data/VertexClustering.h"
 #include "plugins/viewer/LiveServer.h"
 #include "plugins/viewer/ViewerAssets.h"
 
@@ -91,31 +90,6 @@ void LiveStream::sendTool(double t, const Vec3& device, const Vec3& proxy, const
   put(m_message, float(penetration));
   putVec(m_message, contact.value_or(Vec3::Zero()));
   m_server->send("tool", m_message, true);
-}
-
-void LiveStream::sendSkullClustered(const TriangleBlocks& blocks, size_t triangles) {
-  std::vector<TriangleMesh> surfaces(blocks.blockCount());
-  std::vector<const TriangleMesh*> all;
-  for (size_t b = 0; b < blocks.blockCount(); ++b) {
-    surfaces[b].vertices = blocks.block(b).vertices;
-    surfaces[b].triangles = blocks.block(b).triangles;
-    if (!surfaces[b].triangles.empty()) all.push_back(&surfaces[b]);
-  }
-  double cell = 0;
-  simplifyToBudget(all, triangles, 0, &cell);
-  if (cell <= 0) {
-    for (size_t b = 0; b < surfaces.size(); ++b)
-      if (!surfaces[b].triangles.empty()) sendSkullBlock(b, blocks.block(b));
-    return;
-  }
-  VertexClustering clustering(cell);
-  std::vector<std::pair<size_t, size_t>> pieces(surfaces.size());
-  for (size_t b = 0; b < surfaces.size(); ++b) pieces[b] = clustering.add(surfaces[b]);
-  for (size_t b = 0; b < surfaces.size(); ++b) {
-    if (surfaces[b].triangles.empty()) continue;
-    const TriangleMesh piece = clustering.piece(pieces[b]);
-    m_server->send("block/" + std::to_string(b), blockMessage(b, piece.vertices, piece.triangles), true);
-  }
 }
 
 void LiveStream::sendSkullBlock(size_t block, const TriangleMesh& mesh) {

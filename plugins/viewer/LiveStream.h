@@ -13,9 +13,9 @@
 //   5 tool's surface  u32 point count p, u32 triangle count q, f32
 //             points[3p] (mm, in the world), u32 corners[3q]: the tool in
 //             hand in its true shape (part "toolshape")
-// The parts are in the manifest the server gives the page. The skull starts as every block clustered (VertexClustering, at most
-// `skullTriangles` in all, the clusters shared so the blocks join), and each
-// block the drill changes is sent whole. Messages are keyed (LiveServer): a
+// The parts are in the manifest the server gives the page. The skull's
+// blocks come from LiveSkull: a coarse isosurface at the start, the drilled
+// region at full resolution; an empty block message removes a block. Messages are keyed (LiveServer): a
 // slow browser gets the latest tool, nodes and each block's latest surface.
 #include <array>
 #include <filesystem>
@@ -48,8 +48,6 @@ class LiveStream {
   void sendNodes(double t, std::span<const Vec3> nodes);
   void sendTool(double t, const Vec3& device, const Vec3& proxy, const Vec3& force, double radius,
                 double penetration, const std::optional<Vec3>& contact);
-  // Every block of `blocks`, clustered to at most `triangles` in all.
-  void sendSkullClustered(const TriangleBlocks& blocks, size_t triangles);
   void sendSkullBlock(size_t block, const TriangleMesh& mesh);
   void sendToolSurface(std::span<const Vec3> points, std::span<const std::array<int32_t, 3>> triangles);
 

@@ -320,11 +320,12 @@ void VtkExporter::tick(const TickContext& context) {
   if (l_skull && files && m_skullChanged && context.t - m_lastSkullWrite >= d_skullInterval.value())
     writeSkull(context.t);
   if (l_skull && m_live) {
-    // The drill's blocks, whole, each frame they change.
+    // The drill's blocks, whole, each frame they change (and the coarse
+    // surface around them replaced by the full one).
     for (size_t b = 0; b < m_liveBlockChanged.size(); ++b) {
       if (!m_liveBlockChanged[b]) continue;
       m_liveBlockChanged[b] = 0;
-      m_live->sendSkullBlock(b, m_skullSurface.block(b));
+      m_liveSkull->fineBlockChanged(b);
     }
   }
   ++m_frames;
@@ -345,16 +346,27 @@ void VtkExporter::startLiveView(const RunPlan& plan) {
   if (l_force) names.push_back("tool"), kinds.push_back("tool");
   if (l_skull) names.push_back("skull"), kinds.push_back("blocks");
   if (!m_toolSurfaces.empty()) names.push_back("toolshape"), kinds.push_back("polydata");
-  m_live = std::make_unique<LiveStream>(plan.liveViewPort, path(), plan.duration, names, kinds);
+  // The page's title: the run's folder, as a recorded run's viewer has it.
+  const std::string runName = plan.outputDirectory.empty()
+                                  ? "live"
+                                  : "live: " + plan.outputDirectory.lexically_normal().filename().string();
+  m_live = std::make_unique<LiveStream>(plan.liveViewPort, runName, plan.duration, names, kinds);
   if (l_brain) {
     m_live->sendCells(l_brain->mesh().tets);
     m_live->sendNodes(0, l_brain->mesh().nodes);
   }
   if (l_skull) {
-    m_live->sendSkullClustered(m_skullSurface, size_t(d_viewTriangles.value()));
+    m_liveSkull = std::make_unique<LiveSkull>(m_skullGrid, m_skullSurface, size_t(d_viewTriangles.value()),
+                                              [this](size_t block, const TriangleMesh& mesh) {
+                                                m_live->sendSkullBlock(block, mesh);
+                                              });
+    m_liveSkull->sendStart();
     m_liveBlockChanged.assign(m_skullSurface.blockCount(), 0);
   }
   std::cout << "view      http://127.0.0.1:" << m_live->port() << "/ (live, while the run goes)" << std::endl;
+  if (m_liveSkull)
+    std::cout << "          skull: " << m_liveSkull->coarseTriangles() << " triangles (its volume pooled over "
+              << m_liveSkull->factor() << "^3 voxels, on its surface), drilled blocks whole" << std::endl;
 }
 
 std::string VtkExporter::pvdName() const { return d_directory.value() + ".pvd"; }

@@ -50,6 +50,7 @@
 #include "framework/data/IsoSurface.h"
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
+#include "plugins/viewer/LiveSkull.h"
 #include "plugins/viewer/LiveStream.h"
 
 namespace trephine::viewer {
@@ -111,9 +112,10 @@ class VtkExporter final : public Component {
   Field<int> d_viewTriangles{this,
                              "viewTriangles",
                              15000,
-                             {.help = "Triangles of the skull at the start of a live view (trephine run --view): its "
-                                      "blocks clustered to this many; the blocks the drill changes are sent whole",
-                              .min = 1000.0}};
+                             {.help = "Triangles of the skull at the start of a live view (trephine run --view): the "
+                                      "isosurface of its volume averaged over the fewest voxels that give at most "
+                                      "this many; where the drill changes it, the full-resolution surface replaces it",
+                             .min = 1000.0}};
   Field<std::string> d_directory{
       this,
       "directory",
@@ -160,6 +162,7 @@ class VtkExporter final : public Component {
   // The live view (trephine run --view): its server, and the blocks changed
   // since they were last sent.
   std::unique_ptr<LiveStream> m_live;
+  std::unique_ptr<LiveSkull> m_liveSkull;
   std::vector<uint8_t> m_liveBlockChanged;
 
   std::filesystem::path m_root;  // the run directory, empty: write nothing
