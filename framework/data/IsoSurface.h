@@ -51,6 +51,11 @@ class BlockedIsoSurface final : public TriangleBlocks {
   // Blocks along x, y and z; block (x, y, z) is index x + nx (y + ny z) and
   // holds the cells with base corners kBlockCells x - 1 to kBlockCells (x + 1) - 2.
   const std::array<int64_t, 3>& blocksPerAxis() const { return m_blocksPerAxis; }
+  // The same for a grid, without extracting anything.
+  static std::array<int64_t, 3> blocksPerAxisOf(const VoxelGrid& grid) {
+    return {(int64_t(grid.nx) + kBlockCells) / kBlockCells, (int64_t(grid.ny) + kBlockCells) / kBlockCells,
+            (int64_t(grid.nz) + kBlockCells) / kBlockCells};
+  }
   const TriangleMesh& block(size_t index) const override { return m_blocks[index]; }
   // Every block's triangles in one mesh (the vertices of block faces repeated).
   TriangleMesh merged() const;

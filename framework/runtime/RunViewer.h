@@ -24,6 +24,7 @@ struct ViewerDataSummary {
   // Of block parts (a skull): in the files, in the viewer while moving, still.
   size_t surfaceTriangles = 0, drawnTriangles = 0, stillTriangles = 0;
   double coarseCell = 0, drilledCell = 0;  // mm of their clustering (0: none)
+  int pooledFactor = 0;  // the untouched bone: the volume pooled over this many voxels a side (0: clustered)
   uint64_t bytes = 0;                      // of the VTK files packed
   double end = 0;                          // s
   bool plots = false;

@@ -6,13 +6,17 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "framework/formats/encoding/Base64.h"
 #include "framework/runtime/JsonWriter.h"
 #include "framework/formats/vtk/VtkSurfaceReader.h"
+#include "framework/data/CoarseIsoSurface.h"
+#include "framework/data/IsoSurface.h"
 #include "framework/data/VertexClustering.h"
+#include "framework/formats/volume/VolumeReader.h"
 #include "plugins/viewer/MeshColourRanges.h"
 #include "plugins/viewer/ViewerAssets.h"
 #include "plugins/viewer/ViewerVolume.h"
@@ -200,6 +204,26 @@ std::string triBytes(const TriangleMesh& surface) {
   return out;
 }
 
+// The skull's volume and its grid at the isovalue, from its exporter's folder.
+struct SkullGrid {
+  DensityVolume volume;
+  VoxelGrid grid;
+};
+
+std::optional<SkullGrid> readSkullGrid(const fs::path& folder) {
+  if (!fs::is_regular_file(folder / "skull_density.mhd")) return std::nullopt;
+  const double isovalue = readSkullIsovalue(folder / "skull_volume.json");
+  if (!std::isfinite(isovalue)) return std::nullopt;
+  SkullGrid out;
+  try {
+    out.volume = formats::readVolume(folder / "skull_density.mhd");
+  } catch (const std::exception& e) {
+    throw ViewerDataError(e.what());
+  }
+  out.grid = VoxelGrid::of(out.volume, isovalue);
+  return out;
+}
+
 using BlockChanges = std::vector<std::pair<int, std::string>>;  // (block, file or "")
 
 // What simplifyBlocks made of a part at one level of detail.
@@ -207,6 +231,7 @@ struct BlockLevel {
   std::vector<BlockChanges> changes;  // per state
   size_t surfaceTriangles = 0, drawnTriangles = 0;
   double coarseCell = 0, drilledCell = 0;  // mm, 0: whole
+  int pooledFactor = 0;  // the untouched bone from the volume pooled over f^3 voxels (0: clustered)
 };
 
 // A block part's surface at most `budget` triangles a state, as two
@@ -217,7 +242,8 @@ struct BlockLevel {
 using SurfaceCache = std::map<std::string, TriangleMesh>;  // block file -> its surface, read once
 
 BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, const std::string& level,
-                          SurfaceCache& surfaces, std::map<std::string, std::string>& generated) {
+                          SurfaceCache& surfaces, std::map<std::string, std::string>& generated,
+                          const VoxelGrid* volume) {
   BlockLevel out;
   auto surfaceOf = [&](const std::string& file) -> const TriangleMesh& {
     auto [at, added] = surfaces.try_emplace(file);
@@ -265,9 +291,26 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
   for (const auto& [block, file] : blocks.empty() ? std::map<int, std::string>{} : blocks.front())
     if (!drilled.count(block)) untouched.push_back(&surfaceOf(file));
   out.surfaceTriangles = count(untouched) + drilledMost;
-  const TriangleMesh coarse =
-      simplifyToBudget(untouched, std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4),
-                       out.drilledCell, &out.coarseCell);
+  const size_t untouchedBudget = std::max<size_t>(budget - std::min(budget, drilledBudget), budget / 4);
+  TriangleMesh coarse;
+  if (volume) {
+    // The skull's volume pooled and isosurfaced, projected back onto the full
+    // surface (CoarseIsoSurface), less the pieces of the drilled blocks: no
+    // wall folds as vertex clustering folds it.
+    const CoarseIsoSurface pooled =
+        coarseIsoSurface(*volume, untouchedBudget, out.surfaceTriangles, BlockedIsoSurface::blocksPerAxisOf(*volume));
+    for (size_t b = 0; b < pooled.pieces.size(); ++b) {
+      if (drilled.count(int(b))) continue;
+      const TriangleMesh& piece = pooled.pieces[b];
+      const int32_t offset = int32_t(coarse.vertices.size());
+      coarse.vertices.insert(coarse.vertices.end(), piece.vertices.begin(), piece.vertices.end());
+      for (const auto& t : piece.triangles) coarse.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    }
+    out.pooledFactor = pooled.factor;
+    out.coarseCell = pooled.factor * volume->spacing.maxCoeff();
+  } else {
+    coarse = simplifyToBudget(untouched, untouchedBudget, out.drilledCell, &out.coarseCell);
+  }
   const std::string coarseName = part.name + "/" + level + "_untouched.tri";
   generated[coarseName] = triBytes(coarse);
   size_t drawnMost = 0;
@@ -370,8 +413,12 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
     // Two levels: while playing or turning, and still (ten times finer).
     // The block files are read once for both levels.
     SurfaceCache surfaces;
-    const BlockLevel moving = simplifyBlocks(part, run, blockTriangles, "moving", surfaces, generated);
-    const BlockLevel still = simplifyBlocks(part, run, 10 * blockTriangles, "still", surfaces, generated);
+    // The skull's volume as the run started, when its exporter wrote it.
+    std::optional<SkullGrid> skullGrid = readSkullGrid(part.folder);
+    const VoxelGrid* grid = skullGrid ? &skullGrid->grid : nullptr;
+    const BlockLevel moving = simplifyBlocks(part, run, blockTriangles, "moving", surfaces, generated, grid);
+    const BlockLevel still = simplifyBlocks(part, run, 10 * blockTriangles, "still", surfaces, generated, grid);
+    summary.pooledFactor = moving.pooledFactor;
     for (size_t s = 0; s < part.states.size(); ++s) {
       part.states[s].changes = moving.changes[s];
       part.states[s].stillChanges = still.changes[s];

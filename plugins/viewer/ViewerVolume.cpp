@@ -50,8 +50,9 @@ std::map<uint32_t, float> readRemoved(const fs::path& file, const DensityVolume&
   return first;
 }
 
-// The isovalue skull_volume.json gives (a density), NaN without one.
-double readIsovalue(const fs::path& file) {
+}  // namespace
+
+double readSkullIsovalue(const fs::path& file) {
   std::ifstream in(file);
   if (!in) return NAN;
   std::stringstream text;
@@ -66,8 +67,6 @@ double readIsovalue(const fs::path& file) {
     throw ViewerDataError(file.string() + ": the isovalue is not a finite number");
   return value;
 }
-
-}  // namespace
 
 std::optional<PackedSkullVolume> packSkullVolume(const fs::path& directory, size_t maxVoxels) {
   const fs::path densityFile = directory / "skull_density.mhd";
@@ -97,7 +96,7 @@ std::optional<PackedSkullVolume> packSkullVolume(const fs::path& directory, size
   const Vec3 origin = volume.origin() + 0.5 * (factor - 1) * volume.spacing();
   for (int a = 0; a < 3; ++a) put<float>(bytes, float(origin[a]));
   for (int a = 0; a < 3; ++a) put<float>(bytes, float(volume.spacing()[a] * factor));
-  put<float>(bytes, float(readIsovalue(directory / "skull_volume.json")));
+  put<float>(bytes, float(readSkullIsovalue(directory / "skull_volume.json")));
   put<float>(bytes, float(volume.encoding().offset));
   put<float>(bytes, float(volume.encoding().scale));
   for (int32_t k = 0; k < packed[2]; ++k)

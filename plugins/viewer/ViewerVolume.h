@@ -31,4 +31,8 @@ struct PackedSkullVolume {
 // or does not fit the volume.
 std::optional<PackedSkullVolume> packSkullVolume(const std::filesystem::path& directory, size_t maxVoxels);
 
+// The isovalue a skull_volume.json gives (a density), NaN without the file.
+// Throws ViewerDataError for one without a finite "isovalue".
+double readSkullIsovalue(const std::filesystem::path& file);
+
 }  // namespace trephine::viewer

@@ -290,9 +290,10 @@ void VtkExporter::writeSkull(double t) {
       if (m_failed++ == 0) m_firstFailure = e.what();
     }
   }
-  std::vector<std::string> files;
-  for (const std::string& f : m_blockFiles)
-    if (!f.empty()) files.push_back(f);
+  // Each block at its own index: a block that empties or fills moves no other.
+  std::vector<std::pair<size_t, std::string>> files;
+  for (size_t b = 0; b < m_blockFiles.size(); ++b)
+    if (!m_blockFiles[b].empty()) files.push_back({b, m_blockFiles[b]});
   attempt(numbered("skull", m_frames, ".vtm"), t, 2, [&](const std::filesystem::path& f) {
     formats::writeMultiBlock(files, f);
   });

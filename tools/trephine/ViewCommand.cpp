@@ -148,8 +148,11 @@ int viewCommand(const Arguments& arguments) {
                 << " chunks" << (summary.plots ? ", plots from trace.csv" : ", no plots (no trace.csv)") << "\n";
       if (summary.surfaceTriangles)
         std::cout << "          skull: " << summary.surfaceTriangles << " triangles drawn as " << summary.drawnTriangles
-                  << " while playing or turning (untouched blocks clustered at " << summary.coarseCell
-                  << " mm, drilled ones "
+                  << " while playing or turning (untouched bone "
+                  << (summary.pooledFactor ? "from its volume pooled over " + std::to_string(summary.pooledFactor) +
+                                                 "^3 voxels, on its surface"
+                                           : "clustered at " + std::to_string(summary.coarseCell) + " mm")
+                  << ", drilled blocks "
                   << (summary.drilledCell > 0 ? "at " + std::to_string(summary.drilledCell) + " mm" : "whole")
                   << "; --triangles sets it), " << summary.stillTriangles << " when still\n";
     }

@@ -214,11 +214,11 @@ void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const 
   writeFile("UnstructuredGrid", body, appended, file);
 }
 
-void writeMultiBlock(const std::vector<std::string>& files, const std::filesystem::path& file) {
+void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, const std::filesystem::path& file) {
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n"
                     "<vtkMultiBlockDataSet>\n";
-  for (size_t i = 0; i < files.size(); ++i)
-    xml += "<DataSet index=\"" + std::to_string(i) + "\" file=\"" + escaped(files[i]) + "\"/>\n";
+  for (const auto& [index, name] : blocks)
+    xml += "<DataSet index=\"" + std::to_string(index) + "\" file=\"" + escaped(name) + "\"/>\n";
   xml += "</vtkMultiBlockDataSet>\n</VTKFile>\n";
   AtomicFile out(file);
   out.write(xml);

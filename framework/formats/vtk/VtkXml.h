@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "framework/math/Math.h"
@@ -73,9 +74,11 @@ void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const 
                   PointPrecision precision = PointPrecision::kFloat32);
 
 // A .vtm multiblock index: one dataset made of the files listed (relative to
-// the .vtm's directory), for a surface written block by block where only the
-// changed blocks get new files.
-void writeMultiBlock(const std::vector<std::string>& files, const std::filesystem::path& file);
+// the .vtm's directory), each at its block's index (an index not listed is
+// an empty block), for a surface written block by block where only the
+// changed blocks get new files: a block keeps its index while others empty
+// or fill.
+void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, const std::filesystem::path& file);
 
 // A .pvd collection: ParaView plays its datasets in time order, parts drawn together.
 class PvdCollection {

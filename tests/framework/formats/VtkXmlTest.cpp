@@ -148,17 +148,17 @@ TEST(VtkXmlTest, BadDataIsRefusedWithTheFileAndNothingIsLeft) {
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.vtp"));
 }
 
-TEST(VtkXmlTest, TheMultiBlockIndexListsItsFilesInOrder) {
+TEST(VtkXmlTest, TheMultiBlockIndexListsEachFileAtItsBlocksIndex) {
   test::TempDir dir;
-  formats::writeMultiBlock({"skull/b00001_00000.vtp", "skull/b00007_00012.vtp"}, dir / "skull.vtm");
+  formats::writeMultiBlock({{1, "skull/b00001_00000.vtp"}, {7, "skull/b00007_00012.vtp"}}, dir / "skull.vtm");
   tinyxml2::XMLDocument xml;
   ASSERT_EQ(xml.LoadFile((dir / "skull.vtm").c_str()), tinyxml2::XML_SUCCESS);
   EXPECT_STREQ(xml.RootElement()->Attribute("type"), "vtkMultiBlockDataSet");
   const auto* set = xml.RootElement()->FirstChildElement("vtkMultiBlockDataSet")->FirstChildElement("DataSet");
-  EXPECT_EQ(set->IntAttribute("index"), 0);
+  EXPECT_EQ(set->IntAttribute("index"), 1);
   EXPECT_STREQ(set->Attribute("file"), "skull/b00001_00000.vtp");
   set = set->NextSiblingElement("DataSet");
-  EXPECT_EQ(set->IntAttribute("index"), 1);
+  EXPECT_EQ(set->IntAttribute("index"), 7);
   EXPECT_STREQ(set->Attribute("file"), "skull/b00007_00012.vtp");
   EXPECT_EQ(set->NextSiblingElement("DataSet"), nullptr);
 }

@@ -72,8 +72,11 @@ TEST(LiveSkullTest, CoarsePiecesAtTheStartADrilledBlockReplacesItsPiece) {
   ASSERT_TRUE(shown.count(drilled));
   EXPECT_EQ(shown.at(drilled).triangles.size(), fine.block(drilled).triangles.size()) << "the block whole";
   EXPECT_EQ(total(shown), skull.coarseTriangles() - piece + fine.block(drilled).triangles.size());
-  for (const auto& [block, mesh] : before)
-    if (block != fine.blockCount() + drilled) EXPECT_TRUE(shown.count(block)) << "block " << block << " stays";
+  for (const auto& [block, mesh] : before) {
+    if (block != fine.blockCount() + drilled) {
+      EXPECT_TRUE(shown.count(block)) << "block " << block << " stays";
+    }
+  }
   // Again: the block only.
   const size_t sent = messages;
   skull.fineBlockChanged(drilled);

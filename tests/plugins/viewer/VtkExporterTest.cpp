@@ -215,6 +215,19 @@ TEST(VtkExporterTest, TheSkullFollowsTheDrillToTheSavedVolume) {
        set; set = set->NextSiblingElement("DataSet"))
     ++firstBlocks;
   EXPECT_GT(blockFiles, firstBlocks) << "drilled blocks were written again";
+  // Every index names its block (skull/bB_frame.vtp), whichever blocks are
+  // empty: a block that empties or fills moves no other.
+  for (const auto& skull : skulls) {
+    tinyxml2::XMLDocument vtm;
+    ASSERT_EQ(vtm.LoadFile(skull.c_str()), tinyxml2::XML_SUCCESS);
+    for (const auto* set = vtm.RootElement()->FirstChildElement("vtkMultiBlockDataSet")->FirstChildElement("DataSet");
+         set; set = set->NextSiblingElement("DataSet")) {
+      std::smatch block;
+      const std::string file = set->Attribute("file");
+      ASSERT_TRUE(std::regex_match(file, block, std::regex("skull/b([0-9]+)_[0-9]{5}\\.vtp"))) << file;
+      EXPECT_EQ(set->IntAttribute("index"), std::stoi(block[1])) << skull;
+    }
+  }
   EXPECT_LT(blockFiles, firstBlocks + firstBlocks / 4) << "only the drilled ones";
   DensityVolume drilled = formats::readVolume(dir / "run" / "drilled.mha");
   BlockedIsoSurface expected;
