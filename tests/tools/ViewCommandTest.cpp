@@ -111,6 +111,8 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   EXPECT_GT(full, 100000) << "the 1 mm skull phantom";
   EXPECT_LE(drawn, 4000) << out;
   EXPECT_GT(drawn, 1000) << out;
+  // The untouched bone from the skull's volume (the exporter wrote it), not clustered.
+  EXPECT_NE(out.find("untouched bone from its volume pooled over"), std::string::npos) << out;
   // The still level, ten times the budget, drawn when the view stands.
   ASSERT_TRUE(std::regex_search(out, numbers, std::regex("(\\d+) when still"))) << out;
   EXPECT_LE(std::stod(numbers[1]), 40000) << out;
