@@ -5,6 +5,7 @@ long the viewer takes to draw its first frame and how many of the run's 30
 frames a second it draws while playing.
 
 usage: tools/bench_viewer.py [--rounds N] [--out DIR] [--triangles N,...]
+       tools/bench_viewer.py --views [--out DIR]
 
 Cases: scenes/integrated.xml (the 1 mm skull drilled, the deforming brain,
 the tool) and scenes/bench/craniotomy_view.xml (the 0.5 mm skull drilled),
@@ -13,6 +14,14 @@ each run once, then written with each skull budget (--triangles, default
 interleaved) by tests/plugins/viewer/browser/viewerBrowserTest.mjs. Writes
 DIR/viewer.csv (default runs/bench-viewer) and prints a table of medians.
 Needs Chromium (/usr/bin/chromium) and the viewer's packages (tools/setup).
+
+--views: what each way of looking costs, on the default scene at 14.5 s (the
+probe pressing the brain): the opening time and the time to draw one still
+frame (median and 90th percentile of 30,
+tests/plugins/viewer/browser/viewerFrameTimes.mjs) with the brain in its
+tissue colour, coloured by displacement, by stress with the skull by
+density, with the CT volume, and two runs side by side (the second with a
+brain twice as stiff). Writes DIR/views.csv.
 """
 import argparse
 import json
@@ -36,8 +45,11 @@ def main():
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--out", type=Path, default=ROOT / "runs/bench-viewer")
     parser.add_argument("--triangles", default="8000")
+    parser.add_argument("--views", action="store_true")
     args = parser.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
+    if args.views:
+        return views(args.out)
     rows = []
     for name, scene, times, parts in CASES:
         run = args.out / scene.stem
@@ -81,6 +93,40 @@ def main():
               f"{r['still_triangles']} | {r['view_s']} | {r['data_mb']} | {r['open_s']} ({r['open_max_s']}) | "
               f"{r['play_fps']} ({r['play_fps_min']}) of {r['run_fps']} |")
     print(f"\nrenderer: {rows[0]['renderer']}")
+    return 0
+
+
+VIEWS = [
+    ("brain in its tissue colour", "t=14.5&brain=tissue"),
+    ("brain by displacement (the default)", "t=14.5"),
+    ("brain by stress, skull by density", "t=14.5&brain=stress&skull=density"),
+    ("CT volume (skull surface hidden)", "t=14.5&ct=1&hide=skull"),
+]
+
+
+def views(out):
+    scene = ROOT / "scenes/integrated.xml"
+    runs = [out / "views-a", out / "views-b"]
+    subprocess.run([str(PROGRAM), "run", str(scene), "--quiet", "--out", str(runs[0])], check=True)
+    subprocess.run([str(PROGRAM), "run", str(scene), "--quiet", "--out", str(runs[1]),
+                    "--set", "/patient/fem.youngModulus=60"], check=True)
+    subprocess.run([str(PROGRAM), "view", str(runs[0])], check=True, capture_output=True)
+    subprocess.run([str(PROGRAM), "view", str(runs[0]), str(runs[1]), "--out", str(out / "views-both")], check=True,
+                   capture_output=True)
+    script = ROOT / "tests/plugins/viewer/browser/viewerFrameTimes.mjs"
+    rows = []
+    for view, cases in ((runs[0] / "view", VIEWS), (out / "views-both", [("two runs side by side", "t=14.5")])):
+        result = out / "views.json"
+        subprocess.run(["node", str(script), "--web", str(ROOT / "plugins/viewer/web"), "--view", str(view),
+                        "--queries", "|".join(q for _, q in cases), "--out", str(result)], check=True)
+        for (name, query), r in zip(cases, json.loads(result.read_text())):
+            rows.append({"view": name, "query": query, "open_s": f"{r['openSeconds']:.2f}",
+                         "render_median_ms": f"{r['renderMedianMs']:.1f}", "render_p90_ms": f"{r['renderP90Ms']:.1f}"})
+    write_rows(out / "views.csv", rows)
+    print("\n| view | URL | opens in (s) | one still frame (ms), median (p90) |")
+    print("|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['view']} | `{r['query']}` | {r['open_s']} | {r['render_median_ms']} ({r['render_p90_ms']}) |")
     return 0
 
 

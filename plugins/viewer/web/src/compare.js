@@ -243,6 +243,10 @@ export function startComparison(manifests, status, report) {
     }, report);
   };
   status.seek = showTime;
+  // Renders every view again (for measuring the drawing alone).
+  status.render = () => {
+    for (const run of runs) run.scene.render();
+  };
   slider.addEventListener('input', () => showTime(Number(slider.value)));
 
   // Part toggles and the brain's colour, for every view.
