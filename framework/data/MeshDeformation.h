@@ -59,7 +59,7 @@ struct NodeForces {
 // only while a component reads it (a viewer colouring the brain by stress),
 // and then at most every so often: the element loop never pays for it.
 struct ElementStress {
-  double t = 0;  // s, the deformer's time when computed
+  double t = 0;  // s, the deformer's time when the sweep over the elements ended
   // kPa, one per tetrahedron in the mesh's order: the von Mises equivalent
   // of the Cauchy (true) stress, sqrt(3/2 s:s) with s its deviatoric part.
   std::vector<float> vonMises;

@@ -64,11 +64,14 @@ inline Mat3 neoHookeanStress(const Mat3& F, const ElasticModuli& m) {
 // sqrt(3/2 s:s) with s = sigma - tr(sigma) / 3 I, kPa; J is taken at least
 // `minJ` (a squeezed or inverted element has no meaningful true stress).
 // Uniaxial stretch F = diag(l, 1, 1) gives mu l^(-5/3) (l^2 - 1).
+// Written out as sigma = mu J^(-5/3) dev(F F^T) + kappa (J - 1) I, whose
+// deviatoric part is the first term alone (the pressure drops out).
 inline double neoHookeanVonMises(const Mat3& F, const ElasticModuli& m, double minJ) {
   const double J = std::max(F.determinant(), minJ);
-  const Mat3 sigma = neoHookeanStress(F, m) * F.transpose() / J;
-  const Mat3 s = sigma - sigma.trace() / 3 * Mat3::Identity();
-  return std::sqrt(1.5 * s.squaredNorm());
+  const double cubeRoot = std::cbrt(J);
+  const Mat3 b = F * F.transpose();
+  const Mat3 deviator = b - b.trace() / 3 * Mat3::Identity();
+  return std::sqrt(1.5) * m.mu / (J * cubeRoot * cubeRoot) * deviator.norm();
 }
 
 }  // namespace trephine::fem

@@ -114,17 +114,31 @@ void TLEDForceField::prepare(const RunPlan&) {
   m_lastStress = -INFINITY;
   m_stressAtRest = false;
   m_stressUpdates = 0;
+  m_stressCursor = 0;
 }
 
-void TLEDForceField::publishStress(double t) {
-  if (m_stress.vonMises.empty() || t - m_lastStress < d_stressInterval.value()) return;
+void TLEDForceField::publishStress(double t, double period) {
+  if (m_stress.vonMises.empty()) return;
   const bool resting = m_state->resting();
-  if (resting && m_stressAtRest) return;  // zero, and published so
-  m_state->vonMisesStress(m_stress.vonMises);
+  if (m_stressCursor == 0) {
+    // A sweep starts when one is due, and not for a shape at rest already published.
+    if (t - m_lastStress < d_stressInterval.value() || (resting && m_stressAtRest)) return;
+    m_lastStress = t;
+    m_sweepResting = true;
+  }
+  // A share of the elements each tick, so that a sweep takes about one
+  // interval and no tick pays for the whole mesh (about 60 ns an element).
+  const size_t elements = m_stress.vonMises.size();
+  const size_t ticks = std::max<size_t>(1, size_t(d_stressInterval.value() / period));
+  const size_t slice = (elements + ticks - 1) / ticks;
+  m_state->vonMisesStress(m_stress.vonMises, m_stressCursor, slice);
+  m_stressCursor += slice;
+  m_sweepResting = m_sweepResting && resting;
+  if (m_stressCursor < elements) return;
+  m_stressCursor = 0;
   m_stress.t = t;
   m_stressChannel->publish(m_stress);
-  m_lastStress = t;
-  m_stressAtRest = resting;
+  m_stressAtRest = m_sweepResting;
   ++m_stressUpdates;
 }
 
@@ -196,7 +210,7 @@ void TLEDForceField::tick(const TickContext& context) {
   m_mostSubsteps = std::max(m_mostSubsteps, substeps);
   // At rest and published so: the brain already has this shape (the rest
   // shape before the first frame).
-  if (m_state->resting() && m_publishedRest) return publishStress(context.t + context.dt);
+  if (m_state->resting() && m_publishedRest) return publishStress(context.t + context.dt, context.dt);
   const TLEDState::WrittenShape shape = m_state->writePositions(m_frame.positions);
   const double largest = shape.largestDisplacement;
   // A node farther from rest than the mesh is large has diverged as surely
@@ -222,7 +236,7 @@ void TLEDForceField::tick(const TickContext& context) {
   ++m_frame.step;
   m_channel->publish(m_frame);
   m_publishedRest = m_state->resting();
-  publishStress(context.t + context.dt);  // of a shape that did not diverge
+  publishStress(context.t + context.dt, context.dt);  // of a shape that did not diverge
 }
 
 void TLEDForceField::dropToolLoad() {

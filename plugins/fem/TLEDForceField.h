@@ -136,15 +136,19 @@ class TLEDForceField final : public Component {
       "stressInterval",
       1.0 / 30,
       {.help = "While a component reads the elements' stresses (element_stress: a VtkExporter colouring the brain "
-               "by von Mises stress), they are computed at most this often; with no reader, never",
+               "by von Mises stress), they are computed at most this often, a share of the elements each tick so "
+               "that no tick pays for the whole mesh (a sweep's elements are of shapes up to this far apart); with "
+               "no reader, never",
        .unit = "s",
        .min = 0.0}};
   RateField d_rate{this, 1000.0, "Rate of the FEM's group: each tick advances the model by one period"};
 
   // After a divergence: the tool's forces, fetched and applied, are dropped.
   void dropToolLoad();
-  // Publishes the elements' stresses when read and due (stressInterval).
-  void publishStress(double t);
+  // While read: computes a share of the elements' stresses each tick (a
+  // sweep over all of them takes about stressInterval; `period`, s, the
+  // tick's) and publishes them when a sweep ends.
+  void publishStress(double t, double period);
 
   std::unique_ptr<TLEDModel> m_model;
   std::optional<TLEDState> m_state;  // made at prepare(), once the components that link here have set the model
@@ -162,6 +166,8 @@ class TLEDForceField final : public Component {
   double m_lastStress = -INFINITY;  // s
   bool m_stressAtRest = false;  // the stress last published is the rest shape's (zero)
   uint64_t m_stressUpdates = 0;
+  size_t m_stressCursor = 0;   // the next element of the sweep (the model's order); 0: none under way
+  bool m_sweepResting = true;  // at rest at every tick of the sweep
   bool m_movesKnown = true;  // m_frame.positions holds the shape last published
   bool m_publishedRest = true;  // the brain's shape is the rest shape (nothing published yet, or rest)
   uint64_t m_ticks = 0, m_forceUpdates = 0, m_droppedForces = 0, m_mostSubsteps = 0, m_nonFinite = 0;

@@ -85,6 +85,7 @@ TLEDModel::TLEDModel(std::span<const Vec3> restNodes, std::span<const TetIndices
       if (lane * quarter + q < tets.size()) elementOrder.push_back(curve[lane * quarter + q]);
   m_elementInternal.assign(tets.size(), 0);
   for (size_t k = 0; k < tets.size(); ++k) m_elementInternal[elementOrder[k]] = int32_t(k);
+  m_elementExternal = elementOrder;
 
   TLEDElements& el = m_elements;
   el.count = tets.size();

@@ -182,6 +182,7 @@ class TLEDModel {
   std::vector<Vec3> m_rest;                        // mesh order
   std::vector<int32_t> m_internal, m_external;     // node: mesh -> internal, internal -> mesh
   std::vector<int32_t> m_elementInternal;          // element: mesh -> internal
+  std::vector<int32_t> m_elementExternal;          // element: internal -> mesh
   TLEDElements m_elements;
   // Per internal element: mm^3, kg/mm^3 (effective, and the material's), 1 / |grad N| mm.
   std::vector<double> m_volume, m_density, m_materialDensity, m_length;

@@ -229,10 +229,13 @@ double TLEDState::strainEnergy() const {
   return energy;
 }
 
-void TLEDState::vonMisesStress(std::span<float> out) const {
+void TLEDState::vonMisesStress(std::span<float> out, size_t first, size_t count) const {
   const TLEDElements& el = m_model->m_elements;
-  for (size_t e = 0; e < el.count && e < out.size(); ++e) {
-    const size_t k = size_t(m_model->m_elementInternal[e]);
+  // In the model's order (neighbours share nodes in cache), out in the mesh's.
+  const size_t end = std::min(el.count, first + std::min(count, el.count));
+  for (size_t k = first; k < end; ++k) {
+    const size_t e = size_t(m_model->m_elementExternal[k]);
+    if (e >= out.size()) continue;
     const double volume = m_model->m_volume[k];
     const ElasticModuli moduli{el.muVolume[k] / volume, el.kappaVolume[k] / volume};
     out[e] = float(neoHookeanVonMises(deformationGradient(k), moduli, kMinIsochoricJ));

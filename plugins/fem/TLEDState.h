@@ -73,9 +73,12 @@ class TLEDState {
   double kineticEnergy() const;
   double strainEnergy() const;
   // The von Mises equivalent of each element's true stress (kPa), one per
-  // element in the mesh's order, into `out` (elementCount() entries). About
-  // a tenth of a step's cost: for viewers, at their rate. Allocation-free.
-  void vonMisesStress(std::span<float> out) const;
+  // element in the mesh's order, into `out` (elementCount() entries): of the
+  // elements the model holds at internal places [first, first + count) (the
+  // whole mesh by default; a caller spreading the work over several ticks
+  // takes it in slices). Several steps' cost for the whole mesh: for
+  // viewers, at their rate. Allocation-free.
+  void vonMisesStress(std::span<float> out, size_t first = 0, size_t count = SIZE_MAX) const;
 
   // Running totals of the element loop.
   const ElementStepCounts& counts() const { return m_counts; }

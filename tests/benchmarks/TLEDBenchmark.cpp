@@ -12,6 +12,10 @@
 // must move: element arrays, node arrays), GFLOP_per_s (264 flops per
 // element), critical_dt_us and the real-time factor at the thesis's 0.33 ms
 // step, or at the mesh's own critical step when it is shorter.
+// BM_VonMisesStress/<mesh>: one iteration computes every element's von Mises
+// stress (what the FEM publishes for a viewer, at most every stressInterval),
+// on the dented shape after 200 steps; ns_per_element and its share of a
+// double-precision step of the same mesh run are the counters.
 // TREPHINE_BENCH_TLED_SMOKE=1 keeps the smallest brain (the smoke test).
 #include <benchmark/benchmark.h>
 
@@ -99,6 +103,25 @@ void BM_TLEDStep(benchmark::State& state) {
                  fem::elementLoopName(isa));
 }
 
+void BM_VonMisesStress(benchmark::State& state) {
+  fem::TLEDModel& model = *modelFor(int(state.range(0))).model;
+  model.setElementPrecision(fem::ElementPrecision::kDouble);
+  model.setElementLoopIsa(fem::bestElementLoopIsa());
+  model.setTimeStep(std::min(kThesisStep, 0.9 * model.criticalTimeStep(50)), 50);
+  fem::TLEDState dented(model);
+  for (int i = 0; i < 200; ++i) dented.step();
+  std::vector<float> stress(model.elementCount());
+  for (auto _ : state) {
+    dented.vonMisesStress(stress);
+    benchmark::DoNotOptimize(stress.data());
+  }
+  const double elements = double(model.elementCount());
+  state.counters["elements"] = elements;
+  state.counters["ns_per_element"] = benchmark::Counter(double(state.iterations()) * elements * 1e-9,
+                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.SetLabel(kMeshes[state.range(0)].name);
+}
+
 // STREAM triad a = b + s c on 3 x 80 MB, one core.
 void BM_StreamTriad(benchmark::State& state) {
   const size_t n = size_t(10) << 20;
@@ -157,6 +180,7 @@ void registerSteps() {
           benchmark::RegisterBenchmark("BM_TLEDStep", BM_TLEDStep)
               ->Args({i, precision, int(isa)})
               ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("BM_VonMisesStress", BM_VonMisesStress)->Args({i})->Unit(benchmark::kMicrosecond);
   }
 }
 
