@@ -157,6 +157,13 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   EXPECT_TRUE(test::readFile(dir.path() / "both/data/run_1/chunk_00000.js").starts_with("trephineChunk(1, 0, {"));
   EXPECT_EQ(runProgram({"view", run.string(), run.string()}, &out, assets.environment()), 2);
   EXPECT_NE(out.find("need --out DIR"), std::string::npos) << out;
+  EXPECT_EQ(runProgram({"view", run.string(), run.string(), "--out", run.string()}, &out, assets.environment()), 2);
+  EXPECT_NE(out.find("is the run"), std::string::npos) << out;
+  EXPECT_TRUE(fs::exists(run / "trace.csv")) << "the run's own files are left";
+  // One run, elsewhere.
+  ASSERT_EQ(runProgram({"view", run.string(), "--out", (dir.path() / "elsewhere").string()}, &out, assets.environment()), 0)
+      << out;
+  EXPECT_TRUE(fs::exists(dir.path() / "elsewhere/data/manifest.js"));
   // A study's folder: its settings' runs, in order, into STUDY/view.
   const fs::path study = dir.path() / "study";
   for (const char* setting : {"settings/001", "settings/000"}) {

@@ -119,8 +119,15 @@ int viewCommand(const Arguments& arguments) {
                  "them and the viewer's packages, then builds it). ParaView opens the run's .pvd files meanwhile.\n";
     return kRuntimeFailure;
   }
-  const fs::path view = single ? runs[0] / "view" : study ? fs::path(arguments.positional[0]) / "view"
-                                                         : fs::path(*arguments.get("--out"));
+  const auto out = arguments.get("--out");
+  const fs::path view = out ? fs::path(*out) : single ? runs[0] / "view" : fs::path(arguments.positional[0]) / "view";
+  // The viewer's folder is emptied of its data: never a run's own folder.
+  for (const fs::path& run : runs)
+    if (fs::exists(view, ec) && fs::equivalent(view, run, ec)) {
+      std::cerr << "trephine view: --out " << view.string() << " is the run " << run.string()
+                << " itself: give the viewer a folder of its own\n";
+      return kUsage;
+    }
   try {
     size_t triangles = 8000;
     if (auto value = arguments.get("--triangles")) {

@@ -160,8 +160,8 @@ const std::vector<Command>& commands() {
        {"--calibrate", "--json", "--experiment", "--deforming"},
        cellSizeCommand},
       {"view",
-       R"(  trephine view RUN_DIR [--triangles N] [--partial]
-  trephine view RUN_DIR RUN_DIR... --out DIR | STUDY_DIR
+       R"(  trephine view RUN_DIR [--out DIR] [--triangles N] [--partial]
+  trephine view RUN_DIR RUN_DIR... --out DIR | STUDY_DIR [--out DIR]
       Write the browser viewer of a run whose scene has a VtkExporter:
       RUN_DIR/view/index.html opens from the disk in a browser (nothing to
       install, no network) and shows the skull, the brain, the tool, the
@@ -177,7 +177,10 @@ const std::vector<Command>& commands() {
       card, SwiftShader, draws 30 times a second; give 500000 or more on a
       machine with one), the blocks the drill changed kept whole while they
       fit in half of that; standing still, to 10 N. Needs the viewer built
-      (Node.js and npm, see tools/setup).
+      (Node.js and npm, see tools/setup). The viewer goes to RUN_DIR/view
+      (a study's to STUDY_DIR/view), or to --out DIR; open DIR/index.html.
+      --partial: view a run that is still writing, or was killed while
+      writing (its files may be cut off).
 )",
        {"--triangles", "--out"},
        {"--partial"},

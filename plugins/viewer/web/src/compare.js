@@ -9,7 +9,7 @@ import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
 import { Plots, eventColours } from './plots.js';
 import { Legend } from './legend.js';
-import { ViewControls } from './viewControls.js';
+import { ViewControls, kStandardViews } from './viewControls.js';
 import { addSelect, addEventMarks, runEvents } from './pageParts.js';
 import { kMeshModes, meshModesOf } from './colouring.js';
 import { niceTicks, tickLabel } from './colourMap.js';
@@ -45,7 +45,8 @@ class ComparisonPlots extends Plots {
   }
 
   readoutLine(t, values) {
-    return `t ${t.toFixed(3)} s   ` + this.runs.map((run, k) => `${k}: |F| ${Number(values[`force_${k}`]).toPrecision(3)} N`).join('  ');
+    return `t ${t.toFixed(3)} s  |F| (N) ` + this.runs.map((run, k) => `${k}: ${Number(values[`force_${k}`]).toPrecision(3)}`).join('  ') +
+      (values.difference_1 !== undefined ? `  1 less 0: ${Number(values.difference_1).toPrecision(3)}` : '');
   }
 
   drawCurves(width, height, scale) {
@@ -78,7 +79,7 @@ class ComparisonPlots extends Plots {
       for (const values of row.values) if (values) for (const v of values) if (Number.isFinite(v)) high = Math.max(high, Math.abs(v));
       const low = row.signed ? -Math.max(high, 1e-9) : 0;
       high = Math.max(high, 1e-9);
-      const ticks = niceTicks(low, high, 3);
+      const ticks = niceTicks(low, high, row.signed ? 5 : 3);
       const top = m.top + r * rowHeight + 4;
       const plotHeight = rowHeight - 8;
       const y = (v) => top + plotHeight * (1 - (v - low) / (high - low));
@@ -110,7 +111,8 @@ class ComparisonPlots extends Plots {
   }
 }
 
-export function startComparison(manifests, status, report) {
+export function startComparison(manifests, status, report, warn) {
+  const parameters = new URLSearchParams(window.location.search);
   document.getElementById('title').textContent = `${manifests.length} runs side by side`;
   const end = Math.max(...manifests.map((m) => m.end));
   const grid = document.getElementById('view');
@@ -132,6 +134,11 @@ export function startComparison(manifests, status, report) {
     grid.append(cell);
     const scene = new Scene3d(cell);
     cell.append(label);
+    // Each view follows its pane's size (the grid settles after the views are made).
+    new ResizeObserver(() => {
+      scene.setPixelScale(scene.pixelScale);
+      scene.render();
+    }).observe(cell);
     scene.end = end;
     return { manifest, data: new RunData(manifest, k), scene, cell, shown: -1, events: runEvents(manifest) };
   });
@@ -185,15 +192,30 @@ export function startComparison(manifests, status, report) {
   slider.max = String(end);
   slider.step = String(Math.max(end / 2000, 1e-4));
   let time = 0;
+  let playing = false;
   const drawRun = (run, k, index) => {
     const manifest = run.manifest;
+    let upgrade = false;
     manifest.frames[index].states.forEach((state, p) => {
       if (state < 0) return;
       const part = manifest.parts[p];
       const value = part.states[state];
-      if (typeof value === 'string') run.scene.show(part.name, part.kind, state, [run.data.file(value)]);
-      else run.scene.show(part.name, part.kind, state, value.blocks.map((name) => run.data.file(name)), 'moving');
+      if (typeof value === 'string') {
+        run.scene.show(part.name, part.kind, state, [run.data.file(value)]);
+        return;
+      }
+      // A skull's still level when the clock stands and it is at hand (else
+      // the moving level, and the still one is loaded and drawn after).
+      const still = !playing && value.stillBlocks.length > 0 && run.data.isAtHand(value.stillBlocks);
+      upgrade = upgrade || (!playing && !still && value.stillBlocks.length > 0);
+      const names = still ? value.stillBlocks : value.blocks;
+      run.scene.show(part.name, part.kind, state, names.map((name) => run.data.file(name)), still ? 'still' : 'moving');
     });
+    if (upgrade) {
+      run.data.require(run.data.namesOf(index, true)).then(() => {
+        if (run.shown === index && !playing) drawRun(run, k, index);
+      }, report);
+    }
     if (!run.scene.cameraSet) {
       const bounds = run.scene.renderer.computeVisiblePropBounds();
       run.scene.setForceScale(maxForce, Math.hypot(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4]));
@@ -201,6 +223,9 @@ export function startComparison(manifests, status, report) {
       if (k === 0) {
         run.scene.resetCameraOnce();
         controls.rememberHome();
+        const view = parameters.get('view');
+        if (view && kStandardViews[view]) controls.standardView(view);
+        else if (view) warn(`view=${view}: not one of ${Object.keys(kStandardViews).join(', ')}`);
       } else {
         run.scene.cameraSet = true;
       }
@@ -250,7 +275,6 @@ export function startComparison(manifests, status, report) {
   slider.addEventListener('input', () => showTime(Number(slider.value)));
 
   // Part toggles and the brain's colour, for every view.
-  const parameters = new URLSearchParams(window.location.search);
   const toggles = document.getElementById('parts');
   const hidden = new Set((parameters.get('hide') || '').split(',').filter(Boolean));
   for (const part of runs[0].manifest.parts) {
@@ -305,9 +329,14 @@ export function startComparison(manifests, status, report) {
   });
   // Play: one clock for all.
   const play = document.getElementById('play');
-  let playing = false;
   let last = 0;
-  const speed = Number(parameters.get('speed') || 1);
+  let speed = Number(parameters.get('speed') || 1);
+  if (!(speed > 0 && Number.isFinite(speed))) {
+    warn(`speed=${parameters.get('speed')}: not a positive number (times real time); playing at 1`);
+    speed = 1;
+  }
+  for (const name of ['skull', 'ct', 'opacity'])
+    if (parameters.get(name) !== null) warn(`${name}=: runs side by side have no ${name === 'ct' ? 'CT volume' : name === 'skull' ? 'skull colours' : 'opacity'} (open a run alone for it)`);
   const tick = (now) => {
     if (!playing) return;
     const step = ((now - last) / 1000) * speed;
@@ -329,5 +358,10 @@ export function startComparison(manifests, status, report) {
       requestAnimationFrame(tick);
     }
   });
-  showTime(Number(parameters.get('t') || 0));
+  let startTime = Number(parameters.get('t') || 0);
+  if (!Number.isFinite(startTime)) {
+    warn(`t=${parameters.get('t')}: not a number of seconds; opening at 0 s`);
+    startTime = 0;
+  }
+  showTime(startTime);
 }

@@ -18,7 +18,7 @@ import { addSelect, addEventMarks, runEvents } from './pageParts.js';
 import { startComparison } from './compare.js';
 import { startLive } from './live.js';
 import { Legend } from './legend.js';
-import { ViewControls } from './viewControls.js';
+import { ViewControls, kStandardViews } from './viewControls.js';
 import { SkullVolume } from './skullVolume.js';
 import { CtVolume } from './ctVolume.js';
 import { kMeshModes, kSkullModes, meshModesOf, densityRange } from './colouring.js';
@@ -43,6 +43,15 @@ function report(error) {
   if (box) box.textContent = message;
 }
 
+// A URL parameter the page cannot follow: said on the page, and kept in
+// status.warnings; the page goes on with its default.
+function warn(text) {
+  status.warnings = status.warnings || [];
+  status.warnings.push(text);
+  const box = document.getElementById('message');
+  if (box) box.textContent = box.textContent ? `${box.textContent}; ${text}` : text;
+}
+
 function rendererName() {
   const gl = document.createElement('canvas').getContext('webgl2');
   if (!gl) return 'no WebGL2';
@@ -54,6 +63,9 @@ function rendererName() {
 function addPartToggles(manifest, scene, parameters, legend = null) {
   const toggles = document.getElementById('parts');
   const hidden = new Set((parameters.get('hide') || '').split(',').filter(Boolean));
+  for (const name of hidden)
+    if (!manifest.parts.some((part) => part.name === name))
+      warn(`hide=${name}: no such part (the parts: ${manifest.parts.map((part) => part.name).join(', ')})`);
   for (const part of manifest.parts) {
     const label = document.createElement('label');
     const box = document.createElement('input');
@@ -140,6 +152,7 @@ function addColourControls(manifest, scene, legend, parameters, data, redraw) {
       const modes = meshModesOf(part);
       if (modes.length < 2) continue;
       const wanted = parameters.get(part.name) || parameters.get('brain');
+      if (wanted && !modes.includes(wanted)) warn(`brain=${wanted}: not one of ${modes.join(', ')}`);
       const initial = modes.includes(wanted) ? wanted : modes.includes('displacement') ? 'displacement' : modes[0];
       const apply = (mode) => {
         scene.setColouring(part.name, mode, part.ranges);
@@ -154,6 +167,7 @@ function addColourControls(manifest, scene, legend, parameters, data, redraw) {
     } else if (part.kind === 'blocks' && part.volume) {
       const modes = Object.keys(kSkullModes);
       const wanted = parameters.get(part.name) || parameters.get('skull');
+      if (wanted && !modes.includes(wanted)) warn(`skull=${wanted}: not one of ${modes.join(', ')}`);
       const initial = modes.includes(wanted) ? wanted : 'bone';
       const volume = () => loadSkullVolume(part, data, scene);
       const apply = (mode) => {
@@ -232,7 +246,7 @@ async function start() {
   if (!manifest) throw new Error('data/manifest.js is missing: write the viewer with trephine view RUN_DIR');
   window.trephineRun = manifest;
   if (runs.length > 1) {
-    startComparison(runs, status, report);
+    startComparison(runs, status, report, warn);
     return;
   }
   document.getElementById('title').textContent = manifest.name;
@@ -285,7 +299,9 @@ async function start() {
       drawFrameParts(index);
       scene.resetCameraOnce();
       controls.rememberHome();
-      if (parameters.get('view')) controls.standardView(parameters.get('view'));
+      const view = parameters.get('view');
+      if (view && kStandardViews[view]) controls.standardView(view);
+      else if (view) warn(`view=${view}: not one of ${Object.keys(kStandardViews).join(', ')}`);
     }
     const before = performance.now();
     scene.render();
@@ -454,8 +470,17 @@ async function start() {
   addViewButtons(controls, parameters);
   addEventMarks(events, end, seek);
   speed = Number(parameters.get('speed') || 1);
+  if (!(speed > 0 && Number.isFinite(speed))) {
+    warn(`speed=${parameters.get('speed')}: not a positive number (times real time); playing at 1`);
+    speed = 1;
+  }
   if (fullScale !== 1) scene.setPixelScale(fullScale);
-  showTime(Number(parameters.get('t') || 0));
+  let startTime = Number(parameters.get('t') || 0);
+  if (!Number.isFinite(startTime)) {
+    warn(`t=${parameters.get('t')}: not a number of seconds; opening at 0 s`);
+    startTime = 0;
+  }
+  showTime(startTime);
   if (parameters.get('play') === '1') setPlaying(true);
 }
 

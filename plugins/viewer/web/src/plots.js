@@ -211,7 +211,7 @@ export class Plots {
     g.textAlign = 'center';
     for (const tick of ticks) g.fillText(tickLabel(tick, ticks), x(tick), height - 5);
     g.textAlign = 'right';
-    g.fillText('t (s)', m.left - 4, height - 5);
+    g.fillText('t (s)', m.left - 12, height - 5);
     g.textAlign = 'left';
     // The events, over both rows, and their kinds at the top right.
     // Two pixels wide on whole pixels: the kind's colour, unblended.

@@ -39,6 +39,15 @@ try {
   const runs = await page.evaluate(() => window.trephineRuns.map((m) => ({ name: m.name, end: m.end, frames: m.frames.length, ranges: m.parts.find((p) => p.kind === 'mesh').ranges })));
   const state = await page.evaluate(() => JSON.parse(JSON.stringify({ runs: window.trephineViewer.runs, time: window.trephineViewer.time })));
   check(runs.length === 2 && (await page.locator('.run-view').count()) === 2, `two runs, two views (${runs.map((r) => r.name).join(', ')})`);
+  // Each view's canvas fills its pane, the two alike (one camera: one picture size).
+  const boxes = await page.evaluate(() => [...document.querySelectorAll('.run-view')].map((pane) => {
+    const p = pane.getBoundingClientRect();
+    const c = pane.querySelector('canvas').getBoundingClientRect();
+    return { paneWidth: p.width, paneHeight: p.height, width: c.width, height: c.height };
+  }));
+  check(boxes.every((b) => Math.abs(b.width - b.paneWidth) < 3 && Math.abs(b.height - b.paneHeight) < 3) &&
+        Math.abs(boxes[0].height - boxes[1].height) < 2,
+        `each canvas fills its pane (${boxes.map((b) => `${b.width.toFixed(0)}x${b.height.toFixed(0)} in ${b.paneWidth.toFixed(0)}x${b.paneHeight.toFixed(0)}`).join(', ')})`);
   const frameAt = (k) => page.evaluate(([k, t]) => {
     const frames = window.trephineRuns[k].frames;
     let i = 0;

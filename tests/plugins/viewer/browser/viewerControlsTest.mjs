@@ -286,6 +286,14 @@ try {
     check(Math.abs(readout.t - t) < run.end / 500 && readout.force === expected.force && readout.penetration === expected.penetration,
           `the read-out at ${t.toFixed(3)} s says t ${readout.t.toFixed(3)} s, |F| ${readout.force.toPrecision(3)} N, penetration ${readout.penetration.toPrecision(3)} mm (the plotted values)`);
   }
+  // URL parameters the page cannot follow are said, and it opens as by default.
+  await page.goto(`${pathToFileURL(path.resolve(options.view, 'index.html')).href}?t=abc&brain=bogus&view=nonsense&speed=-2`);
+  await page.waitForFunction(() => window.trephineViewer && window.trephineViewer.ready, null, { timeout: 60000 });
+  const warnings = await page.evaluate(() => window.trephineViewer.warnings || []);
+  const message = await page.locator('#message').innerText();
+  check(['t=abc', 'brain=bogus', 'view=nonsense', 'speed=-2'].every((w) => warnings.some((x) => x.startsWith(w)) && message.includes(w)) &&
+        (await status('time')) === 0,
+        `bad parameters are said on the page (${warnings.length}: ${warnings.map((w) => w.split(':')[0]).join(', ')}) and it opens at 0 s`);
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
   await browser.close();
