@@ -361,10 +361,15 @@ export class Scene3d {
     for (const part of this.partsNamed(name)) this.applyVisibility(part);
   }
 
+  // A translucent surface draws only the faces turned to the camera: seen
+  // through, the far sides of folds and slivers would shine as flecks.
   setOpacity(name, opacity) {
     this.opacity.set(name, opacity);
     for (const part of this.partsNamed(name))
-      for (const [actor] of Scene3d.actorsOf(part)) actor.getProperty().setOpacity(opacity);
+      for (const [actor] of Scene3d.actorsOf(part)) {
+        actor.getProperty().setOpacity(opacity);
+        actor.getProperty().setBackfaceCulling(opacity < 1);
+      }
   }
 
   resetCameraOnce() {
