@@ -7,10 +7,10 @@
 // triangles) and `cameras()`.
 import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
-import { Plots, eventColours } from './plots.js';
+import { Plots, eventColours, curvesCanvas } from './plots.js';
 import { Legend } from './legend.js';
 import { ViewControls, kStandardViews } from './viewControls.js';
-import { addSelect, addEventMarks, runEvents } from './pageParts.js';
+import { addSelect, addEventMarks, runEvents, startTimeOf, speedOf } from './pageParts.js';
 import { kMeshModes, meshModesOf } from './colouring.js';
 import { niceTicks, tickLabel } from './colourMap.js';
 
@@ -50,12 +50,7 @@ class ComparisonPlots extends Plots {
   }
 
   drawCurves(width, height, scale) {
-    const canvas = document.createElement('canvas');
-    canvas.width = Math.max(1, Math.round(width * scale));
-    canvas.height = Math.max(1, Math.round(height * scale));
-    const g = canvas.getContext('2d');
-    g.setTransform(scale, 0, 0, scale, 0, 0);
-    g.font = '11px sans-serif';
+    const { canvas, g } = curvesCanvas(width, height, scale);
     const m = this.margin;
     const plotWidth = width - m.left - m.right;
     const x = (t) => m.left + ((t - this.start) / (this.end - this.start)) * plotWidth;
@@ -330,11 +325,7 @@ export function startComparison(manifests, status, report, warn) {
   // Play: one clock for all.
   const play = document.getElementById('play');
   let last = 0;
-  let speed = Number(parameters.get('speed') || 1);
-  if (!(speed > 0 && Number.isFinite(speed))) {
-    warn(`speed=${parameters.get('speed')}: not a positive number (times real time); playing at 1`);
-    speed = 1;
-  }
+  const speed = speedOf(parameters, warn);
   for (const name of ['skull', 'ct', 'opacity'])
     if (parameters.get(name) !== null) warn(`${name}=: runs side by side have no ${name === 'ct' ? 'CT volume' : name === 'skull' ? 'skull colours' : 'opacity'} (open a run alone for it)`);
   const tick = (now) => {
@@ -358,10 +349,5 @@ export function startComparison(manifests, status, report, warn) {
       requestAnimationFrame(tick);
     }
   });
-  let startTime = Number(parameters.get('t') || 0);
-  if (!Number.isFinite(startTime)) {
-    warn(`t=${parameters.get('t')}: not a number of seconds; opening at 0 s`);
-    startTime = 0;
-  }
-  showTime(startTime);
+  showTime(startTimeOf(parameters, warn));
 }

@@ -14,7 +14,7 @@
 import { RunData } from './runData.js';
 import { Scene3d } from './scene3d.js';
 import { Plots } from './plots.js';
-import { addSelect, addEventMarks, runEvents } from './pageParts.js';
+import { addSelect, addEventMarks, runEvents, startTimeOf, speedOf } from './pageParts.js';
 import { startComparison } from './compare.js';
 import { startLive } from './live.js';
 import { Legend } from './legend.js';
@@ -469,18 +469,9 @@ async function start() {
   });
   addViewButtons(controls, parameters);
   addEventMarks(events, end, seek);
-  speed = Number(parameters.get('speed') || 1);
-  if (!(speed > 0 && Number.isFinite(speed))) {
-    warn(`speed=${parameters.get('speed')}: not a positive number (times real time); playing at 1`);
-    speed = 1;
-  }
+  speed = speedOf(parameters, warn);
   if (fullScale !== 1) scene.setPixelScale(fullScale);
-  let startTime = Number(parameters.get('t') || 0);
-  if (!Number.isFinite(startTime)) {
-    warn(`t=${parameters.get('t')}: not a number of seconds; opening at 0 s`);
-    startTime = 0;
-  }
-  showTime(startTime);
+  showTime(startTimeOf(parameters, warn));
   if (parameters.get('play') === '1') setPlaying(true);
 }
 

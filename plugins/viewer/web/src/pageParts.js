@@ -52,3 +52,19 @@ export function addEventMarks(events, end, seek) {
     marks.append(mark);
   }
 }
+
+// The t= parameter (s), 0 when absent or not a number (said through `warn`).
+export function startTimeOf(parameters, warn) {
+  const t = Number(parameters.get('t') || 0);
+  if (Number.isFinite(t)) return t;
+  warn(`t=${parameters.get('t')}: not a number of seconds; opening at 0 s`);
+  return 0;
+}
+
+// The speed= parameter (times real time), 1 when absent or not positive.
+export function speedOf(parameters, warn) {
+  const speed = Number(parameters.get('speed') || 1);
+  if (speed > 0 && Number.isFinite(speed)) return speed;
+  warn(`speed=${parameters.get('speed')}: not a positive number (times real time); playing at 1`);
+  return 1;
+}

@@ -12,6 +12,18 @@ const kSeries = [
 // Colours of event kinds, in the order kinds are first met (sorted by name).
 export const kEventColours = ['#ffd23f', '#3fe0d0', '#ff7ad9', '#9dff5c', '#ffa24f', '#b58cff', '#ffffff'];
 
+// An offscreen canvas of `width` x `height` CSS pixels at `scale` device
+// pixels each, drawn on in CSS pixels with the plots' font.
+export function curvesCanvas(width, height, scale) {
+  const canvas = document.createElement('canvas');
+  canvas.width = Math.max(1, Math.round(width * scale));
+  canvas.height = Math.max(1, Math.round(height * scale));
+  const g = canvas.getContext('2d');
+  g.setTransform(scale, 0, 0, scale, 0, 0);
+  g.font = '11px sans-serif';
+  return { canvas, g };
+}
+
 export function eventColours(events) {
   const kinds = [...new Set(events.map((e) => e.kind))].sort();
   return Object.fromEntries(kinds.map((kind, i) => [kind, kEventColours[i % kEventColours.length]]));
@@ -145,12 +157,7 @@ export class Plots {
   }
 
   drawCurves(width, height, scale) {
-    const canvas = document.createElement('canvas');
-    canvas.width = Math.max(1, Math.round(width * scale));
-    canvas.height = Math.max(1, Math.round(height * scale));
-    const g = canvas.getContext('2d');
-    g.setTransform(scale, 0, 0, scale, 0, 0);
-    g.font = '11px sans-serif';
+    const { canvas, g } = curvesCanvas(width, height, scale);
     const m = this.margin;
     const plotWidth = width - m.left - m.right;
     const series = this.series();

@@ -10,42 +10,23 @@
 // Screenshots and results.json go to --out for a person to look at.
 //   node viewerBrowserTest.mjs --web plugins/viewer/web --view RUN/view --out DIR
 //        --times T1,T2 --parts brain,tool[,skull] [--open-limit S] [--min-fps F]
-import { createRequire } from 'node:module';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { classify, differenceNearTool } from './pixels.mjs';
 import { decodePng } from './png.mjs';
+import { checker, launchChromium, parseOptions } from './browserSupport.mjs';
 
-const options = {};
-for (let i = 2; i < process.argv.length; i += 2) options[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
-for (const required of ['web', 'view', 'out', 'times', 'parts']) {
-  if (!options[required]) {
-    console.error(`viewerBrowserTest: --${required} is missing`);
-    process.exit(2);
-  }
-}
-const { chromium } = createRequire(path.resolve(options.web, 'package.json'))('playwright-core');
+const options = parseOptions('viewerBrowserTest', ['web', 'view', 'out', 'times', 'parts']);
 const times = options.times.split(',').map(Number);
 const parts = options.parts.split(',');
 const openLimit = Number(options['open-limit'] || 3);
 const minFps = Number(options['min-fps'] || 0);
 mkdirSync(options.out, { recursive: true });
 
-const failures = [];
-const check = (ok, message) => {
-  if (!ok) failures.push(message);
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
-};
+const { check, failures } = checker();
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: [
-    '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-    '--disable-quic',
-  ],
-});
+const browser = await launchChromium(options.web);
 const results = { times, screenshots: [] };
 try {
   const page = await browser.newPage({ viewport: { width: 1000, height: 760 } });

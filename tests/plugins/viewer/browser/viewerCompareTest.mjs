@@ -5,27 +5,17 @@
 // colours and a row of their difference, whose read-out is run 1's |F| less
 // run 0's at the cursor's time; a stiffer brain (run 1) dents less.
 //   node viewerCompareTest.mjs --web plugins/viewer/web --view DIR --out DIR --press T
-import { createRequire } from 'node:module';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { classify } from './pixels.mjs';
 import { decodePng } from './png.mjs';
+import { checker, launchChromium, parseOptions } from './browserSupport.mjs';
 
-const options = {};
-for (let i = 2; i < process.argv.length; i += 2) options[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
-const { chromium } = createRequire(path.resolve(options.web, 'package.json'))('playwright-core');
+const options = parseOptions('viewerCompareTest', ['web', 'view', 'out', 'press']);
 mkdirSync(options.out, { recursive: true });
-const failures = [];
-const check = (ok, message) => {
-  if (!ok) failures.push(message);
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
-};
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
-});
+const { check, failures } = checker();
+const browser = await launchChromium(options.web);
 const results = {};
 try {
   const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });

@@ -19,28 +19,16 @@
 //     plotted values at its time.
 // Screenshots and results.json go to --out.
 //   node viewerControlsTest.mjs --web plugins/viewer/web --view RUN/view --out DIR --press T
-import { createRequire } from 'node:module';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { classify } from './pixels.mjs';
 import { decodePng } from './png.mjs';
+import { checker, launchChromium, parseOptions } from './browserSupport.mjs';
 
-const options = {};
-for (let i = 2; i < process.argv.length; i += 2) options[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
-for (const required of ['web', 'view', 'out', 'press']) {
-  if (!options[required]) {
-    console.error(`viewerControlsTest: --${required} is missing`);
-    process.exit(2);
-  }
-}
-const { chromium } = createRequire(path.resolve(options.web, 'package.json'))('playwright-core');
+const options = parseOptions('viewerControlsTest', ['web', 'view', 'out', 'press']);
 mkdirSync(options.out, { recursive: true });
-const failures = [];
-const check = (ok, message) => {
-  if (!ok) failures.push(message);
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
-};
+const { check, failures } = checker();
 
 // Hue (degrees) and saturation of an RGB pixel.
 function hueOf(r, g, b) {
@@ -54,11 +42,7 @@ function hueOf(r, g, b) {
   return { hue: h, saturation: d / max };
 }
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
-});
+const browser = await launchChromium(options.web);
 const results = {};
 try {
   const page = await browser.newPage({ viewport: { width: 1100, height: 820 } });
