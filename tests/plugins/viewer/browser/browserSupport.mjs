@@ -1,6 +1,7 @@
 // What the browser tests share: their options, their checks, and headless
 // Chromium with software WebGL.
 import { createRequire } from 'node:module';
+import { writeFileSync } from 'node:fs';
 import path from 'node:path';
 
 // --name value pairs; exits (2) naming the first of `required` missing.
@@ -35,4 +36,20 @@ export function launchChromium(web) {
            '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
            '--disable-quic'],
   });
+}
+
+// The page's console errors and uncaught exceptions, as they come.
+export function consoleErrorsOf(page) {
+  const errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  return errors;
+}
+
+// Writes `results` (with the failures) to OUT/results.json and exits: 1
+// when a check failed.
+export function finish(out, results, failures) {
+  results.failures = failures;
+  writeFileSync(path.join(out, 'results.json'), JSON.stringify(results, null, 2));
+  process.exit(failures.length ? 1 : 0);
 }

@@ -15,7 +15,7 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { classify, differenceNearTool } from './pixels.mjs';
 import { decodePng } from './png.mjs';
-import { checker, launchChromium, parseOptions } from './browserSupport.mjs';
+import { checker, consoleErrorsOf, finish, launchChromium, parseOptions } from './browserSupport.mjs';
 
 const options = parseOptions('viewerBrowserTest', ['web', 'view', 'out', 'times', 'parts']);
 const times = options.times.split(',').map(Number);
@@ -30,11 +30,7 @@ const browser = await launchChromium(options.web);
 const results = { times, screenshots: [] };
 try {
   const page = await browser.newPage({ viewport: { width: 1000, height: 760 } });
-  const consoleErrors = [];
-  page.on('console', (message) => {
-    if (message.type() === 'error') consoleErrors.push(message.text());
-  });
-  page.on('pageerror', (error) => consoleErrors.push(String(error)));
+  const consoleErrors = consoleErrorsOf(page);
   const url = pathToFileURL(path.resolve(options.view, 'index.html')).href;
   const viewer = () => page.evaluate(() => {
     const s = window.trephineViewer;
@@ -168,6 +164,4 @@ try {
 } finally {
   await browser.close();
 }
-results.failures = failures;
-writeFileSync(path.join(options.out, 'results.json'), JSON.stringify(results, null, 2));
-process.exit(failures.length ? 1 : 0);
+finish(options.out, results, failures);

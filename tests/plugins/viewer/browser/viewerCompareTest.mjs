@@ -10,7 +10,7 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { classify } from './pixels.mjs';
 import { decodePng } from './png.mjs';
-import { checker, launchChromium, parseOptions } from './browserSupport.mjs';
+import { checker, consoleErrorsOf, finish, launchChromium, parseOptions } from './browserSupport.mjs';
 
 const options = parseOptions('viewerCompareTest', ['web', 'view', 'out', 'press']);
 mkdirSync(options.out, { recursive: true });
@@ -19,9 +19,7 @@ const browser = await launchChromium(options.web);
 const results = {};
 try {
   const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
-  const consoleErrors = [];
-  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
-  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+  const consoleErrors = consoleErrorsOf(page);
   const press = Number(options.press);
   await page.goto(`${pathToFileURL(path.resolve(options.view, 'index.html')).href}?t=${press}&hide=skull,tool,toolshape&brain=tissue`);
   await page.waitForFunction(() => window.trephineViewer && window.trephineViewer.ready, null, { timeout: 60000 });
@@ -100,6 +98,4 @@ try {
 } finally {
   await browser.close();
 }
-results.failures = failures;
-writeFileSync(path.join(options.out, 'results.json'), JSON.stringify(results, null, 2));
-process.exit(failures.length ? 1 : 0);
+finish(options.out, results, failures);

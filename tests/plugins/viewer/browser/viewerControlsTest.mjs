@@ -24,7 +24,7 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { classify } from './pixels.mjs';
 import { decodePng } from './png.mjs';
-import { checker, launchChromium, parseOptions } from './browserSupport.mjs';
+import { checker, consoleErrorsOf, finish, launchChromium, parseOptions } from './browserSupport.mjs';
 
 const options = parseOptions('viewerControlsTest', ['web', 'view', 'out', 'press']);
 mkdirSync(options.out, { recursive: true });
@@ -46,9 +46,7 @@ const browser = await launchChromium(options.web);
 const results = {};
 try {
   const page = await browser.newPage({ viewport: { width: 1100, height: 820 } });
-  const consoleErrors = [];
-  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
-  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+  const consoleErrors = consoleErrorsOf(page);
   const url = pathToFileURL(path.resolve(options.view, 'index.html')).href;
   const frames = () => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
   const open = async (query) => {
@@ -282,6 +280,4 @@ try {
 } finally {
   await browser.close();
 }
-results.failures = failures;
-writeFileSync(path.join(options.out, 'results.json'), JSON.stringify(results, null, 2));
-process.exit(failures.length ? 1 : 0);
+finish(options.out, results, failures);
