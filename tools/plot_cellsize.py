@@ -26,6 +26,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from figure_file import save_figure  # noqa: E402
+
 
 def read(path):
     """The CSV's rows and the summary JSON beside it (same stem)."""
@@ -53,7 +56,7 @@ def draw_pair(rows, summary, directory):
     ax.set_title(f"{os.path.basename(summary['mesh'])}: {summary['tetrahedra']} tetrahedra, two copies")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(directory, "cellsize.png"), dpi=120)
+    save_figure(fig, os.path.join(directory, "cellsize.png"), dpi=120)
 
 
 def draw_tool(rows, summary, directory):
@@ -84,7 +87,7 @@ def draw_tool(rows, summary, directory):
     bottom.set_ylabel("per query")
     bottom.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(directory, "tool_cellsize.png"), dpi=120)
+    save_figure(fig, os.path.join(directory, "tool_cellsize.png"), dpi=120)
 
 
 def main():

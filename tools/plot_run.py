@@ -29,6 +29,9 @@ except ImportError:
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from figure_file import save_figure  # noqa: E402
+
 
 def read_csv(path):
     with open(path, newline="") as f:
@@ -103,7 +106,7 @@ def plot_trace(run, rows):
     axes[-1].set_xlabel("time (s)")
     fig.suptitle(f"{run.name}: haptic trace")
     fig.tight_layout()
-    fig.savefig(run / "force.png", dpi=110)
+    save_figure(fig, run / "force.png", dpi=110)
     plt.close(fig)
 
 
@@ -132,7 +135,7 @@ def plot_timings(run, rows):
     axes[-1, 0].set_xlabel("time (s)")
     fig.suptitle(f"{run.name}: time per call, by rate")
     fig.tight_layout()
-    fig.savefig(run / "timings.png", dpi=110)
+    save_figure(fig, run / "timings.png", dpi=110)
     plt.close(fig)
 
 

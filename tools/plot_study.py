@@ -25,6 +25,9 @@ except ImportError:
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from figure_file import save_figure  # noqa: E402
+
 
 def number(text):
     try:
@@ -72,7 +75,7 @@ def main(argv):
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     out = source.with_name("pareto.png")
-    fig.savefig(out, dpi=120)
+    save_figure(fig, out, dpi=120)
     print(out)
 
 

@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "framework/core/AtomicFile.h"
+#include "framework/core/FolderInput.h"
+#include "framework/core/OutputFolder.h"
 
 namespace trephine {
 
@@ -52,8 +55,11 @@ uint64_t processStartTime(int64_t pid) {
   return 0;
 }
 
-void writeMarker(const fs::path& folder, const RunMarker& marker) {
-  writeFileAtomically(folder / kRunMarkerName, [&](std::ostream& out) {
+// A marker is a few hundred bytes per output; anything far larger is not one.
+constexpr size_t kMaxMarkerBytes = 1 << 20;
+
+void writeMarker(const OutputFolder& folder, const RunMarker& marker) {
+  writeFileAtomically(folder, kRunMarkerName, [&](std::ostream& out) {
     out << kMagic << "\n";
     out << "state " << stateName(marker.state) << "\n";
     out << "pid " << marker.pid << " " << marker.processStart << "\n";
@@ -66,19 +72,41 @@ void writeMarker(const fs::path& folder, const RunMarker& marker) {
   });
 }
 
-void removeOutput(const fs::path& folder, const std::string& name, std::vector<std::string>& problems) {
-  std::error_code ec;
-  const fs::path path = folder / (name.ends_with('/') ? name.substr(0, name.size() - 1) : name);
-  const fs::file_status status = fs::symlink_status(path, ec);
-  if (ec || status.type() == fs::file_type::not_found) return;
-  if (name.ends_with('/') && status.type() == fs::file_type::directory) {
-    fs::remove_all(path, ec);
-  } else if (!name.ends_with('/') && status.type() != fs::file_type::directory) {
-    fs::remove(path, ec);
-  } else {
+// Removes what an earlier run wrote under `name`, through the folder's
+// descriptor: a link there is removed itself, never followed.
+void removeOutput(const OutputFolder& folder, const std::string& name, std::vector<std::string>& problems) {
+  const bool isFolder = name.ends_with('/');
+  const std::string plain = isFolder ? name.substr(0, name.size() - 1) : name;
+  const EntryKind kind = folder.kind(plain);
+  if (kind == EntryKind::kMissing) return;
+  if (isFolder != (kind == EntryKind::kFolder) && kind != EntryKind::kLink)
     return;  // not what the run wrote there: a user's, left alone
+  try {
+    folder.remove(plain);
+  } catch (const FileWriteError& e) {
+    problems.push_back(std::string("cannot remove what the earlier run wrote: ") + e.what());
   }
-  if (ec) problems.push_back("cannot remove " + path.string() + " of the earlier run: " + ec.message());
+}
+
+// Temporary files of outputs whose writer was killed ("trace.csv.partial-PID-..."):
+// no live run writes here (the claim checked), so they are no one's.
+void removeTemporaryFiles(const OutputFolder& folder, const std::vector<std::string>& outputs,
+                          std::vector<std::string>& problems) {
+  std::error_code ec;
+  std::vector<std::string> stale;
+  for (const auto& entry : fs::directory_iterator(folder.path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    for (const std::string& output : outputs)
+      if (!output.ends_with('/') && name.starts_with(output + ".partial-")) stale.push_back(name);
+  }
+  for (const std::string& name : stale) {
+    if (folder.kind(name) == EntryKind::kFolder) continue;
+    try {
+      folder.remove(name);
+    } catch (const FileWriteError& e) {
+      problems.push_back(e.what());
+    }
+  }
 }
 
 }  // namespace
@@ -87,8 +115,12 @@ std::optional<RunMarker> readRunMarker(const fs::path& folder) {
   const fs::path file = folder / kRunMarkerName;
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(file, ec))) return std::nullopt;
-  std::ifstream in(file);
-  if (!in) throw RunFolderError(file.string() + ": cannot be read");
+  std::istringstream in;
+  try {
+    in.str(readRegularFile(file, kMaxMarkerBytes));
+  } catch (const FolderInputError& e) {
+    throw RunFolderError(std::string(e.what()) + " (a run marker is a small text file)");
+  }
   RunMarker marker;
   std::string line;
   int number = 0;
@@ -153,9 +185,13 @@ RunFolderStatus runFolderStatus(const std::optional<RunMarker>& marker) {
 std::optional<std::string> claimRunFolder(const fs::path& folder, const std::vector<std::string>& outputs) {
   for (const std::string& output : outputs)
     if (!isOutputName(output)) return "'" + output + "' is not a name in the run's folder";
+  std::optional<OutputFolder> opened;
+  try {
+    opened = OutputFolder::create(folder);
+  } catch (const FileWriteError& e) {
+    return std::string("cannot create a directory there (") + e.what() + ")";
+  }
   std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec || !fs::is_directory(folder)) return "cannot create a directory there";
 
   // What the earlier run wrote goes; what a user put there stays.
   std::optional<RunMarker> earlier;
@@ -179,7 +215,8 @@ std::optional<std::string> claimRunFolder(const fs::path& folder, const std::vec
   }
   remove.insert(remove.end(), outputs.begin(), outputs.end());  // replaced anyway
   std::vector<std::string> problems;
-  for (const std::string& name : remove) removeOutput(folder, name, problems);
+  for (const std::string& name : remove) removeOutput(*opened, name, problems);
+  removeTemporaryFiles(*opened, remove, problems);
   if (!problems.empty()) return problems.front();
 
   RunMarker marker;
@@ -187,7 +224,7 @@ std::optional<std::string> claimRunFolder(const fs::path& folder, const std::vec
   marker.processStart = processStartTime(marker.pid);
   marker.outputs = outputs;
   try {
-    writeMarker(folder, marker);
+    writeMarker(*opened, marker);
   } catch (const FileWriteError& e) {
     return std::string("cannot write there (") + e.what() + ")";
   }
@@ -202,7 +239,7 @@ void markRunFolder(const fs::path& folder, const std::vector<std::string>& outpu
   marker.processStart = processStartTime(marker.pid);
   marker.reason = reason;
   marker.outputs = outputs;
-  writeMarker(folder, marker);
+  writeMarker(OutputFolder::open(folder), marker);
 }
 
 }  // namespace trephine

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "framework/core/Interface.h"
+#include "framework/core/OutputFolder.h"
 
 namespace trephine {
 
@@ -42,7 +43,7 @@ class TREPHINE_INTERFACE RunViewer {
   // surfaces of block parts simplified to at most `blockTriangles`. Throws
   // ViewerDataError.
   virtual ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                            const std::filesystem::path& dataDirectory, const std::string& folder,
+                                            const OutputFolder& dataDirectory, const std::string& folder,
                                             size_t index, size_t blockTriangles) const = 0;
 };
 

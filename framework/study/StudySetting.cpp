@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -298,10 +299,35 @@ void writeResult(const Simulation& simulation, const std::filesystem::path& file
 
 }  // namespace
 
+std::filesystem::path settingFolder(const std::filesystem::path& out, const StudySetting& setting) {
+  return OutputFolder::create(out).subfolder(setting.directoryName()).path();
+}
+
+std::string settingFolderProblem(const std::filesystem::path& out, const StudySetting& setting) {
+  std::filesystem::path path = out;
+  for (const std::filesystem::path& part : std::filesystem::path(setting.directoryName())) {
+    path /= part;
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::symlink_status(path, ec);
+    if (status.type() == std::filesystem::file_type::not_found) return "";
+    if (status.type() != std::filesystem::file_type::directory)
+      return path.string() + ": is " +
+             (status.type() == std::filesystem::file_type::symlink ? std::string("a link") : "not a folder") +
+             ", where the study's own folder goes: refusing to write through it";
+  }
+  return "";
+}
+
 bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
-  const std::filesystem::path directory = options.out / setting.directoryName();
+  std::filesystem::path directory;
+  try {
+    directory = settingFolder(options.out, setting);
+  } catch (const FileWriteError& e) {
+    // Nothing is written where a link points; the study's own check names it.
+    std::cerr << "trephine: " << setting.label() << ": " << e.what() << "\n";
+    return false;
+  }
   std::error_code ec;
-  std::filesystem::create_directories(directory, ec);
   for (const char* stale : {kProbeFile, kResultFile, kErrorFile}) std::filesystem::remove(directory / stale, ec);
   const std::filesystem::path posesFile = options.out / kPosesFile;
   const bool isReference = setting.index == options.referenceIndex;
@@ -364,8 +390,8 @@ void writeSettingError(const std::filesystem::path& directory, const std::string
     AtomicFile out(directory / kErrorFile);
     out.write(message + "\n");
     out.commit();
-  } catch (const std::exception&) {
-    std::ofstream(directory / kErrorFile) << message << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "trephine: " << message << "; and the error file cannot be written: " << e.what() << "\n";
   }
 }
 

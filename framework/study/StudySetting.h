@@ -40,6 +40,14 @@ inline constexpr const char* kErrorFile = "error.txt";
 // otherwise error.txt says why.
 bool runStudySetting(const StudyOptions& options, const StudySetting& setting);
 
+// The folder of `setting` in the study's `out`, made when missing and
+// reached without following a link (a `settings/002` planted as a link to
+// elsewhere is refused). Throws FileWriteError naming what is in the way.
+std::filesystem::path settingFolder(const std::filesystem::path& out, const StudySetting& setting);
+// What is in the way of that folder without making it: a link, a file or a
+// special file where a folder of the study's goes; "" when nothing is.
+std::string settingFolderProblem(const std::filesystem::path& out, const StudySetting& setting);
+
 // Writes error.txt of a setting whole (other processes wait for it).
 void writeSettingError(const std::filesystem::path& directory, const std::string& message);
 

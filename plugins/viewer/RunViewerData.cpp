@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include "framework/core/AtomicFile.h"
+#include "framework/core/FolderInput.h"
 #include "framework/formats/encoding/Base64.h"
 #include "framework/runtime/JsonWriter.h"
 #include "framework/formats/vtk/VtkSurfaceReader.h"
@@ -57,12 +59,62 @@ struct Part {
 // eighth of a 0.5 mm head CT's), 4 MB before base64.
 constexpr size_t kVolumeVoxels = size_t(1) << 21;
 
+// What the viewer reads of a run must be the run's own: a regular file
+// reached from its folder without a link (a link planted there to
+// /etc/passwd, a device or a pipe is refused, never copied into the page).
+fs::path inRun(const fs::path& run, const fs::path& relative) {
+  try {
+    return regularFileInside(run, relative);
+  } catch (const FolderInputError& e) {
+    throw ViewerDataError(e.what());
+  }
+}
+
+// A file an index lists: the run's own, or missing.
+void listedInRun(const fs::path& run, const fs::path& file, const fs::path& index) {
+  try {
+    regularFileInside(run, file);
+  } catch (const FolderInputError& e) {
+    if (e.missing()) throw ViewerDataError(index.string() + ": lists " + file.string() + ", which is missing");
+    throw ViewerDataError(e.what());
+  }
+}
+
+// A run's own VTK file is at most this big (a million-triangle skull block
+// set or a 145k-tetrahedron brain frame are a few tens of MB).
+constexpr size_t kMaxRunFileBytes = size_t(1) << 30;
+
 std::string readBytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ViewerDataError(file.string() + ": cannot be read");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+  try {
+    return readRegularFile(file, kMaxRunFileBytes);
+  } catch (const FolderInputError& e) {
+    throw ViewerDataError(e.what());
+  }
+}
+
+// The skull's volume files beside its exporter's frames, when there: the
+// header, the data file it names (a plain name beside it), the isovalue and
+// the removed voxels, each the run's own.
+bool checkSkullFiles(const fs::path& run, const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(run / folder / "skull_density.mhd", ec))) return false;
+  const std::string header = readBytes(inRun(run, folder / "skull_density.mhd"));
+  const size_t key = header.find("ElementDataFile");
+  const size_t equals = key == std::string::npos ? key : header.find('=', key);
+  if (equals == std::string::npos)
+    throw ViewerDataError((run / folder / "skull_density.mhd").string() + ": no ElementDataFile");
+  std::string data = header.substr(equals + 1, header.find('\n', equals) - equals - 1);
+  data.erase(0, data.find_first_not_of(" \t"));
+  data.erase(data.find_last_not_of(" \t\r") + 1);
+  if (data != "LOCAL") {
+    if (data.empty() || data.find('/') != std::string::npos || data == "..")
+      throw ViewerDataError((run / folder / "skull_density.mhd").string() + ": its data file '" + data +
+                            "' is not a file beside it in the run's folder");
+    inRun(run, folder / data);
+  }
+  for (const char* beside : {"skull_volume.json", "skull_removed.csv"})
+    if (fs::exists(fs::symlink_status(run / folder / beside, ec))) inRun(run, folder / beside);
+  return true;
 }
 
 void loadXml(tinyxml2::XMLDocument& document, const fs::path& file, const char* expected) {
@@ -181,10 +233,12 @@ bool readPlots(const fs::path& trace, Plots& plots, double& end) {
   return true;
 }
 
-void writeText(const fs::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  if (!out.flush()) throw ViewerDataError(file.string() + ": cannot be written");
+void writeText(const OutputFolder& folder, const std::string& name, const std::string& text) {
+  try {
+    writeFileAtomically(folder, name, [&](std::ostream& out) { out << text; });
+  } catch (const FileWriteError& e) {
+    throw ViewerDataError(e.what());
+  }
 }
 
 // The .tri bytes of a surface (see the header).
@@ -249,7 +303,7 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
     auto [at, added] = surfaces.try_emplace(file);
     if (added) {
       try {
-        at->second = formats::readVtkPolyDataSurface(run / file);
+        at->second = formats::readVtkPolyDataSurface(inRun(run, file));
       } catch (const formats::FileReadError& e) {
         throw ViewerDataError(e.what());
       }
@@ -350,12 +404,17 @@ BlockLevel simplifyBlocks(const Part& part, const fs::path& run, size_t budget, 
 
 }  // namespace
 
-ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot, const std::string& folder,
+ViewerDataSummary writeViewerData(const fs::path& run, const OutputFolder& dataRoot, const std::string& folder,
                                   size_t index, size_t blockTriangles, uint64_t chunkBytes) {
-  const fs::path data = dataRoot / folder;
+  // Emptied first, and never through a link (OutputFolder).
+  std::string plain = folder;
+  while (plain.ends_with('/')) plain.pop_back();
+  if (!plain.empty()) dataRoot.remove(plain);
+  const OutputFolder data = plain.empty() ? dataRoot : dataRoot.subfolder(plain);
+  if (plain.empty()) data.clear();
   std::vector<fs::path> indexes;
   for (const auto& entry : fs::directory_iterator(run))
-    if (entry.path().extension() == ".pvd") indexes.push_back(entry.path());
+    if (entry.path().extension() == ".pvd") indexes.push_back(inRun(run, entry.path().filename()));
   std::sort(indexes.begin(), indexes.end());
   if (indexes.empty())
     throw ViewerDataError(run.string() + ": no .pvd index (a scene writes one with a VtkExporter component)");
@@ -380,8 +439,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
       if (!part.times.empty() && entry.time < part.times.back())
         throw ViewerDataError(pvd.string() + ": " + entry.file + " goes back in time (" +
                               std::to_string(entry.time) + " s after " + std::to_string(part.times.back()) + " s)");
-      if (!fs::is_regular_file(run / entry.file))
-        throw ViewerDataError(pvd.string() + ": lists " + entry.file + ", which is missing");
+      listedInRun(run, entry.file, pvd);
       part.times.push_back(entry.time);
       part.states.push_back({entry.file, {}, {}});
       times.push_back(entry.time);
@@ -394,8 +452,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
     for (PartState& state : part.states) {
       std::map<int, std::string> blocks = readBlocks(run / state.file, run);
       for (const auto& [block, file] : blocks) {
-        if (!file.empty() && !fs::is_regular_file(run / file))
-          throw ViewerDataError((run / state.file).string() + ": lists " + file + ", which is missing");
+        if (!file.empty()) listedInRun(run, file, run / state.file);
         auto before = previous.find(block);
         if (before == previous.end() ? !file.empty() : before->second != file) state.changes.push_back({block, file});
       }
@@ -414,7 +471,8 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
     // The block files are read once for both levels.
     SurfaceCache surfaces;
     // The skull's volume as the run started, when its exporter wrote it.
-    std::optional<SkullGrid> skullGrid = readSkullGrid(part.folder);
+    std::optional<SkullGrid> skullGrid;
+    if (checkSkullFiles(run, part.folder.lexically_relative(run))) skullGrid = readSkullGrid(part.folder);
     const VoxelGrid* grid = skullGrid ? &skullGrid->grid : nullptr;
     const BlockLevel moving = simplifyBlocks(part, run, blockTriangles, "moving", surfaces, generated, grid);
     const BlockLevel still = simplifyBlocks(part, run, 10 * blockTriangles, "still", surfaces, generated, grid);
@@ -437,6 +495,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
       for (const PartState& state : part.states) files.push_back(run / state.file);
       part.ranges = meshColourRanges(files);
     } else if (part.kind == "blocks") {
+      if (!checkSkullFiles(run, part.folder.lexically_relative(run))) continue;
       if (auto packed = packSkullVolume(part.folder, kVolumeVoxels)) {
         part.volume = part.name + "/volume.vol";
         part.removed = part.name + "/removed.rmv";
@@ -460,8 +519,6 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
   }
 
   // Chunks, in the order the frames first need the files.
-  fs::remove_all(data);
-  fs::create_directories(data);
   std::map<std::string, size_t> chunkOf;
   std::ostringstream chunk;
   uint64_t chunkSize = 0;
@@ -470,7 +527,7 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
     if (chunkEmpty) return;
     char name[32];
     std::snprintf(name, sizeof name, "chunk_%05zu.js", summary.chunks);
-    writeText(data / name, chunk.str() + "});\n");
+    writeText(data, name, chunk.str() + "});\n");
     ++summary.chunks;
     chunk.str("");
     chunkSize = 0;
@@ -514,7 +571,8 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
 
   double end = times.empty() ? 0 : times.back();
   Plots plots;
-  summary.plots = readPlots(run / "trace.csv", plots, end);
+  std::error_code ec;
+  summary.plots = fs::exists(fs::symlink_status(run / "trace.csv", ec)) && readPlots(inRun(run, "trace.csv"), plots, end);
 
   std::ostringstream manifest;
   manifest << "window.trephineRuns = window.trephineRuns || [];\nwindow.trephineRuns[" << index << "] = ";
@@ -580,10 +638,11 @@ ViewerDataSummary writeViewerData(const fs::path& run, const fs::path& dataRoot,
   manifest << ";\n";
   // The run's summary (its events, for the plots and the time slider), as
   // text the viewer parses: JSON.parse, never run as script.
-  if (fs::is_regular_file(run / "summary.json"))
-    manifest << "window.trephineRuns[" << index << "].summary = \"" << JsonWriter::escape(readBytes(run / "summary.json"))
+  if (fs::exists(fs::symlink_status(run / "summary.json", ec)))
+    manifest << "window.trephineRuns[" << index << "].summary = \""
+             << JsonWriter::escape(readBytes(inRun(run, "summary.json")))
              << "\";\n";
-  writeText(data / "manifest.js", manifest.str());
+  writeText(data, "manifest.js", manifest.str());
 
   summary.frames = frames.size();
   summary.parts = parts.size();
@@ -597,8 +656,8 @@ namespace {
 class BrowserRunViewer final : public RunViewer {
  public:
   std::filesystem::path assets() const override { return findViewerAssets(); }
-  ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                    const std::filesystem::path& dataDirectory, const std::string& folder, size_t index,
+  ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory, const OutputFolder& dataDirectory,
+                                    const std::string& folder, size_t index,
                                     size_t blockTriangles) const override {
     return viewer::writeViewerData(runDirectory, dataDirectory, folder, index, blockTriangles);
   }

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "framework/core/OutputFolder.h"
 #include "framework/runtime/RunViewer.h"
 
 namespace trephine::viewer {
@@ -35,7 +36,7 @@ std::shared_ptr<RunViewer> makeRunViewer();
 // Writes `dataDirectory` / `folder` (emptied first) from `runDirectory`, as
 // run `index` of the viewer (RunViewer::writeViewerData).
 ViewerDataSummary writeViewerData(const std::filesystem::path& runDirectory,
-                                  const std::filesystem::path& dataDirectory, const std::string& folder = "",
+                                  const OutputFolder& dataDirectory, const std::string& folder = "",
                                   size_t index = 0, size_t blockTriangles = 8000, uint64_t chunkBytes = 4u << 20);
 
 

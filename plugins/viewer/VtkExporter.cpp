@@ -97,10 +97,15 @@ void VtkExporter::prepare(const RunPlan& plan) {
   m_lastSkullWrite = -INFINITY;
   m_skullEdits = m_skullFiles = 0;
   m_removed.clear();
+  m_folder.reset();
   if (m_root.empty()) return;
-  std::error_code ec;
-  std::filesystem::create_directories(m_root / d_directory.value(), ec);
-  if (ec) throw std::runtime_error("cannot create " + (m_root / d_directory.value()).string() + ": " + ec.message());
+  // Reached from the run's folder without following a link: a `vtk` planted
+  // there as a link to elsewhere is refused, not written into.
+  try {
+    m_folder = OutputFolder::open(m_root).subfolder(d_directory.value());
+  } catch (const FileWriteError& e) {
+    throw std::runtime_error(e.what());
+  }
   if (l_skull) writeSkullVolume();
 }
 
@@ -110,9 +115,9 @@ void VtkExporter::writeSkullVolume() {
   std::copy(m_skullCodes.begin(), m_skullCodes.end(), volume.codes());
   // Not listed in the index (it does not change in time): beside it.
   try {
-    formats::writeMetaImage(volume, m_root / d_directory.value() / "skull_density.mhd", /*compress=*/true);
+    formats::writeMetaImage(volume, OutputPath(*m_folder, "skull_density.mhd"), /*compress=*/true);
     // What the volume alone does not say: the skull's isovalue.
-    writeFileAtomically(m_root / d_directory.value() / "skull_volume.json", [&](std::ostream& out) {
+    writeFileAtomically(*m_folder, "skull_volume.json", [&](std::ostream& out) {
       out.precision(9);
       out << "{\"density\": \"skull_density.mhd\", \"removed\": \"skull_removed.csv\", \"isovalue\": "
           << g.encoding.density(0) + g.encoding.scale * g.isoCode << "}\n";
@@ -126,7 +131,7 @@ void VtkExporter::writeSkullVolume() {
 void VtkExporter::writeRemovedVoxels() {
   const int64_t nx = m_skullGrid.nx, ny = m_skullGrid.ny;
   try {
-    writeFileAtomically(m_root / d_directory.value() / "skull_removed.csv", [&](std::ostream& out) {
+    writeFileAtomically(*m_folder, "skull_removed.csv", [&](std::ostream& out) {
       out << "i,j,k,t\n";
       char line[96];
       for (const RemovedVoxel& r : m_removed) {
@@ -144,7 +149,7 @@ void VtkExporter::writeRemovedVoxels() {
 template <class Write>
 void VtkExporter::attempt(const std::string& file, double t, int part, Write&& write) {
   try {
-    write(m_root / d_directory.value() / file);
+    write(OutputPath(*m_folder, file));
     m_collection.add(t, d_directory.value() + "/" + file, part);
     ++m_files;
   } catch (const std::exception& e) {
@@ -179,7 +184,7 @@ bool VtkExporter::updateBrain() {
 }
 
 void VtkExporter::writeBrain(double t) {
-  attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const std::filesystem::path& f) {
+  attempt(numbered("brain", m_frames, ".vtu"), t, 0, [&](const OutputPath& f) {
     formats::writeTetGrid(m_writtenNodes, *m_cells, {m_displacement, m_force},
                           m_elementStress ? std::vector<formats::VtkDataArray>{m_vonMises} : std::vector<formats::VtkDataArray>{},
                           f);
@@ -216,7 +221,7 @@ void VtkExporter::writeTool(double t) {
                     perPoint("normal", {float(normal.x()), float(normal.y()), float(normal.z())}),
                     perPoint("penetration", {penetration})};
   if (m_toolRadius >= 0) tool.pointData.push_back(perPoint("radius", {float(s.values[m_toolRadius])}));  // mm
-  attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const std::filesystem::path& f) { formats::writePolyData(tool, f); });
+  attempt(numbered("tool", m_frames, ".vtp"), t, 1, [&](const OutputPath& f) { formats::writePolyData(tool, f); });
 }
 
 bool VtkExporter::placeToolSurface(const Sample& s) {
@@ -237,7 +242,7 @@ bool VtkExporter::placeToolSurface(const Sample& s) {
 
 void VtkExporter::writeToolShape(double t) {
   attempt(numbered("toolshape", m_frames, ".vtp"), t, 3,
-          [&](const std::filesystem::path& f) { formats::writePolyData(m_toolShape, f); });
+          [&](const OutputPath& f) { formats::writePolyData(m_toolShape, f); });
 }
 
 bool VtkExporter::applySkullEdits(double t) {
@@ -265,11 +270,6 @@ bool VtkExporter::applySkullEdits(double t) {
 }
 
 void VtkExporter::writeSkull(double t) {
-  const std::string folder = d_directory.value() + "/skull";
-  if (m_skullFiles == 0) {
-    std::error_code ec;
-    std::filesystem::create_directories(m_root / folder, ec);
-  }
   for (size_t b = 0; b < m_blockChanged.size(); ++b) {
     if (!m_blockChanged[b]) continue;
     m_blockChanged[b] = 0;
@@ -283,7 +283,7 @@ void VtkExporter::writeSkull(double t) {
     surface.triangles = mesh.triangles;
     const std::string name = numbered("b" + std::to_string(b), m_frames, ".vtp");
     try {
-      formats::writePolyData(surface, m_root / folder / name);
+      formats::writePolyData(surface, OutputPath(*m_folder, "skull/" + name));
       m_blockFiles[b] = "skull/" + name;
       ++m_files;
     } catch (const std::exception& e) {
@@ -294,7 +294,7 @@ void VtkExporter::writeSkull(double t) {
   std::vector<std::pair<size_t, std::string>> files;
   for (size_t b = 0; b < m_blockFiles.size(); ++b)
     if (!m_blockFiles[b].empty()) files.push_back({b, m_blockFiles[b]});
-  attempt(numbered("skull", m_frames, ".vtm"), t, 2, [&](const std::filesystem::path& f) {
+  attempt(numbered("skull", m_frames, ".vtm"), t, 2, [&](const OutputPath& f) {
     formats::writeMultiBlock(files, f);
   });
   ++m_skullFiles;
@@ -391,7 +391,7 @@ void VtkExporter::finish(FinishContext& context) {
   if (context.outputDirectory().empty() || m_root.empty()) return;
   if (!context.claimOutput(*this, pvdName())) return;
   try {
-    m_collection.write(context.outputDirectory() / pvdName());
+    m_collection.write(OutputPath(OutputFolder::open(context.outputDirectory()), pvdName()));
   } catch (const std::exception& e) {
     context.error(*this, e.what());
   }

@@ -166,6 +166,7 @@ class VtkExporter final : public Component {
   std::vector<uint8_t> m_liveBlockChanged;
 
   std::filesystem::path m_root;  // the run directory, empty: write nothing
+  std::optional<OutputFolder> m_folder;  // its `directory` inside, opened once
   formats::PvdCollection m_collection;
   uint64_t m_frames = 0, m_files = 0, m_failed = 0;
   std::string m_firstFailure;

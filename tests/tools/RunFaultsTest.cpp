@@ -67,7 +67,7 @@ TEST(RunFaultsTest, AFullDiskFailsTheRunLoudlyAndLeavesNoFileCutShort) {
   if (namespaces) {
     status = shell(tmpfs, out);
   } else {
-    status = shell("bash -c " + quote("trap '' XFSZ; ulimit -f 200; exec " + run + " --out " + copied.string()), out);
+    status = shell("bash -c " + quote("ulimit -f 200; exec " + run + " --out " + copied.string()), out);
   }
   EXPECT_EQ(status, 3) << "a run whose outputs cannot be written has failed: " << out;
   EXPECT_NE(out.find(namespaces ? "No space left on device" : "File too large"), std::string::npos) << out;
@@ -87,6 +87,28 @@ TEST(RunFaultsTest, AFullDiskFailsTheRunLoudlyAndLeavesNoFileCutShort) {
   EXPECT_NE(test::readFile(copied / ".trephine-run").find("state incomplete"), std::string::npos);
 }
 
+
+// A file-size limit (ulimit -f, as where a container refuses the tmpfs of the
+// test above) fails a write as a full disk does: the program ignores
+// SIGXFSZ itself, so it is not killed (exit 153) but fails with exit 3 naming
+// the file, and leaves no temporary file behind.
+TEST(RunFaultsTest, AFileSizeLimitFailsTheRunAsAFullDiskDoesNotBySignal) {
+  test::TempDir dir;
+  std::string out;
+  const fs::path run = dir / "run";
+  const int status = shell("bash -c " + quote("ulimit -f 200; exec " + quote(test::programPath().string()) +
+                                              " run " + quote(kPlaneTouch) + " --out " + quote(run.string())),
+                           out);
+  EXPECT_EQ(status, 3) << "killed by SIGXFSZ, or not failed: " << out;
+  EXPECT_NE(out.find("File too large"), std::string::npos) << out;
+  EXPECT_NE(out.find("trace.csv"), std::string::npos) << "the message names the file: " << out;
+  for (const auto& entry : fs::directory_iterator(run))
+    EXPECT_EQ(entry.path().filename().string().find(".partial-"), std::string::npos) << "a temporary file is left";
+  EXPECT_NE(test::readFile(run / ".trephine-run").find("state incomplete"), std::string::npos);
+  // A rerun on an ample disk replaces it whole.
+  ASSERT_EQ(runProgram({"run", kPlaneTouch, "--out", run.string(), "--quiet"}, &out), 0) << out;
+  EXPECT_NE(test::readFile(run / ".trephine-run").find("state finished"), std::string::npos);
+}
 
 // A reader that goes away: stderr and stdout into a pipe closed at once
 // (`| true`). The progress line written after 5 s, and the summary, find no

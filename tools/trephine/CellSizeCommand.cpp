@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include "framework/core/AtomicFile.h"
+#include "framework/core/OutputFolder.h"
 #include "framework/core/Strings.h"
 #include "framework/runtime/JsonWriter.h"
 #include "plugins/tetra_brain/cell_size/CellSizeExperiment.h"
@@ -85,16 +87,18 @@ int cellSizeCommand(const Arguments& a) {
   if (experiment) {
     out = a.get("--out") ? std::filesystem::path(*a.get("--out"))
                          : std::filesystem::path("runs") / ("cellsize-" + std::filesystem::path(meshName).stem().string());
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    std::ofstream csv(out / "cellsize.csv");
+    std::ostringstream csv;
     csv << "cell_size_mm,cells_per_mm,time_us,fitted_us,cell_visits,box_tests,barycentric_tests,contacts,grid_cells\n";
     for (const tetra::CellSizeSample& s : measured->samples)
       csv << number(s.cellSize) << "," << number(1 / s.cellSize) << "," << number(s.timeUs) << ","
           << number(s.fittedUs) << "," << s.perFrame.cellVisits << "," << s.perFrame.boxTests << ","
           << s.perFrame.barycentricTests << "," << s.perFrame.contacts << "," << s.cells << "\n";
-    if (!csv) {
-      std::cerr << "trephine cellsize: cannot write " << (out / "cellsize.csv").string() << "\n";
+    // Written whole or not at all, never through a link (AtomicFile); a
+    // full disk is an error, not an empty file.
+    try {
+      writeFileAtomically(OutputFolder::create(out), "cellsize.csv", [&](std::ostream& file) { file << csv.str(); });
+    } catch (const FileWriteError& e) {
+      std::cerr << "trephine cellsize: " << e.what() << "\n";
       return kRuntimeFailure;
     }
   }
@@ -130,7 +134,12 @@ int cellSizeCommand(const Arguments& a) {
   }
   bool drawn = false;
   if (experiment) {
-    std::ofstream(out / "cellsize.json") << json.str();
+    try {
+      writeFileAtomically(OutputFolder::open(out), "cellsize.json", [&](std::ostream& file) { file << json.str(); });
+    } catch (const FileWriteError& e) {
+      std::cerr << "trephine cellsize: " << e.what() << "\n";
+      return kRuntimeFailure;
+    }
     drawn = runPlotScript("plot_cellsize.py", {(out / "cellsize.csv").string()}, "cellsize.png");
   }
 

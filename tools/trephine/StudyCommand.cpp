@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "framework/core/OutputFolder.h"
 #include "framework/core/Strings.h"
 #include "framework/study/ReferenceChoice.h"
 #include "framework/study/StudyReport.h"
@@ -166,8 +167,12 @@ std::vector<std::string> describerArguments(const StudyRequest& request, int ind
 // process, and its description says so). The files go to `folder`.
 void describeSettings(const StudyRequest& request, const std::vector<int>& indices, int jobs,
                       const std::filesystem::path& folder, std::vector<SettingResolution>& resolutions) {
+  // A folder of this process's own, made new: a link planted at its name is
+  // removed (the link, not what it points at), never written through.
   std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
+  const OutputFolder out = OutputFolder::open(folder.parent_path());
+  out.remove(folder.filename().string());
+  out.subfolder(folder.filename());
   const auto fileOf = [&](int index) { return folder / (std::to_string(index + 1) + ".txt"); };
   std::map<pid_t, int> running;
   size_t next = 0;
@@ -186,17 +191,22 @@ void describeSettings(const StudyRequest& request, const std::vector<int>& indic
     running.erase(ended);
   }
   for (const int index : indices) resolutions[size_t(index)] = readSettingResolution(fileOf(index));
-  std::filesystem::remove_all(folder, ec);
+  out.remove(folder.filename().string());
 }
 
 // A worker that ended without saying why (killed, crashed, not started)
 // leaves error.txt, so that nobody waits for its setting.
 void recordAbnormalEnd(const StudyRequest& request, int index, const std::string& why) {
-  const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
+  std::filesystem::path directory;
+  try {
+    directory = settingFolder(request.options.out, request.settings[index]);
+  } catch (const FileWriteError& e) {
+    std::cerr << "trephine: " << e.what() << "\n";
+    return;
+  }
   std::error_code ec;
   if (std::filesystem::exists(directory / kResultFile, ec) || std::filesystem::exists(directory / kErrorFile, ec))
     return;  // the worker removed the earlier study's files first, so these are its own
-  std::filesystem::create_directories(directory, ec);
   writeSettingError(directory, request.settings[index].label() + ": " + why);
 }
 
@@ -335,6 +345,13 @@ int studyCommand(const Arguments& a) {
     std::cerr << "trephine: --out " << request->options.out.string() << ": cannot create a directory there\n";
     return kSceneError;
   }
+  // Every setting's folder is the study's own before anything runs: a link
+  // planted among them (settings/002 to elsewhere) stops the study here.
+  for (const StudySetting& setting : request->settings)
+    if (const std::string problem = settingFolderProblem(request->options.out, setting); !problem.empty()) {
+      std::cerr << "trephine: --out " << request->options.out.string() << ": " << problem << "\n";
+      return kSceneError;
+    }
   std::vector<SettingResolution> resolutions(request->settings.size());
   const std::filesystem::path describing =
       request->options.out / (".describe-" + std::to_string(getpid()));

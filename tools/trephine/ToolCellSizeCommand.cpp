@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include "framework/core/AtomicFile.h"
+#include "framework/core/OutputFolder.h"
 #include "framework/core/Strings.h"
 #include "framework/runtime/JsonWriter.h"
 #include "plugins/haptics/ShellSampling.h"
@@ -102,9 +104,7 @@ int toolCellSizeCommand(const Arguments& a) {
     out = a.get("--out") ? std::filesystem::path(*a.get("--out"))
                          : std::filesystem::path("runs") /
                                ("cellsize-tool-" + std::filesystem::path(meshName).stem().string());
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    std::ofstream csv(out / "tool_cellsize.csv");
+    std::ostringstream csv;
     csv << "cell_size_mm,time_ns,fitted_ns,cells,listed,overlapping,point_tests,predicted_cells,predicted_listed,"
            "predicted_overlapping,predicted_point_tests,grid_cells,grid_entries\n";
     for (const tetra::ToolQuerySample& s : measured->samples)
@@ -113,8 +113,12 @@ int toolCellSizeCommand(const Arguments& a) {
           << "," << number(s.measured.pointTests) << "," << number(s.predicted.cells) << ","
           << number(s.predicted.listed) << "," << number(s.predicted.overlapping) << ","
           << number(s.predicted.pointTests) << "," << s.gridCells << "," << s.gridEntries << "\n";
-    if (!csv) {
-      std::cerr << "trephine cellsize: cannot write " << (out / "tool_cellsize.csv").string() << "\n";
+    // Written whole or not at all, never through a link (AtomicFile); a
+    // full disk is an error, not an empty file.
+    try {
+      writeFileAtomically(OutputFolder::create(out), "tool_cellsize.csv", [&](std::ostream& file) { file << csv.str(); });
+    } catch (const FileWriteError& e) {
+      std::cerr << "trephine cellsize: " << e.what() << "\n";
       return kRuntimeFailure;
     }
   }
@@ -149,7 +153,12 @@ int toolCellSizeCommand(const Arguments& a) {
   }
   bool drawn = false;
   if (experiment) {
-    std::ofstream(out / "tool_cellsize.json") << json.str();
+    try {
+      writeFileAtomically(OutputFolder::open(out), "tool_cellsize.json", [&](std::ostream& file) { file << json.str(); });
+    } catch (const FileWriteError& e) {
+      std::cerr << "trephine cellsize: " << e.what() << "\n";
+      return kRuntimeFailure;
+    }
     drawn = runPlotScript("plot_cellsize.py", {(out / "tool_cellsize.csv").string()}, "tool_cellsize.png");
   }
   if (a.has("--json")) {

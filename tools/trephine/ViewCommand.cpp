@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "framework/core/AtomicFile.h"
+#include "framework/core/FolderInput.h"
+#include "framework/core/OutputFolder.h"
 #include "framework/runtime/RunFolder.h"
 #include "framework/core/PluginLoader.h"
 #include "framework/core/Registry.h"
@@ -57,11 +59,13 @@ constexpr size_t kMostRuns = 6;
 // The runs a positional argument names: a run's folder, or a study's (its
 // settings' runs, settings/NNN, in order).
 std::vector<fs::path> runsNamed(const fs::path& path) {
+  // A study's own folders only: a link among them is not followed.
   std::error_code ec;
-  if (!fs::is_regular_file(path / "study.csv", ec) || !fs::is_directory(path / "settings", ec)) return {path};
+  if (!fs::is_regular_file(path / "study.csv", ec) || !fs::is_directory(fs::symlink_status(path / "settings", ec)))
+    return {path};
   std::vector<fs::path> runs;
   for (const auto& entry : fs::directory_iterator(path / "settings", ec))
-    if (entry.is_directory()) runs.push_back(entry.path());
+    if (entry.is_directory() && !entry.is_symlink()) runs.push_back(entry.path());
   std::sort(runs.begin(), runs.end());
   return runs;
 }
@@ -139,15 +143,19 @@ int viewCommand(const Arguments& arguments) {
       }
       triangles = size_t(n);
     }
-    fs::create_directories(view);
+    // The viewer's folder as --out names it, or the run's (or study's) own
+    // `view`, reached without following a link: a `view` planted as a link
+    // to another folder is refused, never emptied or written into.
+    const OutputFolder viewFolder = out ? OutputFolder::create(view)
+                                        : OutputFolder::open(view.parent_path()).subfolder(view.filename());
     std::string manifests;  // side by side: every run's, in data/manifest.js
-    if (!single) fs::remove_all(view / "data");
+    viewFolder.remove("data");
+    const OutputFolder data = viewFolder.subfolder("data");
     for (size_t k = 0; k < runs.size(); ++k) {
       const std::string folder = single ? "" : "run_" + std::to_string(k) + "/";
-      const ViewerDataSummary summary = viewer->writeViewerData(runs[k], view / "data", folder, k, triangles);
+      const ViewerDataSummary summary = viewer->writeViewerData(runs[k], data, folder, k, triangles);
       if (!single) {
-        std::ifstream in(view / "data" / folder / "manifest.js", std::ios::binary);
-        manifests += std::string(std::istreambuf_iterator<char>(in), {});
+        manifests += readRegularFile(view / "data" / folder / "manifest.js", size_t(1) << 30);
         std::cout << "run " << k << "     " << runs[k].string() << "\n";
       }
       std::cout << "          " << summary.frames << " frames over " << summary.end << " s, " << summary.parts
@@ -163,17 +171,26 @@ int viewCommand(const Arguments& arguments) {
                   << (summary.drilledCell > 0 ? "at " + std::to_string(summary.drilledCell) + " mm" : "whole")
                   << "; --triangles sets it), " << summary.stillTriangles << " when still\n";
     }
-    if (!single) writeFileAtomically(view / "data" / "manifest.js", [&](std::ostream& out) { out << manifests; });
-    for (const char* file : {"index.html", "viewer.js"})
-      fs::copy_file(assets / file, view / file, fs::copy_options::overwrite_existing);
-    // The licences of what the bundle holds, when the build wrote them.
-    if (fs::is_regular_file(assets / "viewer.js.LICENSES.txt", ec))
-      fs::copy_file(assets / "viewer.js.LICENSES.txt", view / "viewer.js.LICENSES.txt", fs::copy_options::overwrite_existing);
+    if (!single) writeFileAtomically(data, "manifest.js", [&](std::ostream& out) { out << manifests; });
+    // Copied as new files renamed into place: a link at index.html or
+    // viewer.js is replaced, never written through. The licences of what
+    // the bundle holds go too, when the build wrote them.
+    for (const char* file : {"index.html", "viewer.js", "viewer.js.LICENSES.txt"}) {
+      if (!fs::is_regular_file(assets / file, ec) && std::string(file) == "viewer.js.LICENSES.txt") continue;
+      const std::string bytes = readRegularFile(assets / file, size_t(1) << 30);
+      writeFileAtomically(viewFolder, file, [&](std::ostream& out) { out << bytes; });
+    }
     std::cout << "viewer    " << (view / "index.html").string() << " (open it in a browser"
               << (single ? "" : "; the runs side by side on one clock") << ")\n";
   } catch (const ViewerDataError& e) {
     std::cerr << "trephine view: " << e.what() << "\n";
     return kSceneError;
+  } catch (const FolderInputError& e) {
+    std::cerr << "trephine view: " << e.what() << "\n";
+    return kSceneError;
+  } catch (const FileWriteError& e) {
+    std::cerr << "trephine view: " << e.what() << "\n";
+    return kRuntimeFailure;
   } catch (const fs::filesystem_error& e) {
     std::cerr << "trephine view: " << e.what() << "\n";
     return kRuntimeFailure;

@@ -1,5 +1,6 @@
 // trephine: run, validate and document scenes.
 #include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <string>
 #include <string_view>
@@ -217,6 +218,10 @@ bool asksForHelp(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) is a write that fails, as a full disk's
+  // does: the write returns EFBIG and the output that could not be written
+  // is named, instead of the process being killed with nothing said.
+  std::signal(SIGXFSZ, SIG_IGN);
   if (argc < 2) {
     writeHelp(std::cerr);
     return kUsage;

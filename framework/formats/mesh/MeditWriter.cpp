@@ -17,7 +17,8 @@ constexpr size_t kFlushBytes = size_t(1) << 20;
 // Buffers text and passes it to the file, through a gzip stream when asked.
 class MeshTextOutput {
  public:
-  MeshTextOutput(const std::filesystem::path& file, bool gzip) : m_file(file), m_gzip(gzip) {
+  MeshTextOutput(const OutputPath& output, bool gzip) : m_file(output), m_gzip(gzip) {
+    const std::filesystem::path file = output.path();
     m_buffer.reserve(kFlushBytes + 256);
     if (!m_gzip) return;
     // windowBits 15 + 16: a gzip wrapper, which the readers (and gunzip) expect of a .gz file.
@@ -104,9 +105,10 @@ void checkWritable(const TetMesh& mesh, const std::filesystem::path& file) {
 
 }  // namespace
 
-void writeMeditMesh(const TetMesh& mesh, const std::filesystem::path& file) {
+void writeMeditMesh(const TetMesh& mesh, const OutputPath& output) {
+  const std::filesystem::path file = output.path();
   checkWritable(mesh, file);
-  MeshTextOutput out(file, file.extension() == ".gz");
+  MeshTextOutput out(output, file.extension() == ".gz");
   out.text("MeshVersionFormatted 2");
   out.endRecord();
   out.text("Dimension 3");

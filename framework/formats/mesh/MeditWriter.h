@@ -24,6 +24,6 @@ using TetMeshWriteError = FileWriteError;
 // temporary one. Refuses meshes the readers would refuse (no tetrahedra,
 // corners out of range, non-finite coordinates, a label count that is not the
 // tetrahedron count). Throws TetMeshWriteError.
-void writeMeditMesh(const TetMesh& mesh, const std::filesystem::path& file);
+void writeMeditMesh(const TetMesh& mesh, const OutputPath& file);
 
 }  // namespace trephine::formats

@@ -7,8 +7,8 @@
 
 namespace trephine::formats {
 
-void writeVtuMesh(const TetMesh& mesh, const std::filesystem::path& file) {
-  if (mesh.tets.empty()) throw FileWriteError(file, "the mesh has no tetrahedra");
+void writeVtuMesh(const TetMesh& mesh, const OutputPath& file) {
+  if (mesh.tets.empty()) throw FileWriteError(file.path(), "the mesh has no tetrahedra");
   VtkTetGrid grid;
   grid.points = mesh.nodes;
   grid.tets = mesh.tets;
@@ -21,11 +21,11 @@ bool isWritableTetMeshName(const std::string& name) {
   return name.ends_with(".vtu") || name.ends_with(".mesh") || name.ends_with(".mesh.gz");
 }
 
-void writeTetMeshFile(const TetMesh& mesh, const std::filesystem::path& file) {
-  const std::string name = file.filename().string();
+void writeTetMeshFile(const TetMesh& mesh, const OutputPath& file) {
+  const std::string name = file.relative().filename().string();
   if (name.ends_with(".vtu")) return writeVtuMesh(mesh, file);
   if (name.ends_with(".mesh") || name.ends_with(".mesh.gz")) return writeMeditMesh(mesh, file);
-  throw FileWriteError(file, "unknown mesh format: expected a name ending in .vtu, .mesh or .mesh.gz");
+  throw FileWriteError(file.path(), "unknown mesh format: expected a name ending in .vtu, .mesh or .mesh.gz");
 }
 
 }  // namespace trephine::formats

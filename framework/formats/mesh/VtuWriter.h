@@ -13,11 +13,11 @@ namespace trephine::formats {
 
 // Written through a temporary file and renamed into place (AtomicFile).
 // Throws FileWriteError.
-void writeVtuMesh(const TetMesh& mesh, const std::filesystem::path& file);
+void writeVtuMesh(const TetMesh& mesh, const OutputPath& file);
 
 // A mesh to the file its name asks for: .vtu, or Medit for .mesh and .mesh.gz.
 // Throws FileWriteError (an unknown extension included).
-void writeTetMeshFile(const TetMesh& mesh, const std::filesystem::path& file);
+void writeTetMeshFile(const TetMesh& mesh, const OutputPath& file);
 // Whether writeTetMeshFile knows the extension of `name`.
 bool isWritableTetMeshName(const std::string& name);
 

@@ -95,7 +95,8 @@ std::string headerText(const DensityVolume& volume, bool compressed, uint64_t co
 
 }  // namespace
 
-void writeMetaImage(const DensityVolume& volume, const std::filesystem::path& file, bool compress) {
+void writeMetaImage(const DensityVolume& volume, const OutputPath& output, bool compress) {
+  const std::filesystem::path file = output.path();
   const std::string extension = file.extension().string();
   const bool local = extension == ".mha";
   if (!local && extension != ".mhd")
@@ -113,7 +114,7 @@ void writeMetaImage(const DensityVolume& volume, const std::filesystem::path& fi
   };
 
   if (local) {
-    AtomicFile out(file);
+    AtomicFile out(output);
     out.write(headerText(volume, compress, compressed.size(), "LOCAL"));
     writeSamples(out);
     out.commit();
@@ -121,11 +122,11 @@ void writeMetaImage(const DensityVolume& volume, const std::filesystem::path& fi
   }
   const std::filesystem::path dataFile = file.stem().string() + (compress ? ".zraw" : ".raw");
   {
-    AtomicFile data(file.parent_path() / dataFile);
+    AtomicFile data(output.beside(dataFile.string()));
     writeSamples(data);
     data.commit();
   }
-  AtomicFile header(file);
+  AtomicFile header(output);
   header.write(headerText(volume, compress, compressed.size(), dataFile.string()));
   header.commit();
 }

@@ -18,6 +18,6 @@ using VolumeWriteError = FileWriteError;  // the message starts with the file
 // the header plus <stem>.raw, or <stem>.zraw when `compress` (zlib). Each file
 // is written under a temporary name and renamed into place, so a failed write
 // leaves no partial file. Throws VolumeWriteError naming the file.
-void writeMetaImage(const DensityVolume& volume, const std::filesystem::path& file, bool compress);
+void writeMetaImage(const DensityVolume& volume, const OutputPath& file, bool compress);
 
 }  // namespace trephine::formats

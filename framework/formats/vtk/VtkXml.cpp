@@ -127,7 +127,7 @@ std::string cells(std::span<const std::array<int32_t, N>> cells, size_t points, 
 }
 
 void writeFile(const std::string& type, const std::string& body, const Appended& appended,
-               const std::filesystem::path& file) {
+               const OutputPath& file) {
   AtomicFile out(file);
   out.write("<?xml version=\"1.0\"?>\n<VTKFile type=\"" + type +
             "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
@@ -140,7 +140,8 @@ void writeFile(const std::string& type, const std::string& body, const Appended&
 
 }  // namespace
 
-void writePolyData(const VtkPolyData& data, const std::filesystem::path& file) {
+void writePolyData(const VtkPolyData& data, const OutputPath& output) {
+  const std::filesystem::path file = output.path();
   Appended appended;
   const size_t n = data.points.size();
   std::string body = "<Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfVerts=\"" +
@@ -154,7 +155,7 @@ void writePolyData(const VtkPolyData& data, const std::filesystem::path& file) {
   body += "<Lines>\n" + cells<2>(data.lines, n, appended, file) + "</Lines>\n";
   body += "<Polys>\n" + cells<3>(data.triangles, n, appended, file) + "</Polys>\n";
   body += "</Piece>\n";
-  writeFile("PolyData", body, appended, file);
+  writeFile("PolyData", body, appended, output);
 }
 
 VtkTetCells::VtkTetCells(std::span<const std::array<int32_t, 4>> tets, std::span<const int32_t> labels, size_t points)
@@ -180,18 +181,19 @@ VtkTetCells::VtkTetCells(std::span<const std::array<int32_t, 4>> tets, std::span
     m_labels = packed({reinterpret_cast<const uint8_t*>(labels.data()), labels.size() * sizeof(int32_t)});
 }
 
-void writeTetGrid(const VtkTetGrid& grid, const std::filesystem::path& file) {
+void writeTetGrid(const VtkTetGrid& grid, const OutputPath& file) {
   try {
     const VtkTetCells cells(grid.tets, grid.labels, grid.points.size());
     writeTetGrid(grid.points, cells, grid.pointData, grid.cellData, file, grid.precision);
   } catch (const std::invalid_argument& e) {
-    throw FileWriteError(file, e.what());
+    throw FileWriteError(file.path(), e.what());
   }
 }
 
 void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const std::vector<VtkDataArray>& pointData,
-                  const std::vector<VtkDataArray>& cellData, const std::filesystem::path& file,
+                  const std::vector<VtkDataArray>& cellData, const OutputPath& output,
                   PointPrecision precision) {
+  const std::filesystem::path file = output.path();
   if (points.size() != cells.m_points)
     throw FileWriteError(file, std::to_string(points.size()) + " points for cells of " +
                                    std::to_string(cells.m_points));
@@ -211,10 +213,10 @@ void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const 
           appended.packedArray("Int32", named("offsets"), 1, cells.m_offsets) +
           appended.packedArray("UInt8", named("types"), 1, cells.m_types) + "</Cells>\n";
   body += "</Piece>\n";
-  writeFile("UnstructuredGrid", body, appended, file);
+  writeFile("UnstructuredGrid", body, appended, output);
 }
 
-void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, const std::filesystem::path& file) {
+void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, const OutputPath& file) {
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n"
                     "<vtkMultiBlockDataSet>\n";
   for (const auto& [index, name] : blocks)
@@ -227,7 +229,8 @@ void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, 
 
 void PvdCollection::add(double time, const std::string& file, int part) { m_entries.push_back({time, file, part}); }
 
-void PvdCollection::write(const std::filesystem::path& file) const {
+void PvdCollection::write(const OutputPath& output) const {
+  const std::filesystem::path file = output.path();
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const Entry& e : m_entries) {
     if (!std::isfinite(e.time)) throw FileWriteError(file, "a dataset of " + e.file + " has a non-finite time");
@@ -235,7 +238,7 @@ void PvdCollection::write(const std::filesystem::path& file) const {
            escaped(e.file) + "\"/>\n";
   }
   xml += "</Collection>\n</VTKFile>\n";
-  AtomicFile out(file);
+  AtomicFile out(output);
   out.write(xml);
   out.commit();
 }

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "framework/core/OutputFolder.h"
 #include "framework/math/Math.h"
 
 namespace trephine::formats {
@@ -60,17 +61,17 @@ class VtkTetCells {
 
  private:
   friend void writeTetGrid(std::span<const Vec3>, const VtkTetCells&, const std::vector<VtkDataArray>&,
-                           const std::vector<VtkDataArray>&, const std::filesystem::path&, PointPrecision);
+                           const std::vector<VtkDataArray>&, const OutputPath&, PointPrecision);
   size_t m_tets = 0, m_points = 0;
   std::string m_connectivity, m_offsets, m_types, m_labels;  // header and zlib blocks each
 };
 
 // Throws FileWriteError (the file and what failed: an index out of range, an
 // array of the wrong length, a non-finite coordinate, the disk).
-void writePolyData(const VtkPolyData& data, const std::filesystem::path& file);
-void writeTetGrid(const VtkTetGrid& grid, const std::filesystem::path& file);
+void writePolyData(const VtkPolyData& data, const OutputPath& file);
+void writeTetGrid(const VtkTetGrid& grid, const OutputPath& file);
 void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const std::vector<VtkDataArray>& pointData,
-                  const std::vector<VtkDataArray>& cellData, const std::filesystem::path& file,
+                  const std::vector<VtkDataArray>& cellData, const OutputPath& file,
                   PointPrecision precision = PointPrecision::kFloat32);
 
 // A .vtm multiblock index: one dataset made of the files listed (relative to
@@ -78,7 +79,7 @@ void writeTetGrid(std::span<const Vec3> points, const VtkTetCells& cells, const 
 // an empty block), for a surface written block by block where only the
 // changed blocks get new files: a block keeps its index while others empty
 // or fill.
-void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, const std::filesystem::path& file);
+void writeMultiBlock(const std::vector<std::pair<size_t, std::string>>& blocks, const OutputPath& file);
 
 // A .pvd collection: ParaView plays its datasets in time order, parts drawn together.
 class PvdCollection {
@@ -86,7 +87,7 @@ class PvdCollection {
   // `file` relative to the .pvd's directory; `time` in s.
   void add(double time, const std::string& file, int part = 0);
   size_t size() const { return m_entries.size(); }
-  void write(const std::filesystem::path& file) const;
+  void write(const OutputPath& file) const;
 
  private:
   struct Entry {
