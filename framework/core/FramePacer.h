@@ -17,8 +17,10 @@ class TREPHINE_INTERFACE FramePacer {
   // Whether this component paces its group in this scene (a field's choice).
   virtual bool pacesFrames() const = 0;
   // Whether the input for the next frame has come. Polled by the group's
-  // thread between frames: cheap, never blocks, never allocates.
-  virtual bool frameInputWaiting() const = 0;
+  // thread between frames: cheap, never blocks, never allocates. It may
+  // read and judge what came (bounded work a call), so that only valid
+  // input starts a frame: junk never paces the group.
+  virtual bool frameInputWaiting() = 0;
 };
 
 }  // namespace trephine

@@ -285,8 +285,11 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     const Event& e = events[i];
     ++kinds[e.kind];
     const std::string_view kind = e.kind;
+    // A device that takes none of the forces sent, or a bridge lost under the run.
+    const bool deviceUnheard = (kind == "bridge_forces_unheard" && std::string_view(e.detail) != "recovered") ||
+                               kind == "bridge_lost";
     if ((kind == "tool_starts_inside" || kind == "haptic_released" || kind == "fem_diverged" ||
-         kind == "tick_failed") &&
+         kind == "tick_failed" || deviceUnheard) &&
         told++ < 5)
       out << "warning   " << std::setprecision(3) << e.t << " s, " << sourcePath(simulation, e.source) << ": "
           << e.kind << (*e.detail ? std::string(": ") + e.detail : std::string()) << "\n";

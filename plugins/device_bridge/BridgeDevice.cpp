@@ -15,6 +15,13 @@ void BridgeDevice::init(InitContext& context) {
 void BridgeDevice::prepare(const RunPlan& plan) {
   HapticDevice::prepare(plan);
   trephine_bridge_watchdog_init(&m_watchdog, d_connection.timeout.value(), d_connection.rampTime.value());
+  // A session of this run's own, its forces numbered from 1 in it: a device
+  // program that kept running takes them once the earlier run went quiet.
+  m_receiver.reset(d_connection.timeout.value());
+  m_session = trephine_bridge_new_session();
+  m_forceSequence = 0;
+  m_heardForce = m_heardAtNs = 0;
+  m_forcesUnheard = m_transportFailed = false;
   // In virtual time (validate, a run without --realtime) nothing is opened: the load warned.
   if (plan.realtime) m_transport = d_connection.open();  // throws, naming what failed
 }
@@ -25,11 +32,23 @@ DeviceSample BridgeDevice::readSample(double t) {
     ++m_framesBeforeDevice;
     return DeviceSample{t};
   }
+  if (const char* failure = m_transport->failure(); failure && !m_transportFailed) {
+    m_transportFailed = true;  // no pose comes from now: the watchdog takes the force to zero
+    if (EventLog* events = tickEvents()) events->log(t, "bridge_lost", failure, this);
+  }
   trephine_bridge_address from{};
-  const std::optional<trephine_bridge_pose> pose = m_receiver.takeNewest(*m_transport, &from);
+  const std::optional<trephine_bridge_pose> pose = m_receiver.takeNewest(*m_transport, now, &from);
   m_newPose = pose.has_value();
   if (pose) {
-    if (!m_transport->hasPeer()) m_transport->lockPeer(from);
+    m_transport->followPeer(from);
+    const bool restarted = m_receiver.takeRestart();
+    if (restarted) {
+      // A device program started again: its hand is where it is now.
+      ++m_deviceRestarts;
+      forgetLastSample();
+      if (EventLog* events = tickEvents()) events->log(t, "bridge_device_restarted", "", this);
+    }
+    checkForcesHeard(*pose, now, t);
     const bool wasQuiet = m_watchdog.tripped;
     trephine_bridge_watchdog_heard(&m_watchdog, now);
     // What the device measured for its previous pose: the round trip, or 0
@@ -67,6 +86,30 @@ DeviceSample BridgeDevice::readSample(double t) {
   return sample;
 }
 
+void BridgeDevice::checkForcesHeard(const trephine_bridge_pose& pose, uint64_t now, double t) {
+  if (m_forcesSent == 0) return;
+  if (pose.heard_session == m_session && trephine_bridge_is_newer(m_heardForce, pose.heard_sequence)) {
+    m_heardForce = pose.heard_sequence;
+    m_heardAtNs = now;
+    if (m_forcesUnheard) {
+      m_forcesUnheard = false;
+      if (EventLog* events = tickEvents()) events->log(t, "bridge_forces_unheard", "recovered", this);
+    }
+    return;
+  }
+  // The device answers with poses but takes none of this run's forces: it
+  // commands something else (another simulation's, or zero).
+  const uint64_t timeout = static_cast<uint64_t>(d_connection.timeout.value() * 1e9);
+  if (now - m_heardAtNs <= timeout) return;
+  ++m_unheardFrames;
+  if (m_forcesUnheard) return;
+  m_forcesUnheard = true;
+  ++m_unheardEpisodes;
+  if (EventLog* events = tickEvents())
+    events->log(t, "bridge_forces_unheard", "the device takes none of this run's forces", this,
+                static_cast<double>(now - m_heardAtNs) * 1e-6);
+}
+
 void BridgeDevice::applyForce(const Vec3& force_N) {
   HapticDevice::applyForce(force_N);
   if (!m_connected || !m_transport) return;
@@ -78,6 +121,7 @@ void BridgeDevice::applyForce(const Vec3& force_N) {
 
   trephine_bridge_force packet{};
   packet.sequence = ++m_forceSequence;
+  packet.session = m_session;
   packet.answered_sequence = m_latest.sequence;
   packet.answered_device_time_ns = m_latest.device_time_ns;
   for (int i = 0; i < 3; ++i) packet.force_n[i] = sent[i];
@@ -91,7 +135,7 @@ void BridgeDevice::applyForce(const Vec3& force_N) {
     ++m_sendFailures;
     return;
   }
-  ++m_forcesSent;
+  if (m_forcesSent++ == 0) m_heardAtNs = now;  // the device has its timeout to take the first
   if (m_newPose) m_poseToForce.record(now - m_latestArrivalNs);
 }
 
@@ -101,6 +145,7 @@ void BridgeDevice::finish(FinishContext& context) {
   if (m_connected && m_transport) {
     trephine_bridge_force packet{};
     packet.sequence = ++m_forceSequence;
+    packet.session = m_session;
     packet.answered_sequence = m_latest.sequence;
     packet.answered_device_time_ns = m_latest.device_time_ns;
     packet.simulation_time_ns = monotonicNs();
@@ -127,6 +172,10 @@ void BridgeDevice::reportCounters(std::vector<Counter>& counters) const {
   add("round_trip_p99_us", rt.p99);
   add("round_trip_max_us", rt.max);
   add("unanswered_poses", static_cast<double>(m_unansweredPoses));
+  add("device_restarts", static_cast<double>(m_deviceRestarts));
+  add("forces_unheard_episodes", static_cast<double>(m_unheardEpisodes));
+  add("forces_unheard_frames", static_cast<double>(m_unheardFrames));
+  add("transport_lost", m_transportFailed ? 1.0 : 0.0);
   const TimingSummary here = m_poseToForce.summary();
   add("pose_to_force_p50_us", here.p50);
   add("pose_to_force_p99_us", here.p99);

@@ -19,6 +19,7 @@
 #include "framework/runtime/TimingHistogram.h"
 #include "plugins/device_bridge/BridgeConnection.h"
 #include "plugins/device_bridge/BridgeReceiver.h"
+#include "plugins/device_bridge/MonotonicClock.h"
 #include "trephine_bridge_watchdog.h"
 
 namespace trephine::device_bridge {
@@ -36,7 +37,9 @@ class BridgeDevice final : public HapticDevice, public FramePacer {
 
   bool outsideTheProcess() const override { return true; }
   bool pacesFrames() const override { return d_pace.value(); }
-  bool frameInputWaiting() const override { return m_transport && m_transport->waiting(); }
+  // Only a valid pose of the device's session paces a frame: junk is read
+  // and counted here (a batch a poll), never taken for input.
+  bool frameInputWaiting() override { return m_transport && m_receiver.poll(*m_transport, monotonicNs()); }
 
   // The force last sent to the device (N), after the watchdog and the limit.
   const Vec3& sentForce() const { return m_sentForce; }
@@ -61,7 +64,13 @@ class BridgeDevice final : public HapticDevice, public FramePacer {
                                 "scene (a device's origin is the middle of its workspace)",
                         .unit = "mm"}};
 
+  // Whether the device takes this run's forces (the session and last force
+  // sequence its poses say it took); notes when it stops and starts again.
+  void checkForcesHeard(const trephine_bridge_pose& pose, uint64_t now, double t);
+
   std::unique_ptr<BridgeTransport> m_transport;
+  bool m_transportFailed = false;
+  uint64_t m_session = 0;  // this run's, in every force it sends
   BridgeReceiver<trephine_bridge_pose> m_receiver{trephine_bridge_decode_pose};
   trephine_bridge_watchdog m_watchdog{};
   trephine_bridge_pose m_latest{};
@@ -72,6 +81,11 @@ class BridgeDevice final : public HapticDevice, public FramePacer {
   uint64_t m_forceSequence = 0;
   uint64_t m_forcesSent = 0, m_sendFailures = 0, m_forcesLimited = 0, m_framesBeforeDevice = 0;
   uint64_t m_unansweredPoses = 0;    // the device said the force for its previous pose came too late
+  uint64_t m_deviceRestarts = 0;     // device programs started again on the channel (new sessions)
+  uint64_t m_heardForce = 0;         // the last of this run's force sequences the device said it took
+  uint64_t m_heardAtNs = 0;          // when it last moved on (or the first force went)
+  bool m_forcesUnheard = false;      // forces go out but the device has not taken one for `timeout`
+  uint64_t m_unheardEpisodes = 0, m_unheardFrames = 0;
   TimingHistogram m_deviceRoundTrip;  // as the device measured it (ns)
   TimingHistogram m_poseToForce;      // here, from taking a pose to sending its force (ns)
 };

@@ -19,14 +19,24 @@ void BridgeDeviceSide::prepare(const RunPlan& plan) {
   m_frames.assign(d_record.value() ? plan.callsAt(rateHz()) : 0, Frame{});
   m_frameCount = 0;
   trephine_bridge_watchdog_init(&m_watchdog, d_connection.timeout.value(), d_connection.rampTime.value());
+  // A session of this run's own: a simulation that kept running takes this
+  // side's poses from their new start once the earlier session went quiet.
+  m_receiver.reset(d_connection.timeout.value());
+  m_session = trephine_bridge_new_session();
+  m_poseSequence = 0;
+  m_posesSent = 0;
+  m_heard = false;
   // In virtual time the device side sends nothing: the simulation it talks to runs in wall time.
   m_transport.reset();
   if (plan.realtime) m_transport = d_connection.open();
 }
 
-void BridgeDeviceSide::takeForces(uint64_t now) {
-  const std::optional<trephine_bridge_force> force = m_receiver.takeNewest(*m_transport);
+void BridgeDeviceSide::takeForces(uint64_t now, const TickContext& context) {
+  const std::optional<trephine_bridge_force> force = m_receiver.takeNewest(*m_transport, now);
   if (!force) return;
+  // A simulation started again on the channel: its forces count from its new start.
+  if (m_receiver.takeRestart() && context.events)
+    context.events->log(context.t, "bridge_simulation_restarted", "", this);
   trephine_bridge_watchdog_heard(&m_watchdog, now);
   m_heard = true;
   m_latest = *force;
@@ -44,7 +54,7 @@ void BridgeDeviceSide::tick(const TickContext& context) {
   HapticDevice& device = *l_device;
   const DeviceState& state = device.state();
   uint64_t now = monotonicNs();
-  takeForces(now);  // what came since the last frame (a late answer)
+  takeForces(now, context);  // what came since the last frame (a late answer)
   if (state.valid) {
     trephine_bridge_pose pose{};
     pose.sequence = m_poseSequence + 1;
@@ -56,6 +66,10 @@ void BridgeDeviceSide::tick(const TickContext& context) {
     pose.orientation_wxyz[2] = q.y();
     pose.orientation_wxyz[3] = q.z();
     pose.buttons = state.buttons;
+    pose.session = m_session;
+    // Which of the simulation's forces this side takes: so it knows it is heard.
+    pose.heard_session = m_receiver.stream().session;
+    pose.heard_sequence = m_receiver.stream().sequence;
     pose.round_trip_ns = m_answered ? m_lastRoundTripNs : 0;
     if (m_posesSent > 0) {
       if (m_answered) {
@@ -75,7 +89,7 @@ void BridgeDeviceSide::tick(const TickContext& context) {
       const double wait = std::min(d_awaitAnswer.value(), 0.5 / rateHz());
       const uint64_t until = now + static_cast<uint64_t>(wait * 1e9);
       while (!m_answered && now < until) {
-        if (m_transport->waiting()) takeForces(now = monotonicNs());
+        if (m_transport->waiting()) takeForces(now = monotonicNs(), context);
         now = monotonicNs();
       }
     } else {

@@ -39,7 +39,7 @@ class BridgeDeviceSide final : public Component {
  private:
   // Takes the newest force that came, feeding the watchdog; notes the round
   // trip when it answers the pose just sent.
-  void takeForces(uint64_t now);
+  void takeForces(uint64_t now, const TickContext& context);
 
   Link<HapticDevice> l_device{this, "device", {.help = "The device whose poses are sent and which is commanded "
                                                         "the forces that come back", .required = true}};
@@ -78,6 +78,7 @@ class BridgeDeviceSide final : public Component {
   bool m_heard = false;
   Vec3 m_commanded = Vec3::Zero();
   uint64_t m_poseSequence = 0, m_sentAtNs = 0;
+  uint64_t m_session = 0;  // this run's, in every pose it sends
   uint32_t m_lastRoundTripNs = 0;  // of the previous pose; 0 when it was not answered in its frame
   bool m_answered = false;         // the pose just sent was answered
   uint64_t m_posesSent = 0, m_sendFailures = 0, m_answeredInFrame = 0, m_lateAnswers = 0, m_forcesLimited = 0;

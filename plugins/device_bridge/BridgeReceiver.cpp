@@ -29,9 +29,12 @@ void ReceiveCounters::report(std::vector<Counter>& counters, const char* prefix)
   add("wrong_kind", badKind);
   add("bad_values", badValues);
   add("stale", stale);
+  add("too_far_ahead", tooFarAhead);
+  add("other_session", otherSession);
   add("lost", lost);
   add("superseded", superseded);
   add("flood_ticks", floods);
+  add("sessions", sessions);
 }
 
 }  // namespace trephine::device_bridge

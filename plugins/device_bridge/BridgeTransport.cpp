@@ -18,10 +18,15 @@ class SharedMemoryTransport final : public BridgeTransport {
     int error = 0;
     m_shm = trephine_bridge_shm_open(m_name.c_str(), 1, &error);
     if (!m_shm)
-      throw std::runtime_error("cannot open the shared memory object " + m_name + ": " +
-                               (error == EPROTO ? std::string("it holds something other than a device bridge of "
-                                                              "this version (remove it: rm /dev/shm" + m_name + ")")
-                                                : std::string(std::strerror(error))));
+      throw std::runtime_error(
+          "cannot open the shared memory object " + m_name + ": " +
+          (error == EPROTO ? std::string("it holds something other than a device bridge of this version (remove it: "
+                                         "rm /dev/shm" + m_name + ")")
+           : error == EPERM
+               ? std::string("it belongs to another user or others may read or write it, and whoever can write it "
+                             "drives the device (remove it, rm /dev/shm" + m_name +
+                             ", and let this side make it owner-only)")
+               : std::string(std::strerror(error))));
     // One simulation a channel: a second would answer the same device.
     if (m_side == BridgeSide::Simulation) {
       if (const long holder = trephine_bridge_shm_claim(m_shm, static_cast<long>(getpid()))) {
@@ -30,6 +35,9 @@ class SharedMemoryTransport final : public BridgeTransport {
                                  std::to_string(holder) + "): give this one another channel");
       }
     }
+    // Another process may truncate the object under this one: the mapping is
+    // checked once a tick, and a fault in the moment between is caught.
+    trephine_bridge_shm_guard_truncation(m_shm);
     // What the other side wrote before this side opened it (a device program
     // of an earlier run, now gone) is not news.
     m_lastSeen = incomingWrites();
@@ -41,6 +49,7 @@ class SharedMemoryTransport final : public BridgeTransport {
 
   size_t receive(std::span<BridgeDatagram> into, bool& more) override {
     more = false;
+    if (!trephine_bridge_shm_intact(m_shm)) return 0;
     const uint64_t writes = incomingWrites();
     if (into.empty() || writes == m_lastSeen) return 0;
     BridgeDatagram& d = into[0];
@@ -54,6 +63,7 @@ class SharedMemoryTransport final : public BridgeTransport {
   }
   bool waiting() const override { return incomingWrites() != m_lastSeen; }
   bool send(const unsigned char* packet, size_t size) override {
+    if (!trephine_bridge_shm_intact(m_shm)) return false;
     if (m_side == BridgeSide::Simulation) {
       if (size != TREPHINE_BRIDGE_FORCE_SIZE) return false;
       trephine_bridge_shm_write_force(m_shm, packet);
@@ -64,6 +74,11 @@ class SharedMemoryTransport final : public BridgeTransport {
     return true;
   }
   std::string describe() const override { return "shared memory " + m_name; }
+  const char* failure() override {
+    return trephine_bridge_shm_intact(m_shm) ? nullptr
+                                              : "the shared memory object was truncated under the bridge "
+                                                "(by another process): the device can no longer be heard";
+  }
 
  private:
   uint64_t incomingWrites() const {
@@ -79,7 +94,7 @@ class SharedMemoryTransport final : public BridgeTransport {
 class UdpTransport final : public BridgeTransport {
  public:
   UdpTransport(const trephine_bridge_address& local, const std::optional<trephine_bridge_address>& peer)
-      : m_peer(peer) {
+      : m_peer(peer), m_fixed(peer.has_value()) {
     int error = 0;
     m_udp = trephine_bridge_udp_open(&local, &error);
     if (!m_udp)
@@ -96,6 +111,7 @@ class UdpTransport final : public BridgeTransport {
       if (size < 0) return n;
       d.size = static_cast<size_t>(size);
       d.fromPeer = !m_peer || trephine_bridge_address_equal(&*m_peer, &d.from);
+      d.mayBecomePeer = !m_fixed;
       ++n;
     }
     more = trephine_bridge_udp_wait(m_udp, 0) != 0;
@@ -105,8 +121,8 @@ class UdpTransport final : public BridgeTransport {
   bool send(const unsigned char* packet, size_t size) override {
     return m_peer && trephine_bridge_udp_send(m_udp, &*m_peer, packet, size) == 0;
   }
-  void lockPeer(const trephine_bridge_address& peer) override {
-    if (!m_peer) m_peer = peer;
+  void followPeer(const trephine_bridge_address& peer) override {
+    if (!m_fixed) m_peer = peer;
   }
   bool hasPeer() const override { return m_peer.has_value(); }
   std::string describe() const override {
@@ -117,6 +133,7 @@ class UdpTransport final : public BridgeTransport {
  private:
   trephine_bridge_udp* m_udp = nullptr;
   std::optional<trephine_bridge_address> m_peer;
+  bool m_fixed = false;  // the peer was given: only its packets are heard
 };
 
 }  // namespace

@@ -22,6 +22,7 @@ struct BridgeDatagram {
   std::array<unsigned char, 128> bytes{};
   size_t size = 0;           // the datagram's whole size (larger than bytes when cut)
   bool fromPeer = true;      // sent by the peer (or by anyone while no peer is set)
+  bool mayBecomePeer = false;  // another sender, who may become the peer (UDP without a fixed one)
   trephine_bridge_address from{};
 };
 
@@ -36,10 +37,15 @@ class BridgeTransport {
   virtual bool waiting() const = 0;
   // Sends this side's packet; false when it was dropped (no peer yet, a full buffer).
   virtual bool send(const unsigned char* packet, size_t size) = 0;
-  // UDP on the simulation's side: the first sender of a valid pose becomes
-  // the peer, and packets of any other sender are foreign from then on.
-  virtual void lockPeer(const trephine_bridge_address& peer) { (void)peer; }
+  // UDP without a fixed peer: the sender of the packets taken (those of the
+  // session taken, trephine_bridge_stream) is where this side's packets go,
+  // so a device program started again (from another port) is answered
+  // there once its earlier session went quiet. With a fixed peer, nothing.
+  virtual void followPeer(const trephine_bridge_address& peer) { (void)peer; }
   virtual bool hasPeer() const { return true; }
+  // Why the transport can no longer be used (the shared memory object was
+  // truncated or removed under it), or null while it can.
+  virtual const char* failure() { return nullptr; }
   // "shared memory /trephine-bridge", "UDP 127.0.0.1:27200".
   virtual std::string describe() const = 0;
 };
@@ -49,7 +55,7 @@ class BridgeTransport {
 // removes the name when it closes.
 std::unique_ptr<BridgeTransport> openSharedMemory(const std::string& name, BridgeSide side);
 // Binds `local`; `peer`: where to send and whom to hear (on the simulation's
-// side it may be left unset: see lockPeer). Throws std::runtime_error.
+// side it may be left unset: see followPeer). Throws std::runtime_error.
 std::unique_ptr<BridgeTransport> openUdp(const trephine_bridge_address& local,
                                          const std::optional<trephine_bridge_address>& peer, BridgeSide side);
 

@@ -18,6 +18,8 @@
 #include <thread>
 
 #include "tests/support/TestSupport.h"
+#include "trephine_bridge.h"
+#include "trephine_bridge_udp.h"
 
 namespace trephine::test {
 namespace {
@@ -68,6 +70,34 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
 }
 
 class BridgeClosedLoopTest : public ::testing::TestWithParam<std::string> {};
+
+// A device program that sends a pose pressing the plane each millisecond
+// for `seconds` and takes none of the forces that come back.
+void trephine_bridge_udp_stub(int port, double seconds) {
+  trephine_bridge_address local{}, simulation{};
+  trephine_bridge_address_parse("127.0.0.1", 0, &local);
+  trephine_bridge_address_parse("127.0.0.1", static_cast<uint16_t>(port), &simulation);
+  trephine_bridge_udp* socket = trephine_bridge_udp_open(&local, nullptr);
+  ASSERT_NE(socket, nullptr);
+  trephine_bridge_pose pose{};
+  pose.session = trephine_bridge_new_session();
+  pose.position_mm[0] = 3.0;
+  pose.position_mm[2] = 1.5;
+  pose.orientation_wxyz[0] = 1;
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - start < std::chrono::duration<double>(seconds)) {
+    ++pose.sequence;
+    unsigned char bytes[TREPHINE_BRIDGE_POSE_SIZE];
+    ASSERT_EQ(trephine_bridge_encode_pose(&pose, bytes), TREPHINE_BRIDGE_OK);
+    trephine_bridge_udp_send(socket, &simulation, bytes, sizeof bytes);
+    unsigned char in[128];
+    trephine_bridge_address from{};
+    while (trephine_bridge_udp_receive(socket, in, sizeof in, &from) >= 0) {
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  trephine_bridge_udp_close(socket);
+}
 
 TEST_P(BridgeClosedLoopTest, TheEmulatorInAnotherProcessPressesTheBurrIntoTheSkullThroughTheBridge) {
   const std::string transport = GetParam();
@@ -263,6 +293,86 @@ TEST_P(BridgeClosedLoopTest, TheDocumentedDeviceProgramFeelsThePlanesSpring) {
   const std::string sim = readFile(dir / "sim/summary.json");
   EXPECT_EQ(jsonNumber(sim, "poses_malformed", "/tool/device"), 0);
   EXPECT_GT(jsonNumber(sim, "round_trips_measured", "/tool/device"), 200);
+}
+
+// A simulation killed and started again on the same channel or port, with
+// the device's end kept running: the device takes the new run's forces (a
+// new session) within its watchdog time, and the new run is answered (its
+// summary counts the device's round trips and no unheard forces). Before
+// sessions the device counted every new force stale (the new run numbers
+// from 1) and commanded 0 N for as long as the first run had lasted, while
+// the new run reported health.
+TEST_P(BridgeClosedLoopTest, ARestartedSimulationIsHeardByTheDeviceThatKeptRunning) {
+  const std::string transport = GetParam();
+  const Channel owned("restart");
+  TempDir dir;
+  const int port = testPort() + 500;
+  const std::vector<std::string> simulationTransport = transportArguments(transport, owned.name, port);
+  const std::string scene = (sourceDir() / "scenes/devices/bridge_plane.xml").string();
+  const double load = kTimingChecked ? 1.0 : 3.0;  // s: a sanitizer's load is slower
+  // The device's end: over UDP the documented device program, over shared
+  // memory the emulator's BridgeDeviceSide (each with its own stream).
+  FILE* example = nullptr;
+  int emulator = -1;
+  if (transport == "udp") {
+    const std::string command = "'" + (programPath().parent_path() / "trephine_device_example").string() + "' " +
+                                std::to_string(2 * load + 3.5) + " udp 127.0.0.1 " + std::to_string(port);
+    example = popen(command.c_str(), "r");
+    ASSERT_NE(example, nullptr);
+  } else {
+    emulator = startProgram(concat({"run", kEmulatorScene, "--realtime", "--duration", std::to_string(2 * load + 3.5),
+                                    "--out", (dir / "emulator").string()},
+                                   emulatorTransport("shm", owned.name, 0)));
+  }
+  const int first = startProgram(concat({"run", scene, "--realtime", "--duration", "30", "--out",
+                                         (dir / "first").string()},
+                                        simulationTransport));
+  std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int>((load + 1.0) * 1000)));
+  ASSERT_EQ(kill(first, SIGKILL), 0);
+  waitForProgram(first);
+  std::string output;
+  EXPECT_EQ(runProgram(concat({"run", scene, "--realtime", "--duration", "1.5", "--quiet", "--out",
+                               (dir / "second").string()},
+                              simulationTransport),
+                       &output),
+            0)
+      << output;
+  const std::string second = readFile(dir / "second/summary.json");
+  EXPECT_GT(jsonNumber(second, "round_trips_measured", "/tool/device"), 300) << "the device answers the new run";
+  EXPECT_EQ(jsonNumber(second, "forces_unheard_episodes", "/tool/device"), 0);
+  EXPECT_GT(jsonNumber(second, "forces_sent", "/tool/device"), 300);
+  if (example) {
+    char line[512] = {};
+    const bool read = std::fgets(line, sizeof line, example) != nullptr;
+    EXPECT_EQ(pclose(example), 0) << line;
+    ASSERT_TRUE(read);
+    EXPECT_NE(std::string(line).find("simulation_sessions 2"), std::string::npos) << line;
+  } else {
+    ASSERT_EQ(waitForProgram(emulator), 0);
+    const std::string emu = readFile(dir / "emulator/summary.json");
+    EXPECT_EQ(jsonNumber(emu, "forces_sessions", "/tool/device"), 2) << "both runs' sessions taken";
+  }
+}
+
+// A device that hears none of the run's forces (its poses never say it took
+// one, as a device program that counts every force stale): the run says so,
+// with an event and a warning, instead of a healthy summary.
+TEST(BridgeClosedLoopTest, ADeviceThatTakesNoForceIsReportedNotHealthy) {
+  TempDir dir;
+  const int port = testPort() + 700;
+  const std::string scene = (sourceDir() / "scenes/devices/bridge_plane.xml").string();
+  // The emulator as a device that never acknowledges: its poses carry another simulation's session.
+  const int simulation = startProgram(concat({"run", scene, "--realtime", "--duration", "1.5", "--out",
+                                              (dir / "sim").string()},
+                                             transportArguments("udp", "", port)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(kTimingChecked ? 300 : 2000));
+  // A device program built on the C code alone that takes no force.
+  trephine_bridge_udp_stub(port, kTimingChecked ? 1.5 : 2.5);
+  ASSERT_EQ(waitForProgram(simulation), 0);
+  const std::string sim = readFile(dir / "sim/summary.json");
+  EXPECT_GE(jsonNumber(sim, "forces_unheard_episodes", "/tool/device"), 1);
+  EXPECT_GT(jsonNumber(sim, "forces_unheard_frames", "/tool/device"), 100);
+  EXPECT_NE(sim.find("\"bridge_forces_unheard\""), std::string::npos);
 }
 
 }  // namespace

@@ -88,6 +88,7 @@ TEST(BridgeDeviceSideTest, ItCommandsTheForceThatComesBackAndRampsItToZeroWhenTh
           EXPECT_NEAR(pose.position_mm[0], 1.0, 1e-12);
           trephine_bridge_force force{};
           force.sequence = ++sequence;
+          force.session = 0x51;
           force.answered_sequence = pose.sequence;
           force.answered_device_time_ns = pose.device_time_ns;
           force.force_n[2] = 2.0;

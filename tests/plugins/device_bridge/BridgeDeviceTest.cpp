@@ -6,8 +6,14 @@
 // taken where it is when it comes back; hostile packets are dropped and
 // counted by what is wrong with them; the force sent is limited.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <optional>
+#include <atomic>
+#include <thread>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -191,8 +197,9 @@ TEST(BridgeDeviceTest, AQuietDeviceFeelsTheForceRampToZeroAndIsTakenWhereItIsWhe
 }
 
 // Bytes of a valid pose with one thing changed.
-std::vector<unsigned char> poseBytes(uint64_t sequence, void (*spoil)(unsigned char*) = nullptr) {
+std::vector<unsigned char> poseBytes(uint64_t session, uint64_t sequence, void (*spoil)(unsigned char*) = nullptr) {
   trephine_bridge_pose pose = poseAt(3.0, 1.5);
+  pose.session = session;
   pose.sequence = sequence;
   std::vector<unsigned char> bytes(TREPHINE_BRIDGE_POSE_SIZE);
   EXPECT_EQ(trephine_bridge_encode_pose(&pose, bytes.data()), TREPHINE_BRIDGE_OK);
@@ -217,12 +224,15 @@ TEST(BridgeDeviceTest, HostilePacketsAreDroppedAndCountedByWhatIsWrongWithThem) 
       device.sendRaw(bytes.data(), size);
       std::this_thread::sleep_for(std::chrono::microseconds(300));
     };
-    for (int i = 0; i < 3; ++i) send(poseBytes(1u << 20, spoilMagic), TREPHINE_BRIDGE_POSE_SIZE);
-    for (int i = 0; i < 4; ++i) send(poseBytes(1u << 20, spoilVersion), TREPHINE_BRIDGE_POSE_SIZE);
-    for (int i = 0; i < 5; ++i) send(poseBytes(1u << 20), TREPHINE_BRIDGE_POSE_SIZE - 1);
-    for (int i = 0; i < 6; ++i) send(poseBytes(1u << 20, spoilValue), TREPHINE_BRIDGE_POSE_SIZE);
-    for (int i = 0; i < 2; ++i) send(poseBytes(1u << 20, spoilKind), TREPHINE_BRIDGE_POSE_SIZE);
-    for (int i = 0; i < 7; ++i) send(poseBytes(1), TREPHINE_BRIDGE_POSE_SIZE);  // long past: stale
+    const uint64_t session = device.session();
+    for (int i = 0; i < 3; ++i) send(poseBytes(session, 1u << 20, spoilMagic), TREPHINE_BRIDGE_POSE_SIZE);
+    for (int i = 0; i < 4; ++i) send(poseBytes(session, 1u << 20, spoilVersion), TREPHINE_BRIDGE_POSE_SIZE);
+    for (int i = 0; i < 5; ++i) send(poseBytes(session, 1u << 20), TREPHINE_BRIDGE_POSE_SIZE - 1);
+    for (int i = 0; i < 6; ++i) send(poseBytes(session, 1u << 20, spoilValue), TREPHINE_BRIDGE_POSE_SIZE);
+    for (int i = 0; i < 2; ++i) send(poseBytes(session, 1u << 20, spoilKind), TREPHINE_BRIDGE_POSE_SIZE);
+    for (int i = 0; i < 7; ++i) send(poseBytes(session, 1), TREPHINE_BRIDGE_POSE_SIZE);  // long past: stale
+    // Far ahead in the device's own session: more than the time since explains.
+    for (int i = 0; i < 4; ++i) send(poseBytes(session, uint64_t(1) << 62), TREPHINE_BRIDGE_POSE_SIZE);
     // A stranger: valid poses from another socket, then a flood.
     trephine_bridge_address local{}, simulationAddress{};
     trephine_bridge_address_parse("127.0.0.1", 0, &local);
@@ -230,7 +240,7 @@ TEST(BridgeDeviceTest, HostilePacketsAreDroppedAndCountedByWhatIsWrongWithThem) 
     trephine_bridge_udp* stranger = trephine_bridge_udp_open(&local, nullptr);
     ASSERT_NE(stranger, nullptr);
     for (int i = 0; i < 10; ++i) {
-      const auto bytes = poseBytes(1u << 24);
+      const auto bytes = poseBytes(trephine_bridge_new_session(), 1u << 24);
       trephine_bridge_udp_send(stranger, &simulationAddress, bytes.data(), bytes.size());
       std::this_thread::sleep_for(std::chrono::microseconds(300));
     }
@@ -251,6 +261,7 @@ TEST(BridgeDeviceTest, HostilePacketsAreDroppedAndCountedByWhatIsWrongWithThem) 
   EXPECT_EQ(count("poses_bad_values"), 6);
   EXPECT_EQ(count("poses_wrong_kind"), 2);
   EXPECT_EQ(count("poses_stale"), 7);
+  EXPECT_EQ(count("poses_too_far_ahead"), 4) << "a sequence 2^62 ahead is refused, not taken";
   EXPECT_GE(count("poses_foreign"), 10) << "the stranger's poses, and what of its flood got through";
   EXPECT_GT(count("poses_flood_ticks"), 0);
   EXPECT_EQ(count("rejected_non_finite"), 0) << "the NaN never reached the device's state";
@@ -258,6 +269,131 @@ TEST(BridgeDeviceTest, HostilePacketsAreDroppedAndCountedByWhatIsWrongWithThem) 
   ASSERT_FALSE(forces.empty());
   for (const auto& r : forces) ASSERT_TRUE(std::isfinite(norm(r.force.force_n)));
   EXPECT_NEAR(forces.back().force.force_n[2], kStiffness * 1.0, 1e-9);
+}
+
+// A stranger floods the simulation's port with junk while the device sends
+// its poses, and goes on after the device stops. Junk is read and dropped a
+// batch a poll and never counts as a frame's input: the haptic group keeps
+// the device's 1 kHz (before, every datagram started a frame, 1,238 Hz at
+// 5,000 junk packets a second), the device's poses are taken, and the
+// watchdog trips when they stop however much junk still comes.
+TEST(BridgeDeviceTest, JunkNeitherPacesTheFramesNorHidesADeviceThatStopped) {
+  PeerLink link;
+  link.simulationPort = freeUdpPort();
+  constexpr double kDuration = 0.8;
+  auto simulation = loadRealtime(
+      pressScene("transport=\"udp\" address=\"127.0.0.1:" + std::to_string(link.simulationPort) + "\""), kDuration);
+  ASSERT_TRUE(simulation);
+  FakeDevice device(link, [](double) { return poseAt(3.0, 1.5); }, [](double t) { return t < 0.4; });
+  std::atomic<bool> done{false};
+  std::atomic<uint64_t> junkSent{0};
+  std::thread stranger([&] {
+    trephine_bridge_address local{}, target{};
+    trephine_bridge_address_parse("127.0.0.1", 0, &local);
+    trephine_bridge_address_parse("127.0.0.1", link.simulationPort, &target);
+    trephine_bridge_udp* socket = trephine_bridge_udp_open(&local, nullptr);
+    ASSERT_NE(socket, nullptr);
+    const unsigned char junk[200] = {'T', 'R', 'P', 'B'};
+    while (!done) {
+      // About 10,000 a second: ten packets every millisecond.
+      for (int i = 0; i < 10; ++i) trephine_bridge_udp_send(socket, &target, junk, sizeof junk);
+      junkSent += 10;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    trephine_bridge_udp_close(socket);
+  });
+  device.start();
+  simulation->run();
+  done = true;
+  stranger.join();
+  device.stop();
+  const auto count = [&](const char* name) { return componentCounterAt(*simulation, "/tool/device", name); };
+  EXPECT_GT(junkSent.load(), 3000u);
+  EXPECT_GT(count("poses_foreign") + count("poses_malformed"), 2000) << "the junk was read and dropped";
+  EXPECT_EQ(count("watchdog_trips"), 1) << "the device stopped at 0.4 s: junk does not keep the watchdog fed";
+  const RateGroup& haptic = simulation->scheduler().groups().front();
+  if (!kTimingChecked) return;
+  EXPECT_LE(static_cast<double>(haptic.calls), 1000 * kDuration * 1.05 + 5) << "junk paced frames";
+  EXPECT_GT(count("poses_received"), 300) << "the device's poses got through the junk";
+}
+
+// A device program started again mid-run numbers its poses from 1 in a new
+// session (before, it got 0 N until it passed its old count): it is heard
+// once the old session has been quiet for the watchdog's time, over shared
+// memory and over UDP, and over UDP also from a new port with no fixed peer
+// (before, never heard again).
+TEST_P(BridgeTransportTest, ADeviceProgramStartedAgainIsHeardWithinTheWatchdogsTime) {
+  PeerLink link;
+  std::string attributes;
+  if (GetParam().udp) {
+    link.simulationPort = freeUdpPort();
+    attributes = "transport=\"udp\" address=\"127.0.0.1:" + std::to_string(link.simulationPort) + "\"";
+  } else {
+    link.channel = uniqueChannel("restart");
+    attributes = "channel=\"" + link.channel + "\"";
+  }
+  auto simulation = loadRealtime(pressScene(attributes), 0.9);
+  ASSERT_TRUE(simulation);
+  // The first program: restarted in place at 0.25 s, gone at 0.5 s.
+  FakeDevice first(link, [](double) { return poseAt(3.0, 1.5); }, [](double t) { return t < 0.5; });
+  // Over UDP, a second program from a port of its own, from 0.55 s, pressing 0.5 mm.
+  std::optional<FakeDevice> second;
+  if (GetParam().udp) second.emplace(link, [](double) { return poseAt(3.0, 2.0); }, [](double t) { return t >= 0.55; });
+  first.start();
+  if (second) second->start();
+  std::thread restarter([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    first.restart();
+  });
+  simulation->run();
+  restarter.join();
+  const auto forcesFirst = first.stop();
+  const auto forcesSecond = second ? second->stop() : decltype(forcesFirst){};
+  // After the restart (plus the watchdog's 20 ms of quiet and 20 ms of ramp): the spring's 2 N again.
+  size_t full = 0;
+  for (const auto& r : forcesFirst) {
+    const double t = static_cast<double>(r.atNs - first.startNs()) * 1e-9;
+    if (t > 0.25 + kTimeout + kRamp + 0.02 && t < 0.5 && std::abs(r.force.force_n[2] - kStiffness) < 1e-9) ++full;
+  }
+  EXPECT_GT(full, kTimingChecked ? 100u : 10u) << "the restarted program feels the plane";
+  const auto count = [&](const char* name) { return componentCounterAt(*simulation, "/tool/device", name); };
+  EXPECT_GE(count("device_restarts"), 1);
+  if (second) {
+    ASSERT_FALSE(forcesSecond.empty()) << "the program on a new port is answered";
+    EXPECT_NEAR(forcesSecond.back().force.force_n[2], kStiffness * 0.5, 1e-9);
+    EXPECT_EQ(count("device_restarts"), 2);
+  }
+}
+
+// Another process truncates the shared memory object mid-run (before, the
+// simulation died of SIGBUS, exit 135, with no summary and its folder
+// marked running): the run hears no more poses, says why, ramps the force
+// to zero and ends as planned.
+TEST(BridgeDeviceTest, ATruncatedSharedMemoryEndsTheDeviceNotTheRun) {
+  PeerLink link;
+  link.channel = uniqueChannel("truncated");
+  auto simulation = loadRealtime(pressScene("channel=\"" + link.channel + "\""), 0.5);
+  ASSERT_TRUE(simulation);
+  FakeDevice device(link, [](double) { return poseAt(3.0, 1.5); });
+  std::thread vandal([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    const int fd = shm_open(link.channel.c_str(), O_RDWR, 0);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(ftruncate(fd, 0), 0);
+    close(fd);
+  });
+  device.start();
+  simulation->run();
+  vandal.join();
+  device.stop();
+  shm_unlink(link.channel.c_str());
+  EXPECT_TRUE(simulation->complete());
+  EXPECT_EQ(componentCounterAt(*simulation, "/tool/device", "transport_lost"), 1);
+  EXPECT_EQ(componentCounterAt(*simulation, "/tool/device", "watchdog_trips"), 1) << "the force ramped to zero";
+  bool lost = false;
+  const EventLog& events = simulation->events();
+  for (size_t i = 0; i < events.size(); ++i) lost |= std::string(events[i].kind) == "bridge_lost";
+  EXPECT_TRUE(lost);
 }
 
 TEST(BridgeDeviceTest, TheForceSentIsLimitedToMaxForceWithItsDirectionKept) {

@@ -32,6 +32,8 @@ FakeDevice::FakeDevice(PeerLink link, PoseAt poseAt, Sending sending)
   if (!m_link.channel.empty()) {
     m_shm = trephine_bridge_shm_open(m_link.channel.c_str(), 1, &error);
     EXPECT_NE(m_shm, nullptr) << std::strerror(error);
+    // A test may truncate the object under both sides: this one survives it too.
+    if (m_shm) trephine_bridge_shm_guard_truncation(m_shm);
   } else {
     trephine_bridge_address local{};
     trephine_bridge_address_parse("127.0.0.1", 0, &local);
@@ -74,8 +76,14 @@ void FakeDevice::sendRaw(const unsigned char* bytes, size_t size) {
 void FakeDevice::run() {
   uint64_t next = m_startNs;
   uint64_t sequence = 0, lastForceWrites = m_shm ? trephine_bridge_shm_force_writes(m_shm) : 0;
+  trephine_bridge_force heard{};  // the last force taken: its session and sequence go back in each pose
   while (!m_stop) {
     const uint64_t now = monotonicNowNs();
+    if (m_restart.exchange(false)) {
+      m_session = trephine_bridge_new_session();
+      sequence = 0;
+      heard = {};
+    }
     // Forces, as they come.
     unsigned char bytes[128];
     trephine_bridge_force force{};
@@ -84,6 +92,7 @@ void FakeDevice::run() {
       if (writes != lastForceWrites && trephine_bridge_shm_read_force(m_shm, bytes) &&
           trephine_bridge_decode_force(bytes, TREPHINE_BRIDGE_FORCE_SIZE, &force) == TREPHINE_BRIDGE_OK) {
         lastForceWrites = writes;
+        if (!m_ignoreForces) heard = force;
         std::lock_guard lock(m_mutex);
         m_received.push_back({now, force});
       }
@@ -92,6 +101,7 @@ void FakeDevice::run() {
       long size;
       while ((size = trephine_bridge_udp_receive(m_udp, bytes, sizeof bytes, &from)) >= 0)
         if (trephine_bridge_decode_force(bytes, static_cast<size_t>(size), &force) == TREPHINE_BRIDGE_OK) {
+          if (!m_ignoreForces) heard = force;
           std::lock_guard lock(m_mutex);
           m_received.push_back({monotonicNowNs(), force});
         }
@@ -103,6 +113,9 @@ void FakeDevice::run() {
         trephine_bridge_pose pose = m_poseAt(t);
         pose.sequence = ++sequence;
         pose.device_time_ns = now;
+        pose.session = m_session;
+        pose.heard_session = heard.session;
+        pose.heard_sequence = heard.sequence;
         if (trephine_bridge_encode_pose(&pose, bytes) == TREPHINE_BRIDGE_OK) {
           std::lock_guard lock(m_mutex);
           m_sentAt.push_back(now);

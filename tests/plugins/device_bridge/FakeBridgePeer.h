@@ -48,6 +48,12 @@ class FakeDevice {
   void sendRaw(const unsigned char* bytes, size_t size);
   // The sending times (monotonic ns) by pose sequence, for round trips.
   std::vector<uint64_t> sentAt() const;
+  // As a device program started again: a new session, its sequence from 1.
+  void restart() { m_restart = true; }
+  // A device that takes no force (its poses never say it heard one), as a
+  // device program that counts every force stale would.
+  void ignoreForces(bool ignore) { m_ignoreForces = ignore; }
+  uint64_t session() const { return m_session; }
 
  private:
   void run();
@@ -58,6 +64,8 @@ class FakeDevice {
   trephine_bridge_udp* m_udp = nullptr;
   trephine_bridge_address m_simulation{};
   std::atomic<bool> m_stop{false};
+  std::atomic<bool> m_restart{false}, m_ignoreForces{false};
+  std::atomic<uint64_t> m_session{trephine_bridge_new_session()};
   std::thread m_thread;
   uint64_t m_startNs = 0;
   mutable std::mutex m_mutex;  // the test thread's raw sends beside the device thread's

@@ -44,28 +44,40 @@ static void command_force(const double force_n[3]) { memcpy(last_commanded, forc
 /* How long a tick polls for the answer to its pose (ns): half a 1 kHz frame. */
 static const uint64_t kAwaitNs = 500000u;
 
-/* The newest valid force from the simulation that came since the last call,
- * into *force; returns 0 when none did. */
+/* Whether a valid force is one to take: of the simulation's session taken,
+ * newer and not implausibly far ahead; or of a new session once the one
+ * taken went quiet (the simulation was started again). Takes it. */
+static int take_if_due(trephine_bridge_stream* stream, const trephine_bridge_force* force, uint64_t now) {
+  const trephine_bridge_verdict verdict = trephine_bridge_stream_judge(stream, force->session, force->sequence, now);
+  if (verdict != TREPHINE_BRIDGE_TAKE && verdict != TREPHINE_BRIDGE_NEW_SESSION) return 0;
+  trephine_bridge_stream_take(stream, force->session, force->sequence, now);
+  return 1;
+}
+
+/* The newest force to take that came since the last call, into *force;
+ * returns 0 when none did. */
 static int take_force(trephine_bridge_shm* shm, trephine_bridge_udp* socket, const trephine_bridge_address* simulation,
-                      uint64_t* seen_writes, const trephine_bridge_force* latest, int have_latest,
-                      trephine_bridge_force* force) {
+                      uint64_t* seen_writes, trephine_bridge_stream* stream, uint64_t now, trephine_bridge_force* force) {
   unsigned char in[128];
+  trephine_bridge_force candidate;
   if (shm) {
     const uint64_t writes = trephine_bridge_shm_force_writes(shm);
     if (writes == *seen_writes || !trephine_bridge_shm_read_force(shm, in)) return 0;
     *seen_writes = writes;
-    return trephine_bridge_decode_force(in, TREPHINE_BRIDGE_FORCE_SIZE, force) == TREPHINE_BRIDGE_OK;
+    if (trephine_bridge_decode_force(in, TREPHINE_BRIDGE_FORCE_SIZE, &candidate) != TREPHINE_BRIDGE_OK ||
+        !take_if_due(stream, &candidate, now))
+      return 0;
+    *force = candidate;
+    return 1;
   }
-  /* Every datagram that waits; the newest valid force from the simulation wins. */
+  /* Every datagram that waits (a few at most a tick); the newest to take wins. */
   int have = 0;
   trephine_bridge_address from;
-  trephine_bridge_force candidate;
   long size;
-  while ((size = trephine_bridge_udp_receive(socket, in, sizeof in, &from)) >= 0)
+  for (int k = 0; k < 64 && (size = trephine_bridge_udp_receive(socket, in, sizeof in, &from)) >= 0; ++k)
     if (trephine_bridge_address_equal(&from, simulation) &&
         trephine_bridge_decode_force(in, (size_t)size, &candidate) == TREPHINE_BRIDGE_OK &&
-        (!(have || have_latest) ||
-         trephine_bridge_is_newer(have ? force->sequence : latest->sequence, candidate.sequence))) {
+        take_if_due(stream, &candidate, now)) {
       *force = candidate;
       have = 1;
     }
@@ -94,6 +106,12 @@ int main(int argc, char** argv) {
 
   trephine_bridge_watchdog watchdog;
   trephine_bridge_watchdog_init(&watchdog, 0.02, 0.02);
+  /* This program's session, and the simulation's it takes forces of: a
+   * simulation started again is heard once the earlier one was quiet for
+   * the watchdog's 20 ms. */
+  const uint64_t session = trephine_bridge_new_session();
+  trephine_bridge_stream forces_stream;
+  trephine_bridge_stream_init(&forces_stream, 0.02, 0);
   trephine_bridge_force latest;
   memset(&latest, 0, sizeof latest);
   /* A force left in the shared memory by an earlier run is not news. */
@@ -116,6 +134,9 @@ int main(int argc, char** argv) {
     pose.sequence = ++sequence;
     pose.device_time_ns = now;
     pose.round_trip_ns = answered ? (round_trip > 0xffffffffu ? 0xffffffffu : (uint32_t)round_trip) : 0;
+    pose.session = session;
+    pose.heard_session = forces_stream.session;
+    pose.heard_sequence = forces_stream.sequence;
     unsigned char out[TREPHINE_BRIDGE_POSE_SIZE];
     if (trephine_bridge_encode_pose(&pose, out) != TREPHINE_BRIDGE_OK) {
       fprintf(stderr, "trephine_device_example: the device's pose cannot be sent (not finite, or not a unit quaternion)\n");
@@ -134,7 +155,7 @@ int main(int argc, char** argv) {
      * answers within its frame); else the newest force at hand. */
     for (uint64_t t = now; !answered && t - now < kAwaitNs; t = clock_ns()) {
       trephine_bridge_force force;
-      if (!take_force(shm, socket, &simulation, &seen_forces, &latest, forces > 0, &force)) continue;
+      if (!take_force(shm, socket, &simulation, &seen_forces, &forces_stream, t, &force)) continue;
       latest = force;
       ++forces;
       trephine_bridge_watchdog_heard(&watchdog, t);
@@ -155,9 +176,9 @@ int main(int argc, char** argv) {
     if (magnitude > force_max_n) force_max_n = magnitude;
   }
   printf("poses %lu forces %lu round_trips %lu round_trip_max_us %.1f force_max_N %.6f last_force %.6f %.6f %.6f "
-         "watchdog_trips %lu\n",
+         "watchdog_trips %lu simulation_sessions %lu\n",
          poses, forces, round_trips, round_trip_max_us, force_max_n, last_commanded[0], last_commanded[1],
-         last_commanded[2], (unsigned long)watchdog.trips);
+         last_commanded[2], (unsigned long)watchdog.trips, (unsigned long)forces_stream.sessions);
   if (shm) trephine_bridge_shm_close(shm, "/trephine-bridge", 0);
   if (socket) trephine_bridge_udp_close(socket);
   return 0;
