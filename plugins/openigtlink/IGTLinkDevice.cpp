@@ -1,5 +1,7 @@
 #include "plugins/openigtlink/IGTLinkDevice.h"
 
+#include <arpa/inet.h>
+
 #include "framework/core/Lifecycle.h"
 
 namespace trephine::openigtlink {
@@ -14,6 +16,18 @@ void IGTLinkDevice::init(InitContext& context) {
       if (c < 0x20 || c > 0x7e) context.error(*name, "a device name is printable ASCII");
   }
   if (d_transformName.value().empty()) context.error(d_transformName, "the TRANSFORM's device name is needed");
+  if (const std::string& client = d_client.value(); !client.empty()) {
+    const size_t colon = client.find(':');
+    in_addr parsed{};
+    const std::string host = client.substr(0, colon);
+    const std::string port = colon == std::string::npos ? "1" : client.substr(colon + 1);
+    const bool portOk = !port.empty() && port.size() <= 5 &&
+                        port.find_first_not_of("0123456789") == std::string::npos && std::stoi(port) >= 1 &&
+                        std::stoi(port) <= 65535;
+    if (inet_pton(AF_INET, host.c_str(), &parsed) != 1 || !portOk)
+      context.error(d_client, "'" + client + "' is not HOST or HOST:PORT (a dotted IPv4 address and a port from 1 "
+                              "to 65535)");
+  }
   if (d_forceName.value().empty()) context.error(d_forceName, "the SENSOR's device name is needed");
 }
 
@@ -26,6 +40,9 @@ void IGTLinkDevice::prepare(const RunPlan& plan) {
   options.transformName = d_transformName.value();
   options.forceName = d_forceName.value();
   options.buttonsName = d_buttonsName.value();
+  options.client = d_client.value();
+  options.workspace = d_workspace.value();
+  options.clientTimeout = d_server.clientTimeout.value();
   // In virtual time (validate, a run without --realtime) no server: the load warned.
   if (plan.realtime) m_server = std::make_unique<IgtlServer>(options);  // throws, naming the address
 }
@@ -73,6 +90,10 @@ void IGTLinkDevice::reportCounters(std::vector<Counter>& counters) const {
   add("clients_refused", c.clientsRefused);
   add("clients_broken", c.clientsBroken);
   add("clients_slow", c.clientsSlow);
+  add("clients_stalled", c.clientsStalled);
+  add("clients_idle", c.clientsIdle);
+  add("poses_other_clients", c.posesOtherClients);
+  add("poses_outside_workspace", c.posesOutsideWorkspace);
   add("sensors_sent", c.sensorsSent);
   add("sensors_dropped", c.sensorsDropped);
   add("forces_dropped", m_server->forcesDropped());

@@ -12,6 +12,11 @@
 // device in newtons, in the same frame. Buttons come as STRING (the mask as a
 // decimal number) or STATUS (its subcode) messages named `buttonsName`.
 //
+// One client drives it: by default the first whose pose is taken (until it
+// disconnects; then the next), or the one `client` names. Other clients'
+// TRANSFORMs are counted and ignored, and so is a pose beyond `workspace`
+// from the origin, so a stray first pose cannot become the hand's place.
+//
 // The network lives in the server's thread (IgtlServer); the haptic loop
 // takes the newest pose from a triple buffer and posts the force to a ring.
 #include <memory>
@@ -59,6 +64,20 @@ class IGTLinkDevice final : public HapticDevice {
       "",
       {.help = "Device name of STRING (a decimal mask) or STATUS (its subcode) messages that set the buttons; "
                "empty: none"}};
+
+  Field<std::string> d_client{
+      this,
+      "client",
+      "",
+      {.help = "The one client whose poses drive the device, as HOST or HOST:PORT (a dotted IPv4 address); empty: "
+               "the first client whose pose is taken, until it disconnects"}};
+  Field<double> d_workspace{this,
+                            "workspace",
+                            1000.0,
+                            {.help = "A pose farther than this from the origin is ignored (never taken as the "
+                                     "hand's place, first or later)",
+                             .unit = "mm",
+                             .min = 1.0}};
 
   std::unique_ptr<IgtlServer> m_server;
   ReceivedPose m_pose;

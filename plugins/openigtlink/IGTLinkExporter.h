@@ -5,9 +5,12 @@
 // client that connects
 //   TRANSFORM  `deviceName`, `proxyName`  the device and the proxy (mm), the tool's orientation;
 //   SENSOR     `forceName`                the force on the hand (N), three float64;
-//   IMAGE      `skullName`                the skull's codes (int16), whole when a client connects,
-//                                         then only the block the drill changed (the protocol's
-//                                         sub-volume), at most every `imageInterval`;
+//   IMAGE      `skullName`                the skull's codes (int16), whole to a client that connects,
+//                                         in slabs of slices over its first ticks (2 MB of them a
+//                                         tick for all new clients together: clients that come and
+//                                         go cost the group no deadline), then only the block the
+//                                         drill changed (the protocol's sub-volume), at most every
+//                                         `imageInterval`;
 //   POLYDATA   `brainName`                the brain's boundary surface at its current node positions,
 //                                         when a client connects and then when it moved, at most
 //                                         every `surfaceInterval`.
@@ -43,7 +46,8 @@ class IGTLinkExporter final : public Component {
   uint16_t listeningPort() const { return m_server ? m_server->port() : 0; }
 
  private:
-  void sendImage(bool whole, double t);
+  // The block of the skull the drill changed since the last one, to every client.
+  void sendChangedBlock(double t);
   void sendSurface(bool toNewOnly, double t);
   bool applySkullEdits();
 
@@ -93,7 +97,16 @@ class IGTLinkExporter final : public Component {
   uint64_t m_nodesStep = 0;
   bool m_brainMoved = false;
   double m_lastSurface = -INFINITY;
-  uint64_t m_images = 0, m_subvolumes = 0, m_surfaces = 0, m_poses = 0;
+  // A new client gets the skull in slabs of slices, a budget of bytes a tick
+  // across all of them (continueWelcomes), so that clients that come and go
+  // cost the group no deadline: the next slice each is owed.
+  struct Welcome {
+    uint64_t client = 0;
+    int32_t nextSlice = 0;
+  };
+  void continueWelcomes(double t);
+  std::vector<Welcome> m_welcomes;
+  uint64_t m_images = 0, m_subvolumes = 0, m_surfaces = 0, m_poses = 0, m_welcomeSlabs = 0;
   uint64_t m_accepted = 0, m_refused = 0, m_slow = 0, m_sent = 0;  // the server's, kept when it closes
 };
 

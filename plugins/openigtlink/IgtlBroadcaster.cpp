@@ -7,14 +7,26 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
 namespace trephine::openigtlink {
 
-IgtlBroadcaster::IgtlBroadcaster(const std::string& host, uint16_t port, size_t maxClients, size_t maxQueued)
-    : m_maxClients(maxClients), m_maxQueued(maxQueued) {
+namespace {
+
+uint64_t steadyNs() {
+  return static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+          .count());
+}
+
+}  // namespace
+
+IgtlBroadcaster::IgtlBroadcaster(const std::string& host, uint16_t port, size_t maxClients, size_t maxQueued,
+                                 double clientTimeoutS)
+    : m_maxClients(maxClients), m_maxQueued(maxQueued), m_timeoutNs(static_cast<uint64_t>(clientTimeoutS * 1e9)) {
   const std::string where = host + ":" + std::to_string(port);
   sockaddr_in address{};
   address.sin_family = AF_INET;
@@ -49,20 +61,36 @@ void IgtlBroadcaster::close(Client& client) {
 
 size_t IgtlBroadcaster::poll() {
   for (auto& c : m_clients) c->fresh = false;
+  m_new.clear();
   size_t fresh = 0;
   for (;;) {
     const int fd = accept4(m_listener, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0) break;
     if (m_clients.size() >= m_maxClients) {
-      ++m_refused;
-      ::close(fd);
-      continue;
+      // Room is made by the client behind the longest, if it has been behind
+      // a fifth of the timeout (a second by default): it is not keeping up.
+      const uint64_t now = steadyNs();
+      Client* slowest = nullptr;
+      for (auto& c : m_clients)
+        if (c->fd >= 0 && c->behindSinceNs && now - c->behindSinceNs > m_timeoutNs / 5 &&
+            (!slowest || c->behindSinceNs < slowest->behindSinceNs))
+          slowest = c.get();
+      if (!slowest) {
+        ++m_refused;
+        ::close(fd);
+        continue;
+      }
+      ++m_dropped;
+      close(*slowest);
+      std::erase_if(m_clients, [](const std::unique_ptr<Client>& c) { return c->fd < 0; });
     }
     const int yes = 1;
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
     auto client = std::make_unique<Client>();
     client->fd = fd;
     client->fresh = true;
+    client->id = m_nextId++;
+    m_new.push_back(client->id);
     m_clients.push_back(std::move(client));
     ++m_accepted;
     ++fresh;
@@ -82,27 +110,34 @@ size_t IgtlBroadcaster::poll() {
   return fresh;
 }
 
-void IgtlBroadcaster::broadcast(std::shared_ptr<const std::vector<unsigned char>> message) {
-  for (auto& c : m_clients) {
-    if (c->fd < 0) continue;
-    c->queue.push_back(message);
-    c->queuedBytes += message->size();
-    if (c->queuedBytes > m_maxQueued) {
-      ++m_dropped;
-      close(*c);
-      continue;
-    }
-    flush(*c);
+void IgtlBroadcaster::queue(Client& c, std::shared_ptr<const std::vector<unsigned char>> message) {
+  if (c.fd < 0) return;
+  c.queuedBytes += message->size();
+  c.queue.push_back(std::move(message));
+  if (c.queuedBytes > m_maxQueued) {
+    ++m_dropped;
+    close(c);
+    return;
   }
+  flush(c);
+}
+
+void IgtlBroadcaster::broadcast(std::shared_ptr<const std::vector<unsigned char>> message) {
+  for (auto& c : m_clients) queue(*c, message);
 }
 
 void IgtlBroadcaster::sendToNew(std::shared_ptr<const std::vector<unsigned char>> message) {
   for (auto& c : m_clients)
-    if (c->fresh && c->fd >= 0) {
-      c->queue.push_back(message);
-      c->queuedBytes += message->size();
-      flush(*c);
+    if (c->fresh) queue(*c, message);
+}
+
+bool IgtlBroadcaster::sendTo(uint64_t id, std::shared_ptr<const std::vector<unsigned char>> message) {
+  for (auto& c : m_clients)
+    if (c->id == id && c->fd >= 0) {
+      queue(*c, std::move(message));
+      return c->fd >= 0;
     }
+  return false;
 }
 
 void IgtlBroadcaster::flush(Client& c) {
@@ -112,14 +147,27 @@ void IgtlBroadcaster::flush(Client& c) {
                               MSG_DONTWAIT | MSG_NOSIGNAL);
     if (sent < 0) {
       if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) close(c);
-      return;
+      break;
     }
     c.sentOfFront += static_cast<size_t>(sent);
-    if (c.sentOfFront < front.size()) return;  // the socket is full: the rest at the next poll
+    if (c.sentOfFront < front.size()) break;  // the socket is full: the rest at the next poll
     c.queuedBytes -= front.size();
     c.queue.pop_front();
     c.sentOfFront = 0;
     ++m_sent;
+  }
+  if (c.fd < 0) return;
+  // Behind since when: a client that has not taken what it was sent for the
+  // timeout is let go, so a slow reader never holds its connection for good.
+  if (c.queue.empty()) {
+    c.behindSinceNs = 0;
+    return;
+  }
+  const uint64_t now = steadyNs();
+  if (c.behindSinceNs == 0) c.behindSinceNs = now;
+  if (now - c.behindSinceNs > m_timeoutNs) {
+    ++m_dropped;
+    close(c);
   }
 }
 

@@ -29,6 +29,7 @@ uint64_t steadyNs() {
 }
 
 constexpr uint64_t kSlowClientNs = 1'000'000'000;  // a full send buffer for this long: disconnected
+
 // How often the network thread looks for forces the haptic loop posted: a
 // force reaches the clients within this (and the socket's) delay.
 constexpr uint64_t kForcePollNs = 200'000;
@@ -39,7 +40,22 @@ struct IgtlServer::Client {
   int fd = -1;
   std::unique_ptr<IgtlStreamReader> reader;
   uint64_t blockedSinceNs = 0;  // 0: its last send went through
+  sockaddr_in address{};
+  uint64_t acceptedNs = 0, lastByteNs = 0;
+  bool sentMessage = false;  // a whole message came from it
 };
+
+namespace {
+
+// "HOST" or "HOST:PORT" against a client's address.
+bool addressMatches(const std::string& wanted, const sockaddr_in& address) {
+  char host[INET_ADDRSTRLEN] = {};
+  inet_ntop(AF_INET, &address.sin_addr, host, sizeof host);
+  const std::string port = std::to_string(ntohs(address.sin_port));
+  return wanted == host || wanted == std::string(host) + ":" + port;
+}
+
+}  // namespace
 
 IgtlServer::IgtlServer(IgtlServerOptions options) : m_options(std::move(options)) {
   const std::string where = m_options.host + ":" + std::to_string(m_options.port);
@@ -111,6 +127,7 @@ void IgtlServer::run() {
     // Clients first (their fds are in the same order as m_clients), then forces, then new clients.
     for (size_t i = 0; i < m_clients.size(); ++i)
       if (fds[2 + i].revents & (POLLIN | POLLHUP | POLLERR)) readClient(*m_clients[i]);
+    dropStalledClients(steadyNs());
     sendForces();
     std::erase_if(m_clients, [&](const std::unique_ptr<Client>& c) {
       if (c->fd >= 0) return false;
@@ -121,19 +138,56 @@ void IgtlServer::run() {
   }
 }
 
+void IgtlServer::disconnect(Client& client) {
+  if (client.fd >= 0) close(client.fd);
+  client.fd = -1;
+  if (m_poseSource == &client) m_poseSource = nullptr;  // the next client with a pose takes over
+}
+
+void IgtlServer::dropStalledClients(uint64_t now) {
+  for (auto& c : m_clients)
+    if (c->fd >= 0 && c->reader->midMessage() && now - c->lastByteNs > timeoutNs()) {
+      ++m_counters.clientsStalled;
+      disconnect(*c);
+    }
+}
+
+bool IgtlServer::isPoseSource(const Client& client) {
+  if (!m_options.client.empty()) return addressMatches(m_options.client, client.address);
+  if (!m_poseSource) m_poseSource = &client;
+  return m_poseSource == &client;
+}
+
 void IgtlServer::acceptClients() {
   for (;;) {
-    const int fd = accept4(m_listener, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    sockaddr_in address{};
+    socklen_t length = sizeof address;
+    const int fd = accept4(m_listener, reinterpret_cast<sockaddr*>(&address), &length, SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0) return;
+    const uint64_t now = steadyNs();
     if (m_clients.size() >= m_options.maxClients) {
-      ++m_counters.clientsRefused;
-      close(fd);
-      continue;
+      // Room is made by a client that has held its connection without
+      // sending a message (a connection left open, or one that only holds a slot).
+      Client* idle = nullptr;
+      for (auto& c : m_clients)
+        if (c->fd >= 0 && !c->sentMessage && now - c->acceptedNs > timeoutNs() && c.get() != m_poseSource)
+          idle = c.get();
+      if (!idle) {
+        ++m_counters.clientsRefused;
+        close(fd);
+        continue;
+      }
+      ++m_counters.clientsIdle;
+      disconnect(*idle);
+      std::erase_if(m_clients, [](const std::unique_ptr<Client>& c) { return c->fd < 0; });
     }
     const int yes = 1;
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);  // a force is 92 bytes: send each at once
     auto client = std::make_unique<Client>();
     client->fd = fd;
+    client->address = address;
+    client->acceptedNs = client->lastByteNs = now;
+    Client* self = client.get();
     client->reader = std::make_unique<IgtlStreamReader>(
         [this](const MessageHeader& h) {
           const bool transform = h.typeName() == "TRANSFORM" && h.deviceName() == m_options.transformName;
@@ -142,11 +196,22 @@ void IgtlServer::acceptClients() {
           if (!transform && !buttons) ++m_counters.otherMessages;
           return transform || buttons;
         },
-        [this](const MessageHeader& h, std::span<const unsigned char> content) {
+        [this, self](const MessageHeader& h, std::span<const unsigned char> content) {
+          self->sentMessage = true;
           if (h.typeName() == "TRANSFORM") {
             const auto transform = decodeTransform(content);
             if (!transform) {
               ++m_counters.badTransforms;
+              return;
+            }
+            // Judged before its client may become the device's: a pose
+            // beyond the workspace never is the hand's place.
+            if (!(transform->translation.norm() <= m_options.workspace)) {
+              ++m_counters.posesOutsideWorkspace;
+              return;
+            }
+            if (!isPoseSource(*self)) {
+              ++m_counters.posesOtherClients;
               return;
             }
             ReceivedPose& pose = m_poses.writeSlot();
@@ -157,7 +222,12 @@ void IgtlServer::acceptClients() {
             ++m_counters.transforms;
             return;
           }
-          // Buttons: a STRING holding the mask as a number, or a STATUS's subcode.
+          // Buttons: a STRING holding the mask as a number, or a STATUS's
+          // subcode; from the device's client only.
+          if (m_poseSource != self && !(m_options.client.size() && addressMatches(m_options.client, self->address))) {
+            ++m_counters.posesOtherClients;
+            return;
+          }
           if (h.typeName() == "STRING") {
             const auto text = decodeString(content);
             if (!text) return;
@@ -182,18 +252,15 @@ void IgtlServer::readClient(Client& client) {
   for (;;) {
     const ssize_t got = recv(client.fd, buffer, sizeof buffer, MSG_DONTWAIT);
     if (got > 0) {
+      client.lastByteNs = steadyNs();
       if (!client.reader->feed({buffer, static_cast<size_t>(got)})) {
         ++m_counters.clientsBroken;
-        close(client.fd);
-        client.fd = -1;
+        disconnect(client);
         return;
       }
       continue;
     }
-    if (got == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
-      close(client.fd);  // gone
-      client.fd = -1;
-    }
+    if (got == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) disconnect(client);  // gone
     return;
   }
 }
@@ -213,8 +280,7 @@ void IgtlServer::sendForces() {
       if (sent > 0 || (sent < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
         // Part of a message went (the stream is now cut mid-message), or the socket failed: let it go.
         ++m_counters.clientsSlow;
-        close(c->fd);
-        c->fd = -1;
+        disconnect(*c);
         continue;
       }
       ++m_counters.sensorsDropped;
@@ -222,8 +288,7 @@ void IgtlServer::sendForces() {
       if (c->blockedSinceNs == 0) c->blockedSinceNs = now;
       if (now - c->blockedSinceNs > kSlowClientNs) {
         ++m_counters.clientsSlow;
-        close(c->fd);
-        c->fd = -1;
+        disconnect(*c);
       }
     }
   });

@@ -28,6 +28,15 @@ struct IgtlServerOptions {
   std::string transformName = "Tool";
   std::string forceName = "Force";
   std::string buttonsName;  // "" for none
+  // Whose poses drive the device: "" the first client whose pose is taken
+  // (until it leaves), or "HOST" / "HOST:PORT" of the one client to hear.
+  std::string client;
+  // A pose farther than this from the origin (mm) is never taken: a stray
+  // first pose cannot become the hand's place.
+  double workspace = 1000;
+  // s: a client stopped mid-message this long is let go; one that sent no
+  // message since it came this long ago makes room when all are taken.
+  double clientTimeout = 5;
 };
 
 struct ReceivedPose {
@@ -45,6 +54,10 @@ struct ServerCounters {
   std::atomic<uint64_t> clientsRefused{0};  // over maxClients
   std::atomic<uint64_t> clientsBroken{0};   // disconnected for breaking the protocol
   std::atomic<uint64_t> clientsSlow{0};     // disconnected for not reading
+  std::atomic<uint64_t> clientsStalled{0};  // disconnected for stopping mid-message
+  std::atomic<uint64_t> clientsIdle{0};     // disconnected to make room: connected, never sent a message
+  std::atomic<uint64_t> posesOtherClients{0};     // TRANSFORMs of a client that is not the device's, ignored
+  std::atomic<uint64_t> posesOutsideWorkspace{0};  // TRANSFORMs farther than the workspace, ignored
   std::atomic<uint64_t> sensorsSent{0};     // SENSOR messages, summed over clients
   std::atomic<uint64_t> sensorsDropped{0};  // not sent: the client's buffer was full
 };
@@ -79,6 +92,12 @@ class IgtlServer {
   void run();
   void acceptClients();
   void readClient(Client& client);
+  // Whether `client` is the one whose poses the device takes (making it so
+  // when none is and it may be).
+  bool isPoseSource(const Client& client);
+  void dropStalledClients(uint64_t now);
+  void disconnect(Client& client);
+  uint64_t timeoutNs() const { return static_cast<uint64_t>(m_options.clientTimeout * 1e9); }
   void sendForces();
 
   IgtlServerOptions m_options;
@@ -92,6 +111,7 @@ class IgtlServer {
   std::atomic<size_t> m_clientCount{0};
   std::vector<std::unique_ptr<Client>> m_clients;  // the network thread's
   uint64_t m_poseSequence = 0;
+  const Client* m_poseSource = nullptr;  // the client whose poses are taken; null: none yet
   uint32_t m_buttons = 0;
   std::thread m_thread;
 };

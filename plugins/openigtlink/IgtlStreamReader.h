@@ -33,6 +33,9 @@ class IgtlStreamReader {
   // protocol (then error() says how); nothing more is read from it.
   bool feed(std::span<const unsigned char> bytes);
   bool failed() const { return !m_error.empty(); }
+  // Whether a message has begun and not yet ended (a client that stops
+  // here holds its connection without sending anything whole).
+  bool midMessage() const { return m_headerFill > 0 || m_inBody; }
   const std::string& error() const { return m_error; }
 
   uint64_t messagesKept() const { return m_kept; }

@@ -98,7 +98,7 @@ struct LiveServer::Impl {
   class Stream : public std::enable_shared_from_this<Stream> {
    public:
     Stream(beast::tcp_stream stream, Impl& server, Slot slot)
-        : m_ws(std::move(stream)), m_server(server), m_slot(std::move(slot)) {}
+        : m_ws(std::move(stream)), m_server(server), m_slot(std::move(slot)), m_writeDeadline(m_ws.get_executor()) {}
 
     void start(http::request<http::string_body> request) {
       // A client must answer the pings that go out after half the idle time,
@@ -174,9 +174,18 @@ struct LiveServer::Impl {
       m_pending.erase(key);
       m_writing = true;
       m_ws.binary(message->binary);
+      // The message must be taken whole in time, however slowly the client reads.
+      m_writeDeadline.expires_after(m_server.limits.writeTimeout);
+      m_writeDeadline.async_wait([weak = weak_from_this()](beast::error_code ec) {
+        const auto self = weak.lock();
+        if (ec || !self || !self->m_writing) return;
+        ++self->m_server.timedOutCount;
+        self->close();
+      });
       m_ws.async_write(asio::buffer(message->bytes),
                        [self = shared_from_this(), message](beast::error_code ec, size_t) {
                          self->m_writing = false;
+                         self->m_writeDeadline.cancel();
                          if (ec) {
                            self->leave(ec);
                            return;
@@ -192,6 +201,7 @@ struct LiveServer::Impl {
     std::deque<std::string> m_order;
     std::map<std::string, MessagePtr> m_pending;
     bool m_writing = false, m_open = false;
+    asio::steady_timer m_writeDeadline;
   };
 
   // One HTTP connection: a file, the manifest, or the upgrade to /stream.
@@ -314,6 +324,7 @@ struct LiveServer::Impl {
 LiveServer::LiveServer(int port, std::filesystem::path assets, std::string manifest, Limits limits)
     : m_impl(std::make_unique<Impl>()) {
   if (limits.maxConnections < 1 || limits.requestTimeout.count() <= 0 || limits.streamIdleTimeout.count() <= 0 ||
+      limits.writeTimeout.count() <= 0 ||
       limits.acceptRetry.count() <= 0)
     throw std::invalid_argument("the live view's limits must be positive (connections, timeouts and retry pause)");
   m_impl->limits = limits;

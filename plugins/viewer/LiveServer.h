@@ -37,6 +37,10 @@ class LiveServer {
     // A WebSocket client that neither reads what is sent nor answers a ping
     // for this long is closed (a ping goes out after half of it).
     std::chrono::milliseconds streamIdleTimeout{20000};
+    // A message sent to a WebSocket client must be taken whole within this:
+    // a client that reads too slowly to (while answering pings) is closed,
+    // so slow clients never hold the connections for good.
+    std::chrono::milliseconds writeTimeout{10000};
     // After accept() fails (no descriptor left, say), accepting resumes after this.
     std::chrono::milliseconds acceptRetry{100};
   };

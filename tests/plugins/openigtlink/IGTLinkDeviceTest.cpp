@@ -251,11 +251,130 @@ TEST(IGTLinkDeviceTest, ClientsThatBreakTheProtocolAreCutOffAndTheOthersGoOn) {
   EXPECT_NEAR(tracker.forces.back()[2], 2.0, 1e-5);
 }
 
+// Before, one far-away first TRANSFORM from any local client locked the
+// device for the run (every real pose after it rejected as a jump), and any
+// client's TRANSFORM named Tool drove it. Now a pose beyond the workspace is
+// never taken, and the first client whose pose is taken is the device's:
+// another's are counted and ignored.
+TEST(IGTLinkDeviceTest, AStrayFarPoseAndASecondClientNeverDriveTheDevice) {
+  Loaded loaded = loadRealtime(pressScene(), 0.8);
+  ASSERT_TRUE(loaded.simulation);
+  Tracker stray, tracker, intruder;
+  ASSERT_TRUE(stray.connect(loaded.port));
+  stray.sendPose(5000.0f, 0.0f, 0.0f);  // 5 m away, before the tracker's first pose
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  ASSERT_TRUE(tracker.connect(loaded.port));
+  tracker.startReading();
+  std::atomic<bool> done{false};
+  std::thread sender([&] {
+    for (int i = 0; !done && i < 400; ++i) {
+      tracker.sendPose(0.0f, 0.0f, 1.5f);  // 1 mm into the plane: 2 N
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  std::thread other([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    ASSERT_TRUE(intruder.connect(loaded.port));
+    for (int i = 0; !done && i < 100; ++i) {
+      intruder.sendPose(0.0f, 0.0f, 0.5f);  // 2 mm in: would be 4 N, clamped to 3.3
+      std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    }
+  });
+  loaded.simulation->run();
+  done = true;
+  sender.join();
+  other.join();
+  const auto count = [&](const char* name) { return componentCounterAt(*loaded.simulation, "/tool/device", name); };
+  EXPECT_EQ(count("poses_outside_workspace"), 1);
+  EXPECT_GT(count("poses_other_clients"), 20) << "the intruder's poses, ignored";
+  EXPECT_EQ(count("rejected_jump"), 0) << "the stray pose never became the hand's place";
+  loaded.simulation.reset();
+  tracker.finish();
+  stray.finish();
+  intruder.finish();
+  ASSERT_GT(tracker.forces.size(), 100u);
+  size_t afterIntruder = 0;
+  for (size_t i = tracker.forces.size() / 2; i < tracker.forces.size(); ++i) {
+    EXPECT_NEAR(tracker.forces[i][2], 2.0, 1e-5) << "the tracker's own 2 N, whatever the intruder sends";
+    ++afterIntruder;
+  }
+  EXPECT_GT(afterIntruder, 50u);
+}
+
+// `client` names the one client to hear: a tracker from another address
+// drives nothing (its poses are counted), and no force is sent.
+TEST(IGTLinkDeviceTest, OnlyTheClientNamedDrivesTheDevice) {
+  Loaded loaded = loadRealtime(pressScene("client=\"127.0.0.2\""), 0.4);
+  ASSERT_TRUE(loaded.simulation);
+  Tracker tracker;
+  ASSERT_TRUE(tracker.connect(loaded.port));
+  tracker.startReading();
+  std::atomic<bool> done{false};
+  std::thread sender([&] {
+    for (int i = 0; !done && i < 200; ++i) {
+      tracker.sendPose(0.0f, 0.0f, 1.5f);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  loaded.simulation->run();
+  done = true;
+  sender.join();
+  const auto count = [&](const char* name) { return componentCounterAt(*loaded.simulation, "/tool/device", name); };
+  EXPECT_GT(count("poses_other_clients"), 20);
+  EXPECT_EQ(count("transforms_received"), 0);
+  loaded.simulation.reset();
+  tracker.finish();
+  EXPECT_TRUE(tracker.forces.empty()) << "nothing drives it, so no force is sent";
+}
+
+// Clients that hold a connection without sending anything whole: one stopped
+// mid-message is let go after `clientTimeout`; with every connection taken,
+// one that never sent a message makes room for a tracker that comes later.
+TEST(IGTLinkDeviceTest, AClientStoppedMidMessageOrHoldingASlotIsLetGo) {
+  Loaded loaded = loadRealtime(pressScene("maxClients=\"2\" clientTimeout=\"0.2\""), 1.2);
+  ASSERT_TRUE(loaded.simulation);
+  const int stalled = rawClient(loaded.port);
+  const unsigned char half[20] = {0, 1, 'T', 'R', 'A', 'N', 'S'};
+  EXPECT_EQ(send(stalled, half, sizeof half, MSG_NOSIGNAL), 20);
+  const int holder = rawClient(loaded.port);  // connects, sends nothing
+  Tracker tracker;
+  std::atomic<bool> done{false};
+  int filler = -1;
+  std::thread late([&] {
+    // The stalled one is gone by now; another that sends nothing takes its place.
+    std::this_thread::sleep_for(std::chrono::milliseconds(350));
+    filler = rawClient(loaded.port);
+    std::this_thread::sleep_for(std::chrono::milliseconds(350));
+    ASSERT_TRUE(tracker.connect(loaded.port));
+    tracker.startReading();
+    for (int i = 0; !done && i < 200; ++i) {
+      tracker.sendPose(0.0f, 0.0f, 1.5f);
+      std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    }
+  });
+  loaded.simulation->run();
+  done = true;
+  late.join();
+  const auto count = [&](const char* name) { return componentCounterAt(*loaded.simulation, "/tool/device", name); };
+  EXPECT_EQ(count("clients_stalled"), 1);
+  EXPECT_EQ(count("clients_idle"), 1);
+  EXPECT_EQ(count("clients_refused"), 0);
+  loaded.simulation.reset();
+  tracker.finish();
+  EXPECT_GT(tracker.forces.size(), 50u) << "the late tracker was served";
+  close(stalled);
+  close(holder);
+  close(filler);
+}
+
 TEST(IGTLinkDeviceTest, BadFieldsAreLoadErrorsThatSayWhatWasExpected) {
   for (const auto& [attributes, expected] : std::vector<std::pair<std::string, std::string>>{
            {"host=\"localhost\"", "dotted IPv4"},
            {"buttonsName=\"APedalNameLongerThanTwenty\"", "20-byte"},
-           {"maxClients=\"0\"", "maxClients"}}) {
+           {"maxClients=\"0\"", "maxClients"},
+           {"client=\"localhost\"", "not HOST or HOST:PORT"},
+           {"client=\"127.0.0.1:0\"", "not HOST or HOST:PORT"},
+           {"workspace=\"0\"", "workspace"}}) {
     Diagnostics diagnostics;
     EXPECT_FALSE(loadScene(pressScene(attributes), diagnostics)) << attributes;
     EXPECT_NE(messages(diagnostics).find(expected), std::string::npos) << attributes << ":\n" << messages(diagnostics);

@@ -12,6 +12,13 @@
 #include <igtlSensorMessage.h>
 #include <igtlTransformMessage.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
 #include <cstring>
 #include <set>
 #include <thread>
@@ -59,6 +66,7 @@ struct Received {
   std::vector<int16_t> volume;  // the client's copy of the skull
   int dims[3] = {0, 0, 0};
   int wholeImages = 0, partialImages = 0, polydata = 0, transforms = 0, sensors = 0, badCrc = 0;
+  int slabs = 0, slabSlices = 0;  // the skull's slabs of whole slices, and the slices they held
   int polygons = 0, points = 0;
   std::array<float, 3> firstPoint{};
   std::vector<std::vector<std::array<float, 3>>> surfaces;  // the points of every POLYDATA
@@ -96,9 +104,18 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
       image->GetDimensions(r.dims);
       image->GetSubVolume(size, offset);
       const bool whole = size[0] == r.dims[0] && size[1] == r.dims[1] && size[2] == r.dims[2];
+      // The skull comes whole, or in slabs of whole slices that together
+      // are (a large one), then as the blocks the drill changed.
+      const bool slab = !whole && offset[0] == 0 && offset[1] == 0 && size[0] == r.dims[0] &&
+                        size[1] == r.dims[1] && offset[2] == r.slabSlices;
+      if (r.volume.empty()) r.volume.assign(size_t(r.dims[0]) * r.dims[1] * r.dims[2], 0);
       if (whole) {
         ++r.wholeImages;
-        r.volume.assign(size_t(r.dims[0]) * r.dims[1] * r.dims[2], 0);
+        r.slabSlices = r.dims[2];
+      } else if (slab && r.slabSlices < r.dims[2]) {
+        ++r.slabs;
+        r.slabSlices += size[2];
+        if (r.slabSlices == r.dims[2]) ++r.wholeImages;
       } else {
         ++r.partialImages;
       }
@@ -137,8 +154,8 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
 // Runs `xml` in real time for `duration` with a client connected to its
 // exporter (/stream/slicer) from the start; `inspect` sees the scene after the
 // run, before it goes (which closes the server and ends the client's reading).
-template <class Inspect>
-Received runStreamed(const std::string& xml, double duration, Inspect&& inspect) {
+template <class Inspect, class Started = void (*)(int)>
+Received runStreamed(const std::string& xml, double duration, Inspect&& inspect, Started started = [](int) {}) {
   SimulationOptions options;
   options.duration = duration;
   options.realtime = true;
@@ -154,6 +171,7 @@ Received runStreamed(const std::string& xml, double duration, Inspect&& inspect)
   auto socket = igtl::ClientSocket::New();
   EXPECT_EQ(socket->ConnectToServer("127.0.0.1", exporter->listeningPort()), 0);
   std::thread reader([&] { readAll(socket, received); });
+  started(exporter->listeningPort());
   simulation->run();
   inspect(*simulation);
   simulation.reset();
@@ -259,6 +277,93 @@ TEST(IGTLinkExporterTest, ADeformingBrainsSurfaceIsSentAgainAsItMoves) {
   ASSERT_FALSE(largest.empty());
   EXPECT_LT(largest.front(), 1e-4) << "mm: at rest when the client connected";
   EXPECT_GT(*std::max_element(largest.begin(), largest.end()), 1.0) << "mm: the probe pressed the cube";
+}
+
+// Clients that come and go while the skull is drilled: each new one gets
+// the skull in slabs of whole slices, 2 MB a tick for all of them, so the
+// exporter's 30 Hz group keeps its deadlines (before, each new client cost
+// the group a whole-skull IMAGE in the tick it came: 50 misses under churn
+// with a CT), and a client that stays rebuilds the skull voxel for voxel.
+TEST(IGTLinkExporterTest, ClientsThatComeAndGoGetTheSkullInSlabsWithinTheGroupsBudget) {
+  std::string xml = kScene;
+  xml.replace(xml.find("voxel=2"), 7, "voxel=1");  // 213 x 202 x 142 voxels: 12 MB of codes
+  VoxelGrid grid;
+  std::vector<int16_t> drilled;
+  uint64_t misses = 0, calls = 0;
+  double accepted = 0;
+  std::atomic<bool> done{false};
+  std::thread churn;
+  const Received received = runStreamed(
+      xml, 2.0,
+      [&](const Simulation& simulation) {
+        done = true;
+        churn.join();
+        const auto* skull = dynamic_cast<const DrillableVolume*>(simulation.scene().findComponent("/patient/skull"));
+        ASSERT_TRUE(skull);
+        grid = skull->voxelGrid();
+        drilled.assign(grid.codes, grid.codes + grid.voxelCount());
+        for (const RateGroup& g : simulation.scheduler().groups())
+          if (std::abs(g.periodS - 1.0 / 30) < 1e-9) misses = g.deadlineMisses, calls = g.calls;
+        accepted = componentCounterAt(simulation, "/stream/slicer", "clients_accepted");
+      },
+      [&](int port) {
+        churn = std::thread([&, port] {
+          // Three at a time, a new three every 150 ms, each gone after 100 ms.
+          while (!done) {
+            std::vector<igtl::ClientSocket::Pointer> sockets;
+            for (int k = 0; k < 3; ++k) {
+              sockets.push_back(igtl::ClientSocket::New());
+              sockets.back()->ConnectToServer("127.0.0.1", port);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            for (auto& socket : sockets) socket->CloseSocket();
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+          }
+        });
+      });
+  EXPECT_GT(received.slabs, 1) << "a skull of 12 MB goes in slabs";
+  EXPECT_EQ(received.wholeImages, 1) << "which together are the whole skull, once";
+  ASSERT_EQ(received.volume.size(), drilled.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < drilled.size(); ++i) differ += received.volume[i] != drilled[i];
+  EXPECT_EQ(differ, 0u) << "the client that stayed holds the drilled skull";
+  EXPECT_GT(accepted, 20) << "clients came and went";
+  EXPECT_GT(calls, 50u);
+  if (kTimingChecked) EXPECT_EQ(misses, 0u) << "of " << calls << " ticks of the exporter's group";
+}
+
+// A client that takes nothing it is sent (it never reads) is let go after
+// `clientTimeout` behind (before, only once 256 MB waited for it): slow
+// clients never hold the connections for good.
+TEST(IGTLinkExporterTest, AClientThatDoesNotReadIsLetGoAfterTheTimeout) {
+  std::string xml = kScene;
+  xml.replace(xml.find("rate=\"30\"/>"), 11, "maxClients=\"2\" clientTimeout=\"0.3\" rate=\"30\"/>");
+  xml.replace(xml.find("voxel=2"), 7, "voxel=1");  // 12 MB of skull: more than the sockets' buffers hold
+  double slow = 0, refused = 0;
+  std::vector<int> sleepers;
+  const Received received = runStreamed(
+      xml, 1.5,
+      [&](const Simulation& simulation) {
+        slow = componentCounterAt(simulation, "/stream/slicer", "clients_slow");
+        refused = componentCounterAt(simulation, "/stream/slicer", "clients_refused");
+      },
+      [&](int port) {
+        // One more client that never reads: with the reader, both connections taken.
+        const int fd = socket(AF_INET, SOCK_STREAM, 0);
+        const int small = 4096;
+        setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_port = htons(static_cast<uint16_t>(port));
+        inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+        EXPECT_EQ(connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+        sleepers.push_back(fd);
+      });
+  for (const int fd : sleepers) close(fd);
+  EXPECT_GE(slow, 1) << "the client that never read was let go";
+  EXPECT_EQ(refused, 0);
+  EXPECT_EQ(received.wholeImages, 1) << "the reader was served throughout";
+  EXPECT_GT(received.sensors, 30);
 }
 
 }  // namespace

@@ -78,13 +78,18 @@ class Connection {
     }
   }
   // A masked pong frame (RFC 6455: a client masks what it sends) carrying `payload`.
-  void pong(const std::string& payload) {
-    ASSERT_LT(payload.size(), 126u);
+  void pong(const std::string& payload) { write(pongFrame(payload)); }
+  // The same, false when the connection is gone (closed by the server).
+  bool tryPong(const std::string& payload) {
+    const std::string frame = pongFrame(payload);
+    return ::send(m_fd, frame.data(), frame.size(), MSG_NOSIGNAL) == ssize_t(frame.size());
+  }
+  static std::string pongFrame(const std::string& payload) {
     const uint8_t mask[4] = {1, 2, 3, 4};
-    std::string frame{char(0x8a), char(0x80 | payload.size())};
+    std::string frame{char(0x8a), char(0x80 | (payload.size() & 0x7f))};
     frame.append(reinterpret_cast<const char*>(mask), 4);
     for (size_t i = 0; i < payload.size(); ++i) frame += char(payload[i] ^ mask[i % 4]);
-    write(frame);
+    return frame;
   }
   void write(const std::string& bytes) { ASSERT_EQ(::send(m_fd, bytes.data(), bytes.size(), 0), ssize_t(bytes.size())); }
   // Everything until the server closes (an HTTP answer).
@@ -279,6 +284,7 @@ LiveServer::Limits quickLimits() {
   limits.requestTimeout = milliseconds(300);
   limits.streamIdleTimeout = milliseconds(400);
   limits.acceptRetry = milliseconds(50);
+  limits.writeTimeout = milliseconds(600);
   return limits;
 }
 
@@ -403,6 +409,33 @@ TEST(LiveServerTest, AWebSocketClientThatAnswersPingsStaysOpen) {
   EXPECT_GE(messages, 10);
   EXPECT_EQ(server.timedOut(), 0u);
   EXPECT_EQ(server.openConnections(), 1);
+}
+
+// A client that keeps its connection alive (a pong every 100 ms, as a
+// heartbeat) but reads a few hundred bytes at a time: before, it held its
+// connection for good (and 16 such held all of them); now a message it does
+// not take whole within the write timeout closes it.
+TEST(LiveServerTest, AWebSocketClientThatReadsTooSlowlyIsClosed) {
+  Assets assets;
+  LiveServer server(0, assets.dir.path(), "", quickLimits());
+  Connection c;
+  c.receiveBuffer(4096);
+  ASSERT_TRUE(c.connectTo(server.port()));
+  c.write(upgrade(loopback(server.port())));
+  ASSERT_NE(c.readHeader().find("101"), std::string::npos);
+  server.send("block/0", std::string(size_t(4) << 20, 'x'), true);
+  const auto start = Clock::now();
+  bool closed = false;
+  while (Clock::now() - start < std::chrono::seconds(4) && !closed) {
+    closed = !c.tryPong("alive");
+    for (int k = 0; k < 2 && !closed; ++k) {
+      closed = c.read(256).size() < 256;
+      std::this_thread::sleep_for(milliseconds(50));
+    }
+  }
+  EXPECT_TRUE(closed) << "a client 4 MB behind, alive, was never let go";
+  EXPECT_TRUE(eventually([&] { return server.timedOut() == 1; })) << server.timedOut();
+  EXPECT_TRUE(eventually([&] { return server.openConnections() == 0; })) << server.openConnections();
 }
 
 TEST(LiveServerTest, ConnectionsBeyondTheLimitAreClosedAtOnce) {
