@@ -178,11 +178,8 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
     row.setting = setting;
     row.isReference = setting.index == referenceIndex;
     const std::filesystem::path directory = out / setting.directoryName();
-    if (std::ifstream error{directory / kErrorFile}) {
-      std::ostringstream text;
-      text << error.rdbuf();
-      row.error = text.str();
-      while (!row.error.empty() && (row.error.back() == '\n' || row.error.back() == ' ')) row.error.pop_back();
+    if (std::filesystem::is_regular_file(directory / kErrorFile)) {
+      row.error = settingErrorMessage(directory / kErrorFile);
       report.rows.push_back(std::move(row));
       continue;
     }

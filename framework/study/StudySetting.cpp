@@ -200,13 +200,13 @@ std::string addExactContacts(std::vector<StudyPose>& poses, const Component& tar
 }
 
 
-void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses) {
+void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses, const std::string& study) {
   std::ostringstream s;
-  s << "kind,tool,target,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz\n";
+  s << "kind,tool,target,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz,study\n";
   for (const StudyPose& p : poses)
     s << p.kind << ',' << p.tool << ',' << p.target << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
       << ',' << number(p.exactPenetration) << ',' << number(p.exactNormal.x()) << ',' << number(p.exactNormal.y())
-      << ',' << number(p.exactNormal.z()) << '\n';
+      << ',' << number(p.exactNormal.z()) << ',' << study << '\n';
   AtomicFile out(file);  // other processes wait for it: it appears whole or not at all
   out.write(s.str());
   out.commit();
@@ -279,7 +279,7 @@ void probe(Simulation& simulation, const std::vector<StudyPose>& poses, const st
   out.commit();
 }
 
-void writeResult(const Simulation& simulation, const std::filesystem::path& file) {
+void writeResult(const Simulation& simulation, const std::filesystem::path& file, const std::string& study) {
   const HapticStats stats = simulation.hapticLog().stats();
   const RateGroup* group = hapticGroup(simulation);
   const TimingSummary step = group ? group->stepHistogram.summary() : TimingSummary{};
@@ -287,11 +287,12 @@ void writeResult(const Simulation& simulation, const std::filesystem::path& file
   for (size_t i = 0; i < simulation.hapticLog().size(); ++i) removed += simulation.hapticLog()[i].removed;
   std::ostringstream s;
   s << "complete,frames,contact_frames,step_p50_us,step_p99_us,force_step_p99_N,force_step_max_N,"
-       "unexplained_step_p99_N,proxy_inside_frames,nan_frames,force_reversals,removed,wall_s\n";
+       "unexplained_step_p99_N,proxy_inside_frames,nan_frames,force_reversals,removed,wall_s,study\n";
   s << (simulation.complete() ? 1 : 0) << ',' << stats.frames << ',' << stats.contactFrames << ',' << number(step.p50)
     << ',' << number(step.p99) << ',' << number(stats.forceStepP99) << ',' << number(stats.forceStepMax) << ','
     << (stats.hasUnexplainedSteps ? number(stats.unexplainedStepP99) : "nan") << ',' << stats.proxyInsideFrames << ','
-    << stats.nanFrames << ',' << stats.forceReversals << ',' << removed << ',' << number(simulation.wallTime()) << '\n';
+    << stats.nanFrames << ',' << stats.forceReversals << ',' << removed << ',' << number(simulation.wallTime()) << ','
+    << study << '\n';
   AtomicFile out(file);
   out.write(s.str());
   out.commit();
@@ -358,7 +359,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
         if (!why.empty()) noExactShape += pair.tool + " on " + pair.target + ": " + why + "\n";
         poses.insert(poses.end(), ofPair.begin(), ofPair.end());
       }
-      writePoses(posesFile, poses);
+      writePoses(posesFile, poses, options.studyId);
       std::filesystem::remove(options.out / kNoExactShapeFile, ec);
       if (!noExactShape.empty()) {
         AtomicFile why(options.out / kNoExactShapeFile);
@@ -368,6 +369,8 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
       probe(*probed, poses, directory / kProbeFile);
     } else {
       auto probed = load(options, setting);
+      if (studyOfFile(posesFile) != options.studyId)
+        throw SettingError(posesFile.string() + " is not this study's (an earlier study's, left in the same folder)");
       probe(*probed, readPoses(posesFile), directory / kProbeFile);
       probed.reset();
       simulation->run();
@@ -376,19 +379,55 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
     simulation->writeOutputs(directory, &errors);
     if (!simulation->complete()) throw SettingError("run incomplete: " + simulation->incompleteReason());
     if (!errors.empty()) throw SettingError(errors.front());
-    writeResult(*simulation, directory / kResultFile);
+    writeResult(*simulation, directory / kResultFile, options.studyId);
     return true;
   } catch (const std::exception& e) {
-    writeSettingError(directory, setting.label() + ": " + e.what());
+    writeSettingError(directory, options.studyId, setting.label() + ": " + e.what());
     return false;
   }
 }
 
-void writeSettingError(const std::filesystem::path& directory, const std::string& message) {
+std::string studyOfFile(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return "";
+  if (file.filename() == kErrorFile) {
+    std::ifstream in(file);
+    std::string first;
+    std::getline(in, first);
+    return first.starts_with("study ") ? first.substr(6) : "";
+  }
+  try {
+    const Table table = readTable(file);
+    if (table.size() < 2) return "";
+    return table[1][column(table, "study", file)];
+  } catch (const std::exception&) {
+    return "";  // an earlier version's, or cut short: not this study's
+  }
+}
+
+std::string settingErrorMessage(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::ostringstream text;
+  std::string line;
+  bool first = true;
+  while (std::getline(in, line)) {
+    if (first && line.starts_with("study ")) {
+      first = false;
+      continue;
+    }
+    first = false;
+    text << line << '\n';
+  }
+  std::string message = text.str();
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  return message;
+}
+
+void writeSettingError(const std::filesystem::path& directory, const std::string& studyId, const std::string& message) {
   // Other processes wait for this file: it appears whole or not at all.
   try {
     AtomicFile out(directory / kErrorFile);
-    out.write(message + "\n");
+    out.write("study " + studyId + "\n" + message + "\n");
     out.commit();
   } catch (const std::exception& e) {
     std::cerr << "trephine: " << message << "; and the error file cannot be written: " << e.what() << "\n";

@@ -26,7 +26,18 @@ struct StudyOptions {
   std::string target;            // path of the one target to study; empty: every target a tool touched
   int referenceIndex = 0;        // setting whose run gives the poses (and the reference without an exact shape)
   int posesPerKind = 200;        // proxy poses and as many device poses, evenly over the contact frames
+  // Which study this is: every rank of one study has the same, and writes it
+  // into poses.csv, result.csv and error.txt, so files an earlier study left
+  // in the same folder are never taken for this one's.
+  std::string studyId;
 };
+
+// The study `file` (poses.csv or result.csv: the `study` column of its first
+// row; error.txt: its first line, "study ID") belongs to, or "" when it is
+// missing or says none.
+std::string studyOfFile(const std::filesystem::path& file);
+// The message of an error.txt, without its first line.
+std::string settingErrorMessage(const std::filesystem::path& file);
 
 inline constexpr const char* kPosesFile = "poses.csv";
 inline constexpr const char* kProbeFile = "probe.csv";
@@ -49,6 +60,6 @@ std::filesystem::path settingFolder(const std::filesystem::path& out, const Stud
 std::string settingFolderProblem(const std::filesystem::path& out, const StudySetting& setting);
 
 // Writes error.txt of a setting whole (other processes wait for it).
-void writeSettingError(const std::filesystem::path& directory, const std::string& message);
+void writeSettingError(const std::filesystem::path& directory, const std::string& studyId, const std::string& message);
 
 }  // namespace trephine::study

@@ -322,6 +322,15 @@ TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
   EXPECT_EQ(runProgram({"study", scene.string(), "--out", dir.path().string()}, &out), 2) << "no --vary";
   EXPECT_NE(out.find("at least one --vary"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=1,,2"}, &out), 2);
+  // A billion settings (four fields of 180 values): a usage error at once, not an abort on memory.
+  std::string values;
+  for (int v = 1; v <= 180; ++v) values += (v > 1 ? "," : "") + std::to_string(v);
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=" + values, "--vary",
+                        "/tool/burr.radius=" + values, "--vary", "/tool/force.stiffness=" + values, "--vary",
+                        "/tool/force.damping=" + values},
+                       &out),
+            2);
+  EXPECT_NE(out.find("1049760000 settings, more than the 10000 a study runs"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--reference", "2"}, &out), 2);
   EXPECT_NE(out.find("from 1 to 1"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--jobs", "0"}, &out), 2);
@@ -342,8 +351,11 @@ TEST(StudyCommandTest, TwoMpiRanksShareTheSettingsAndRankZeroGathers) {
       "--out", (dir / "study").string(), "--poses", "20"};
   std::string out0, out1;
   int status0 = -1, status1 = -1;
-  std::thread rank1([&] { status1 = runProgram(args, &out1, "OMPI_COMM_WORLD_RANK=1 OMPI_COMM_WORLD_SIZE=2"); });
-  status0 = runProgram(args, &out0, "OMPI_COMM_WORLD_RANK=0 OMPI_COMM_WORLD_SIZE=2");
+  // Both ranks of one launch: the same study id (Open MPI's own launcher gives one, the next test).
+  std::thread rank1([&] {
+    status1 = runProgram(args, &out1, "TREPHINE_STUDY_ID=one OMPI_COMM_WORLD_RANK=1 OMPI_COMM_WORLD_SIZE=2");
+  });
+  status0 = runProgram(args, &out0, "TREPHINE_STUDY_ID=one OMPI_COMM_WORLD_RANK=0 OMPI_COMM_WORLD_SIZE=2");
   rank1.join();
   EXPECT_EQ(status0, 0) << out0;
   EXPECT_EQ(status1, 0) << out1;
@@ -355,6 +367,45 @@ TEST(StudyCommandTest, TwoMpiRanksShareTheSettingsAndRankZeroGathers) {
   const auto rows = readStudy(dir / "study/study.csv");
   ASSERT_EQ(rows.size(), 3u);
   for (const auto& row : rows) EXPECT_EQ(row.at("status"), "ok") << row.at("label");
+}
+
+// A study run again at once into the same folder under two ranks, with the
+// walk changed: the rank that waits for the reference's poses takes this
+// study's, not the earlier study's (before, any poses.csv written less than
+// 10 s before it started counted, and the study exited 0 with the earlier
+// poses' accuracy). Its accuracy is what the same study alone measures.
+TEST(StudyCommandTest, ARerunIntoTheSameFolderUnderTwoRanksTakesOnlyItsOwnPoses) {
+  test::TempDir dir("trephine-study");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  const auto study = [&](const std::string& id, const std::string& seed, const std::string& out) {
+    const std::vector<std::string> args = {"study", scene.string(), "--vary", "/tool/burr.pointCount=92,162",
+                                           "--set", "/tool/device.seed=" + seed, "--out", out, "--poses", "20"};
+    std::string out0, out1;
+    int status1 = -1;
+    std::thread rank1([&] {
+      status1 = runProgram(args, &out1, "TREPHINE_STUDY_ID=" + id + " OMPI_COMM_WORLD_RANK=1 OMPI_COMM_WORLD_SIZE=2");
+    });
+    const int status0 =
+        runProgram(args, &out0, "TREPHINE_STUDY_ID=" + id + " OMPI_COMM_WORLD_RANK=0 OMPI_COMM_WORLD_SIZE=2");
+    rank1.join();
+    EXPECT_EQ(status0, 0) << out0;
+    EXPECT_EQ(status1, 0) << out1;
+  };
+  study("first", "7", (dir / "study").string());
+  study("second", "11", (dir / "study").string());  // at once, into the same folder, another walk
+  std::string alone;
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=92,162", "--set",
+                        "/tool/device.seed=11", "--out", (dir / "alone").string(), "--poses", "20"},
+                       &alone),
+            0)
+      << alone;
+  const auto rerun = readStudy(dir / "study/study.csv"), fresh = readStudy(dir / "alone/study.csv");
+  ASSERT_EQ(rerun.size(), 2u);
+  ASSERT_EQ(fresh.size(), 2u);
+  for (size_t i = 0; i < rerun.size(); ++i)
+    for (const auto& [column, value] : fresh[i])
+      if (column.find("penetration") != std::string::npos || column.find("normal") != std::string::npos)
+        EXPECT_EQ(rerun[i].at(column), value) << column << " of setting " << i + 1;
 }
 
 // The same under Open MPI's own launcher, when it is installed (tools/setup

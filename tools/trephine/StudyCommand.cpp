@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -69,6 +70,35 @@ std::optional<int> positiveInteger(const Arguments& a, const std::string& option
   return value;
 }
 
+// Settings a study runs at most (each is a run of its own and a folder).
+constexpr size_t kMostSettings = 10000;
+
+// Which study this process is part of. Under mpirun every rank of one launch
+// has the same (Open MPI's job: the launcher's address and its job id, new
+// for every mpirun), given to its workers with --study-id; alone, a new
+// random one. With another MPI, TREPHINE_STUDY_ID (the same on every rank:
+// mpirun -x, or -genv) names it.
+std::optional<std::string> launchStudyId(int ranks, std::string& error) {
+  if (const char* given = std::getenv("TREPHINE_STUDY_ID"); given && *given) return std::string(given);
+  std::string launch;
+  for (const char* name : {"OMPI_MCA_orte_hnp_uri", "PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid"})
+    if (const char* value = std::getenv(name)) launch += std::string(name) + "=" + value + ";";
+  if (launch.empty() && ranks > 1) {
+    error = "under this MPI the ranks cannot tell one study from another: give them the same TREPHINE_STUDY_ID "
+            "(mpirun -genv TREPHINE_STUDY_ID=$(date +%s%N) ...)";
+    return std::nullopt;
+  }
+  uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a of the launch's names
+  if (launch.empty()) {
+    std::random_device random;
+    launch = std::to_string(random()) + "-" + std::to_string(random()) + "-" + std::to_string(getpid());
+  }
+  for (const unsigned char c : launch) hash = (hash ^ c) * 0x100000001b3ull;
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return std::string(text);
+}
+
 struct StudyRequest {
   StudyOptions options;
   std::vector<StudySetting> settings;
@@ -103,6 +133,17 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
       }
     variations.push_back(*variation);
   }
+  // Bounded before any is made: a product of a billion settings is a usage
+  // error, not a study that runs out of memory.
+  double product = 1;
+  for (const StudyVariation& v : variations) product *= double(v.values.size());
+  if (product > double(kMostSettings)) {
+    error = "the --vary values make " + (product < 1e15 ? std::to_string(static_cast<long long>(product))
+                                                         : std::string("more than 10^15")) +
+            " settings, more than the " + std::to_string(kMostSettings) +
+            " a study runs: vary fewer fields or fewer values";
+    return std::nullopt;
+  }
   request.variationTexts = a.variations;
   request.settings = expandSettings(variations);
   request.options.out = a.get("--out").value_or("runs/study-" + request.options.scene.stem().string());
@@ -123,6 +164,11 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   if (auto only = positiveInteger(a, "--setting", error)) request.onlySetting = *only - 1;
   if (auto describe = positiveInteger(a, "--describe", error)) request.describeOnly = *describe - 1;
   request.describeTo = a.get("--describe-to").value_or("");
+  if (auto id = a.get("--study-id")) {
+    request.options.studyId = *id;  // a worker: its rank's study
+  } else if (auto launched = launchStudyId(mpiRank().size, error)) {
+    request.options.studyId = *launched;
+  }
   if (request.describeOnly && request.describeTo.empty()) error = "--describe needs --describe-to FILE";
   if (!error.empty()) return std::nullopt;
   if (request.options.referenceIndex >= count || (request.onlySetting && *request.onlySetting >= count) ||
@@ -148,7 +194,7 @@ std::vector<std::string> workerArguments(const StudyRequest& request, int index)
   if (!request.options.target.empty()) args.insert(args.end(), {"--target", request.options.target});
   args.insert(args.end(), {"--reference", std::to_string(request.options.referenceIndex + 1), "--poses",
                            std::to_string(request.options.posesPerKind), "--out", request.options.out.string(),
-                           "--setting", std::to_string(index + 1)});
+                           "--setting", std::to_string(index + 1), "--study-id", request.options.studyId});
   return args;
 }
 
@@ -204,10 +250,10 @@ void recordAbnormalEnd(const StudyRequest& request, int index, const std::string
     std::cerr << "trephine: " << e.what() << "\n";
     return;
   }
-  std::error_code ec;
-  if (std::filesystem::exists(directory / kResultFile, ec) || std::filesystem::exists(directory / kErrorFile, ec))
-    return;  // the worker removed the earlier study's files first, so these are its own
-  writeSettingError(directory, request.settings[index].label() + ": " + why);
+  if (studyOfFile(directory / kResultFile) == request.options.studyId ||
+      studyOfFile(directory / kErrorFile) == request.options.studyId)
+    return;  // the worker's own
+  writeSettingError(directory, request.options.studyId, request.settings[index].label() + ": " + why);
 }
 
 std::string describeStatus(int status) {
@@ -287,20 +333,17 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
   }
 }
 
-using Clock = std::filesystem::file_time_type::clock;
 
 // Under MPI, other ranks write into the shared directory: a file counts only
-// when it was written after this rank started (less a margin for clocks), so
-// that files of an earlier study in the same directory are not taken.
-bool writtenSince(const std::filesystem::path& file, Clock::time_point since) {
-  std::error_code ec;
-  const auto time = std::filesystem::last_write_time(file, ec);
-  return !ec && time >= since;
+// when it says it is this study's, so that files an earlier study left in
+// the same directory (however recently) are never taken.
+bool ofThisStudy(const StudyRequest& request, const std::filesystem::path& file) {
+  return studyOfFile(file) == request.options.studyId;
 }
 
-bool settingDone(const StudyRequest& request, int index, Clock::time_point since) {
+bool settingDone(const StudyRequest& request, int index) {
   const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
-  return writtenSince(directory / kResultFile, since) || writtenSince(directory / kErrorFile, since);
+  return ofThisStudy(request, directory / kResultFile) || ofThisStudy(request, directory / kErrorFile);
 }
 
 void waitFor(const std::function<bool()>& ready) {
@@ -333,7 +376,6 @@ int studyCommand(const Arguments& a) {
                            request->describeTo);
     return kOk;
   }
-  const auto started = Clock::now() - std::chrono::seconds(10);
   // The first setting is loaded before anything is run (a typo in a field
   // shows here). Unless the reference has an exact shape for every target and
   // tool, every setting is: what each resolves decides the reference. Each
@@ -394,11 +436,12 @@ int studyCommand(const Arguments& a) {
   progress.all = mine.size() + (ownsReference ? 1 : 0);
   if (ownsReference) runWorkers(*request, {referenceIndex}, 1, progress);
   waitFor([&] {
-    return writtenSince(options.out / kPosesFile, started) || settingDone(*request, referenceIndex, started);
+    return ofThisStudy(*request, options.out / kPosesFile) || settingDone(*request, referenceIndex);
   });
-  if (!writtenSince(options.out / kPosesFile, started)) {
-    std::ifstream why(options.out / request->settings[referenceIndex].directoryName() / kErrorFile);
-    std::cerr << "trephine: the reference setting failed, so no setting can be compared: " << why.rdbuf();
+  if (!ofThisStudy(*request, options.out / kPosesFile)) {
+    std::cerr << "trephine: the reference setting failed, so no setting can be compared: "
+              << settingErrorMessage(options.out / request->settings[referenceIndex].directoryName() / kErrorFile)
+              << "\n";
     return kRuntimeFailure;
   }
   runWorkers(*request, mine, request->jobs, progress);
@@ -406,7 +449,7 @@ int studyCommand(const Arguments& a) {
 
   waitFor([&] {
     for (int i = 0; i < count; ++i)
-      if (!settingDone(*request, i, started)) return false;
+      if (!settingDone(*request, i)) return false;
     return true;
   });
   std::vector<std::string> written;

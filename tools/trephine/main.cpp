@@ -90,7 +90,7 @@ const std::vector<Command>& commands() {
       system).
 )",
        {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference", "--poses",
-        "--setting", "--describe", "--describe-to"},
+        "--setting", "--describe", "--describe-to", "--study-id"},
        {"--coarse-reference"},
        studyCommand},
       {"components",
