@@ -21,7 +21,11 @@ import json
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    print("plot_cellsize.py: matplotlib is missing; install python3-matplotlib", file=sys.stderr)
+    sys.exit(4)  # the program that runs this says so; any other failure is the script's own message
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -20,7 +20,8 @@ try:
 except ImportError:
     if sys.executable != "/usr/bin/python3" and os.path.exists("/usr/bin/python3"):
         os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
-    sys.exit("plot_study.py: matplotlib is missing; install python3-matplotlib")
+    print("plot_study.py: matplotlib is missing; install python3-matplotlib", file=sys.stderr)
+    sys.exit(4)  # the program that runs this says so; any other failure is the script's own message
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

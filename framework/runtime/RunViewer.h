@@ -8,6 +8,7 @@
 #include <string>
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 #include "framework/core/Interface.h"
 #include "framework/core/OutputFolder.h"
@@ -29,6 +30,10 @@ struct ViewerDataSummary {
   uint64_t bytes = 0;                      // of the VTK files packed
   double end = 0;                          // s
   bool plots = false;
+  // What the viewer left out, by file and line ("trace.csv:12: ..."), the
+  // first few; and how many rows of the trace were left out in all.
+  std::vector<std::string> warnings;
+  size_t rowsLeftOut = 0;
 };
 
 class TREPHINE_INTERFACE RunViewer {

@@ -1,6 +1,8 @@
 #include "framework/scene/XmlPositionScanner.h"
 
 #include <cctype>
+#include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace trephine {
@@ -11,6 +13,8 @@ constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 // Deepest element nesting accepted. The XML library stops at about 100 with a
 // line number only; scenes nest a handful of levels.
 constexpr size_t kMaxDepth = 64;
+// Attributes of one element at most.
+constexpr size_t kMaxAttributes = 1000;
 
 bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
@@ -223,6 +227,7 @@ class Scanner {
       return;
     }
     bool closed = false;
+    m_names.clear();
     while (!m_cursor.done() && !m_result.problem) {
       m_cursor.skipSpace();
       if (m_cursor.startsWith("/>")) {
@@ -236,7 +241,17 @@ class Scanner {
         closed = true;
         break;
       }
-      if (auto attribute = readAttribute(element)) element.attributes.push_back(std::move(*attribute));
+      if (element.attributes.size() >= kMaxAttributes) {
+        // Before the XML library sees it: it compares each attribute with
+        // every one before it, so a hundred thousand would take minutes.
+        fail(m_cursor.position(), "<" + element.tag + "> has more than " + std::to_string(kMaxAttributes) +
+                                      " attributes (a component has a few dozen fields)");
+        break;
+      }
+      if (auto attribute = readAttribute(element)) {
+        m_names.emplace(attribute->name, element.attributes.size());
+        element.attributes.push_back(std::move(*attribute));
+      }
     }
     if (!closed && !m_result.problem) fail(start, "start tag <" + element.tag + "> is not closed with '>'");
     m_result.elements.push_back(std::move(element));
@@ -255,12 +270,10 @@ class Scanner {
            "'" + attribute.name + "' is not a valid attribute name (names start with a letter or '_')");
       return std::nullopt;
     }
-    for (const ScannedAttribute& earlier : element.attributes) {
-      if (earlier.name == attribute.name) {
-        fail(attribute.nameAt, "attribute '" + attribute.name + "' is given twice in <" + element.tag + "> (first at " +
-                                   describe(earlier.nameAt) + ")");
-        return std::nullopt;
-      }
+    if (const auto earlier = m_names.find(attribute.name); earlier != m_names.end()) {
+      fail(attribute.nameAt, "attribute '" + attribute.name + "' is given twice in <" + element.tag + "> (first at " +
+                                 describe(element.attributes[earlier->second].nameAt) + ")");
+      return std::nullopt;
     }
     m_cursor.skipSpace();
     if (m_cursor.peek() != '=') {
@@ -297,6 +310,7 @@ class Scanner {
   Cursor m_cursor;
   ScanResult m_result;
   std::vector<OpenElement> m_open;
+  std::unordered_map<std::string, size_t> m_names;  // the element's attributes so far, by name: their index
   bool m_pastProlog = false;  // seen anything but white space and <?...?>
 };
 

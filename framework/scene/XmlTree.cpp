@@ -51,16 +51,16 @@ struct Converter {
         next < scanned.size() && scanned[next].tag == element.tag ? &scanned[next] : nullptr;
     ++next;
     element.at = positions ? at(fileName, positions->at) : SourceLocation{fileName, source.GetLineNum(), 1};
-    for (const tinyxml2::XMLAttribute* a = source.FirstAttribute(); a; a = a->Next()) {
+    size_t index = 0;  // the library keeps the attributes in the document's order, as the scanner does
+    for (const tinyxml2::XMLAttribute* a = source.FirstAttribute(); a; a = a->Next(), ++index) {
       XmlAttribute attribute{a->Name(), a->Value(), element.at, element.at};
-      if (positions) {
-        for (const ScannedAttribute& s : positions->attributes) {
-          if (s.name == attribute.name) {
-            attribute.nameAt = at(fileName, s.nameAt);
-            attribute.valueAt = at(fileName, s.valueAt);
-            break;
-          }
-        }
+      const ScannedAttribute* s = positions && index < positions->attributes.size() &&
+                                          positions->attributes[index].name == attribute.name
+                                      ? &positions->attributes[index]
+                                      : nullptr;
+      if (s) {
+        attribute.nameAt = at(fileName, s->nameAt);
+        attribute.valueAt = at(fileName, s->valueAt);
       }
       element.attributes.push_back(std::move(attribute));
     }
@@ -83,7 +83,10 @@ std::optional<XmlElement> parseXml(std::string_view text, const std::string& fil
                                    const std::filesystem::path& baseDirectory, Diagnostics& diagnostics) {
   const ScanResult scan = scanXmlPositions(text);
   tinyxml2::XMLDocument document;
-  const tinyxml2::XMLError status = document.Parse(text.data(), text.size());
+  // What the scanner refuses the library never parses (its cost grows with
+  // the square of an element's attributes).
+  const tinyxml2::XMLError status =
+      scan.problem ? tinyxml2::XML_ERROR_PARSING : document.Parse(text.data(), text.size());
   if (status != tinyxml2::XML_SUCCESS || scan.problem) {
     if (scan.problem) {
       diagnostics.error(at(fileName, scan.problem->at), "malformed XML: " + scan.problem->message);

@@ -195,7 +195,7 @@ struct Plots {
 
 // |F| and the penetration from trace.csv, at most kPlotPoints (the largest
 // of each run of rows, so no peak is lost).
-bool readPlots(const fs::path& trace, Plots& plots, double& end) {
+bool readPlots(const fs::path& trace, Plots& plots, double& end, ViewerDataSummary& summary) {
   std::ifstream in(trace);
   if (!in) return false;
   std::string line;
@@ -212,11 +212,32 @@ bool readPlots(const fs::path& trace, Plots& plots, double& end) {
   if (t < 0 || fx < 0 || fy < 0 || fz < 0 || p < 0) return false;
   Plots all;
   std::vector<double> row(header.size());
+  size_t number = 1;
+  // A row left out of the plots is said, by line: the first few, and the count.
+  const auto leaveOut = [&](const std::string& why) {
+    if (summary.rowsLeftOut++ < 5) summary.warnings.push_back(trace.filename().string() + ":" + std::to_string(number) + ": " + why);
+  };
   while (std::getline(in, line)) {
+    ++number;
     std::stringstream cells(line);
     size_t i = 0;
-    for (std::string cell; std::getline(cells, cell, ',') && i < row.size(); ++i) row[i] = std::strtod(cell.c_str(), nullptr);
-    if (i < row.size()) continue;
+    std::string bad;
+    for (std::string cell; std::getline(cells, cell, ',') && i < row.size(); ++i) {
+      char* stop = nullptr;
+      row[i] = std::strtod(cell.c_str(), &stop);
+      const bool used = int(i) == t || int(i) == fx || int(i) == fy || int(i) == fz || int(i) == p;
+      if (used && bad.empty() && (stop == cell.c_str() || *stop || !std::isfinite(row[i])))
+        bad = header[i] + " is '" + cell + "', not a finite number";
+    }
+    if (i < row.size()) {
+      leaveOut("a row of " + std::to_string(i) + " cells (the header has " + std::to_string(row.size()) +
+               "): left out of the plots");
+      continue;
+    }
+    if (!bad.empty()) {
+      leaveOut(bad + ": the row is left out of the plots");
+      continue;
+    }
     all.time.push_back(row[t]);
     all.force.push_back(std::sqrt(row[fx] * row[fx] + row[fy] * row[fy] + row[fz] * row[fz]));
     all.penetration.push_back(row[p]);
@@ -572,7 +593,8 @@ ViewerDataSummary writeViewerData(const fs::path& run, const OutputFolder& dataR
   double end = times.empty() ? 0 : times.back();
   Plots plots;
   std::error_code ec;
-  summary.plots = fs::exists(fs::symlink_status(run / "trace.csv", ec)) && readPlots(inRun(run, "trace.csv"), plots, end);
+  summary.plots =
+      fs::exists(fs::symlink_status(run / "trace.csv", ec)) && readPlots(inRun(run, "trace.csv"), plots, end, summary);
 
   std::ostringstream manifest;
   manifest << "window.trephineRuns = window.trephineRuns || [];\nwindow.trephineRuns[" << index << "] = ";

@@ -2,6 +2,9 @@
 // outputs, and clear errors for bad arguments and meshes.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <filesystem>
 
 #include "tests/support/TestSupport.h"
@@ -47,6 +50,35 @@ TEST(CellSizeCommandTest, TheExperimentWritesItsTableAndReportsTheZone) {
   const std::string csv = test::readFile(dir.path() / "cellsize.csv");
   EXPECT_TRUE(csv.starts_with("cell_size_mm,cells_per_mm,time_us,fitted_us,")) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 26) << "a header and 25 cell sizes";
+}
+
+// Outputs that cannot be written (a file-size limit, as a full disk): the
+// experiment fails naming the file (before, it exited 0 with an empty
+// cellsize.json), and a plot that cannot be written is the plot script's
+// failure, not a missing python3-matplotlib.
+TEST(CellSizeCommandTest, OutputsThatCannotBeWrittenAreErrorsNamingTheFile) {
+  test::TempDir dir;
+  const std::string program = test::programPath().string();
+  const auto limited = [&](int kilobytes, const std::string& out, std::string& output) {
+    const std::string command = "bash -c \"ulimit -f " + std::to_string(kilobytes) + "; exec '" + program +
+                                "' cellsize 'phantom:cube?cells=4' --experiment --out '" + out + "'\" 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    char buffer[4096];
+    output.clear();
+    for (size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+    const int status = pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  std::string out;
+  EXPECT_EQ(limited(0, (dir / "none").string(), out), 3) << out;
+  EXPECT_NE(out.find("cellsize.csv"), std::string::npos) << out;
+  EXPECT_NE(out.find("File too large"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "none/cellsize.json")) << "no empty JSON left";
+  // Room for the table and the JSON, not for the plot.
+  limited(12, (dir / "table").string(), out);
+  ASSERT_TRUE(std::filesystem::exists(dir / "table/cellsize.json")) << out;
+  EXPECT_EQ(out.find("needs python3-matplotlib"), std::string::npos) << out;
+  EXPECT_NE(out.find("the plot script failed"), std::string::npos) << out;
 }
 
 TEST(CellSizeCommandTest, BadArgumentsAndMeshesAreClearErrors) {

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -108,6 +109,43 @@ TEST(RunFaultsTest, AFileSizeLimitFailsTheRunAsAFullDiskDoesNotBySignal) {
   // A rerun on an ample disk replaces it whole.
   ASSERT_EQ(runProgram({"run", kPlaneTouch, "--out", run.string(), "--quiet"}, &out), 0) << out;
   EXPECT_NE(test::readFile(run / ".trephine-run").find("state finished"), std::string::npos);
+}
+
+// A NIfTI whose data is all there (450^3 int16 voxels: 182 MB, a 180 KB
+// gzip of zeros) but more than the memory the process may have: the load
+// fails naming the file and why (before, a bare "std::bad_alloc").
+TEST(RunFaultsTest, AVolumeLargerThanTheMemoryIsAClearLoadError) {
+  if (!test::kTimingChecked) GTEST_SKIP() << "a sanitizer's shadow memory needs more address space than the limit";
+  test::TempDir dir;
+  // The 352-byte header of a 450 x 450 x 450 int16 volume, then its zeros, through gzip.
+  std::string header(352, '\0');
+  const auto put = [&](size_t at, const void* value, size_t size) { std::memcpy(header.data() + at, value, size); };
+  const int32_t sizeofHdr = 348;
+  const int16_t dims[8] = {3, 450, 450, 450, 1, 1, 1, 1}, datatype = 4, bitpix = 16;
+  const float pixdim[8] = {1, 1, 1, 1, 1, 1, 1, 1}, offset = 352, slope = 1;
+  put(0, &sizeofHdr, 4);
+  put(40, dims, sizeof dims);
+  put(70, &datatype, 2);
+  put(72, &bitpix, 2);
+  put(76, pixdim, sizeof pixdim);
+  put(108, &offset, 4);
+  put(112, &slope, 4);
+  put(344, "n+1", 4);
+  const fs::path head = dir.write("head.bin", header), volume = dir / "huge.nii.gz";
+  std::string out;
+  ASSERT_EQ(shell("(cat " + quote(head.string()) + "; head -c 182250000 /dev/zero) | gzip -1 > " + quote(volume.string()),
+                  out),
+            0)
+      << out;
+  const fs::path scene = dir.write("huge.xml", "<Node name=\"root\" units=\"mm\"><RequiredPlugin name=\"voxel_skull\"/>"
+                                               "<VoxelSkull name=\"skull\" file=\"" + volume.string() +
+                                                   "\" isovalue=\"400\"/></Node>");
+  const int status = shell("bash -c " + quote("ulimit -v 400000; exec " + quote(test::programPath().string()) +
+                                              " validate " + quote(scene.string())),
+                           out);
+  EXPECT_EQ(status, 1) << out;
+  EXPECT_NE(out.find("huge.nii.gz: the volume it declares does not fit in this machine's memory"), std::string::npos)
+      << out;
 }
 
 // A reader that goes away: stderr and stdout into a pipe closed at once

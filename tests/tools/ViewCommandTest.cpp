@@ -186,6 +186,37 @@ TEST(ViewCommandTest, PacksEveryFrameOfADrilledSkullABrainAndTheTool) {
   EXPECT_NE(out.find("skull_removed.csv:3: expected i,j,k inside the"), std::string::npos) << out;
 }
 
+// Rows of trace.csv the plots cannot use (cut short, a value that is not a
+// finite number) are left out and said, by line (before, they were plotted
+// as they were without a word).
+TEST(ViewCommandTest, TraceRowsThePlotsCannotUseAreSaidByLine) {
+  test::TempDir dir;
+  const fs::path run = dir.path() / "run";
+  std::string out;
+  ASSERT_EQ(runProgram({"run", (test::sourceDir() / "scenes/examples/fem_press_export.xml").string(), "--duration",
+                        "0.2", "--out", run.string(), "--quiet"},
+                       &out),
+            0)
+      << out;
+  std::string trace = test::readFile(run / "trace.csv");
+  std::vector<std::string> lines;
+  for (size_t at = 0, next; (next = trace.find('\n', at)) != std::string::npos; at = next + 1)
+    lines.push_back(trace.substr(at, next - at));
+  ASSERT_GT(lines.size(), 20u);
+  lines[5] = lines[5].substr(0, lines[5].find(',', lines[5].find(',') + 1));  // two cells
+  const size_t firstComma = lines[9].find(',');
+  lines[9] = lines[9].substr(0, firstComma) + ",nan" + lines[9].substr(lines[9].find(',', firstComma + 1));  // device_x
+  lines[12] = "inf" + lines[12].substr(lines[12].find(','));  // t
+  std::ofstream rewritten(run / "trace.csv", std::ios::trunc);
+  for (const std::string& line : lines) rewritten << line << "\n";
+  rewritten.close();
+  FakeAssets assets;
+  ASSERT_EQ(runProgram({"view", run.string()}, &out, assets.environment()), 0) << out;
+  EXPECT_NE(out.find("trace.csv:6: a row of 2 cells (the header has"), std::string::npos) << out;
+  EXPECT_NE(out.find("trace.csv:13: t is 'inf', not a finite number"), std::string::npos) << out;
+  EXPECT_EQ(out.find("trace.csv:10:"), std::string::npos) << "device_x is not plotted: its row stays\n" << out;
+}
+
 TEST(ViewCommandTest, RunsItCannotShowAreClearErrors) {
   test::TempDir dir;
   FakeAssets assets;

@@ -46,7 +46,16 @@ bool runPlotScript(const std::string& script, const std::vector<std::string>& ar
     if (pid > 0) waitpid(pid, &status, 0);
   }
   if (status == 0) return true;
-  std::cerr << "trephine: " << what << " not drawn (needs python3-matplotlib); draw it with: " << command << "\n";
+  // Exit 4: the script found no matplotlib. Anything else (a full disk, a
+  // folder it may not write) the script has said above, in its own words.
+  const bool noMatplotlib = WIFEXITED(status) && WEXITSTATUS(status) == 4;
+  std::cerr << "trephine: " << what << " not drawn ("
+            << (path.empty()        ? "the plot script " + script + " is not installed"
+                : noMatplotlib      ? std::string("needs python3-matplotlib")
+                : WIFEXITED(status) ? "the plot script failed with exit " + std::to_string(WEXITSTATUS(status)) +
+                                          ", saying why above"
+                                    : std::string("the plot script did not run"))
+            << "); draw it with: " << command << "\n";
   return false;
 }
 

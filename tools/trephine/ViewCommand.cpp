@@ -154,6 +154,11 @@ int viewCommand(const Arguments& arguments) {
     for (size_t k = 0; k < runs.size(); ++k) {
       const std::string folder = single ? "" : "run_" + std::to_string(k) + "/";
       const ViewerDataSummary summary = viewer->writeViewerData(runs[k], data, folder, k, triangles);
+      for (const std::string& warning : summary.warnings)
+        std::cerr << "trephine view: warning: " << (runs[k] / warning).string() << "\n";
+      if (summary.rowsLeftOut > summary.warnings.size())
+        std::cerr << "trephine view: warning: " << summary.rowsLeftOut << " rows of " << (runs[k] / "trace.csv").string()
+                  << " in all were left out of the plots\n";
       if (!single) {
         manifests += readRegularFile(view / "data" / folder / "manifest.js", size_t(1) << 30);
         std::cout << "run " << k << "     " << runs[k].string() << "\n";

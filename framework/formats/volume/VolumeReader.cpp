@@ -1,6 +1,7 @@
 #include "framework/formats/volume/VolumeReader.h"
 
 #include <algorithm>
+#include <new>
 #include <string>
 
 #include "framework/formats/volume/ByteSource.h"
@@ -56,9 +57,27 @@ DensityVolume readFormat(Format format, const ByteSource& source) {
                         "or NIfTI .nii/.nii.gz)");
 }
 
+DensityVolume readVolumeFile(const std::filesystem::path& file, VolumeReadNotes* notes);
+
 }  // namespace
 
 DensityVolume readVolume(const std::filesystem::path& file, VolumeReadNotes* notes) {
+  // A volume whose data is all there but more than this machine holds (a
+  // header declaring 1100^3 voxels with a gzip of zeros behind it): said,
+  // with the file and what it takes, instead of a bare std::bad_alloc.
+  try {
+    return readVolumeFile(file, notes);
+  } catch (const std::bad_alloc&) {
+    std::error_code ec;
+    const uintmax_t bytes = std::filesystem::is_regular_file(file, ec) ? std::filesystem::file_size(file, ec) : 0;
+    throw VolumeReadError(file, "the volume it declares does not fit in this machine's memory (its " +
+                                    std::to_string(bytes) + " bytes of file hold more samples than can be kept)");
+  }
+}
+
+namespace {
+
+DensityVolume readVolumeFile(const std::filesystem::path& file, VolumeReadNotes* notes) {
   // A DICOM series: a directory (of one series, or DIR?series=UID to pick one).
   const std::string text = file.string();
   if (const size_t query = text.find("?series="); query != std::string::npos)
@@ -86,5 +105,7 @@ DensityVolume readVolume(const std::filesystem::path& file, VolumeReadNotes* not
   const Format format = formatFromContent(innerHead);
   return readFormat(format != Format::kUnknown ? format : formatFromExtension(file), content);
 }
+
+}  // namespace
 
 }  // namespace trephine::formats

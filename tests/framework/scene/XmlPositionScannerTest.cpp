@@ -141,6 +141,27 @@ TEST(XmlPositionScannerTest, LimitsNestingDepthWithThePositionOfTheTooDeepElemen
   EXPECT_EQ(problemOf(nested(65)), "1:193 elements nested more than 64 deep");
 }
 
+// An element of a thousand attributes is scanned; one more is refused at the
+// attribute that goes over, before the XML library (whose cost grows with
+// the square of an element's attributes: 100,000 of them took 100 s) sees
+// it. Duplicates among a thousand are found by name, not by comparing each
+// with every one before.
+TEST(XmlPositionScannerTest, LimitsAttributesOfAnElementAndFindsDuplicatesAmongMany) {
+  const auto element = [](int attributes, bool repeatFirst) {
+    std::string text = "<a";
+    for (int i = 0; i < attributes; ++i) text += " b" + std::to_string(i) + "=\"1\"";
+    if (repeatFirst) text += " b0=\"2\"";
+    return text + "/>";
+  };
+  EXPECT_EQ(problemOf(element(1000, false)), "none");
+  const std::string tooMany = element(1001, false);
+  const std::string problem = problemOf(tooMany);
+  EXPECT_NE(problem.find("<a> has more than 1000 attributes"), std::string::npos) << problem;
+  EXPECT_TRUE(problem.starts_with("1:" + std::to_string(tooMany.find(" b1000=") + 2))) << problem;
+  EXPECT_NE(problemOf(element(999, true)).find("attribute 'b0' is given twice in <a> (first at line 1, column 4)"),
+            std::string::npos);
+}
+
 TEST(XmlPositionScannerTest, AcceptsAWellFormedScene) {
   EXPECT_EQ(problemOf("<?xml version=\"1.0\"?>\r\n<Node name=\"root\">\r\n  <Recorder name='r'/>\r\n</Node>\r\n"),
             "none");
