@@ -59,6 +59,12 @@ DeviceSample IGTLinkDevice::readSample(double t) {
   sample.t = t;
   sample.position = m_pose.transform.translation;
   sample.orientation = Quat(m_pose.transform.rotation);
+  if (fromRas()) {
+    // RAS to the scene's LPS: x and y negated, the rotation seen from LPS axes (F R F).
+    const Eigen::Matrix3d flip = Vec3(-1, -1, 1).asDiagonal();
+    sample.position = flip * sample.position;
+    sample.orientation = Quat(flip * m_pose.transform.rotation * flip);
+  }
   sample.buttons = m_pose.buttons;
   return sample;
 }
@@ -67,7 +73,8 @@ void IGTLinkDevice::applyForce(const Vec3& force_N) {
   HapticDevice::applyForce(force_N);
   // In every frame after a pose has arrived (the contract); a force that is
   // not finite goes as zero.
-  if (m_connected && m_server) m_server->postForce(force_N.allFinite() ? force_N : Vec3::Zero(), m_t);
+  const Vec3 sent = fromRas() ? Vec3(-force_N.x(), -force_N.y(), force_N.z()) : force_N;  // back in its frame
+  if (m_connected && m_server) m_server->postForce(sent.allFinite() ? sent : Vec3::Zero(), m_t);
 }
 
 void IGTLinkDevice::finish(FinishContext& context) {

@@ -50,6 +50,7 @@ class IGTLinkDevice final : public HapticDevice {
  protected:
   DeviceSample readSample(double t) override;
   bool connected() const override { return m_connected; }
+  bool fromRas() const { return d_frame.value() == "RAS"; }
 
  private:
   IgtlServerFields d_server{
@@ -78,6 +79,14 @@ class IGTLinkDevice final : public HapticDevice {
                                      "hand's place, first or later)",
                              .unit = "mm",
                              .min = 1.0}};
+
+  EnumField d_frame{this,
+                    "frame",
+                    {"device", "RAS"},
+                    "device",
+                    {.help = "The frame of the TRANSFORMs that come: device (the device's or tracker's own, taken as "
+                             "they are) or RAS (3D Slicer's patient frame: turned into the scene's LPS, the force "
+                             "sent back in RAS)"}};
 
   std::unique_ptr<IgtlServer> m_server;
   ReceivedPose m_pose;

@@ -195,7 +195,7 @@ void IGTLinkExporter::tick(const TickContext& context) {
     m_server->broadcast(shared(transformMessage(d_proxyName.value(), stamp, vec(m_proxy), q)));
     auto sensor = std::make_shared<Message>(kForceSensorMessageSize);
     const Vec3 force = vec(m_forceColumn);
-    encodeForceSensor(d_forceName.value(), stamp, force.allFinite() ? force : Vec3::Zero(),
+    encodeForceSensor(d_forceName.value(), stamp, force.allFinite() ? lpsToRas(force) : Vec3::Zero(),
                       std::span<unsigned char, kForceSensorMessageSize>(sensor->data(), kForceSensorMessageSize));
     m_server->broadcast(sensor);
     ++m_poses;

@@ -14,6 +14,7 @@
 //   POLYDATA   `brainName`                the brain's boundary surface at its current node positions,
 //                                         when a client connects and then when it moved, at most
 //                                         every `surfaceInterval`.
+// Everything goes in RAS (3D Slicer's frame), turned from the scene's LPS.
 // Only what the links name is sent. It runs in real time only (trephine run
 // --realtime): in virtual time there is no one to stream to. The haptic and
 // FEM threads only copy into channels; the messages are packed and sent here.

@@ -34,10 +34,13 @@ void finish(Message& message, std::string_view type, std::string_view name, uint
 
 Message transformMessage(std::string_view name, uint64_t timestamp, const Vec3& p, const Quat& q) {
   Message m(kHeaderSize);
-  const Eigen::Matrix3d r = q.normalized().toRotationMatrix();
+  // The rotation seen from RAS axes: F R F, F = diag(-1, -1, 1).
+  const Eigen::Matrix3d flip = Vec3(-1, -1, 1).asDiagonal();
+  const Eigen::Matrix3d r = flip * q.normalized().toRotationMatrix() * flip;
+  const Vec3 ras = lpsToRas(p);
   for (int column = 0; column < 3; ++column)
     for (int row = 0; row < 3; ++row) putFloat32(m, r(row, column));
-  for (int i = 0; i < 3; ++i) putFloat32(m, p[i]);
+  for (int i = 0; i < 3; ++i) putFloat32(m, ras[i]);
   finish(m, "TRANSFORM", name, timestamp);
   return m;
 }
@@ -56,12 +59,17 @@ Message imageMessage(std::string_view name, uint64_t timestamp, const VoxelGrid&
   m.push_back(1);   // one component
   m.push_back(4);   // int16
   m.push_back(1);   // big-endian data
-  m.push_back(1);   // RAS: the scene's axes as they are
+  m.push_back(1);   // RAS (the scene's LPS turned into it)
   for (int a = 0; a < 3; ++a) putBig(m, static_cast<uint64_t>(dims[a]), 2);
-  // Voxel axes times the spacing, then the volume's centre.
+  // Voxel axes times the spacing, then the volume's centre, in RAS: the
+  // voxel axes are the scene's, so along x and y they point the other way.
+  const Vec3 sign(-1, -1, 1);
   for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) putFloat32(m, a == c ? grid.spacing[a] : 0.0);
-  for (int c = 0; c < 3; ++c) putFloat32(m, grid.corner[c] + 0.5 * dims[c] * grid.spacing[c]);
+    for (int c = 0; c < 3; ++c) putFloat32(m, a == c ? sign[a] * grid.spacing[a] : 0.0);
+  Vec3 centre;
+  for (int c = 0; c < 3; ++c) centre[c] = grid.corner[c] + 0.5 * dims[c] * grid.spacing[c];
+  const Vec3 ras = lpsToRas(centre);
+  for (int c = 0; c < 3; ++c) putFloat32(m, ras[c]);
   for (int a = 0; a < 3; ++a) putBig(m, static_cast<uint64_t>(offset[a]), 2);
   for (int a = 0; a < 3; ++a) putBig(m, static_cast<uint64_t>(size[a]), 2);
   for (int32_t k = offset[2]; k < offset[2] + size[2]; ++k)
@@ -87,8 +95,10 @@ Message polyDataMessage(std::string_view name, uint64_t timestamp, const std::ve
   putBig(m, 0, 4);
   putBig(m, 0, 4);
   putBig(m, 0, 4);
-  for (const Vec3& p : points)
-    for (int c = 0; c < 3; ++c) putFloat32(m, p[c]);
+  for (const Vec3& p : points) {
+    const Vec3 ras = lpsToRas(p);
+    for (int c = 0; c < 3; ++c) putFloat32(m, ras[c]);
+  }
   for (const auto& t : triangles) {
     putBig(m, 3, 4);
     for (const int32_t index : t) putBig(m, static_cast<uint32_t>(index), 4);

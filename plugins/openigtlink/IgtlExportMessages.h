@@ -3,7 +3,8 @@
 // device's (IgtlMessages.h), version 1 headers: TRANSFORM (a pose), IMAGE
 // (the skull's codes, whole or a sub-volume: the protocol's partial update)
 // and POLYDATA (a triangle surface). They run off the haptic loop and
-// allocate.
+// allocate. Each takes the scene's world coordinates (LPS, mm) and writes
+// RAS, the frame 3D Slicer reads OpenIGTLink in (x and y negated).
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -15,6 +16,9 @@
 namespace trephine::openigtlink {
 
 using Message = std::vector<unsigned char>;
+
+// The scene's LPS to RAS (and back: it is its own inverse).
+inline Vec3 lpsToRas(const Vec3& p) { return Vec3(-p.x(), -p.y(), p.z()); }
 
 Message transformMessage(std::string_view name, uint64_t timestamp, const Vec3& position_mm, const Quat& orientation);
 

@@ -291,6 +291,9 @@ DensityVolume readNifti(const ByteSource& source) {
     for (int a = 0; a < 3; ++a) stored.origin[a] = header.realAt(layout->quaternB, 3 + a) * unit;
   }
   for (int a = 0; a < 3; ++a) stored.axes.col(a) = direction.col(a) * spacing[a];
+  // The qform and the sform map voxels to RAS (nifti1.h); the scene's world is LPS.
+  if (header.code(layout->sformCode) > 0 || header.code(layout->qformCode) > 0)
+    convertToLps(stored, PatientFrame::kRas);
 
   const double slope = header.real(layout->sclSlope);
   const double intercept = header.real(layout->sclInter);

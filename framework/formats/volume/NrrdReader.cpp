@@ -188,9 +188,10 @@ std::vector<Vec3> parseVectors(const std::string& name, const std::string& value
   return vectors;
 }
 
-void checkSpace(const Fields& fields) {
+// The patient frame of the "space" field (none without one).
+PatientFrame checkSpace(const Fields& fields) {
   const auto space = fields.find("space");
-  if (!space) return;
+  if (!space) return PatientFrame::kNone;
   // clang-format off
   static const char* const kSpaces[] = {
       "right-anterior-superior", "ras", "left-anterior-superior", "las", "left-posterior-superior", "lps",
@@ -198,14 +199,20 @@ void checkSpace(const Fields& fields) {
   // clang-format on
   const std::string lower = toLower(*space);
   for (const char* known : kSpaces)
-    if (lower == known) return;
+    if (lower == known) {
+      if (lower == "right-anterior-superior" || lower == "ras") return PatientFrame::kRas;
+      if (lower == "left-anterior-superior" || lower == "las") return PatientFrame::kLas;
+      if (lower == "left-posterior-superior" || lower == "lps") return PatientFrame::kLps;
+      return PatientFrame::kNone;
+    }
   fields.fail("space", *space,
               "is not supported (expected a 3D space: RAS, LAS, LPS, scanner-xyz, 3D-right-handed or 3D-left-handed)");
+  return PatientFrame::kNone;
 }
 
 // Fills stored.axes and stored.origin from space directions / spacings, space origin / axis mins.
 void readGeometry(const Fields& fields, StoredVolume& stored) {
-  checkSpace(fields);
+  const PatientFrame frame = checkSpace(fields);
   const auto directions = fields.find("space directions");
   const auto spacings = fields.find("spacings");
   if (directions) {
@@ -236,6 +243,7 @@ void readGeometry(const Fields& fields, StoredVolume& stored) {
       stored.origin[a] = (*values)[a] + (node ? 0.0 : 0.5 * stored.axes(a, a));
     }
   }
+  convertToLps(stored, frame);  // the scene's world is LPS
 }
 
 }  // namespace

@@ -67,4 +67,13 @@ DensityVolume assembleVolume(const StoredVolume& stored, std::span<const uint8_t
   return volume;
 }
 
+void convertToLps(StoredVolume& stored, PatientFrame frame) {
+  // RAS to LPS negates x and y; LAS to LPS, y alone.
+  Vec3 flip = Vec3::Ones();
+  if (frame == PatientFrame::kRas) flip = Vec3(-1, -1, 1);
+  if (frame == PatientFrame::kLas) flip = Vec3(1, -1, 1);
+  stored.axes = flip.asDiagonal() * stored.axes;
+  stored.origin = flip.asDiagonal() * stored.origin;
+}
+
 }  // namespace trephine::formats

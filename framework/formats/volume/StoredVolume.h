@@ -35,6 +35,18 @@ struct StoredVolume {
   uint64_t byteCount() const { return voxelCount() * byteSize(layout.type); }
 };
 
+// The patient frame a file's world coordinates are in. The scene's world is
+// LPS (as DICOM, ITK and MetaImage: +x toward the patient's left, +y
+// posterior, +z superior); every reader converts into it.
+enum class PatientFrame {
+  kLps,  // DICOM, MetaImage, NRRD "left-posterior-superior": as it is
+  kRas,  // NIfTI's qform and sform, NRRD "right-anterior-superior" (3D Slicer's)
+  kLas,  // NRRD "left-anterior-superior"
+  kNone  // no patient frame (NRRD scanner-xyz, NIfTI without qform or sform): as it is
+};
+// Turns `stored`'s axes and origin from `frame` into the scene's LPS.
+void convertToLps(StoredVolume& stored, PatientFrame frame);
+
 // Checks that `dims` (as read from the header field `field`) are positive and
 // within kMaxVoxels, before anything is sized from them.
 void checkDimensions(const std::array<int64_t, 3>& dims, const std::string& field, const std::filesystem::path& file);

@@ -531,5 +531,45 @@ TEST(DicomReaderTest, ASeriesWrittenByPydicomWithPaddingAndUnevenStepsLoads) {
       << test::messages(d);
 }
 
+// One head written three ways by each format's own rules (pydicom for the
+// DICOM series in LPS, NIfTI-1 packed from nifti1.h with its sform in RAS,
+// an NRRD in right-anterior-superior: data/write_head_both_ways.py): each
+// lands on the same voxels of the scene's LPS world, the dense lump on the
+// patient's left and front (+x, -y). Before, the NIfTI's and the NRRD's RAS
+// were taken as the world as they were: the lump on the right, at the back.
+TEST(DicomReaderTest, TheSameHeadAsDicomNiftiAndNrrdLandsOnTheSameVoxels) {
+  if (std::system("/usr/bin/python3 -c 'import pydicom' 2>/dev/null") != 0)
+    GTEST_SKIP() << "pydicom is not installed (Debian: python3-pydicom; tools/setup installs it)";
+  test::TempDir dir;
+  const std::string command = "/usr/bin/python3 " +
+                              (test::sourceDir() / "tests/framework/formats/data/write_head_both_ways.py").string() +
+                              " " + dir.path().string();
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const DensityVolume dicom = formats::readVolume(dir.path() / "dicom");
+  const DensityVolume nifti = formats::readVolume(dir.path() / "head.nii");
+  const DensityVolume nrrd = formats::readVolume(dir.path() / "head.nrrd");
+  const Vec3 first(-11.5, -9.0, 40.0), spacing(1.0, 1.25, 2.0);  // LPS, as the script writes it
+  for (const DensityVolume* v : {&dicom, &nifti, &nrrd}) {
+    ASSERT_EQ(v->dims(), (std::array<int32_t, 3>{24, 20, 16}));
+    EXPECT_LT((v->origin() - first).norm(), 1e-5);
+    EXPECT_LT((v->spacing() - spacing).norm(), 1e-6);
+  }
+  // Every voxel: the same density in each, the lump where the script put it.
+  size_t lump = 0;
+  for (int k = 0; k < 16; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 24; ++i) {
+        const double expected = (i >= 16 && j < 6 && k >= 10) ? 1000 : 100;
+        lump += expected > 500;
+        for (const DensityVolume* v : {&dicom, &nifti, &nrrd})
+          ASSERT_NEAR(v->density(i, j, k), expected, v->encoding().scale) << i << " " << j << " " << k;
+      }
+  EXPECT_EQ(lump, 8u * 6u * 6u);
+  // The lump is at LPS x > 0 (left), y < 0 (front): its first voxel's centre.
+  const Vec3 lumpCorner = dicom.origin() + Vec3(16, 0, 10).cwiseProduct(spacing);
+  EXPECT_GT(lumpCorner.x(), 0);
+  EXPECT_LT(lumpCorner.y(), 0);
+}
+
 }  // namespace
 }  // namespace trephine

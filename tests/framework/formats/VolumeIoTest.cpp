@@ -724,14 +724,17 @@ TEST(NiftiReader, SlopeAndInterceptAreApplied) {
 // The ramp under the sform of both sform tests: stored axis 0 along -y at
 // 0.5 mm, axis 1 along +z at 0.75 mm, axis 2 along +x at 2 mm, origin
 // (10, 20, -30) mm.
+// NIfTI's qform and sform are RAS; the scene's world is LPS (x and y negated).
+const Eigen::Matrix3d kRasToLps = Vec3(-1, -1, 1).asDiagonal();
+
 void expectPermutedSform(const DensityVolume& volume) {
   EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{5, 3, 4}));
   EXPECT_EQ(volume.spacing(), Vec3(2, 0.5, 0.75));
-  Eigen::Matrix3d axes;
+  Eigen::Matrix3d axes;  // RAS, as the sform says
   axes.col(0) = Vec3(0, -0.5, 0);
   axes.col(1) = Vec3(0, 0, 0.75);
   axes.col(2) = Vec3(2, 0, 0);
-  expectWorldMapping(volume, kDims, axes, Vec3(10, 20, -30), rampValue);
+  expectWorldMapping(volume, kDims, kRasToLps * axes, kRasToLps * Vec3(10, 20, -30), rampValue);
 }
 
 TEST(NiftiReader, SformPermutationAndFlipIsApplied) {
@@ -755,14 +758,16 @@ TEST(NiftiReader, QformRotationAndQfacAreApplied) {
   fields.pixdim[0] = -1;                // qfac -1: z flipped too
   const DensityVolume volume = formats::readVolume(writeFile(dir / "qform.nii", niftiFile(fields, true, rampInt16(true))));
   EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{3, 4, 5}));
-  EXPECT_EQ(volume.origin(), Vec3(5 - 2 * 0.5, 6 - 3 * 0.75, 7 - 4 * 2));
-  expectWorldMapping(volume, kDims, Vec3(-0.5, -0.75, -2).asDiagonal(), Vec3(5, 6, 7), rampValue);
+  // In LPS: x and y of the RAS mapping negated, so the lowest corner is the qform's offset there.
+  EXPECT_EQ(volume.origin(), Vec3(-5, -6, 7 - 4 * 2));
+  expectWorldMapping(volume, kDims, kRasToLps * Vec3(-0.5, -0.75, -2).asDiagonal(), kRasToLps * Vec3(5, 6, 7),
+                     rampValue);
   fields.quatern = {0, 0, 0.3826834f, 0, 0, 0};  // 45 degrees about z: resampled
   const DensityVolume oblique = formats::readVolume(writeFile(dir / "qform.nii", niftiFile(fields, false, rampInt16())));
   const double c = std::sqrt(0.5);
   Eigen::Matrix3d rotation;
   rotation << c, -c, 0, c, c, 0, 0, 0, 1;
-  const Eigen::Matrix3d axes = rotation * Vec3(0.5, 0.75, -2).asDiagonal();  // qfac -1 flips z
+  const Eigen::Matrix3d axes = kRasToLps * rotation * Vec3(0.5, 0.75, -2).asDiagonal();  // qfac -1 flips z
   EXPECT_GT(expectResampledLinear(oblique, kDims, axes, Vec3::Zero(), linearRamp, rampValue(0, 0, 0)), 20u);
 }
 
@@ -840,8 +845,9 @@ TEST(NiftiReader, Nifti2QformBigEndianScaledInMetres) {
   const DensityVolume volume = formats::readVolume(writeFile(dir / "qform2.nii", nifti2File("ramp_qform_be.nii")));
   EXPECT_EQ(volume.dims(), (std::array<int32_t, 3>{3, 4, 5}));
   EXPECT_LT((volume.spacing() - Vec3(0.5, 0.75, 2)).norm(), 1e-9);
-  EXPECT_LT((volume.origin() - Vec3(5 - 2 * 0.5, 6 - 3 * 0.75, 7 - 4 * 2)).norm(), 1e-9);
-  expectWorldMapping(volume, kDims, Vec3(-0.5, -0.75, -2).asDiagonal(), Vec3(5, 6, 7), rampValue);
+  EXPECT_LT((volume.origin() - Vec3(-5, -6, 7 - 4 * 2)).norm(), 1e-9);
+  expectWorldMapping(volume, kDims, kRasToLps * Vec3(-0.5, -0.75, -2).asDiagonal(), kRasToLps * Vec3(5, 6, 7),
+                     rampValue);
   // The same file gzipped.
   const DensityVolume gzip = formats::readVolume(writeFile(dir / "qform2.nii.gz", gzipped(nifti2File("ramp_qform_be.nii"))));
   EXPECT_EQ(gzip.density(2, 3, 4), volume.density(2, 3, 4));

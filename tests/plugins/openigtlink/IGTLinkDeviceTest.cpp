@@ -301,6 +301,33 @@ TEST(IGTLinkDeviceTest, AStrayFarPoseAndASecondClientNeverDriveTheDevice) {
   EXPECT_GT(afterIntruder, 50u);
 }
 
+// frame="RAS": a pose from 3D Slicer's patient frame is turned into the
+// scene's LPS (x and y negated) and the force goes back in RAS.
+TEST(IGTLinkDeviceTest, APoseInSlicersRasIsTurnedIntoTheScenesLps) {
+  Loaded loaded = loadRealtime(pressScene("frame=\"RAS\""), 0.4);
+  ASSERT_TRUE(loaded.simulation);
+  Tracker tracker;
+  ASSERT_TRUE(tracker.connect(loaded.port));
+  tracker.startReading();
+  std::atomic<bool> done{false};
+  std::thread sender([&] {
+    for (int i = 0; !done && i < 200; ++i) {
+      tracker.sendPose(3.0f, 2.0f, 1.5f);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  loaded.simulation->run();
+  done = true;
+  sender.join();
+  const auto* device = dynamic_cast<const IGTLinkDevice*>(loaded.simulation->scene().findComponent("/tool/device"));
+  ASSERT_NE(device, nullptr);
+  EXPECT_LT((device->state().pose.position - Vec3(-3, -2, 1.5)).norm(), 1e-5);
+  loaded.simulation.reset();
+  tracker.finish();
+  ASSERT_GT(tracker.forces.size(), 50u);
+  EXPECT_NEAR(tracker.forces.back()[2], 2.0, 1e-5) << "up, whichever frame";
+}
+
 // `client` names the one client to hear: a tracker from another address
 // drives nothing (its poses are counted), and no force is sent.
 TEST(IGTLinkDeviceTest, OnlyTheClientNamedDrivesTheDevice) {

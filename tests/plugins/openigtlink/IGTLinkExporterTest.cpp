@@ -67,6 +67,10 @@ struct Received {
   int dims[3] = {0, 0, 0};
   int wholeImages = 0, partialImages = 0, polydata = 0, transforms = 0, sensors = 0, badCrc = 0;
   int slabs = 0, slabSlices = 0;  // the skull's slabs of whole slices, and the slices they held
+  // Where the library places voxel (0, 0, 0) and the steps along i, j, k (RAS mm), from the IMAGE's
+  // matrix, spacing and centre as 3D Slicer reads them.
+  std::array<double, 3> firstVoxel{}, stepI{}, stepJ{}, stepK{};
+  int coordinate = 0;
   int polygons = 0, points = 0;
   std::array<float, 3> firstPoint{};
   std::vector<std::vector<std::array<float, 3>>> surfaces;  // the points of every POLYDATA
@@ -118,6 +122,21 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
         if (r.slabSlices == r.dims[2]) ++r.wholeImages;
       } else {
         ++r.partialImages;
+      }
+      if (r.coordinate == 0) {
+        r.coordinate = image->GetCoordinateSystem();
+        igtl::Matrix4x4 m;
+        image->GetMatrix(m);
+        float spacing[3];
+        image->GetSpacing(spacing);
+        // The origin is the volume's centre: voxel 0 lies half the volume back along each axis.
+        for (int c = 0; c < 3; ++c) {
+          r.stepI[c] = m[c][0] * spacing[0];
+          r.stepJ[c] = m[c][1] * spacing[1];
+          r.stepK[c] = m[c][2] * spacing[2];
+          r.firstVoxel[c] = m[c][3] - 0.5 * ((r.dims[0] - 1) * r.stepI[c] + (r.dims[1] - 1) * r.stepJ[c] +
+                                             (r.dims[2] - 1) * r.stepK[c]);
+        }
       }
       EXPECT_EQ(image->GetScalarType(), igtl::ImageMessage::TYPE_INT16);
       // The library leaves the scalars in the message's byte order, which it declares (as Slicer reads it).
@@ -201,6 +220,17 @@ TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrai
   EXPECT_GT(received.partialImages, 0) << "then the drilled blocks";
   EXPECT_EQ(received.dims[0], grid.nx);
   EXPECT_EQ(received.dims[2], grid.nz);
+  // The scene's world is LPS; Slicer reads RAS: the IMAGE says RAS, and voxel
+  // (0, 0, 0) and the voxel steps land where the scene has them, x and y negated.
+  EXPECT_EQ(received.coordinate, igtl::ImageMessage::COORDINATE_RAS);
+  const Vec3 firstLps = grid.corner + 0.5 * grid.spacing;
+  for (int c = 0; c < 3; ++c) {
+    const double flip = c < 2 ? -1.0 : 1.0;
+    EXPECT_NEAR(received.firstVoxel[c], flip * firstLps[c], 1e-3) << "axis " << c;
+    EXPECT_NEAR(received.stepI[c], c == 0 ? flip * grid.spacing[0] : 0.0, 1e-5);
+    EXPECT_NEAR(received.stepJ[c], c == 1 ? flip * grid.spacing[1] : 0.0, 1e-5);
+    EXPECT_NEAR(received.stepK[c], c == 2 ? grid.spacing[2] : 0.0, 1e-5);
+  }
   // The first image with every sub-volume laid over it is the drilled skull, voxel for voxel.
   ASSERT_EQ(received.volume.size(), drilled.size());
   size_t differ = 0, firstDiffer = 0;
@@ -218,11 +248,14 @@ TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrai
   EXPECT_LT(onBoundary.size(), mesh.nodeCount()) << "the cube has nodes inside";
   EXPECT_EQ(received.polygons, static_cast<int>(topology.boundaryFaces().size()));
   const BoundaryFace& first = topology.boundaryFaces().front();
-  EXPECT_NEAR(received.firstPoint[0], mesh.nodes[size_t(mesh.tets[size_t(first.tet)][(first.face + 1) % 4])].x(), 1e-4);
+  EXPECT_NEAR(received.firstPoint[0], -mesh.nodes[size_t(mesh.tets[size_t(first.tet)][(first.face + 1) % 4])].x(), 1e-4)
+      << "RAS: x negated";
   // Poses and the force at about 30 Hz for 2 s, two TRANSFORMs a frame.
   EXPECT_GT(received.sensors, 40);
   EXPECT_EQ(received.transforms, 2 * received.sensors);
   EXPECT_NEAR(received.lastDevice[2], device.z(), 1e-3);
+  EXPECT_NEAR(received.lastDevice[0], -device.x(), 1e-3) << "RAS: x negated";
+  EXPECT_NEAR(received.lastDevice[1], -device.y(), 1e-3) << "RAS: y negated";
 }
 
 // A cube of tissue on the TLED FEM, fixed at its base, pressed 4 mm by a probe.
@@ -271,7 +304,8 @@ TEST(IGTLinkExporterTest, ADeformingBrainsSurfaceIsSentAgainAsItMoves) {
     ASSERT_EQ(surface.size(), order.size());
     double d = 0;
     for (size_t i = 0; i < order.size(); ++i)
-      d = std::max(d, (Vec3(surface[i][0], surface[i][1], surface[i][2]) - rest.nodes[size_t(order[i])]).norm());
+      // The surface comes in RAS, the scene's LPS with x and y negated.
+      d = std::max(d, (Vec3(-surface[i][0], -surface[i][1], surface[i][2]) - rest.nodes[size_t(order[i])]).norm());
     largest.push_back(d);
   }
   ASSERT_FALSE(largest.empty());
