@@ -77,8 +77,8 @@ OutputFolder folderOf(const fs::path& file) {
   const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
   try {
     return OutputFolder::open(folder);
-  } catch (const FileWriteError&) {
-    throw FileWriteError(file, "cannot create it in " + folder.string() + ": " + std::strerror(errno));
+  } catch (const FileWriteError& e) {
+    throw FileWriteError(file, std::string("cannot create it: ") + e.what());
   }
 }
 
@@ -116,8 +116,15 @@ void AtomicFile::open() {
     const int descriptor = ::openat(m_folder.descriptor(), m_temporary.c_str(),
                                     O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (descriptor >= 0) {
-      m_buffer = std::make_unique<Buffer>(descriptor);
-      m_stream = std::make_unique<std::ostream>(m_buffer.get());
+      try {
+        m_buffer = std::make_unique<Buffer>(descriptor);  // owns the descriptor from here
+        m_stream = std::make_unique<std::ostream>(m_buffer.get());
+      } catch (...) {
+        if (!m_buffer) ::close(descriptor);
+        m_buffer.reset();
+        ::unlinkat(m_folder.descriptor(), m_temporary.c_str(), 0);
+        throw;
+      }
       return;
     }
     if (errno != EEXIST)

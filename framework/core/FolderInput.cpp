@@ -63,6 +63,11 @@ std::string readRegularFile(const fs::path& file, size_t maxBytes) {
     if (errno == ELOOP) throw FolderInputError(file.string() + ": is a link (links are not followed)");
     throw FolderInputError(file.string() + ": cannot be read: " + std::strerror(errno));
   }
+  // Closed on every way out, a failed allocation included.
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{descriptor};
   struct stat status {};
   std::string bytes;
   std::string problem;
@@ -88,7 +93,6 @@ std::string readRegularFile(const fs::path& file, size_t maxBytes) {
     }
     bytes.resize(done);
   }
-  ::close(descriptor);
   if (!problem.empty()) throw FolderInputError(file.string() + ": " + problem);
   return bytes;
 }

@@ -47,7 +47,9 @@ const char* describe(EntryKind kind) {
 
 // Removes everything in the folder open at `descriptor`, links as links.
 void emptyFolder(int descriptor, const fs::path& path) {
-  const int listing = ::dup(descriptor);
+  // A descriptor of its own (not a dup: that would share the read position,
+  // and a second listing would find nothing).
+  const int listing = ::openat(descriptor, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (listing < 0) throw FileWriteError(path, "cannot list it: " + errorText());
   DIR* dir = ::fdopendir(listing);
   if (!dir) {
@@ -82,9 +84,9 @@ OutputFolder::OutputFolder(std::shared_ptr<const int> descriptor, fs::path path)
     : m_descriptor(std::move(descriptor)), m_path(std::move(path)) {}
 
 OutputFolder OutputFolder::create(const fs::path& path) {
-  std::error_code ec;
+  std::error_code ec, isFolder;
   fs::create_directories(path.empty() ? fs::path(".") : path, ec);
-  if (ec && !fs::is_directory(path, ec)) throw FileWriteError(path, "cannot create the folder: " + ec.message());
+  if (ec && !fs::is_directory(path, isFolder)) throw FileWriteError(path, "cannot create the folder: " + ec.message());
   return open(path);
 }
 

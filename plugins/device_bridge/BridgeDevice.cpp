@@ -48,8 +48,11 @@ DeviceSample BridgeDevice::readSample(double t) {
       forgetLastSample();
       if (EventLog* events = tickEvents()) events->log(t, "bridge_device_restarted", "", this);
     }
-    checkForcesHeard(*pose, now, t);
     const bool wasQuiet = m_watchdog.tripped;
+    // A device program that starts again, or comes back after a quiet spell,
+    // has its timeout to take this run's forces from now.
+    if (restarted || wasQuiet) m_heardAtNs = now;
+    checkForcesHeard(*pose, now, t);
     trephine_bridge_watchdog_heard(&m_watchdog, now);
     // What the device measured for its previous pose: the round trip, or 0
     // when that pose's force came after it sent this one.

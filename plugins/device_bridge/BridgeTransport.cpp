@@ -37,7 +37,12 @@ class SharedMemoryTransport final : public BridgeTransport {
     }
     // Another process may truncate the object under this one: the mapping is
     // checked once a tick, and a fault in the moment between is caught.
-    trephine_bridge_shm_guard_truncation(m_shm);
+    if (trephine_bridge_shm_guard_truncation(m_shm) != 0) {
+      if (m_side == BridgeSide::Simulation) trephine_bridge_shm_release(m_shm, static_cast<long>(getpid()));
+      trephine_bridge_shm_close(m_shm, m_name.c_str(), 0);
+      throw std::runtime_error("cannot guard the shared memory object " + m_name +
+                               " against truncation (more than 8 bridges in one process, or SIGBUS taken)");
+    }
     // What the other side wrote before this side opened it (a device program
     // of an earlier run, now gone) is not news.
     m_lastSeen = incomingWrites();

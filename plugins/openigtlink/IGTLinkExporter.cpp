@@ -137,9 +137,17 @@ void IGTLinkExporter::continueWelcomes(double t) {
                                     {int32_t(m_grid.nx), int32_t(m_grid.ny), slices}));
     budget -= std::min(budget, size_t(slices) * sliceBytes);
     ++m_welcomeSlabs;
-    for (; i < m_welcomes.size() && m_welcomes[i].nextSlice == first; ++i)
-      // A client gone meanwhile is owed nothing more.
-      m_welcomes[i].nextSlice = m_server->sendTo(m_welcomes[i].client, slab) ? first + slices : m_grid.nz;
+    for (; i < m_welcomes.size() && m_welcomes[i].nextSlice == first; ++i) {
+      // A client gone meanwhile is owed nothing more; one that has not taken
+      // its last slab yet gets this one later (a slow link is never buried).
+      const std::optional<size_t> queued = m_server->queued(m_welcomes[i].client);
+      if (!queued) {
+        m_welcomes[i].nextSlice = m_grid.nz;
+      } else if (*queued <= kWelcomeBytesPerTick) {
+        m_server->sendTo(m_welcomes[i].client, slab);
+        m_welcomes[i].nextSlice = first + slices;
+      }
+    }
   }
   std::erase_if(m_welcomes, [&](const Welcome& w) { return w.nextSlice >= m_grid.nz; });
 }

@@ -140,7 +140,14 @@ bool IgtlBroadcaster::sendTo(uint64_t id, std::shared_ptr<const std::vector<unsi
   return false;
 }
 
+std::optional<size_t> IgtlBroadcaster::queued(uint64_t id) const {
+  for (const auto& c : m_clients)
+    if (c->id == id && c->fd >= 0) return c->queuedBytes - c->sentOfFront;
+  return std::nullopt;
+}
+
 void IgtlBroadcaster::flush(Client& c) {
+  bool progressed = false;
   while (c.fd >= 0 && !c.queue.empty()) {
     const auto& front = *c.queue.front();
     const ssize_t sent = send(c.fd, front.data() + c.sentOfFront, front.size() - c.sentOfFront,
@@ -150,6 +157,7 @@ void IgtlBroadcaster::flush(Client& c) {
       break;
     }
     c.sentOfFront += static_cast<size_t>(sent);
+    progressed |= sent > 0;
     if (c.sentOfFront < front.size()) break;  // the socket is full: the rest at the next poll
     c.queuedBytes -= front.size();
     c.queue.pop_front();
@@ -157,15 +165,18 @@ void IgtlBroadcaster::flush(Client& c) {
     ++m_sent;
   }
   if (c.fd < 0) return;
-  // Behind since when: a client that has not taken what it was sent for the
-  // timeout is let go, so a slow reader never holds its connection for good.
+  // Behind since when (for making room), and taking nothing since when: a
+  // client that takes nothing of its queue for the timeout is let go, one
+  // that reads slowly keeps its connection until room is needed.
   if (c.queue.empty()) {
-    c.behindSinceNs = 0;
+    c.behindSinceNs = c.stalledSinceNs = 0;
     return;
   }
   const uint64_t now = steadyNs();
   if (c.behindSinceNs == 0) c.behindSinceNs = now;
-  if (now - c.behindSinceNs > m_timeoutNs) {
+  if (progressed) c.stalledSinceNs = 0;
+  else if (c.stalledSinceNs == 0) c.stalledSinceNs = now;
+  if (c.stalledSinceNs && now - c.stalledSinceNs > m_timeoutNs) {
     ++m_dropped;
     close(c);
   }

@@ -4,14 +4,14 @@
 // accepts new clients, drains and ignores what they send (a viewer's
 // queries), and sends what is queued without waiting. Each client has its
 // own queue, so a message reaches it whole however the socket takes it; a
-// client whose queue passes `maxQueued` bytes, or that has been behind (its
-// queue not emptied) for `clientTimeout` (it does not read, or reads too
-// slowly), is disconnected, the others go on; with every connection taken,
-// the client behind the longest makes room for a new one. Binds 127.0.0.1
-// unless asked.
+// client whose queue passes `maxQueued` bytes, or that has taken nothing of
+// it for `clientTimeout` (it does not read), is disconnected, the others go
+// on; with every connection taken, the client behind the longest (its queue
+// not emptied) makes room for a new one. Binds 127.0.0.1 unless asked.
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +38,8 @@ class IgtlBroadcaster {
   const std::vector<uint64_t>& newClients() const { return m_new; }
   // Queues a message for client `id`; false when it is gone.
   bool sendTo(uint64_t id, std::shared_ptr<const std::vector<unsigned char>> message);
+  // Bytes queued for client `id` and not yet sent; nothing when it is gone.
+  std::optional<size_t> queued(uint64_t id) const;
   size_t clients() const { return m_clients.size(); }
 
   uint64_t accepted() const { return m_accepted; }
@@ -53,7 +55,8 @@ class IgtlBroadcaster {
     size_t queuedBytes = 0;
     bool fresh = false;
     uint64_t id = 0;
-    uint64_t behindSinceNs = 0;  // its queue has not been empty since (0: it is)
+    uint64_t behindSinceNs = 0;   // its queue has not been empty since (0: it is)
+    uint64_t stalledSinceNs = 0;  // nothing of its queue was taken since (0: it is taking it)
   };
   void flush(Client& client);
   void queue(Client& client, std::shared_ptr<const std::vector<unsigned char>> message);

@@ -42,7 +42,7 @@ struct IgtlServer::Client {
   uint64_t blockedSinceNs = 0;  // 0: its last send went through
   sockaddr_in address{};
   uint64_t acceptedNs = 0, lastByteNs = 0;
-  bool sentMessage = false;  // a whole message came from it
+  bool sentMessage = false;  // a message of it was taken (a pose or buttons of the device's client)
 };
 
 namespace {
@@ -197,7 +197,6 @@ void IgtlServer::acceptClients() {
           return transform || buttons;
         },
         [this, self](const MessageHeader& h, std::span<const unsigned char> content) {
-          self->sentMessage = true;
           if (h.typeName() == "TRANSFORM") {
             const auto transform = decodeTransform(content);
             if (!transform) {
@@ -214,6 +213,7 @@ void IgtlServer::acceptClients() {
               ++m_counters.posesOtherClients;
               return;
             }
+            self->sentMessage = true;  // a message taken: not a client that only holds its connection
             ReceivedPose& pose = m_poses.writeSlot();
             pose.sequence = ++m_poseSequence;
             pose.transform = *transform;
@@ -228,6 +228,7 @@ void IgtlServer::acceptClients() {
             ++m_counters.posesOtherClients;
             return;
           }
+          self->sentMessage = true;
           if (h.typeName() == "STRING") {
             const auto text = decodeString(content);
             if (!text) return;

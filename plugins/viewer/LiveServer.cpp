@@ -176,9 +176,12 @@ struct LiveServer::Impl {
       m_ws.binary(message->binary);
       // The message must be taken whole in time, however slowly the client reads.
       m_writeDeadline.expires_after(m_server.limits.writeTimeout);
-      m_writeDeadline.async_wait([weak = weak_from_this()](beast::error_code ec) {
+      // The write it times (a handler already queued when the write ended
+      // must not close the client during the next one).
+      const uint64_t write = ++m_writes;
+      m_writeDeadline.async_wait([weak = weak_from_this(), write](beast::error_code ec) {
         const auto self = weak.lock();
-        if (ec || !self || !self->m_writing) return;
+        if (ec || !self || !self->m_writing || self->m_writes != write) return;
         ++self->m_server.timedOutCount;
         self->close();
       });
@@ -202,6 +205,7 @@ struct LiveServer::Impl {
     std::map<std::string, MessagePtr> m_pending;
     bool m_writing = false, m_open = false;
     asio::steady_timer m_writeDeadline;
+    uint64_t m_writes = 0;  // writes begun
   };
 
   // One HTTP connection: a file, the manifest, or the upgrade to /stream.

@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -84,33 +85,49 @@ void listedInRun(const fs::path& run, const fs::path& file, const fs::path& inde
 // set or a 145k-tetrahedron brain frame are a few tens of MB).
 constexpr size_t kMaxRunFileBytes = size_t(1) << 30;
 
-std::string readBytes(const fs::path& file) {
+std::string readBytes(const fs::path& file, size_t maxBytes = kMaxRunFileBytes) {
   try {
-    return readRegularFile(file, kMaxRunFileBytes);
+    return readRegularFile(file, maxBytes);
   } catch (const FolderInputError& e) {
     throw ViewerDataError(e.what());
   }
 }
 
 // The skull's volume files beside its exporter's frames, when there: the
-// header, the data file it names (a plain name beside it), the isovalue and
-// the removed voxels, each the run's own.
+// header, the data file it names, the isovalue and the removed voxels, each
+// the run's own. The header must be what the exporter writes: a MetaImage
+// (content first: it starts "ObjectType = Image") whose ElementDataFile, the
+// first line with that key in any case as the reader takes it, is LOCAL or
+// skull_density.zraw or .raw beside it; anything else (another format under
+// that name, a data file elsewhere or through a link) is refused.
 bool checkSkullFiles(const fs::path& run, const fs::path& folder) {
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(run / folder / "skull_density.mhd", ec))) return false;
-  const std::string header = readBytes(inRun(run, folder / "skull_density.mhd"));
-  const size_t key = header.find("ElementDataFile");
-  const size_t equals = key == std::string::npos ? key : header.find('=', key);
-  if (equals == std::string::npos)
-    throw ViewerDataError((run / folder / "skull_density.mhd").string() + ": no ElementDataFile");
-  std::string data = header.substr(equals + 1, header.find('\n', equals) - equals - 1);
-  data.erase(0, data.find_first_not_of(" \t"));
-  data.erase(data.find_last_not_of(" \t\r") + 1);
-  if (data != "LOCAL") {
-    if (data.empty() || data.find('/') != std::string::npos || data == "..")
-      throw ViewerDataError((run / folder / "skull_density.mhd").string() + ": its data file '" + data +
-                            "' is not a file beside it in the run's folder");
-    inRun(run, folder / data);
+  const fs::path headerFile = run / folder / "skull_density.mhd";
+  const std::string header = readBytes(inRun(run, folder / "skull_density.mhd"), size_t(1) << 16);
+  if (!header.starts_with("ObjectType = Image"))
+    throw ViewerDataError(headerFile.string() + ": not the MetaImage header an exporter writes");
+  std::optional<std::string> data;
+  std::istringstream lines(header);
+  for (std::string line; !data && std::getline(lines, line);) {
+    const size_t equals = line.find('=');
+    if (equals == std::string::npos) continue;
+    std::string key = line.substr(0, equals), value = line.substr(equals + 1);
+    const auto trim = [](std::string& s) {
+      s.erase(0, s.find_first_not_of(" \t"));
+      s.erase(s.find_last_not_of(" \t\r") + 1);
+    };
+    trim(key);
+    trim(value);
+    std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (key == "elementdatafile") data = value;
+  }
+  if (!data) throw ViewerDataError(headerFile.string() + ": no ElementDataFile");
+  if (*data != "LOCAL") {
+    if (*data != "skull_density.zraw" && *data != "skull_density.raw")
+      throw ViewerDataError(headerFile.string() + ": its data file '" + *data +
+                            "' is not the exporter's (skull_density.zraw or .raw beside it)");
+    inRun(run, folder / *data);
   }
   for (const char* beside : {"skull_volume.json", "skull_removed.csv"})
     if (fs::exists(fs::symlink_status(run / folder / beside, ec))) inRun(run, folder / beside);

@@ -104,6 +104,35 @@ TEST(PlantedLinksTest, TheViewerCopiesNothingFromOutsideTheRunThroughALink) {
   }
 }
 
+// The skull's volume header rewritten to name another data file (a link to
+// a secret), in ways a lexical look would miss: a comment holding the key,
+// the key in capitals. The viewer takes the header as its reader does and
+// refuses a data file that is not the exporter's own.
+TEST(PlantedLinksTest, ASkullHeaderNamingAnotherDataFileIsRefused) {
+  test::TempDir dir;
+  Outside outside;
+  const fs::path run = dir / "run";
+  std::string out;
+  ASSERT_EQ(runProgram({"run", (test::sourceDir() / "scenes/integrated.xml").string(), "--duration", "0.5", "--out",
+                        run.string(), "--quiet"},
+                       &out),
+            0)
+      << out;
+  const std::string header = test::readFile(run / "vtk/skull_density.mhd");
+  fs::create_symlink(outside.file, run / "vtk/x.raw");
+  test::FakeViewerAssets assets;
+  for (const std::string& crafted :
+       {header.substr(0, header.find("ElementDataFile")) + "Comment = ElementDataFile = LOCAL\nELEMENTDATAFILE = x.raw\n",
+        header.substr(0, header.find("ElementDataFile")) + "elementdatafile = x.raw\n"}) {
+    std::ofstream(run / "vtk/skull_density.mhd", std::ios::trunc) << crafted;
+    EXPECT_NE(runProgram({"view", run.string(), "--out", (dir / "page").string()}, &out, assets.environment()), 0)
+        << out;
+    EXPECT_NE(out.find("is not the exporter's"), std::string::npos) << out;
+    if (fs::exists(dir / "page")) EXPECT_EQ(allBytesUnder(dir / "page").find("SECRET"), std::string::npos);
+  }
+  EXPECT_TRUE(outside.untouched());
+}
+
 TEST(PlantedLinksTest, ARunWritesItsExportersFilesIntoAFolderOfItsOwnNotThroughALink) {
   test::TempDir dir;
   Outside outside;

@@ -79,10 +79,13 @@ constexpr size_t kMostSettings = 10000;
 // random one. With another MPI, TREPHINE_STUDY_ID (the same on every rank:
 // mpirun -x, or -genv) names it.
 std::optional<std::string> launchStudyId(int ranks, std::string& error) {
-  if (const char* given = std::getenv("TREPHINE_STUDY_ID"); given && *given) return std::string(given);
   std::string launch;
-  for (const char* name : {"OMPI_MCA_orte_hnp_uri", "PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid"})
-    if (const char* value = std::getenv(name)) launch += std::string(name) + "=" + value + ";";
+  // Hashed like the launch's names: any text names a study, and the id that
+  // goes into the files is hex (no comma or line break to break a table).
+  if (const char* given = std::getenv("TREPHINE_STUDY_ID"); given && *given) launch = std::string("given=") + given;
+  if (launch.empty())
+    for (const char* name : {"OMPI_MCA_orte_hnp_uri", "PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid"})
+      if (const char* value = std::getenv(name)) launch += std::string(name) + "=" + value + ";";
   if (launch.empty() && ranks > 1) {
     error = "under this MPI the ranks cannot tell one study from another: give them the same TREPHINE_STUDY_ID "
             "(mpirun -genv TREPHINE_STUDY_ID=$(date +%s%N) ...)";
@@ -165,7 +168,12 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   if (auto describe = positiveInteger(a, "--describe", error)) request.describeOnly = *describe - 1;
   request.describeTo = a.get("--describe-to").value_or("");
   if (auto id = a.get("--study-id")) {
-    request.options.studyId = *id;  // a worker: its rank's study
+    // A worker: its rank's study, as launchStudyId made it (16 hex digits).
+    if (id->size() != 16 || id->find_first_not_of("0123456789abcdef") != std::string::npos) {
+      error = "--study-id expects the 16 hex digits a study gives its workers, got '" + *id + "'";
+      return std::nullopt;
+    }
+    request.options.studyId = *id;
   } else if (auto launched = launchStudyId(mpiRank().size, error)) {
     request.options.studyId = *launched;
   }

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define POSE_WORDS ((TREPHINE_BRIDGE_POSE_SIZE + 7u) / 8u)
@@ -36,8 +37,9 @@ typedef struct {
   uint32_t version;
   pose_slot pose;
   force_slot force;
-  _Atomic int64_t simulation;        /* the process id of the simulation that claimed it; 0: none */
-  _Atomic uint64_t simulation_start; /* its start time (clock ticks after boot; 0: unknown) */
+  /* The simulation that claimed it: its pid (high 32 bits) and the low 32
+   * bits of its start time (clock ticks after boot; 0: unknown); 0: none. */
+  _Atomic uint64_t simulation;
 } shared_region;
 
 struct trephine_bridge_shm {
@@ -74,7 +76,11 @@ static void on_bus_error(int signal_number, siginfo_t* info, void* context) {
   } else if (previous_bus_action.sa_handler != SIG_DFL && previous_bus_action.sa_handler != SIG_IGN) {
     previous_bus_action.sa_handler(signal_number);
   } else {
-    signal(SIGBUS, SIG_DFL); /* the access faults again, and ends the process as it would have */
+    /* Ends the process as it would have: a fault faults again on return, a
+     * signal sent (kill -BUS) is raised again. No mapping is guarded now. */
+    signal(SIGBUS, SIG_DFL);
+    atomic_store(&bus_handler_installed, 0);
+    if (info->si_code <= 0) raise(SIGBUS);
   }
 }
 
@@ -133,8 +139,13 @@ trephine_bridge_shm* trephine_bridge_shm_open(const char* name, int create, int*
     shm_unlink(name);
     return NULL;
   }
-  /* An object made by a device program that has not sized it yet is refused
-   * like one of another size: its maker sizes it before anyone maps it. */
+  /* Its maker (the other side, starting at the same moment) may not have
+   * sized it yet: a few milliseconds to do so. */
+  for (int wait = 0; !fresh && st.st_size == 0 && wait < 50; ++wait) {
+    const struct timespec millisecond = {0, 1000000};
+    nanosleep(&millisecond, NULL);
+    if (fstat(fd, &st) != 0) break;
+  }
   if (!fresh && (size_t)st.st_size != sizeof(shared_region)) {
     close(fd);
     *error = EPROTO;
@@ -150,8 +161,16 @@ trephine_bridge_shm* trephine_bridge_shm_open(const char* name, int create, int*
   if (fresh) {
     /* ftruncate zeroed it: both slots unwritten. */
     region->version = TREPHINE_BRIDGE_VERSION;
-    region->magic = TREPHINE_BRIDGE_MAGIC;
-  } else if (region->magic != TREPHINE_BRIDGE_MAGIC || region->version != TREPHINE_BRIDGE_VERSION) {
+    atomic_store_explicit((_Atomic uint32_t*)&region->magic, TREPHINE_BRIDGE_MAGIC, memory_order_release);
+  } else {
+    /* Sized, but its magic perhaps not written yet by its maker. */
+    for (int wait = 0;
+         wait < 50 && atomic_load_explicit((_Atomic uint32_t*)&region->magic, memory_order_acquire) == 0; ++wait) {
+      const struct timespec millisecond = {0, 1000000};
+      nanosleep(&millisecond, NULL);
+    }
+  }
+  if (!fresh && (region->magic != TREPHINE_BRIDGE_MAGIC || region->version != TREPHINE_BRIDGE_VERSION)) {
     munmap(memory, sizeof(shared_region));
     close(fd);
     *error = EPROTO;
@@ -264,28 +283,33 @@ uint64_t trephine_bridge_shm_force_writes(const trephine_bridge_shm* shm) {
   return atomic_load_explicit((_Atomic uint64_t*)&shm->region->force.sequence, memory_order_acquire) / 2u;
 }
 
+/* A claim in one word, so that no one ever sees a pid with another
+ * process's start time: the pid in the high half, the low 32 bits of its
+ * start time in the low half (0: unknown). */
+static uint64_t claim_word(long pid, uint64_t start) { return ((uint64_t)pid << 32) | (start & 0xffffffffu); }
+
 long trephine_bridge_shm_claim(trephine_bridge_shm* shm, long pid) {
   shared_region* region = shm->region;
+  const uint64_t mine = claim_word(pid, process_start(pid));
   for (;;) {
-    int64_t holder = atomic_load_explicit(&region->simulation, memory_order_acquire);
-    if (holder == pid) return 0;
+    uint64_t holder = atomic_load_explicit(&region->simulation, memory_order_acquire);
+    const long holder_pid = (long)(holder >> 32);
+    if (holder_pid == pid) return 0;
     /* A holder still alive keeps it (kill with signal 0 only asks whether it
-     * exists), unless its pid is another process's now. */
-    if (holder != 0 && (kill((pid_t)holder, 0) == 0 || errno == EPERM)) {
-      const uint64_t claimed = atomic_load_explicit(&region->simulation_start, memory_order_acquire);
-      const uint64_t now = process_start((long)holder);
-      if (claimed == 0 || now == 0 || claimed == now) return (long)holder;
+     * exists), unless its pid is another process's now (its start differs). */
+    if (holder != 0 && (kill((pid_t)holder_pid, 0) == 0 || errno == EPERM)) {
+      const uint64_t claimed = holder & 0xffffffffu, now = process_start(holder_pid) & 0xffffffffu;
+      if (claimed == 0 || now == 0 || claimed == now) return holder_pid;
     }
-    if (atomic_compare_exchange_strong_explicit(&region->simulation, &holder, (int64_t)pid, memory_order_acq_rel,
-                                                memory_order_acquire)) {
-      atomic_store_explicit(&region->simulation_start, process_start(pid), memory_order_release);
+    if (atomic_compare_exchange_strong_explicit(&region->simulation, &holder, mine, memory_order_acq_rel,
+                                                memory_order_acquire))
       return 0;
-    }
   }
 }
 
 void trephine_bridge_shm_release(trephine_bridge_shm* shm, long pid) {
-  int64_t expected = pid;
-  atomic_compare_exchange_strong_explicit(&shm->region->simulation, &expected, 0, memory_order_acq_rel,
-                                          memory_order_acquire);
+  uint64_t held = atomic_load_explicit(&shm->region->simulation, memory_order_acquire);
+  if ((long)(held >> 32) == pid)
+    atomic_compare_exchange_strong_explicit(&shm->region->simulation, &held, 0, memory_order_acq_rel,
+                                            memory_order_acquire);
 }

@@ -182,9 +182,11 @@ TEST(BridgeSharedMemoryTest, AClaimOfAPidNowAnotherProcesssIsReplaced) {
   ASSERT_EQ(fstat(fd, &st), 0);
   void* memory = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
   ASSERT_NE(memory, MAP_FAILED);
-  // The start time is the last 8 bytes of the object (trephine_bridge_shm.c's layout).
-  auto* start = reinterpret_cast<std::atomic<uint64_t>*>(static_cast<char*>(memory) + st.st_size - 8);
-  start->store(start->load() + 12345);
+  // The claim is the last 8 bytes of the object (trephine_bridge_shm.c's
+  // layout): the pid above, the low 32 bits of its start time below.
+  auto* claim = reinterpret_cast<std::atomic<uint64_t>*>(static_cast<char*>(memory) + st.st_size - 8);
+  ASSERT_EQ(claim->load() >> 32, static_cast<uint64_t>(parent));
+  claim->store(claim->load() ^ 0x5a5a);
   EXPECT_EQ(trephine_bridge_shm_claim(shm, static_cast<long>(getpid())), 0) << "a reused pid does not hold it";
   munmap(memory, size_t(st.st_size));
   close(fd);

@@ -356,14 +356,18 @@ TEST(IGTLinkDeviceTest, OnlyTheClientNamedDrivesTheDevice) {
 
 // Clients that hold a connection without sending anything whole: one stopped
 // mid-message is let go after `clientTimeout`; with every connection taken,
-// one that never sent a message makes room for a tracker that comes later.
+// one none of whose messages was taken (it sent nothing, or only a pose
+// beyond the workspace) makes room for a tracker that comes later.
 TEST(IGTLinkDeviceTest, AClientStoppedMidMessageOrHoldingASlotIsLetGo) {
   Loaded loaded = loadRealtime(pressScene("maxClients=\"2\" clientTimeout=\"0.2\""), 1.2);
   ASSERT_TRUE(loaded.simulation);
   const int stalled = rawClient(loaded.port);
   const unsigned char half[20] = {0, 1, 'T', 'R', 'A', 'N', 'S'};
   EXPECT_EQ(send(stalled, half, sizeof half, MSG_NOSIGNAL), 20);
-  const int holder = rawClient(loaded.port);  // connects, sends nothing
+  // Connects and sends one pose that is never taken (beyond the workspace), then nothing.
+  Tracker holdingTracker;
+  ASSERT_TRUE(holdingTracker.connect(loaded.port));
+  holdingTracker.sendPose(5000.0f, 0.0f, 0.0f);
   Tracker tracker;
   std::atomic<bool> done{false};
   int filler = -1;
@@ -390,7 +394,7 @@ TEST(IGTLinkDeviceTest, AClientStoppedMidMessageOrHoldingASlotIsLetGo) {
   tracker.finish();
   EXPECT_GT(tracker.forces.size(), 50u) << "the late tracker was served";
   close(stalled);
-  close(holder);
+  holdingTracker.finish();
   close(filler);
 }
 
