@@ -237,13 +237,15 @@ TEST(BridgeClosedLoopTest, ADeviceKilledMidContactTripsTheSimulationsWatchdogAnd
   const Channel owned("cut");
   const std::string& channel = owned.name;
   TempDir dir;
+  // Under a sanitizer each takes about 3 s to load: the kill comes later, the simulation runs longer.
   const int simulation = startProgram(
-      concat({"run", kSimulationScene, "--realtime", "--duration", "3", "--out", (dir / "sim").string()},
+      concat({"run", kSimulationScene, "--realtime", "--duration", kTimingChecked ? "3" : "8", "--out",
+              (dir / "sim").string()},
              transportArguments("shm", channel, 0)));
   const int emulator = startProgram(
       concat({"run", kEmulatorScene, "--realtime", "--duration", "20", "--out", (dir / "emulator").string()},
              emulatorTransport("shm", channel, 0)));
-  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+  std::this_thread::sleep_for(std::chrono::milliseconds(kTimingChecked ? 2000 : 6000));
   ASSERT_EQ(kill(emulator, SIGKILL), 0);
   waitForProgram(emulator);
   ASSERT_EQ(waitForProgram(simulation), 0);
@@ -365,9 +367,10 @@ TEST(BridgeClosedLoopTest, ADeviceThatTakesNoForceIsReportedNotHealthy) {
   const int simulation = startProgram(concat({"run", scene, "--realtime", "--duration", "1.5", "--out",
                                               (dir / "sim").string()},
                                              transportArguments("udp", "", port)));
-  std::this_thread::sleep_for(std::chrono::milliseconds(kTimingChecked ? 300 : 2000));
-  // A device program built on the C code alone that takes no force.
-  trephine_bridge_udp_stub(port, kTimingChecked ? 1.5 : 2.5);
+  // A device program built on the C code alone that takes no force, from
+  // the start until after the simulation's end (under a sanitizer its load
+  // alone takes about 3 s).
+  trephine_bridge_udp_stub(port, kTimingChecked ? 2.5 : 6.0);
   ASSERT_EQ(waitForProgram(simulation), 0);
   const std::string sim = readFile(dir / "sim/summary.json");
   EXPECT_GE(jsonNumber(sim, "forces_unheard_episodes", "/tool/device"), 1);

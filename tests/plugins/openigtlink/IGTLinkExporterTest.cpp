@@ -362,7 +362,7 @@ TEST(IGTLinkExporterTest, ClientsThatComeAndGoGetTheSkullInSlabsWithinTheGroupsB
   for (size_t i = 0; i < drilled.size(); ++i) differ += received.volume[i] != drilled[i];
   EXPECT_EQ(differ, 0u) << "the client that stayed holds the drilled skull";
   EXPECT_GT(accepted, 20) << "clients came and went";
-  EXPECT_GT(calls, 50u);
+  EXPECT_GT(calls, kTimingChecked ? 50u : 10u);  // 60 in 2 s at 30 Hz; a sanitizer's are slower
   if (kTimingChecked) EXPECT_EQ(misses, 0u) << "of " << calls << " ticks of the exporter's group";
 }
 
@@ -397,7 +397,7 @@ TEST(IGTLinkExporterTest, AClientThatDoesNotReadIsLetGoAfterTheTimeout) {
   EXPECT_GE(slow, 1) << "the client that never read was let go";
   EXPECT_EQ(refused, 0);
   EXPECT_EQ(received.wholeImages, 1) << "the reader was served throughout";
-  EXPECT_GT(received.sensors, 30);
+  EXPECT_GT(received.sensors, kTimingChecked ? 30 : 10) << "45 in 1.5 s at 30 Hz; a sanitizer's are fewer";
 }
 
 }  // namespace
