@@ -183,7 +183,11 @@ TEST(BridgeDeviceTest, AQuietDeviceFeelsTheForceRampToZeroAndIsTakenWhereItIsWhe
   ASSERT_FALSE(forces.empty());
   EXPECT_NEAR(forces.back().force.force_n[2], kStiffness * 0.5, 1e-9);
 
-  EXPECT_EQ(componentCounterAt(*simulation, "/tool/device", "watchdog_trips"), 1);
+  // Under a sanitizer a thread stalled past the 20 ms timeout is a quiet
+  // spell too (seen once in a full run): there, at least the one planned.
+  const double trips = componentCounterAt(*simulation, "/tool/device", "watchdog_trips");
+  if (kTimingChecked) EXPECT_EQ(trips, 1);
+  else EXPECT_GE(trips, 1);
   EXPECT_EQ(componentCounterAt(*simulation, "/tool/device", "rejected_jump"), 0) << "taken where it is";
   int tripped = 0, recovered = 0;
   const EventLog& events = simulation->events();
@@ -192,8 +196,8 @@ TEST(BridgeDeviceTest, AQuietDeviceFeelsTheForceRampToZeroAndIsTakenWhereItIsWhe
       tripped += std::string(events[i].detail) == "tripped";
       recovered += std::string(events[i].detail) == "recovered";
     }
-  EXPECT_EQ(tripped, 1);
-  EXPECT_EQ(recovered, 1);
+  EXPECT_EQ(tripped, kTimingChecked ? 1 : int(trips));
+  EXPECT_EQ(recovered, tripped);
 }
 
 // Bytes of a valid pose with one thing changed.
