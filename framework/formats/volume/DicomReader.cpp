@@ -1,13 +1,15 @@
 #include "framework/formats/volume/DicomReader.h"
 
 #include <gdcmImage.h>
-#include <gdcmImageHelper.h>
 #include <gdcmReader.h>
+#include <gdcmSequenceOfItems.h>
 #include <gdcmStringFilter.h>
 #include <gdcmTrace.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -80,6 +82,99 @@ void openForGdcm(gdcm::Reader& reader, const fs::path& file, const DicomPixelAtt
   reader.SetStream(*stream);
 }
 
+// The image attributes, read here from the data set rather than through
+// gdcm::ImageHelper: its typed attributes assert on a value representation
+// or an emptiness the standard does not allow, and which elements it reads
+// depends on the SOP class and on pointers inside the file (Frame Increment
+// Pointer), so no list checked beforehand covers them all. Each value is
+// taken where the standard puts it: the top level, else (enhanced images)
+// the Shared Functional Groups' first item, else the Per-frame Functional
+// Groups' first item, inside the functional group macro that holds it.
+struct ImageAttributes {
+  const gdcm::DataSet& top;
+  const fs::path& file;
+
+  static std::string tagName(gdcm::Tag tag) {
+    char text[16];
+    std::snprintf(text, sizeof text, "(%04X,%04X)", tag.GetGroup(), tag.GetElement());
+    return text;
+  }
+
+  // The first item's data set of the sequence `tag` in `ds`, if there is
+  // one. Only sequences GDCM parsed while reading (explicit SQ, or of
+  // undefined length), whose structure the check before it walked.
+  static const gdcm::SequenceOfItems* sequence(const gdcm::DataSet& ds, gdcm::Tag tag) {
+    if (!ds.FindDataElement(tag)) return nullptr;
+    const gdcm::DataElement& de = ds.GetDataElement(tag);
+    if (de.IsEmpty()) return nullptr;
+    return dynamic_cast<const gdcm::SequenceOfItems*>(&de.GetValue());
+  }
+  static const gdcm::DataSet* firstItem(const gdcm::DataSet& ds, gdcm::Tag tag) {
+    const gdcm::SequenceOfItems* items = sequence(ds, tag);
+    if (!items || items->GetNumberOfItems() == 0) return nullptr;
+    return &items->GetItem(1).GetNestedDataSet();
+  }
+
+  // The element `tag`, at the top level or in the functional group macro
+  // `macro` of an enhanced image's functional groups; null where absent or empty.
+  const gdcm::DataElement* find(gdcm::Tag tag, gdcm::Tag macro = gdcm::Tag(0, 0)) const {
+    auto nonEmpty = [&](const gdcm::DataSet& ds) -> const gdcm::DataElement* {
+      if (!ds.FindDataElement(tag)) return nullptr;
+      const gdcm::DataElement& de = ds.GetDataElement(tag);
+      return de.IsEmpty() || !de.GetByteValue() ? nullptr : &de;
+    };
+    if (const gdcm::DataElement* de = nonEmpty(top)) return de;
+    if (macro == gdcm::Tag(0, 0)) return nullptr;
+    for (const gdcm::Tag& groups : {gdcm::Tag(0x5200, 0x9229), gdcm::Tag(0x5200, 0x9230)})
+      if (const gdcm::DataSet* group = firstItem(top, groups))
+        if (const gdcm::DataSet* inMacro = firstItem(*group, macro))
+          if (const gdcm::DataElement* de = nonEmpty(*inMacro)) return de;
+    return nullptr;
+  }
+
+  // A decimal (DS) or integer (IS) string's values: every one a finite number.
+  std::vector<double> numbers(const gdcm::DataElement& de, const char* name) const {
+    const gdcm::ByteValue* bytes = de.GetByteValue();
+    const std::string text(bytes->GetPointer(), bytes->GetLength());
+    std::vector<double> values;
+    size_t from = 0;
+    while (from <= text.size()) {
+      const size_t to = std::min(text.find('\\', from), text.size());
+      std::string item = trimmed(text.substr(from, to - from));
+      item.erase(0, std::min(item.find_first_not_of(' '), item.size()));
+      char* end = nullptr;
+      const double value = std::strtod(item.c_str(), &end);
+      if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(value))
+        throw VolumeReadError(file, std::string(name) + " " + tagName(de.GetTag()) + " holds \"" +
+                                        text.substr(0, 64) + "\" (expected numbers separated by \\)");
+      values.push_back(value);
+      from = to + 1;
+    }
+    return values;
+  }
+
+  // Numbers of `tag` (empty where absent), exactly `count` of them where present.
+  std::vector<double> numbers(gdcm::Tag tag, size_t count, const char* name, gdcm::Tag macro = gdcm::Tag(0, 0)) const {
+    const gdcm::DataElement* de = find(tag, macro);
+    if (!de) return {};
+    std::vector<double> values = numbers(*de, name);
+    if (values.size() != count)
+      throw VolumeReadError(file, std::string(name) + " " + tagName(tag) + " holds " + std::to_string(values.size()) +
+                                      " values (expected " + std::to_string(count) + ")");
+    return values;
+  }
+
+  // An unsigned short (US) at the top level; 0 where absent.
+  uint32_t unsignedShort(gdcm::Tag tag) const {
+    const gdcm::DataElement* de = find(tag);
+    if (!de) return 0;
+    const gdcm::ByteValue* bytes = de->GetByteValue();
+    if (bytes->GetLength() != 2) throw VolumeReadError(file, tagName(tag) + " is not one US value");
+    const auto* b = reinterpret_cast<const uint8_t*>(bytes->GetPointer());
+    return uint32_t(b[0]) | uint32_t(b[1]) << 8;
+  }
+};
+
 Slice readHeader(const fs::path& file) {
   const DicomPixelAttributes pixel = checkStructure(file);
   gdcm::Reader reader;
@@ -95,17 +190,57 @@ Slice readHeader(const fs::path& file) {
   s.file = file;
   s.series = trimmed(strings.ToString(gdcm::Tag(0x0020, 0x000e)));
   s.description = trimmed(strings.ToString(gdcm::Tag(0x0008, 0x103e)));
-  const std::vector<unsigned int> dims = gdcm::ImageHelper::GetDimensionsValue(f);
-  if (dims.size() < 2 || dims[0] == 0 || dims[1] == 0)
+  const ImageAttributes image{f.GetDataSet(), file};
+  const uint32_t columns = image.unsignedShort(gdcm::Tag(0x0028, 0x0011));
+  const uint32_t rows = image.unsignedShort(gdcm::Tag(0x0028, 0x0010));
+  if (columns == 0 || rows == 0)
     throw VolumeReadError(file, "no image: Rows (0028,0010) or Columns (0028,0011) missing or zero");
-  s.dims = {dims[0], dims[1], dims.size() > 2 && dims[2] > 0 ? dims[2] : 1u};
-  const std::vector<double> origin = gdcm::ImageHelper::GetOriginValue(f);
-  const std::vector<double> cosines = gdcm::ImageHelper::GetDirectionCosinesValue(f);
-  const std::vector<double> spacing = gdcm::ImageHelper::GetSpacingValue(f);
-  const std::vector<double> rescale = gdcm::ImageHelper::GetRescaleInterceptSlopeValue(f);
-  if (origin.size() != 3 || cosines.size() != 6 || spacing.size() < 2)
+  const std::vector<double> frames = image.numbers(gdcm::Tag(0x0028, 0x0008), 1, "NumberOfFrames");
+  if (!frames.empty() && !(frames[0] >= 1 && frames[0] <= 1e6 && frames[0] == std::floor(frames[0])))
+    throw VolumeReadError(file, "NumberOfFrames (0028,0008) is " + formatDouble(frames[0]) +
+                                    " (expected a whole number from 1 to 1000000)");
+  s.dims = {columns, rows, frames.empty() ? 1u : uint32_t(frames[0])};
+  const gdcm::Tag planePosition(0x0020, 0x9113), planeOrientation(0x0020, 0x9116), pixelMeasures(0x0028, 0x9110),
+      valueTransformation(0x0028, 0x9145);
+  std::vector<double> origin = image.numbers(gdcm::Tag(0x0020, 0x0032), 3, "ImagePositionPatient", planePosition);
+  std::vector<double> cosines = image.numbers(gdcm::Tag(0x0020, 0x0037), 6, "ImageOrientationPatient", planeOrientation);
+  std::vector<double> spacing = image.numbers(gdcm::Tag(0x0028, 0x0030), 2, "PixelSpacing", pixelMeasures);
+  if (origin.empty() || cosines.empty() || spacing.empty())
     throw VolumeReadError(file, "ImagePositionPatient (0020,0032), ImageOrientationPatient (0020,0037) or "
                                 "PixelSpacing (0028,0030) missing");
+  // PixelSpacing is (between rows, between columns): y first.
+  std::swap(spacing[0], spacing[1]);
+  // Frames of one file: their step from the first two frames' positions
+  // (an enhanced image), else the spacing between slices, else the slice
+  // thickness; 0 where none is given.
+  double frameStep = 0;
+  if (s.dims[2] > 1) {
+    const gdcm::DataSet* perFrame = ImageAttributes::firstItem(f.GetDataSet(), gdcm::Tag(0x5200, 0x9230));
+    const gdcm::SequenceOfItems* framesSequence = ImageAttributes::sequence(f.GetDataSet(), gdcm::Tag(0x5200, 0x9230));
+    if (perFrame && framesSequence && framesSequence->GetNumberOfItems() >= 2) {
+      const ImageAttributes frame0{*perFrame, file};
+      const ImageAttributes frame1{framesSequence->GetItem(2).GetNestedDataSet(), file};
+      const gdcm::DataSet* position0 = ImageAttributes::firstItem(frame0.top, planePosition);
+      const gdcm::DataSet* position1 = ImageAttributes::firstItem(frame1.top, planePosition);
+      if (position0 && position1) {
+        const std::vector<double> p0 =
+            ImageAttributes{*position0, file}.numbers(gdcm::Tag(0x0020, 0x0032), 3, "ImagePositionPatient");
+        const std::vector<double> p1 =
+            ImageAttributes{*position1, file}.numbers(gdcm::Tag(0x0020, 0x0032), 3, "ImagePositionPatient");
+        if (p0.size() == 3 && p1.size() == 3) frameStep = (Vec3(p1[0], p1[1], p1[2]) - Vec3(p0[0], p0[1], p0[2])).norm();
+      }
+    }
+    for (const gdcm::Tag& step : {gdcm::Tag(0x0018, 0x0088), gdcm::Tag(0x0018, 0x0050)}) {
+      if (frameStep > 0) break;
+      const std::vector<double> value = image.numbers(step, 1, "a slice spacing", pixelMeasures);
+      if (!value.empty()) frameStep = std::abs(value[0]);
+    }
+  }
+  std::vector<double> rescale;
+  const std::vector<double> intercept = image.numbers(gdcm::Tag(0x0028, 0x1052), 1, "RescaleIntercept", valueTransformation);
+  const std::vector<double> slope = image.numbers(gdcm::Tag(0x0028, 0x1053), 1, "RescaleSlope", valueTransformation);
+  if (!intercept.empty() || !slope.empty())
+    rescale = {intercept.empty() ? 0.0 : intercept[0], slope.empty() ? 1.0 : slope[0]};
   s.origin = Vec3(origin[0], origin[1], origin[2]);
   s.rowDirection = Vec3(cosines[0], cosines[1], cosines[2]);
   s.columnDirection = Vec3(cosines[3], cosines[4], cosines[5]);
@@ -115,7 +250,7 @@ Slice readHeader(const fs::path& file) {
   s.pixelSpacing = Eigen::Vector2d(spacing[0], spacing[1]);
   if (!(s.pixelSpacing.minCoeff() > 0) || !s.pixelSpacing.allFinite())
     throw VolumeReadError(file, "PixelSpacing (0028,0030) is not positive");
-  s.frameStep = spacing.size() > 2 ? spacing[2] : 0;
+  s.frameStep = frameStep;
   if (rescale.size() == 2) s.intercept = rescale[0], s.slope = rescale[1];
   if (!(s.slope != 0) || !std::isfinite(s.slope) || !std::isfinite(s.intercept))
     throw VolumeReadError(file, "RescaleSlope (0028,1053) is zero or not finite");

@@ -344,6 +344,29 @@ TEST(DicomReaderTest, ImageAttributesGdcmWouldAssertOnAreErrors) {
   text = message("rgb.dcm", patched(std::string("\x28\x00\x02\x00US\x02\x00\x01\x00", 10),
                                     std::string("\x28\x00\x02\x00US\x02\x00\x03\x00", 10)));
   EXPECT_NE(text.find("(0028,0002) is 3 (expected SamplesPerPixel 1: a grey-level image)"), std::string::npos) << text;
+  // Elements GDCM's image helper read through typed attributes, depending on
+  // the SOP class and on pointers in the file (found by fuzzing: a Frame
+  // Increment Pointer (0028,0009) stored as US aborted the process). The
+  // reader takes the image's attributes itself and ignores what it does not use.
+  const std::string rows(std::string("\x28\x00\x10\x00US", 6));
+  for (const std::string& vr : {std::string("US"), std::string("DS"), std::string("SQ")}) {
+    const std::string pointer = std::string("\x28\x00\x09\x00", 4) + vr + std::string("\x02\x00\x54\x00", 4);
+    const std::string bytes = patched(rows, pointer + rows);
+    text = message("frame_pointer_" + vr + ".dcm", bytes);
+    EXPECT_TRUE(text == "no error" || text.find("frame_pointer_" + vr + ".dcm") != std::string::npos) << vr << ": " << text;
+  }
+  // Attributes the reader takes, with values that are not numbers: named.
+  {
+    std::string bytes = good;
+    const size_t at = bytes.find(std::string("\x28\x00\x30\x00" "DS", 6));
+    ASSERT_NE(at, std::string::npos);
+    const size_t length = uint8_t(bytes[at + 6]) | uint8_t(bytes[at + 7]) << 8;
+    ASSERT_GE(length, 6u);
+    bytes.replace(at + 8, length, "1\\abc" + std::string(length - 5, ' '));
+    text = message("spacing_text.dcm", bytes);
+    EXPECT_NE(text.find("spacing_text.dcm"), std::string::npos) << text;
+    EXPECT_NE(text.find("PixelSpacing (0028,0030) holds \"1\\abc"), std::string::npos) << text;
+  }
   // The unpatched file still reads, MONOCHROME1 too (the stored values, not inverted).
   EXPECT_EQ(message("good_again.dcm", good), "no error");
   EXPECT_EQ(message("mono1.dcm", patched("MONOCHROME2", "MONOCHROME1")), "no error");
