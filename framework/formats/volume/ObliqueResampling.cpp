@@ -17,6 +17,10 @@ ResampledGrid resampledGrid(const std::array<int64_t, 3>& storedDims, const Eige
   // A volume that is not a volume: its axes nearly lie in one plane.
   const double volumeRatio = std::abs(axes.determinant()) / lengths.prod();
   if (!(volumeRatio > 1e-3)) throw VolumeReadError(file, "the voxel axes lie in one plane (expected three directions)");
+  // Axes so small or so large that mapping a point back to voxel indices
+  // overflows (found by fuzzing: NaN indices).
+  if (!axes.inverse().allFinite())
+    throw VolumeReadError(file, "the voxel axes cannot be inverted in double precision (spacings far from a scan's)");
   // Which stored axis each world axis follows: the assignment whose
   // direction cosines have the largest product.
   std::array<int, 3> permutation{0, 1, 2}, best{0, 1, 2};
@@ -80,7 +84,10 @@ void resampleCodes(std::span<const VoxelCode> stored, const std::array<int64_t, 
         bool inside = true;
         for (int a = 0; a < 3 && inside; ++a) {
           const double last = double(storedDims[a] - 1);
-          if (!(u[a] >= -0.5 - 1e-9 && u[a] <= last + 0.5 + 1e-9)) inside = false;
+          if (!(u[a] >= -0.5 - 1e-9 && u[a] <= last + 0.5 + 1e-9)) {
+            inside = false;  // NaN too: nothing below converts it
+            break;
+          }
           const double c = std::clamp(u[a], 0.0, last);
           base[a] = std::min<int64_t>(int64_t(c), std::max<int64_t>(storedDims[a] - 2, 0));
           fraction[a] = c - double(base[a]);
