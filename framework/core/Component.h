@@ -17,15 +17,19 @@ class Node;
 class InitContext;
 class FinishContext;
 class EventLog;
+class ContactFrame;
 struct RunPlan;
 
 // Passed to every tick. `t` is the scheduled time of this call (s), the same
-// in virtual and real time; `dt` the group period (s).
+// in virtual and real time; `dt` the group period (s). `contacts`: the rate
+// group's contact frame (framework/geometry/ContactFrame.h), which begins
+// targets and takes responses for it; null outside a scheduler's step.
 struct TickContext {
   double t = 0;
   double dt = 0;
   uint64_t frame = 0;
   EventLog* events = nullptr;
+  ContactFrame* contacts = nullptr;
 };
 
 // A file a component will write into the run directory, and the field that

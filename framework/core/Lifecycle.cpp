@@ -8,6 +8,14 @@
 
 namespace trephine {
 
+std::string toolTraceName(const Component& renderer) {
+  std::string name = renderer.path();
+  while (!name.empty() && name.front() == '/') name.erase(0, 1);
+  for (char& c : name)
+    if (c == '/') c = '.';
+  return "trace." + name + ".csv";
+}
+
 uint64_t RunPlan::callsAt(double rateHz) const {
   if (!(rateHz > 0) || !(duration > 0) || !std::isfinite(rateHz * duration)) return 0;
   // Calls happen at k / rate for k = 0, 1, ... while k / rate < duration. The

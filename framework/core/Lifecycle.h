@@ -59,10 +59,16 @@ class InitContext {
   virtual bool isRealtime() const = 0;
   virtual ChannelHub& channels() = 0;
   virtual EventLog& events() = 0;
-  // The haptic frame log written to trace.csv. One component per scene may
-  // claim it (the force renderer); a second claim is reported as an error.
-  virtual HapticFrameLog* claimHapticLog(const Component& component) = 0;
+  // A force renderer's haptic frame log: every tool's frames are measured
+  // (summary.json's `tools`). `writesTrace`: its frames are trace.csv's and
+  // the summary's `haptics` (one renderer per scene: a second such claim is
+  // reported as an error); the others' go to trace.PATH.csv (toolTraceName).
+  virtual HapticFrameLog* claimHapticLog(const Component& component, bool writesTrace = true) = 0;
 };
+
+// The trace file of a force renderer that does not write trace.csv: its path
+// with the slashes as dots ("/bipolar/force": "trace.bipolar.force.csv").
+std::string toolTraceName(const Component& renderer);
 
 // Known once every component is initialised: how long the run is.
 struct RunPlan {

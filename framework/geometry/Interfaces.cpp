@@ -1,5 +1,6 @@
 // The key functions of the framework's interfaces that plugins meet through
 // (TREPHINE_INTERFACE): their type information lives in this library alone.
+#include "framework/geometry/ContactFrame.h"
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
 #include "framework/geometry/HeldTools.h"
@@ -7,6 +8,7 @@
 
 namespace trephine {
 
+ContactFrameMember::~ContactFrameMember() = default;
 DeformableMesh::~DeformableMesh() = default;
 DrillableVolume::~DrillableVolume() = default;
 HeldTools::~HeldTools() = default;

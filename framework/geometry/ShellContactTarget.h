@@ -1,28 +1,30 @@
 #pragma once
 // A target that a pointshell tool collides with (a voxel skull, a tetrahedral
-// brain). Each haptic frame a tool drives it through one contract, whatever
-// the number of tools touching it:
-//   beginFrame - first, at the frame's time: the first call of a frame takes
-//                the target's latest shape and applies the cuts of the frame
-//                before; later calls of the same frame change nothing, so every
-//                tool sees one shape per frame;
-//   sweep      - how far the tool can move along a segment before entering the target;
+// brain). Each haptic frame its rate group's ContactFrame (ContactFrame.h)
+// drives it through one contract, whatever the number of tools touching it:
+//   beginFrame - once a frame, before any query: takes the target's latest
+//                shape and applies the cuts of the frame before;
+//   sweep      - how far a tool can move along a segment before entering the target;
 //   collide    - which shell points are inside, the contact normal and
 //                penetration they give, and what the response needs (the sites
-//                it presses, the primitives a cut lowers): its answer is the
-//                value, no state is left for a later call;
+//                it presses, the primitives a cut lowers), kept in the asking
+//                tool's own ContactMemory: its answer is the value, and
+//                depends on no other tool's query;
 //   overlaps   - whether a displayed tool pose visibly overlaps the target;
-//   respond    - once the force is known, once per tool: the force onto the
-//                target and the cut, taken from what collide returned. Forces
-//                of several tools add up; cuts act on the next frame's shape.
-// All are called from the haptic loop (no allocation, no exception). The
-// tools that share a target tick in one rate group (one thread).
+//   respond    - once a frame, after every tool's force is known: all of the
+//                frame's responses at once, in a fixed order (the renderers'
+//                paths). Forces of several tools add up; cuts act on the next
+//                frame's shape.
+// A target keeps nothing per tool. All are called from the haptic loop (no
+// allocation, no exception); the tools that share a target tick in one rate
+// group (one thread).
 #include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "framework/geometry/ShellTool.h"
 #include "framework/geometry/SurfaceTarget.h"
@@ -48,6 +50,20 @@ struct ShellContact {
   double penetration = 0;      // mm, depth of the tool in the target as the target measures it
   std::span<const ContactSite> sites;  // deformable target: where the tool presses
   std::span<const int64_t> touched;    // drillable target, asked for a cut: the primitives it lowers
+};
+
+// What one tool keeps for its queries of one target, from frame to frame:
+// owned by the tool's step (its proxy), sized by the target's reserveShell(),
+// so that no tool's query depends on another's.
+struct ContactMemory {
+  std::vector<ContactSite> sites;  // collide()'s sites (ShellContact::sites views them); capacity reserved
+  std::vector<int64_t> touched;    // collide()'s primitives a cut lowers (ShellContact::touched); capacity reserved
+  int32_t searchStart = 0;         // a search that starts at the last contact: its primitive
+  // A drilling tool's breakthrough test: bone ahead of its burr at its last
+  // cut (armed), when that cut was, and whether this stretch's was reported.
+  bool boneAhead = false;
+  double lastCutTime = -1e300;  // s
+  bool brokeThrough = false;
 };
 
 // What a spinning burr does to a drillable target in one haptic frame: the
@@ -78,6 +94,7 @@ struct ContactResponse {
   CuttingLoad load;
   std::span<const int64_t> touched;
   std::optional<Vec3> stoppedAt;  // mm, world
+  ContactMemory* memory = nullptr;  // the responding tool's (its breakthrough test); null: no per-tool history
 };
 
 // What a tool learns at the start of a frame: the same for every tool of the frame.
@@ -119,9 +136,10 @@ class ShellContactTarget : public SurfaceTarget {
   static constexpr std::string_view kTypeName = "ShellContactTarget";
 
   // Called during initialisation for each tool shell that will collide with
-  // this target (the span stays valid for the run): preallocates per-point
-  // working memory and any per-shell data. Other shells are not tested.
-  virtual void reserveShell(std::span<const ShellPoint> shell) = 0;
+  // this target (the span stays valid for the run): preallocates the
+  // target's per-point working memory for it, and returns the memory the
+  // tool keeps for its queries (its buffers reserved). Other shells are not tested.
+  virtual ContactMemory reserveShell(std::span<const ShellPoint> shell) = 0;
   // Called right after reserveShell() with the solid the shell samples, for
   // targets whose back-ends test primitives; may throw when the target cannot
   // take the tool (a load error at the caller).
@@ -132,7 +150,10 @@ class ShellContactTarget : public SurfaceTarget {
   virtual SweepResult sweep(const SweepQuery& query) const = 0;
   // `cutting`: the tool's drill runs this frame; the answer then also holds
   // what its cut needs (ShellContact::touched). Nothing is removed here.
-  virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) = 0;
+  // `memory`: the asking tool's (reserveShell()'s answer for this shell); the
+  // answer's spans view it until the tool's next collide().
+  virtual ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting,
+                               ContactMemory& memory) = 0;
   virtual bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const = 0;
   // Only the broad phase of collide() (the search for candidate primitives),
   // so that studies can time it apart; returns the candidates, or nothing
@@ -158,8 +179,7 @@ class ShellContactTarget : public SurfaceTarget {
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;
-  // Called by each tool at the start of its haptic frame (time t, s), before
-  // any query; see the top of this file.
+  // Once a haptic frame (time t, s), before any query; see the top of this file.
   virtual TargetFrame beginFrame(double t) {
     (void)t;
     return {};
@@ -167,13 +187,14 @@ class ShellContactTarget : public SurfaceTarget {
   // The failure count beginFrame() reports, as it stands (for a tool that
   // starts on this target).
   virtual uint64_t shapeFailures() const { return 0; }
-  // One tool's response this frame (see ContactResponse), every frame it is
-  // in the loop, with a zero force when it touches nothing: a deformable
-  // target passes the sum of the tools' forces on to its deformation model,
-  // a drillable one cuts at the start of the next frame. `shell` names the tool.
-  virtual void respond(std::span<const ShellPoint> shell, const ContactResponse& response) {
-    (void)shell;
-    (void)response;
+  // The frame's responses (see ContactResponse), once a frame, in a fixed
+  // order, none when no tool touches it: a deformable target passes the sum
+  // of the forces on to its deformation model (one value a frame), a
+  // drillable one cuts at the start of the next frame, in this order.
+  // `t`: the frame's time (s).
+  virtual void respond(double t, std::span<const ContactResponse> responses) {
+    (void)t;
+    (void)responses;
   }
 };
 

@@ -33,10 +33,12 @@ std::string sourcePath(const Simulation& simulation, const void* source) {
   return "";
 }
 
-void writeHaptics(JsonWriter& json, const Simulation& simulation) {
-  const HapticStats s = simulation.hapticLog().stats();
-  json.key("haptics").beginObject();
-  json.field("source", simulation.hapticLogOwner() ? simulation.hapticLogOwner()->path() : std::string());
+// One tool's haptic figures, from its log (the value of `haptics`, and of
+// each entry of `tools`).
+void writeHapticFigures(JsonWriter& json, const HapticFrameLog& log, const Component* source) {
+  const HapticStats s = log.stats();
+  json.beginObject();
+  json.field("source", source ? source->path() : std::string());
   json.field("frames", s.frames).field("contact_frames", s.contactFrames);
   json.key("force_N").beginObject().field("max", s.forceMax).field("mean", s.forceMean).endObject();
   json.key("force_step_N").beginObject().field("max", s.forceStepMax).field("p99", s.forceStepP99).endObject();
@@ -60,6 +62,23 @@ void writeHaptics(JsonWriter& json, const Simulation& simulation) {
   }
   json.field("force_reversals", s.forceReversals);
   json.endObject();
+}
+
+// Every tool's line: "haptics   ..." and "passivity ...".
+void printHapticFigures(std::ostream& out, const HapticStats& h) {
+  out << std::setprecision(3) << h.frames << " frames, " << h.contactFrames << " in contact, |F| max " << h.forceMax
+      << " N, step max " << h.forceStepMax << " N (p99 " << h.forceStepP99 << "), penetration max "
+      << h.penetrationMax << " mm, NaN frames " << h.nanFrames << "\n";
+  out << "passivity energy in " << h.energyIn_mJ << " mJ, min " << h.minEnergyIn_mJ << " mJ, generated max "
+      << h.maxGeneratedPer100ms_mJ << " mJ per 100 ms (elastic energy given back at release counts), "
+      << h.forceReversals << " force reversals";
+  if (h.hasUnexplainedSteps)
+    out << ", unexplained step max " << h.unexplainedStepMax << " N (p99 " << h.unexplainedStepP99
+        << "), proxy generated " << h.proxyGenerated_mJ << " mJ";
+  if (h.hasDeviceDamping)
+    out << "\n          with the device's damping " << std::defaultfloat << h.deviceDamping << std::fixed
+        << " N s/mm: energy in " << h.energyInWithDevice_mJ << " mJ, min " << h.minEnergyInWithDevice_mJ << " mJ";
+  out << "\n";
 }
 
 }  // namespace
@@ -140,7 +159,15 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
   }
   json.endObject();
 
-  writeHaptics(json, simulation);
+  json.key("haptics");
+  writeHapticFigures(json, simulation.hapticLog(), simulation.hapticLogOwner());
+  // Every tool, by its force renderer's path (trace.csv's too).
+  json.key("tools").beginObject();
+  for (const Simulation::ToolLog& tool : simulation.toolLogs()) {
+    json.key(tool.renderer->path());
+    writeHapticFigures(json, *tool.log, tool.renderer);
+  }
+  json.endObject();
   json.key("drilling").beginObject().field("voxels_removed", totals["voxels_removed"]).endObject();
 
   const EventLog& events = simulation.events();
@@ -175,9 +202,10 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
   json.endObject();
 }
 
-void writeTraceCsv(const Simulation& simulation, std::ostream& out) {
+void writeTraceCsv(const Simulation& simulation, std::ostream& out) { writeTraceCsv(simulation.hapticLog(), out); }
+
+void writeTraceCsv(const HapticFrameLog& log, std::ostream& out) {
   out << kTraceHeader << "\n";
-  const HapticFrameLog& log = simulation.hapticLog();
   std::string row;
   for (size_t i = 0; i < log.size(); ++i) {
     const HapticFrame& f = log[i];
@@ -223,6 +251,11 @@ std::vector<std::string> writeRunOutputs(const Simulation& simulation, FinishCon
     }
   };
   write("trace.csv", [&](std::ostream& o) { writeTraceCsv(simulation, o); });
+  for (const Simulation::ToolLog& tool : simulation.toolLogs())
+    if (!tool.writesTrace) {
+      const std::string name = toolTraceName(*tool.renderer);
+      write(name.c_str(), [&](std::ostream& o) { writeTraceCsv(*tool.log, o); });
+    }
   write("timings.csv", [&](std::ostream& o) { writeTimingsCsv(simulation, o); });
   write("summary.json", [&](std::ostream& o) { writeSummaryJson(simulation, &finish, o); });
   return written;
@@ -261,20 +294,12 @@ void printRunSummary(const Simulation& simulation, std::ostream& out) {
     const std::string lateTable = formatColumns(late, "          ");
     out << "realtime" << lateTable.substr(8);
   }
-  if (simulation.hapticLogOwner()) {
-    const HapticStats h = simulation.hapticLog().stats();
-    out << std::setprecision(3) << "haptics   " << h.frames << " frames, " << h.contactFrames << " in contact, |F| max "
-        << h.forceMax << " N, step max " << h.forceStepMax << " N (p99 " << h.forceStepP99 << "), penetration max "
-        << h.penetrationMax << " mm, NaN frames " << h.nanFrames << "\n";
-    out << "passivity energy in " << h.energyIn_mJ << " mJ, min " << h.minEnergyIn_mJ << " mJ, generated max "
-        << h.maxGeneratedPer100ms_mJ << " mJ per 100 ms, " << h.forceReversals << " force reversals";
-    if (h.hasUnexplainedSteps)
-      out << ", unexplained step max " << h.unexplainedStepMax << " N (p99 " << h.unexplainedStepP99
-          << "), proxy generated " << h.proxyGenerated_mJ << " mJ";
-    if (h.hasDeviceDamping)
-      out << "\n          with the device's damping " << std::defaultfloat << h.deviceDamping << std::fixed
-          << " N s/mm: energy in " << h.energyInWithDevice_mJ << " mJ, min " << h.minEnergyInWithDevice_mJ << " mJ";
-    out << "\n";
+  // One haptics line (and its passivity line) per tool; with several, each named by its renderer.
+  const std::vector<Simulation::ToolLog> tools = simulation.toolLogs();
+  for (const Simulation::ToolLog& tool : tools) {
+    if (tools.size() > 1) out << "tool      " << tool.renderer->path() << (tool.writesTrace ? " (trace.csv)" : " (" + toolTraceName(*tool.renderer) + ")") << "\n";
+    out << "haptics   ";
+    printHapticFigures(out, tool.log->stats());
   }
   // What the user should know of: each event of a kind that says something
   // went other than planned, up to a few, and a count of every kind.

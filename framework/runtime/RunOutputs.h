@@ -1,10 +1,13 @@
 #pragma once
 // The files of a run (the contract other tools read): summary.json,
-// trace.csv (one row per haptic frame) and timings.csv (one row per call).
+// trace.csv (one row per haptic frame; every other tool's trace.PATH.csv) and
+// timings.csv (one row per call).
 #include <filesystem>
 #include <iosfwd>
 #include <string>
 #include <vector>
+
+#include "framework/logs/HapticFrameLog.h"
 
 namespace trephine {
 
@@ -22,7 +25,8 @@ std::vector<std::string> writeRunOutputs(const Simulation& simulation, FinishCon
                                          const std::filesystem::path& directory);
 
 void writeSummaryJson(const Simulation& simulation, const FinishContext* finish, std::ostream& out);
-void writeTraceCsv(const Simulation& simulation, std::ostream& out);
+void writeTraceCsv(const Simulation& simulation, std::ostream& out);  // trace.csv's tool
+void writeTraceCsv(const HapticFrameLog& log, std::ostream& out);
 void writeTimingsCsv(const Simulation& simulation, std::ostream& out);
 
 // The human summary printed by `trephine run`.

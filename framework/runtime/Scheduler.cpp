@@ -89,6 +89,12 @@ Scheduler::Scheduler(const std::vector<Component*>& components, const RunPlan& p
     for (GroupMember& m : g.members)
       if (auto* pacer = dynamic_cast<FramePacer*>(m.component); pacer && pacer->pacesFrames() && !g.pacer)
         g.pacer = pacer;
+  // The members that query or respond to contact targets join their group's frame.
+  for (RateGroup& g : m_groups) {
+    for (GroupMember& m : g.members)
+      if (auto* member = dynamic_cast<ContactFrameMember*>(m.component)) member->joinContactFrame(g.contacts);
+    g.contacts.seal();
+  }
   // Indexed by tick; a tick skipped in real time stays NaN and is left out of timings.csv.
   for (RateGroup& g : m_groups)
     for (GroupMember& m : g.members) m.callUs.assign(g.plannedCalls, std::numeric_limits<float>::quiet_NaN());
@@ -109,12 +115,13 @@ void Scheduler::run(const std::atomic<bool>& stop) {
 }
 
 uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
-  const TickContext context{static_cast<double>(k) / group.rateHz, group.periodS, k, m_events};
+  const TickContext context{static_cast<double>(k) / group.rateHz, group.periodS, k, m_events, &group.contacts};
   const uint64_t periodNs = static_cast<uint64_t>(group.periodS * 1e9);
   ++group.calls;  // counted when it starts: a step that throws is still a step taken
   group.currentT = context.t;
   const uint64_t start = nowNs();
   uint64_t before = start;
+  group.contacts.begin(context.t);
   for (GroupMember& member : group.members) {
     group.current = &member;  // names the component if its tick throws
     member.component->tick(context);
@@ -126,7 +133,9 @@ uint64_t Scheduler::step(RateGroup& group, uint64_t k) {
     if (ns > periodNs) ++member.overruns;
     before = after;
   }
-  const uint64_t total = before - start;
+  group.current = nullptr;  // the targets' responses belong to no member
+  group.contacts.end();
+  const uint64_t total = nowNs() - start;
   group.stepHistogram.record(total);
   return total;
 }

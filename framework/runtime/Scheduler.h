@@ -20,6 +20,13 @@
 // The scheduler times every call (one clock read per call: the end of one
 // call is the start of the next). Components of one group share a thread;
 // data crosses groups only through channels.
+//
+// Each step of a group owns the haptic frame's contact stage: its
+// ContactFrame opens the frame before the first member ticks, the members
+// (devices, then proxies, then force renderers: link targets tick before the
+// components that read them) query the targets through it and leave their
+// responses in it, and after the last member it hands every target its
+// frame's responses in one call.
 #include <atomic>
 #include <cstdint>
 #include <optional>
@@ -28,6 +35,7 @@
 
 #include "framework/core/Component.h"
 #include "framework/core/Lifecycle.h"
+#include "framework/geometry/ContactFrame.h"
 #include "framework/runtime/TimingHistogram.h"
 
 namespace trephine {
@@ -68,6 +76,9 @@ struct RateGroup {
   FramePacer* pacer = nullptr;
   uint64_t pacedFrames = 0, unpacedFrames = 0;
   uint64_t unpacedRun = 0;  // unpaced frames in a row
+  // The group's contact stage: begun before its members tick, ended (every
+  // target its responses) after them (ContactFrame.h).
+  ContactFrame contacts;
   const GroupMember* current = nullptr;  // the member being ticked
   double currentT = 0;                   // s, scheduled time of the step being run
 };

@@ -1,5 +1,6 @@
 #include "framework/runtime/Simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -173,7 +174,11 @@ class Simulation::Context final : public InitContext {
   bool isRealtime() const override { return m_options.realtime; }
   ChannelHub& channels() override { return *m_simulation.m_channels; }
   EventLog& events() override { return m_simulation.m_events; }
-  HapticFrameLog* claimHapticLog(const Component& component) override {
+  HapticFrameLog* claimHapticLog(const Component& component, bool writesTrace) override {
+    if (!writesTrace) {
+      m_simulation.m_otherToolLogs.emplace_back(&component, std::make_unique<HapticFrameLog>());
+      return m_simulation.m_otherToolLogs.back().second.get();
+    }
     if (m_simulation.m_hapticLogOwner) {
       error(component, "only one component per scene writes the haptic trace; " +
                            m_simulation.m_hapticLogOwner->path() + " already does (a ForceFeedback's trace=\"false\" leaves it to the other)");
@@ -310,6 +315,7 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   const std::vector<Component*> order = initialisationOrder(components);
   try {
     if (s.m_hapticLogOwner) s.m_hapticLog.reserve(s.m_plan.callsAt(s.m_hapticLogOwner->rateHz()) + 1);
+    for (auto& [renderer, log] : s.m_otherToolLogs) log->reserve(s.m_plan.callsAt(renderer->rateHz()) + 1);
     for (Component* c : order) {
       try {
         c->prepare(s.m_plan);
@@ -385,8 +391,17 @@ std::vector<std::string> Simulation::writeOutputs(const std::filesystem::path& d
   return written;
 }
 
+std::vector<Simulation::ToolLog> Simulation::toolLogs() const {
+  std::vector<ToolLog> logs;
+  if (m_hapticLogOwner) logs.push_back({m_hapticLogOwner, &m_hapticLog, true});
+  for (const auto& [renderer, log] : m_otherToolLogs) logs.push_back({renderer, log.get(), false});
+  std::sort(logs.begin(), logs.end(), [](const ToolLog& a, const ToolLog& b) { return a.renderer->path() < b.renderer->path(); });
+  return logs;
+}
+
 std::vector<std::string> Simulation::outputNames() const {
   std::vector<std::string> names{"summary.json", "trace.csv", "timings.csv", "force.png", "timings.png", "view/"};
+  for (const auto& [renderer, log] : m_otherToolLogs) names.push_back(toolTraceName(*renderer));
   for (const Component* c : m_scene->components()) {
     std::vector<OutputFile> outputs;
     c->declareOutputs(outputs);

@@ -70,9 +70,17 @@ class Simulation {
   Scene& scene() const { return *m_scene; }
   const RunPlan& plan() const { return m_plan; }
   const Scheduler& scheduler() const { return *m_scheduler; }
+  // The log of the tool whose renderer writes trace.csv, and that renderer (null: none).
   const HapticFrameLog& hapticLog() const { return m_hapticLog; }
   const EventLog& events() const { return m_events; }
   const Component* hapticLogOwner() const { return m_hapticLogOwner; }
+  // Every tool's log, by its renderer's path (trace.csv's tool among them).
+  struct ToolLog {
+    const Component* renderer;
+    const HapticFrameLog* log;
+    bool writesTrace;  // trace.csv's; the others write toolTraceName()
+  };
+  std::vector<ToolLog> toolLogs() const;
 
   bool complete() const { return m_complete; }
   const std::string& incompleteReason() const { return m_incompleteReason; }
@@ -95,6 +103,8 @@ class Simulation {
   EventLog m_events;
   HapticFrameLog m_hapticLog;
   const Component* m_hapticLogOwner = nullptr;
+  // The other tools' logs (stable addresses: the renderers keep them).
+  std::vector<std::pair<const Component*, std::unique_ptr<HapticFrameLog>>> m_otherToolLogs;
   RunPlan m_plan;
   std::unique_ptr<Scheduler> m_scheduler;
   bool m_folderClaimed = false;  // plan.outputDirectory holds this run's marker

@@ -241,14 +241,34 @@ void probe(Simulation& simulation, const std::vector<StudyPose>& poses, const st
   struct Probed {
     ShellContactTarget* target;
     std::span<const ShellPoint> shell;
+    size_t memory;  // in `memories`: the probe's own for this tool on this target, as a tool's
   };
+  struct ProbeMemory {
+    ShellContactTarget* target;
+    const ShellPoint* shell;
+    ContactMemory memory;
+  };
+  std::vector<ProbeMemory> memories;
   std::vector<Probed> probed;
   for (const StudyPose& pose : poses) {
     auto* target = dynamic_cast<ShellContactTarget*>(simulation.scene().findComponent(pose.target));
     if (!target) throw SettingError(pose.target + ": no collision target there in this setting");
-    probed.push_back({target, findTool(simulation, pose.tool).shellPoints()});
+    const std::span<const ShellPoint> shell = findTool(simulation, pose.tool).shellPoints();
+    auto known = std::find_if(memories.begin(), memories.end(),
+                              [&](const ProbeMemory& m) { return m.target == target && m.shell == shell.data(); });
+    if (known == memories.end()) {
+      memories.push_back({target, shell.data(), target->reserveShell(shell)});
+      known = memories.end() - 1;
+    }
+    probed.push_back({target, shell, size_t(known - memories.begin())});
   }
-  for (const Probed& p : probed) p.target->beginFrame(0.0);  // again for a target already begun: no change
+  // One frame of the pristine targets, begun once each (the probe owns it).
+  std::vector<ShellContactTarget*> begun;
+  for (const Probed& p : probed)
+    if (std::find(begun.begin(), begun.end(), p.target) == begun.end()) {
+      p.target->beginFrame(0.0);
+      begun.push_back(p.target);
+    }
   using Clock = std::chrono::steady_clock;
   const auto microseconds = [](Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); };
   std::vector<double> broadUs(poses.size(), std::nan(""));
@@ -267,7 +287,8 @@ void probe(Simulation& simulation, const std::vector<StudyPose>& poses, const st
   for (size_t i = 0; i < poses.size(); ++i) {
     const auto start = Clock::now();
     const ShellContact contact =
-        probed[i].target->collide(Pose{poses[i].position, Quat::Identity()}, probed[i].shell, false);
+        probed[i].target->collide(Pose{poses[i].position, Quat::Identity()}, probed[i].shell, false,
+                                  memories[probed[i].memory].memory);
     const double us = microseconds(Clock::now() - start);
     const bool touching = contact.points > 0;
     const Vec3 n = touching ? contact.normal : Vec3::Zero();

@@ -12,7 +12,10 @@ void ContactWarning::tick(const TickContext& context) {
   const DeviceState& device = tool.device().state();
   if (!device.valid) return;
   ShellContactTarget& target = *l_target;
-  target.beginFrame(context.t);
+  if (context.contacts)
+    context.contacts->frameOf(target);
+  else
+    target.beginFrame(context.t);
   const Pose X_WT{l_proxy->state().proxy, tool.toolPose(device.pose).orientation};
   ++m_queries;
   const bool touching = target.overlaps(X_WT, tool.shellPoints());

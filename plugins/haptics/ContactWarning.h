@@ -7,15 +7,17 @@
 // position) when a touch begins. With a ToolChange (until) it stops asking
 // from the change on. Nothing else queries the target for it.
 #include "framework/core/Component.h"
+#include "framework/geometry/ContactFrame.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/haptics/GodObjectProxy.h"
 #include "plugins/haptics/ToolChange.h"
 
 namespace trephine::haptics {
 
-class ContactWarning final : public Component {
+class ContactWarning final : public Component, public ContactFrameMember {
  public:
   static constexpr std::string_view kTypeName = "ContactWarning";
+  void joinContactFrame(ContactFrame& frame) override { frame.queries(*l_target); }
 
   void init(InitContext& context) override;
   void tick(const TickContext& context) override;

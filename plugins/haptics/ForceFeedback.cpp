@@ -9,7 +9,7 @@
 namespace trephine::haptics {
 
 void ForceFeedback::init(InitContext& context) {
-  m_log = d_trace.value() ? context.claimHapticLog(*this) : nullptr;
+  m_log = context.claimHapticLog(*this, d_trace.value());
   // The summary judges force steps beyond what k and b explain from the device's motion.
   // After a tool change the gains may change: the larger of each explains more, so the judge is not harsher.
   if (m_log)
@@ -27,6 +27,10 @@ void ForceFeedback::init(InitContext& context) {
   if (d_nextStiffness.isSet() || d_nextDamping.isSet())
     warnIfNotPassive(context, d_nextStiffness.isSet() ? static_cast<const BaseField&>(d_nextStiffness) : d_nextDamping,
                      stiffnessAfterChange(), dampingAfterChange(), rateHz(), l_proxy->tool().device());
+}
+
+void ForceFeedback::joinContactFrame(ContactFrame& frame) {
+  m_responder = frame.addResponder(path(), l_proxy->targets());
 }
 
 double ForceFeedback::stiffnessAfterChange() const {
@@ -94,7 +98,11 @@ void ForceFeedback::tick(const TickContext& context) {
   // the drill runs, the cut (applied at the start of the next frame). Every
   // frame, so that a deformable target knows when the contact ended. A
   // fading force belongs to the contact that was let go, not to the target.
-  proxy.target().respond(proxy.tool().shellPoints(), proxy.response(fading ? Vec3::Zero() : force, context.t));
+  const ContactResponse response = proxy.response(fading ? Vec3::Zero() : force, context.t);
+  if (context.contacts)
+    context.contacts->respond(m_responder, proxy.target(), response);
+  else
+    proxy.target().respond(context.t, {&response, 1});  // outside a scheduler's step: the only response of the frame
 
   HapticFrame frame;
   frame.t = context.t;

@@ -17,17 +17,20 @@
 #include "framework/channels/Channel.h"
 #include "framework/core/SampleSource.h"
 #include "framework/logs/HapticFrameLog.h"
+#include "framework/geometry/ContactFrame.h"
 #include "framework/geometry/HeldTools.h"
 #include "plugins/haptics/GodObjectProxy.h"
 
 namespace trephine::haptics {
 
-class ForceFeedback final : public Component, public SampleSource, public HeldTools {
+class ForceFeedback final : public Component, public SampleSource, public HeldTools, public ContactFrameMember {
  public:
   static constexpr std::string_view kTypeName = "ForceFeedback";
 
   void init(InitContext& context) override;
   void tick(const TickContext& context) override;
+  // Responds to its proxy's targets: the force on them and the cut.
+  void joinContactFrame(ContactFrame& frame) override;
   // The gains of this frame (the next ones once the proxy changed tools), N/mm and N s/mm.
   double stiffness() const;
   double damping() const;
@@ -69,8 +72,9 @@ class ForceFeedback final : public Component, public SampleSource, public HeldTo
   Field<bool> d_trace{this,
                       "trace",
                       true,
-                      {.help = "Write this tool's frames to the run's trace.csv (one tool per scene does; with "
-                               "several, set false on the others and record them with a Recorder)"}};
+                      {.help = "Write this tool's frames to the run's trace.csv and the summary's haptics (one "
+                               "tool per scene does); false: to trace.PATH.csv (PATH: this component's path with "
+                               "dots for slashes). Every tool's figures are in the summary's tools"}};
   Field<double> d_releaseRamp{
       this,
       "releaseRamp",
@@ -85,6 +89,7 @@ class ForceFeedback final : public Component, public SampleSource, public HeldTo
   HapticFrameLog* m_log = nullptr;
   Channel<Sample>* m_samples = nullptr;
   Vec3 m_force = Vec3::Zero();
+  size_t m_responder = 0;  // its slot in the group's contact frame
   uint64_t m_saturatedFrames = 0, m_stepLimitedFrames = 0;
   // The fade of the force after the proxy was let go: from m_rampFrom, frame
   // m_rampFrame of m_rampFrames (none running when they are equal).

@@ -7,14 +7,14 @@ namespace trephine::haptics {
 void GodObjectProxy::init(InitContext& context) {
   m_tool = &*l_tool;
   m_target = &*l_target;
-  m_target->reserveShell(m_tool->shellPoints());
+  m_contactMemory = m_target->reserveShell(m_tool->shellPoints());
   m_target->describeTool(m_tool->shellPoints(), m_tool->solid());
   if (l_toolChange) {
     if (!l_nextTool && !l_nextTarget)
       context.error(l_toolChange, "a tool change needs nextTool, nextTarget or both (what changes)");
     ShellTool& nextTool = l_nextTool ? *l_nextTool : *l_tool;
     ShellContactTarget& nextTarget = l_nextTarget ? *l_nextTarget : *l_target;
-    nextTarget.reserveShell(nextTool.shellPoints());
+    m_nextContactMemory = nextTarget.reserveShell(nextTool.shellPoints());
     nextTarget.describeTool(nextTool.shellPoints(), nextTool.solid());
     if (&nextTool.device() != &l_tool->device())
       context.error(l_nextTool, "the next tool must follow the same device as the first (" +
@@ -32,9 +32,20 @@ void GodObjectProxy::init(InitContext& context) {
   m_settings.godObject = d_godObject.value();
 }
 
-ContactResponse GodObjectProxy::response(const Vec3& forceOnTool_N, double t) const {
+void GodObjectProxy::joinContactFrame(ContactFrame& frame) {
+  for (ShellContactTarget* target : targets()) frame.queries(*target);
+}
+
+std::vector<ShellContactTarget*> GodObjectProxy::targets() const {
+  std::vector<ShellContactTarget*> targets = {&*l_target};
+  if (l_toolChange && l_nextTarget && &*l_nextTarget != &*l_target) targets.push_back(&*l_nextTarget);
+  return targets;
+}
+
+ContactResponse GodObjectProxy::response(const Vec3& forceOnTool_N, double t) {
   ContactResponse response;
   response.t = t;
+  response.memory = m_changedTools ? &m_nextContactMemory : &m_contactMemory;
   const ProxyState& state = m_memory.state;
   if (state.contact) {
     response.forceOnTarget_N = -forceOnTool_N;
@@ -57,11 +68,10 @@ ContactResponse GodObjectProxy::response(const Vec3& forceOnTool_N, double t) co
 }
 
 void GodObjectProxy::changeTools(const TickContext& context) {
-  // The first target hears that the contact ended; the proxy starts again
-  // where the device is, with no plane and no history of the old contact.
-  ContactResponse ended;
-  ended.t = context.t;
-  m_target->respond(m_tool->shellPoints(), ended);
+  // The proxy starts again where the device is, with no plane and no history
+  // of the old contact; the first target hears no more responses from it
+  // (the contact frame hands it none: its contact ended).
+  (void)context;
   if (l_nextTool) m_tool = &*l_nextTool;
   if (l_nextTarget) m_target = &*l_nextTarget;
   m_memory.restart(m_target->shapeFailures());
@@ -71,7 +81,10 @@ void GodObjectProxy::changeTools(const TickContext& context) {
 void GodObjectProxy::tick(const TickContext& context) {
   if (l_toolChange && !m_changedTools && l_toolChange->changed()) changeTools(context);
   ProxyInput input;
-  input.frame = m_target->beginFrame(context.t);
+  // The target's frame, begun once for every tool of the frame (outside a
+  // scheduler's step, nothing else shares it: begun here).
+  input.frame = context.contacts ? context.contacts->frameOf(*m_target) : m_target->beginFrame(context.t);
+  input.contactMemory = m_changedTools ? &m_nextContactMemory : &m_contactMemory;
   const DeviceState& device = m_tool->device().state();
   input.deviceValid = device.valid;
   if (device.valid) {

@@ -5,18 +5,23 @@
 // keeps the memory and this frame's answer for ForceFeedback.
 #include <vector>
 
+#include "framework/geometry/ContactFrame.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/haptics/ProxyStep.h"
 #include "plugins/haptics/ToolChange.h"
 
 namespace trephine::haptics {
 
-class GodObjectProxy final : public Component {
+class GodObjectProxy final : public Component, public ContactFrameMember {
  public:
   static constexpr std::string_view kTypeName = "GodObjectProxy";
 
   void init(InitContext& context) override;
   void tick(const TickContext& context) override;
+  // Queries its target, and the next one after a tool change.
+  void joinContactFrame(ContactFrame& frame) override;
+  // Every target the proxy moves a tool against (the first, the next one).
+  std::vector<ShellContactTarget*> targets() const;
   void reportCounters(std::vector<Counter>& counters) const override;
 
   const ProxyState& state() const { return m_memory.state; }
@@ -34,12 +39,12 @@ class GodObjectProxy final : public Component {
   // position only): the last valid device pose's, identity before.
   const Quat& orientation() const { return m_orientation; }
   bool hasToolChange() const { return bool(l_toolChange); }
-  // What this frame's target takes (ShellContactTarget::respond, with the
-  // tool's shell) once the force rendered to the user is known (N, on the
-  // tool): its opposite onto the target (a deformable one passes it on to its
-  // nodes) and, while the drill runs, the burr loaded against it, with what
-  // this frame's collide() returned. Zero force without contact.
-  ContactResponse response(const Vec3& forceOnTool_N, double t) const;
+  // What this frame's target takes (ShellContactTarget::respond) once the
+  // force rendered to the user is known (N, on the tool): its opposite onto
+  // the target (a deformable one passes it on to its nodes) and, while the
+  // drill runs, the burr loaded against it, with what this frame's collide()
+  // returned (in the tool's ContactMemory). Zero force without contact.
+  ContactResponse response(const Vec3& forceOnTool_N, double t);
   ShellContactTarget& target() const { return *m_target; }
 
  private:
@@ -84,6 +89,9 @@ class GodObjectProxy final : public Component {
 
   ProxySettings m_settings;  // the fields, read once at init
   ProxyMemory m_memory;
+  // The tool's memory for its queries of the target (reserveShell()), the
+  // first tool's against the first target, then the next ones'.
+  ContactMemory m_contactMemory, m_nextContactMemory;
   ProxyFrame m_frame;  // this frame's answer: what response() gives the target
 };
 

@@ -175,7 +175,7 @@ ProxyFrame Frame::contactFrame() {
   // 2. Detection (and drilling) where the proxy now is.
   const bool cutting = m_input.cutting;
   s.cutting = cutting;
-  const ShellContact c = m_target.collide({P1, q}, m_input.shell, cutting);
+  const ShellContact c = m_target.collide({P1, q}, m_input.shell, cutting, *m_input.contactMemory);
   m_out.contact = c;
   s.points = c.points;
   s.primitives = c.primitives;

@@ -76,6 +76,7 @@ struct ProxyInput {
   bool cutting = false;               // the drill runs
   TargetFrame frame;                  // what the target's beginFrame() said this frame
   std::span<const ShellPoint> shell;  // the tool's shell, tool frame
+  ContactMemory* contactMemory = nullptr;  // the tool's, for its queries of this target (reserveShell())
   double leadingRadius = 0;           // mm
 };
 
@@ -117,8 +118,8 @@ struct ProxyMemory {
 // This frame's answer.
 struct ProxyFrame {
   ProxyState state;
-  // What collide() returned (its spans: until the target's next collide()
-  // with this shell) and the point where a sweep stopped a cutting tool
+  // What collide() returned (its spans view the tool's ContactMemory, until
+  // its next collide()) and the point where a sweep stopped a cutting tool
   // between its shell points: what the target's response takes.
   ShellContact contact;
   std::optional<Vec3> stoppedAt;

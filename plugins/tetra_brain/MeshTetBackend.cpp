@@ -47,7 +47,7 @@ void MeshTetBackend::moveNodes(const NodeFrame& frame) {
   m_following.add(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
 }
 
-TetContact MeshTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) {
+TetContact MeshTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites, int32_t&) {
   TetContact result;
   const TriangleContact found = m_engine->contact(X_WT, shell);
   result.contact = found.contact;

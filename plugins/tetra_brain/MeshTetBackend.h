@@ -27,7 +27,8 @@ class MeshTetBackend final : public TetBackend {
   void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   size_t siteCapacity() const override { return 1; }
   void moveNodes(const NodeFrame& frame) override;
-  TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;
+  TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites,
+                     int32_t& searchStart) override;
   size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   SweepResult sweep(const SweepQuery& query) const override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;

@@ -58,7 +58,9 @@ class NativeTetBackend final : public TetBackend {
   // tool query's small cells would make it 8 to 60 times dearer.
   double faceCellSize() const { return std::max(m_cellSize, 0.5 * m_averageEdge); }
   const TetGridSet& currentGrids() const { return *m_grids; }
-  TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) override;
+  TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites,
+                     int32_t& searchStart) override;
+  // From the first tetrahedron (no tool's last contact).
   size_t broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override {
     return findHits(X_WT, shell).size();
   }
@@ -70,7 +72,13 @@ class NativeTetBackend final : public TetBackend {
   // collide() in its two steps (benchmarks time them apart): the shell points
   // inside tetrahedra (empty for a shell larger than any reserved; valid until
   // the next query), then the contact those hits give.
-  std::span<TetHit> findHits(const Pose& X_WT, std::span<const ShellPoint> shell);
+  // `searchStart`: where the previous-contact scan starts, updated to this
+  // contact's first tetrahedron (the tool's memory); without, from the first.
+  std::span<TetHit> findHits(const Pose& X_WT, std::span<const ShellPoint> shell, int32_t& searchStart);
+  std::span<TetHit> findHits(const Pose& X_WT, std::span<const ShellPoint> shell) {
+    int32_t fromFirst = 0;
+    return findHits(X_WT, shell, fromFirst);
+  }
   TetContact contactOfHits(const Pose& X_WT, std::span<const ShellPoint> shell, std::span<TetHit> hits, bool wantSites);
 
   // The tet containing p (the lowest index when p is on a shared face), or -1.
@@ -128,7 +136,8 @@ class NativeTetBackend final : public TetBackend {
   std::array<double, 4> barycentric(int32_t tet, const Vec3& p) const;
   bool inside(int32_t tet, const Vec3& p) const;
   Vec3 faceNormal(const BoundaryFace& face) const;
-  size_t findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell);
+  size_t findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
+                        int32_t& searchStart);
   ShellContact contactAlgorithm2(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
                                  std::span<const TetHit> hits);
   ShellContact contactNearestFace(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
@@ -182,7 +191,6 @@ class NativeTetBackend final : public TetBackend {
   std::vector<int32_t> m_candidates;  // tets within two rings of the first colliding one
   // The previous-contact scan starts at the last frame's first colliding
   // tetrahedron: the one state kept between queries, as the thesis's method is.
-  int32_t m_lastFirstTet = 0;
   uint64_t m_scannedTets = 0;
   mutable LocateWork m_locateWork;
   uint64_t m_maxCollidingTets = 0, m_deepFallbacks = 0;

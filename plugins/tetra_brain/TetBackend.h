@@ -81,7 +81,10 @@ class TetBackend : public CollisionBackend {
   virtual void adoptGrids(const TetGridSet& grids) { (void)grids; }
   // Whether adoptGrids() is used (TetGridRebuild refuses a back-end that ignores it).
   virtual bool adoptsGrids() const { return false; }
-  virtual TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) = 0;
+  // `searchStart`: the asking tool's (ContactMemory::searchStart), for a
+  // search that starts at the tool's last contact; others leave it.
+  virtual TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites,
+                             int32_t& searchStart) = 0;
   // The broad phase of collide() alone, for timing it apart (studies): the
   // candidates the narrow phase would examine (native: the shell points in
   // tetrahedra; mesh back-ends: the boundary triangles within reach).

@@ -96,8 +96,9 @@ bool NativeTetBackend::surfaceWithin(const Vec3& p, double radius) const {
   });
 }
 
-TetContact NativeTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites) {
-  return contactOfHits(X_WT, shell, findHits(X_WT, shell), wantSites);
+TetContact NativeTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites,
+                                     int32_t& searchStart) {
+  return contactOfHits(X_WT, shell, findHits(X_WT, shell, searchStart), wantSites);
 }
 
 TetContact NativeTetBackend::contactOfHits(const Pose& X_WT, std::span<const ShellPoint> shell, std::span<TetHit> hits,

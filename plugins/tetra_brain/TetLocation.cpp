@@ -125,7 +125,8 @@ std::array<double, 4> NativeTetBackend::barycentric(int32_t tet, const Vec3& p) 
   return w;
 }
 
-std::span<TetHit> NativeTetBackend::findHits(const Pose& X_WT, std::span<const ShellPoint> shell) {
+std::span<TetHit> NativeTetBackend::findHits(const Pose& X_WT, std::span<const ShellPoint> shell,
+                                             int32_t& searchStart) {
   if (shell.size() > m_hits.size()) return {};  // working memory is sized by reserveShell()
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   size_t hits = 0;
@@ -136,12 +137,13 @@ std::span<TetHit> NativeTetBackend::findHits(const Pose& X_WT, std::span<const S
       for (size_t i = 0; i < shell.size(); ++i)
         if (m_pointTets[i] >= 0) m_hits[hits++] = {m_pointTets[i], int32_t(i)};
   } else {
-    hits = findHitsByScan(R, X_WT.position, shell);
+    hits = findHitsByScan(R, X_WT.position, shell, searchStart);
   }
   return {m_hits.data(), hits};
 }
 
-size_t NativeTetBackend::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell) {
+size_t NativeTetBackend::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t, std::span<const ShellPoint> shell,
+                                        int32_t& searchStart) {
   // The thesis's search: the tetrahedra in stored order (from the first, or from
   // the last frame's first colliding one) until one whose box meets the tool's
   // box holds a shell point; then that tetrahedron and its neighbours up to two
@@ -153,7 +155,8 @@ size_t NativeTetBackend::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t,
   }
   if (!toolBox.intersects(m_bounds)) return 0;
   const int32_t n = int32_t(m_mesh->tetCount());
-  const int32_t start = m_options.search == Search::kPreviousContact ? m_lastFirstTet : 0;
+  const int32_t start =
+      m_options.search == Search::kPreviousContact && searchStart >= 0 && searchStart < n ? searchStart : 0;
   int32_t first = -1;
   for (int32_t s = 0; s < n && first < 0; ++s) {
     const int32_t tet = (start + s) % n;
@@ -167,7 +170,7 @@ size_t NativeTetBackend::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t,
     }
   }
   if (first < 0) return 0;
-  m_lastFirstTet = first;
+  searchStart = first;
   // Two rings of face neighbours, without repeats (a handful of tets: a linear check suffices).
   size_t count = 0;
   m_candidates[count++] = first;

@@ -220,11 +220,8 @@ void TetraBrain::bindBackend() {
   m_bound = true;
 }
 
-TargetFrame TetraBrain::beginFrame(double t) {
-  if (!(t == m_frameTime)) {
-    m_frameTime = t;
-    takeLatestShape();
-  }
+TargetFrame TetraBrain::beginFrame(double) {
+  takeLatestShape();
   return {m_shapeFailures, 0};
 }
 
@@ -268,30 +265,16 @@ void TetraBrain::takeLatestShape() {
   });
 }
 
-TetraBrain::ShellSlot* TetraBrain::slotOf(const ShellPoint* shell) {
-  for (ShellSlot& slot : m_slots)
-    if (slot.shell == shell) return &slot;
-  return nullptr;
-}
-
-void TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
-  if (!m_bound) return;
+ContactMemory TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
+  ContactMemory memory;
+  if (!m_bound) return memory;
   m_backend->reserveShell(shell);
-  if (!slotOf(shell.data())) {
-    ShellSlot slot;
-    slot.shell = shell.data();
-    m_slots.push_back(std::move(slot));
-  }
-  // Every shell's sites may take the back-end's largest contact, and the
-  // node forces the sites of every shell at once.
-  const size_t sites = m_backend->siteCapacity();
-  size_t allSites = 0;
-  for (ShellSlot& slot : m_slots) {
-    if (slot.sites.capacity() < sites) slot.sites.reserve(sites);
-    allSites += slot.sites.capacity();
-  }
-  m_frameResponses.reserve(m_slots.size());
-  if (m_nodeForceValue.forces.capacity() < 4 * allSites) reserveNodeForces(4 * allSites);
+  // The tool's sites may take the back-end's largest contact, and the node
+  // forces the sites of every tool at once.
+  memory.sites.reserve(m_backend->siteCapacity());
+  m_reservedSites += memory.sites.capacity();
+  if (m_nodeForceValue.forces.capacity() < 4 * m_reservedSites) reserveNodeForces(4 * m_reservedSites);
+  return memory;
 }
 
 void TetraBrain::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
@@ -301,23 +284,19 @@ void TetraBrain::describeTool(std::span<const ShellPoint> shell, const ToolSolid
 // The queries go to the collision back-end once it is bound to the mesh.
 // Before that (the mesh or the back-end failed to load, and the tools' init
 // still announces their shells) there is nothing to hit.
-ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) {
+ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool, ContactMemory& memory) {
   if (!m_bound) return {};
-  ShellSlot* slot = slotOf(shell.data());
-  if (!slot) {
-    ++m_unreservedShellCalls;
-    return {};
-  }
   ++m_queries;
   const bool wantSites = !m_nodeSlot.empty();
-  const TetContact result = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, wantSites); });
+  const TetContact result =
+      askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, wantSites, memory.searchStart); });
   if (result.contact.points > 0) ++m_contactFrames;
-  // Copied into the shell's own slot: the back-end's span lasts only until its
+  // Copied into the tool's memory: the back-end's span lasts only until its
   // next query, which may be another tool's.
-  const size_t kept = std::min(result.sites.size(), slot->sites.capacity());
-  slot->sites.assign(result.sites.begin(), result.sites.begin() + kept);
+  const size_t kept = std::min(result.sites.size(), memory.sites.capacity());
+  memory.sites.assign(result.sites.begin(), result.sites.begin() + kept);
   ShellContact contact = result.contact;
-  contact.sites = slot->sites;
+  contact.sites = memory.sites;
   return contact;
 }
 
@@ -339,33 +318,31 @@ std::optional<SurfaceHit> TetraBrain::raycast(const Vec3& origin, const Vec3& di
                  : std::nullopt;
 }
 
-void TetraBrain::respond(std::span<const ShellPoint> shell, const ContactResponse& response) {
+void TetraBrain::respond(double t, std::span<const ContactResponse> responses) {
   if (m_nodeSlot.empty()) return;  // no component reads the node forces
-  ShellSlot* slot = slotOf(shell.data());
-  if (!slot) return;
-  const bool pushes = !response.sites.empty() && response.forceOnTarget_N.allFinite() &&
-                      !response.forceOnTarget_N.isZero(0.0);
-  slot->respondedAt = response.t;
-  slot->force = pushes ? response.forceOnTarget_N : Vec3::Zero();
-  slot->respondedSites = pushes ? response.sites : std::span<const ContactSite>{};
-  publishNodeForces(response.t);
+  publishNodeForces(t, responses);
 }
 
-void TetraBrain::publishNodeForces(double t) {
+namespace {
+bool pushes(const ContactResponse& response) {
+  return !response.sites.empty() && response.forceOnTarget_N.allFinite() && !response.forceOnTarget_N.isZero(0.0);
+}
+}  // namespace
+
+void TetraBrain::publishNodeForces(double t, std::span<const ContactResponse> responses) {
   // The reaction on the mesh: each tool's force shared among its contact's
   // sites by depth (the points that press hardest carry most), then among
   // each site's nodes by its weights, so that the nodal forces sum to the
-  // contact forces and act where they act. The tools in an order of their
-  // own (not the scene's), so the sums are the same whatever order they
-  // answered in.
-  m_frameResponses.clear();
-  size_t siteCount = 0;
-  for (const ShellSlot& slot : m_slots)
-    if (slot.respondedAt == t && !slot.respondedSites.empty()) {
-      m_frameResponses.push_back(&slot);
-      siteCount += slot.respondedSites.size();
-    }
-  if (m_frameResponses.empty()) {
+  // contact forces and act where they act. The responses come in the contact
+  // frame's order (the renderers' paths), so the sums are the same whatever
+  // order the tools are listed in; one value a frame.
+  size_t siteCount = 0, pressing = 0;
+  for (const ContactResponse& response : responses) {
+    if (!pushes(response)) continue;
+    ++pressing;
+    siteCount += response.sites.size();
+  }
+  if (pressing == 0) {
     // No contact: the reader's last forces must end too (published once).
     if (m_nodeForceValue.forces.empty()) return;
     m_nodeForceValue.forces.clear();
@@ -374,19 +351,14 @@ void TetraBrain::publishNodeForces(double t) {
     m_nodeForces->publish(m_nodeForceValue);
     return;
   }
-  std::sort(m_frameResponses.begin(), m_frameResponses.end(), [](const ShellSlot* a, const ShellSlot* b) {
-    const auto key = [](const ShellSlot* s) {
-      return std::tuple(s->force.x(), s->force.y(), s->force.z(), s->respondedSites.size());
-    };
-    return key(a) < key(b);
-  });
   std::vector<NodeForce>& forces = m_nodeForceValue.forces;
   // Within the capacity reserveShell() gave it: no allocation.
   forces.resize(std::min(4 * siteCount, forces.capacity()));
   uint32_t count = 0;
-  for (const ShellSlot* response : m_frameResponses) {
-    const std::span<const ContactSite> sites = response->respondedSites;
-    const Vec3& forceOnTarget_N = response->force;
+  for (const ContactResponse& response : responses) {
+    if (!pushes(response)) continue;
+    const std::span<const ContactSite> sites = response.sites;
+    const Vec3& forceOnTarget_N = response.forceOnTarget_N;
     double depthSum = 0;
     for (const ContactSite& site : sites) depthSum += site.depth;
     for (const ContactSite& site : sites) {
@@ -470,7 +442,6 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
     if (m_rejectedFrames) counters.push_back({"rejected_position_frames", double(m_rejectedFrames)});
     if (m_shapeFailures) counters.push_back({"shape_failures", double(m_shapeFailures)});
   }
-  if (m_unreservedShellCalls) counters.push_back({"unreserved_shell_calls", double(m_unreservedShellCalls)});
   // The most nodes the tool's force was shared among in a frame: what each
   // reader of the node forces copies on the haptic thread.
   if (!m_nodeSlot.empty()) counters.push_back({"largest_node_force_count", double(m_largestNodeForceCount)});

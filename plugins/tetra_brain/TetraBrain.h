@@ -40,19 +40,20 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   LevelSet exactShape() const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
   // ShellContactTarget
-  void reserveShell(std::span<const ShellPoint> shell) override;
+  ContactMemory reserveShell(std::span<const ShellPoint> shell) override;
   void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   SweepResult sweep(const SweepQuery& query) const override;
-  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) override;
+  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting,
+                       ContactMemory& memory) override;
   std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return d_contactDepth.value(); }
   double resolution() const override;  // mm, the median edge of the tetrahedra at rest
   TargetFrame beginFrame(double t) override;
   uint64_t shapeFailures() const override { return m_shapeFailures; }
-  // The node forces: the sum of this frame's responses, published with each
-  // (the last of the frame carries every tool's force, whatever their order).
-  void respond(std::span<const ShellPoint> shell, const ContactResponse& response) override;
+  // The node forces: the sum of the frame's responses, in their order,
+  // published once a frame (when they change).
+  void respond(double t, std::span<const ContactResponse> responses) override;
   void reportFacts(std::vector<Fact>& facts) const override;
 
   // Publishes the node_forces channel (init() calls it; tests that build the
@@ -92,22 +93,12 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   void bindBackend();
   void warnUnusedNodes(InitContext& context, const MeshReport& report) const;
   void checkNativeOnlyFields(InitContext& context);
-  // Per reserved shell (one per tool): the sites of its last collide() (the
-  // span that collide() returns points here) and its response this frame.
-  struct ShellSlot {
-    const ShellPoint* shell = nullptr;
-    std::vector<ContactSite> sites;  // capacity reserved with the shell
-    double respondedAt = NAN;        // s, the frame of its last response
-    Vec3 force = Vec3::Zero();       // N, that response's force on the mesh
-    std::span<const ContactSite> respondedSites;
-  };
-  ShellSlot* slotOf(const ShellPoint* shell);
   // Takes the deformation's latest shape and grids (beginFrame, finish).
   void takeLatestShape();
   void reserveNodeForces(size_t entries);
   void buildForceSpread();
-  // The node forces of the responses of frame t, shared out and published.
-  void publishNodeForces(double t);
+  // The node forces of one frame's responses, shared out and published.
+  void publishNodeForces(double t, std::span<const ContactResponse> responses);
 
   FilePathField d_file{this,
                        "file",
@@ -222,8 +213,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   Box3 m_restBounds, m_bounds;            // m_bounds: the rest bounds grown by the displacement bound
   std::unique_ptr<TetBackend> m_backend;  // d_backend, bound to m_mesh
   bool m_bound = false;
-  std::vector<ShellSlot> m_slots;  // the reserved shells
-  double m_frameTime = NAN;        // s, the frame beginFrame() last started
+  size_t m_reservedSites = 0;  // the sites every reserved shell's contact may hold at once
 
   // Deformation (followDeformation).
   std::optional<ChannelReader<NodePositions>> m_positions;
@@ -239,14 +229,13 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   Channel<NodeForces>* m_nodeForces = nullptr;
   NodeForces m_nodeForceValue;
   std::vector<int32_t> m_nodeSlot;                    // per node: its entry in m_nodeForceValue, or -1
-  std::vector<const ShellSlot*> m_frameResponses;     // this frame's, in a fixed order; capacity: the shells
   // forceSpread: per node, the boundary nodes that share a force on it and
   // their weights (compressed rows, built in prepare()); the spread forces.
   std::vector<uint32_t> m_spreadStart;
   std::vector<int32_t> m_spreadNodes;
   std::vector<double> m_spreadWeights;
   NodeForces m_spreadValue;
-  uint64_t m_contactFrames = 0, m_unreservedShellCalls = 0;
+  uint64_t m_contactFrames = 0;
   uint64_t m_largestNodeForceCount = 0;  // entries of the largest node-force frame published
   mutable uint64_t m_queries = 0;  // counted by the const queries too
 };

@@ -76,72 +76,44 @@ int VoxelSkull::cutAt(const Vec3& point_W) {
   return removed;
 }
 
-VoxelSkull::ShellSlot* VoxelSkull::slotOf(const ShellPoint* shell) {
-  for (ShellSlot& slot : m_slots)
-    if (slot.shell == shell) return &slot;
-  return nullptr;
-}
-
-ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) {
+ShellContact VoxelSkull::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting,
+                                 ContactMemory& memory) {
   if (!m_bound) return {};
-  ShellSlot* slot = slotOf(shell.data());
   // The thesis's law cuts the voxels the contact touches: asked for only then.
-  const bool thesisCut = cutting && d_drill.value() && !m_forceRemoval && slot;
+  const bool thesisCut = cutting && d_drill.value() && !m_forceRemoval;
   const VoxelContact c = askBackend(*this, d_backend, [&] { return m_backend->collide(X_WT, shell, thesisCut); });
   ShellContact contact = c.contact;
   if (thesisCut) {
-    // Copied into the shell's own slot: the back-end's span lasts only until
-    // its next query, which may be another tool's.
-    const size_t kept = std::min(c.touched.size(), slot->touched.capacity());
-    slot->touched.assign(c.touched.begin(), c.touched.begin() + kept);
-    contact.touched = slot->touched;
+    // Copied into the tool's memory: the back-end's span lasts only until its
+    // next query, which may be another tool's.
+    const size_t kept = std::min(c.touched.size(), memory.touched.capacity());
+    memory.touched.assign(c.touched.begin(), c.touched.begin() + kept);
+    contact.touched = memory.touched;
   }
   return contact;
 }
 
-void VoxelSkull::respond(std::span<const ShellPoint> shell, const ContactResponse& response) {
-  if (!d_drill.value() || !response.cutting) return;
-  ShellSlot* slot = slotOf(shell.data());
-  if (!slot) return;
-  slot->cut = response;
-  slot->cutPending = true;
+void VoxelSkull::respond(double, std::span<const ContactResponse> responses) {
+  if (!d_drill.value()) return;
+  for (const ContactResponse& response : responses)
+    if (response.cutting && m_pendingCuts.size() < m_pendingCuts.capacity()) m_pendingCuts.push_back(response);
 }
 
-TargetFrame VoxelSkull::beginFrame(double t) {
-  if (!(t == m_frameTime)) {
-    m_frameTime = t;
-    m_removedAtFrameStart = applyPendingCuts(t);
-  }
-  return {0, m_removedAtFrameStart};
-}
+TargetFrame VoxelSkull::beginFrame(double t) { return {0, applyPendingCuts(t)}; }
 
 int VoxelSkull::applyPendingCuts(double now) {
-  m_cutOrder.clear();
-  for (ShellSlot& slot : m_slots)
-    if (slot.cutPending) m_cutOrder.push_back(&slot);
-  if (m_cutOrder.empty()) return 0;
   // A force-driven cut lowers codes by their own gradients, so two cuts that
-  // overlap depend on their order: an order of the cuts' own, not the scene's.
-  std::sort(m_cutOrder.begin(), m_cutOrder.end(), [](const ShellSlot* a, const ShellSlot* b) {
-    const auto key = [](const ShellSlot* s) {
-      const CuttingLoad& l = s->cut.load;
-      const Vec3 stop = s->cut.stoppedAt.value_or(Vec3::Constant(INFINITY));
-      return std::tuple(l.center_W.x(), l.center_W.y(), l.center_W.z(), l.force_N.x(), l.force_N.y(), l.force_N.z(),
-                        s->cut.touched.size(), stop.x(), stop.y(), stop.z());
-    };
-    return key(a) < key(b);
-  });
+  // overlap depend on their order: the contact frame's (the renderers' paths).
   int removed = 0;
-  for (ShellSlot* slot : m_cutOrder) {
-    slot->cutPending = false;
-    const ContactResponse& cut = slot->cut;
+  for (const ContactResponse& cut : m_pendingCuts) {
     if (m_forceRemoval) {
-      removed += cutUnderLoad(*slot, cut.load, now);
+      removed += cutUnderLoad(cut.memory ? *cut.memory : m_anonymousHistory, cut.load, now);
     } else {
       removed += cutTouched(cut.touched);
       if (cut.stoppedAt) removed += cutAt(*cut.stoppedAt);
     }
   }
+  m_pendingCuts.clear();
   return removed;
 }
 
@@ -150,7 +122,7 @@ bool VoxelSkull::boneAhead(const Vec3& front, const Vec3& direction) const {
   return m_grid.solidAt(front + 0.5 * h * direction) || m_grid.solidAt(front + h * direction);
 }
 
-int VoxelSkull::cutUnderLoad(ShellSlot& slot, const CuttingLoad& load, double now) {
+int VoxelSkull::cutUnderLoad(ContactMemory& slot, const CuttingLoad& load, double now) {
   const double thrust = load.force_N.norm();  // N
   if (!(thrust > 0) || !std::isfinite(thrust) || !load.center_W.allFinite() || !(load.dt > 0) || !(load.radius > 0))
     return 0;

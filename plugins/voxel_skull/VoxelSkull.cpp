@@ -121,25 +121,20 @@ void VoxelSkull::setVolume(DensityVolume volume) {
   // Drilling works on the stored codes: at least one code step per frame.
   m_drillStep =
       std::max<int32_t>(1, static_cast<int32_t>(std::lround(d_drillRate.value() / m_volume.encoding().scale)));
-  for (ShellSlot& slot : m_slots) {  // a new volume: no cut pending, no drilling under way
-    slot.cutPending = slot.boneAhead = slot.brokeThrough = false;
-    slot.lastCutTime = -1e300;
-  }
+  m_pendingCuts.clear();  // a new volume: no cut pending
 }
 
 // The queries go to the collision back-end once it is bound to the data.
 // Before that (the volume or the back-end failed to load, and the tools' init
 // still announces their shells) there is nothing to hit.
-void VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
-  if (!m_bound) return;
+ContactMemory VoxelSkull::reserveShell(std::span<const ShellPoint> shell) {
+  ContactMemory memory;
+  if (!m_bound) return memory;
   m_backend->reserveShell(shell);
-  if (slotOf(shell.data())) return;
-  ShellSlot slot;
-  slot.shell = shell.data();
   // At most the 8 voxel centres around each shell point (the smooth surface).
-  if (d_drill.value() && !m_forceRemoval) slot.touched.reserve(8 * shell.size());
-  m_slots.push_back(std::move(slot));
-  m_cutOrder.reserve(m_slots.size());
+  if (d_drill.value() && !m_forceRemoval) memory.touched.reserve(8 * shell.size());
+  m_pendingCuts.reserve(++m_reservedShells);
+  return memory;
 }
 void VoxelSkull::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {
   if (m_bound) m_backend->describeTool(shell, solid);
@@ -171,7 +166,8 @@ void VoxelSkull::declareOutputs(std::vector<OutputFile>& outputs) const {
 }
 
 void VoxelSkull::finish(FinishContext& context) {
-  applyPendingCuts(m_frameTime);  // the last frame's, which no next frame applied
+  // The last frame's, which no next frame applied (events at their frame's time).
+  applyPendingCuts(m_pendingCuts.empty() ? 0.0 : m_pendingCuts.back().t);
   if (d_saveDrilled.value().empty() || context.outputDirectory().empty()) return;
   if (!context.claimOutput(*this, d_saveDrilled.value())) return;
   const std::string& name = d_saveDrilled.value();

@@ -45,18 +45,20 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   LevelSet exactShape() const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
   // ShellContactTarget
-  void reserveShell(std::span<const ShellPoint> shell) override;
+  ContactMemory reserveShell(std::span<const ShellPoint> shell) override;
   void describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) override;
   SweepResult sweep(const SweepQuery& query) const override;
-  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting) override;
+  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool cutting,
+                       ContactMemory& memory) override;
   bool overlaps(const Pose& X_WT, std::span<const ShellPoint> shell) const override;
   double contactDepth() const override { return 0.1 * m_grid.smallestSide(); }
   double resolution() const override { return m_volume.spacing().maxCoeff(); }  // mm, the voxels' largest side
   // Applies the cuts the tools asked for in the frame before (once a frame).
   TargetFrame beginFrame(double t) override;
-  // Queues the tool's cut for the start of the next frame: every cut of a
-  // frame acts on the shape all the tools saw, whatever their order.
-  void respond(std::span<const ShellPoint> shell, const ContactResponse& response) override;
+  // Queues the frame's cuts for the start of the next frame, in their order
+  // (the contact frame's): every cut of a frame acts on the shape all the
+  // tools saw, whatever the order they are listed in.
+  void respond(double t, std::span<const ContactResponse> responses) override;
 
   const DensityVolume& volume() const { return m_volume; }
   const SolidGrid& grid() const { return m_grid; }
@@ -72,27 +74,14 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   void setVolume(DensityVolume volume);
 
  private:
-  // Per reserved shell (one per tool): the voxels its last collide() touched
-  // (the span collide() returns points here), the cut its last response
-  // asked for, and its own breakthrough test.
-  struct ShellSlot {
-    const ShellPoint* shell = nullptr;
-    std::vector<int64_t> touched;  // capacity reserved with the shell
-    bool cutPending = false;
-    ContactResponse cut;          // the response whose cut is pending
-    bool boneAhead = false;       // at the tool's last cut: bone ahead of the burr (armed for a breakthrough event)
-    double lastCutTime = -1e300;  // s
-    bool brokeThrough = false;    // the breakthrough of this stretch of drilling was reported
-  };
-  ShellSlot* slotOf(const ShellPoint* shell);
-  // The pending cuts, in an order of their own (not the scene's), at time
-  // `now` (s: events are logged then); returns the voxels removed.
+  // The pending cuts, in the order they came, at time `now` (s: events are
+  // logged then); returns the voxels removed.
   int applyPendingCuts(double now);
   // The thesis's law: the voxels the tool touched, and the point a sweep stopped it at.
   int cutTouched(std::span<const int64_t> touched);
   int cutAt(const Vec3& point_W);
-  // The force law.
-  int cutUnderLoad(ShellSlot& slot, const CuttingLoad& load, double now);
+  // The force law; `history`: the cutting tool's breakthrough test.
+  int cutUnderLoad(ContactMemory& history, const CuttingLoad& load, double now);
   // Drills one voxel by m_drillStep; 1 if it was bone and is not any more.
   int lowerVoxel(int64_t voxel);
   // Whether bone lies ahead of a burr's front along `direction` (unit), within
@@ -237,10 +226,12 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   int32_t m_drillStep = 1;     // codes removed per frame (removal="thesis")
   bool m_forceRemoval = true;  // d_removal, read once at init
   RemovalLaw m_law;
-  std::vector<ShellSlot> m_slots;      // the reserved shells
-  std::vector<ShellSlot*> m_cutOrder;  // the pending cuts being applied; capacity: the shells
-  double m_frameTime = NAN;            // s, the frame beginFrame() last started
-  int m_removedAtFrameStart = 0;       // voxels that frame's start removed
+  // The cuts of the frame before, for the next frame's start; capacity: one
+  // per reserved shell. Their spans view the cutting tools' memories, which
+  // hold until the tools' next collide() (after that start).
+  std::vector<ContactResponse> m_pendingCuts;
+  size_t m_reservedShells = 0;
+  ContactMemory m_anonymousHistory;  // a cut's history when its response names no tool's memory
   EventLog* m_events = nullptr;
   double m_removedCodes = 0;  // code steps removed by the force law, summed over voxels
   double m_maxCutSpeed = 0;   // mm/s, largest recession speed reached

@@ -60,7 +60,7 @@ class BenchInitContext final : public InitContext {
   bool isRealtime() const override { return false; }
   ChannelHub& channels() override { return hub; }
   EventLog& events() override { return log; }
-  HapticFrameLog* claimHapticLog(const Component&) override { return nullptr; }
+  HapticFrameLog* claimHapticLog(const Component&, bool) override { return nullptr; }
   std::unique_ptr<CollisionBackend> createBackend(std::string_view kind, std::string_view name) override {
     if (kind == "TetraBrain" && name == "native") return std::make_unique<tetra::NativeTetBackend>();
     return nullptr;

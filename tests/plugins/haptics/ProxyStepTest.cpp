@@ -29,7 +29,7 @@ class HalfSpace final : public ShellContactTarget {
     if (distance > maxDistance) return std::nullopt;
     return SurfaceHit{origin + distance * direction, Vec3::UnitZ(), distance};
   }
-  void reserveShell(std::span<const ShellPoint>) override {}
+  ContactMemory reserveShell(std::span<const ShellPoint>) override { return {}; }
   SweepResult sweep(const SweepQuery& query) const override {
     ++sweeps;
     SweepResult result;
@@ -43,7 +43,7 @@ class HalfSpace final : public ShellContactTarget {
         query.from + result.freeFraction * (query.to - query.from) - query.leadingRadius * Vec3::UnitZ();
     return result;
   }
-  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool) override {
+  ShellContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool, ContactMemory&) override {
     ShellContact contact;
     for (const ShellPoint& p : shell) {
       const double z = (X_WT.position + X_WT.orientation * p.position).z();
@@ -87,6 +87,7 @@ struct Stepper {
   std::vector<ShellPoint> shell = sphereShell(400);
   ProxySettings settings;
   ProxyMemory memory;
+  ContactMemory contactMemory;
   uint64_t shapeFailures = 0;
 
   ProxyFrame step(const Vec3& device, bool valid = true) {
@@ -95,6 +96,7 @@ struct Stepper {
     input.toolPose.position = device;
     input.frame.shapeFailures = shapeFailures;
     input.shell = shell;
+    input.contactMemory = &contactMemory;
     input.leadingRadius = kRadius;
     return stepProxy(settings, memory, input, target);
   }

@@ -1,12 +1,21 @@
-// Two tools on one target (the suction and bipolar of a neurosurgeon's two
-// hands, two burrs on one bone): whichever order the scene file lists them
-// in, each tool feels the same force frame by frame, the brain deforms the
-// same and the skull loses the same bone. The target answers each tool's
-// query with a value, adds the tools' forces up, refreshes once a frame and
-// applies the cuts of a frame together at the start of the next; nothing
-// depends on which tool ticked first. Run on every collision back-end built.
+// Two to four tools on one target (the suction and bipolar of a
+// neurosurgeon's two hands, burrs on one bone), as a property: whatever order
+// the scene file lists them in (the identity, reversed, random permutations),
+// every tool's trace (trace.csv and each trace.PATH.csv), the deformed brain
+// and the drilled skull are the same to the bit. On every collision back-end
+// built, every search of the brain (previous-contact keeps its start per
+// tool), both removal laws of the skull, and with two tools whose forces are
+// equal (both pressed to the force clamp on a flat face: a sort of the
+// responses by value would leave their order to std::sort). The contact
+// frame begins each target once a frame, each tool queries with its own
+// memory, and the target takes the frame's responses in one call in the
+// order of the renderers' paths: nothing depends on which tool ticked first.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -32,10 +41,10 @@ std::string requiredPlugin(const std::string& backend) {
 }
 
 // One hand: a device following `waypoints` (t x y z), a pointshell tool, its
-// proxy against `target` and its force feedback.
-std::string hand(const std::string& name, const std::string& waypoints, const std::string& target,
-                 const std::string& stiffness) {
-  // The run's trace.csv is one tool's; both are recorded below.
+// proxy against `target` and its force feedback; /t0 writes trace.csv, the
+// others their trace.tN.force.csv.
+std::string hand(int index, const std::string& waypoints, const std::string& target, const std::string& stiffness) {
+  const std::string name = "t" + std::to_string(index);
   return R"(<Node name=")" + name + R"(">
     <ScriptedDevice name="device" path="waypoints" rate="1000" waypoints=")" +
          waypoints + R"("/>
@@ -43,26 +52,32 @@ std::string hand(const std::string& name, const std::string& waypoints, const st
     <GodObjectProxy name="proxy" tool="@tool" target=")" +
          target + R"(" sweep="cylinder" rate="1000"/>
     <ForceFeedback name="force" proxy="@proxy" stiffness=")" +
-         stiffness + R"(" damping="0.001" maxForce="3.3" trace="false" rate="1000"/>
+         stiffness + R"(" damping="0.001" maxForce="3.3" trace=")" + (index == 0 ? "true" : "false") +
+         R"(" rate="1000"/>
   </Node>
   )";
 }
 
-std::string recorders() {
-  return R"(<Node name="record">
-    <Recorder name="left" source="@/left/force" rate="1000" file="left.csv"/>
-    <Recorder name="right" source="@/right/force" rate="1000" file="right.csv"/>
-  </Node>)";
+// The hands in the order `order` lists their indices.
+std::string hands(const std::vector<std::string>& all, const std::vector<int>& order) {
+  std::string text;
+  for (const int i : order) text += all[size_t(i)];
+  return text;
 }
 
-// Both probes press the soft cube (top at z = 10) at once, 6 mm apart, and
-// slide towards each other; each force is spread over the nodes within
-// 8 mm, so the two reach nodes they share.
-std::string brainScene(const std::string& backend, bool leftFirst) {
-  const std::string left =
-      hand("left", "0 -3 0 14   0.3 -3 0 10.8   0.6 -1.5 1 10.6   0.8 -3 0 14", "@/patient/brain", "0.3");
-  const std::string right =
-      hand("right", "0 3 0 14   0.25 3 0 11   0.55 1.5 -1 10.7   0.8 3 0 14", "@/patient/brain", "0.3");
+// On the soft cube (top at z = 10): t0 and t1 press straight down on the flat
+// top, hard enough to reach the force clamp (equal forces), 8 mm apart; t2
+// and t3 press and slide towards each other. Each force is spread over the
+// nodes within 8 mm, so the tools reach nodes they share.
+std::vector<std::string> brainHands() {
+  const std::string brain = "@/patient/brain";
+  return {hand(0, "0 -4 -4 14   0.3 -4 -4 9.5   0.6 -4 -4 9.4   0.8 -4 -4 14", brain, "2"),
+          hand(1, "0 4 -4 14   0.3 4 -4 9.5   0.6 4 -4 9.4   0.8 4 -4 14", brain, "2"),
+          hand(2, "0 -3 4 14   0.3 -3 4 10.8   0.6 -1.5 5 10.6   0.8 -3 4 14", brain, "0.3"),
+          hand(3, "0 3 4 14   0.25 3 4 11   0.55 1.5 3 10.7   0.8 3 4 14", brain, "0.3")};
+}
+
+std::string brainScene(const std::string& backend, const std::string& search, const std::vector<int>& order) {
   return R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
   <RequiredPlugin name="haptics"/>
@@ -71,19 +86,27 @@ std::string brainScene(const std::string& backend, bool leftFirst) {
          R"(
   <Node name="patient">
     <TetraBrain name="brain" file="phantom:cube?cells=6&amp;size=20" backend=")" +
-         backend + R"(" forceSpread="8" saveDeformed="brain.vtu"/>
+         backend + R"(" )" + (search.empty() ? "" : "search=\"" + search + "\" ") +
+         R"(forceSpread="8" saveDeformed="brain.vtu"/>
     <TLEDForceField name="fem" mesh="@brain" dt="0.2e-3" rate="500"/>
     <FixedConstraint name="base" fem="@fem" box="-20 -20 -30 20 20 -9.9"/>
   </Node>
-  )" + (leftFirst ? left + right : right + left) +
-         recorders() + "\n</Node>";
+  )" + hands(brainHands(), order) +
+         "\n</Node>";
 }
 
-// Both burrs drill the 3 mm plate 4 mm apart (their footprints overlap), one
-// pressing harder and starting later.
-std::string skullScene(const std::string& backend, bool leftFirst) {
-  const std::string left = hand("left", "0 -2 0 6   0.1 -2 0 3.5   0.6 -2 0 0   0.7 -2 0 6", "@/patient/skull", "2");
-  const std::string right = hand("right", "0 2 0 6   0.15 2 0 3.5   0.6 2 0 -0.5   0.7 2 0 6", "@/patient/skull", "2.5");
+// Burrs drilling the 3 mm plate (top at z = 1.5): t0 and t1 pressed to the
+// clamp 6 mm apart (equal forces), t2 and t3 with footprints overlapping
+// theirs, one pressing harder and starting later.
+std::vector<std::string> skullHands() {
+  const std::string skull = "@/patient/skull";
+  return {hand(0, "0 -3 -3 6   0.1 -3 -3 3.5   0.6 -3 -3 0   0.7 -3 -3 6", skull, "2"),
+          hand(1, "0 3 -3 6   0.1 3 -3 3.5   0.6 3 -3 0   0.7 3 -3 6", skull, "2"),
+          hand(2, "0 -2 1 6   0.1 -2 1 3.5   0.6 -2 1 0   0.7 -2 1 6", skull, "2"),
+          hand(3, "0 2 1 6   0.15 2 1 3.5   0.6 2 1 -0.5   0.7 2 1 6", skull, "2.5")};
+}
+
+std::string skullScene(const std::string& backend, const std::string& removal, const std::vector<int>& order) {
   return R"(<Node name="root">
   <RequiredPlugin name="voxel_skull"/>
   <RequiredPlugin name="haptics"/>
@@ -91,16 +114,16 @@ std::string skullScene(const std::string& backend, bool leftFirst) {
          R"(
   <Node name="patient">
     <VoxelSkull name="skull" file="phantom:wall?voxel=1&amp;thickness=3&amp;size=16" isovalue="400" drill="true"
-                backend=")" +
-         backend + R"(" saveDrilled="drilled.mha"/>
+                removal=")" +
+         removal + R"(" backend=")" + backend + R"(" saveDrilled="drilled.mha"/>
   </Node>
-  )" + (leftFirst ? left + right : right + left) +
-         recorders() + "\n</Node>";
+  )" + hands(skullHands(), order) +
+         "\n</Node>";
 }
 
 struct Outcome {
-  std::string left, right;  // each tool's recorded samples (force, proxy, penetration) frame by frame
-  std::string saved;        // the target's saved shape (deformed mesh, drilled volume)
+  std::map<std::string, std::string> traces;  // each tool's trace file by name
+  std::string saved;                          // the target's saved shape (deformed mesh, drilled volume)
   double targetFigure = 0;
 };
 
@@ -114,60 +137,113 @@ Outcome run(const std::string& xml, const std::string& savedName, const std::str
   if (!simulation) return {};
   simulation->run();
   simulation->writeOutputs(dir.path());
-  return {test::readFile(dir / "left.csv"), test::readFile(dir / "right.csv"), test::readFile(dir / savedName),
-          test::componentCounter(*simulation, type, figure)};
+  Outcome outcome;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("trace.", 0) == 0) outcome.traces[name] = test::readFile(entry.path());
+  }
+  outcome.saved = test::readFile(dir / savedName);
+  outcome.targetFigure = test::componentCounter(*simulation, type, figure);
+  return outcome;
 }
 
-// Rows of a recording in which the force is not zero.
+// Rows of a trace in which the force is not zero (columns 7 to 9: force x y z).
 int pressingRows(const std::string& csv) {
   int rows = 0;
   size_t start = csv.find('\n') + 1;
   while (start < csv.size()) {
     const size_t end = csv.find('\n', start);
     const std::string row = csv.substr(start, end - start);
-    // Columns: t, source_t, device xyz, proxy xyz, force xyz, ...
     std::vector<double> values;
     size_t at = 0;
-    while (at <= row.size() && values.size() < 11) {
+    while (values.size() < 10) {
       const size_t comma = row.find(',', at);
       values.push_back(std::stod(row.substr(at, comma - at)));
       if (comma == std::string::npos) break;
       at = comma + 1;
     }
-    if (values.size() == 11 && (values[8] != 0 || values[9] != 0 || values[10] != 0)) ++rows;
+    if (values.size() == 10 && (values[7] != 0 || values[8] != 0 || values[9] != 0)) ++rows;
     if (end == std::string::npos) break;
     start = end + 1;
   }
   return rows;
 }
 
-class SharedTargetTest : public testing::TestWithParam<std::string> {};
-
-TEST_P(SharedTargetTest, TwoProbesOnOneBrainFeelAndDeformTheSameInEitherOrder) {
-  const Outcome a = run(brainScene(GetParam(), true), "brain.vtu", "TLEDForceField", "force_updates");
-  const Outcome b = run(brainScene(GetParam(), false), "brain.vtu", "TLEDForceField", "force_updates");
-  // Both press, for a good part of the run, and the brain takes their forces.
-  EXPECT_GT(pressingRows(a.left), 60);
-  EXPECT_GT(pressingRows(a.right), 60);
-  EXPECT_GT(a.targetFigure, 40);
-  EXPECT_EQ(a.left, b.left) << "the left probe's samples depend on the scene's order";
-  EXPECT_EQ(a.right, b.right) << "the right probe's samples depend on the scene's order";
-  EXPECT_FALSE(a.saved.empty());
-  EXPECT_EQ(a.saved, b.saved) << "the deformed brain depends on the scene's order";
+// The orders tried for `count` tools: as listed, reversed, and two random
+// permutations (seeded by `seed`, so a failure comes back).
+std::vector<std::vector<int>> orders(int count, unsigned seed) {
+  std::vector<int> identity(static_cast<size_t>(count));
+  for (int i = 0; i < count; ++i) identity[size_t(i)] = i;
+  std::vector<std::vector<int>> all{identity, std::vector<int>(identity.rbegin(), identity.rend())};
+  std::mt19937 random(seed);
+  for (int k = 0; k < 2; ++k) {
+    std::vector<int> shuffled = identity;
+    std::shuffle(shuffled.begin(), shuffled.end(), random);
+    all.push_back(shuffled);
+  }
+  return all;
 }
 
-TEST_P(SharedTargetTest, TwoBurrsOnOneSkullCutTheSameBoneInEitherOrder) {
-  const Outcome a = run(skullScene(GetParam(), true), "drilled.mha", "VoxelSkull", "voxels_removed");
-  const Outcome b = run(skullScene(GetParam(), false), "drilled.mha", "VoxelSkull", "voxels_removed");
-  EXPECT_GT(pressingRows(a.left), 200);
-  EXPECT_GT(pressingRows(a.right), 200);
-  // 35 voxels on the native back-end, 20 on the mesh ones (which see a smoother surface).
-  EXPECT_GT(a.targetFigure, 10) << "both burrs drill";
-  EXPECT_EQ(a.targetFigure, b.targetFigure);
-  EXPECT_EQ(a.left, b.left) << "the left burr's samples depend on the scene's order";
-  EXPECT_EQ(a.right, b.right) << "the right burr's samples depend on the scene's order";
-  EXPECT_FALSE(a.saved.empty());
-  EXPECT_EQ(a.saved, b.saved) << "the drilled volume depends on the scene's order";
+std::string orderText(const std::vector<int>& order) {
+  std::string text;
+  for (const int i : order) text += (text.empty() ? "t" : ", t") + std::to_string(i);
+  return text;
+}
+
+void expectSameOutcomes(const std::vector<Outcome>& outcomes, const std::vector<std::vector<int>>& tried,
+                        size_t tools) {
+  ASSERT_FALSE(outcomes.empty());
+  const Outcome& first = outcomes.front();
+  // Every tool writes a trace: trace.csv and one trace.tN.force.csv for each other tool.
+  ASSERT_EQ(first.traces.size(), tools);
+  EXPECT_TRUE(first.traces.count("trace.csv"));
+  for (size_t i = 1; i < tools; ++i) EXPECT_TRUE(first.traces.count("trace.t" + std::to_string(i) + ".force.csv"));
+  for (const auto& [name, trace] : first.traces) EXPECT_GT(pressingRows(trace), 60) << name << ": the tool presses";
+  EXPECT_FALSE(first.saved.empty());
+  for (size_t k = 1; k < outcomes.size(); ++k) {
+    SCOPED_TRACE("listed as " + orderText(tried[k]) + " against " + orderText(tried[0]));
+    for (const auto& [name, trace] : first.traces) {
+      const auto other = outcomes[k].traces.find(name);
+      ASSERT_NE(other, outcomes[k].traces.end()) << name;
+      EXPECT_TRUE(other->second == trace) << name << " depends on the order the tools are listed in";
+    }
+    EXPECT_TRUE(outcomes[k].saved == first.saved) << "the target's saved shape depends on the order";
+    EXPECT_EQ(outcomes[k].targetFigure, first.targetFigure);
+  }
+}
+
+class SharedTargetTest : public testing::TestWithParam<std::string> {};
+
+TEST_P(SharedTargetTest, ToolsOnOneBrainFeelAndDeformTheSameInAnyOrder) {
+  const std::vector<std::string> searches =
+      GetParam() == "native" ? std::vector<std::string>{"grid", "first-tetrahedron", "previous-contact"}
+                             : std::vector<std::string>{""};  // the mesh back-ends have one search
+  for (size_t s = 0; s < searches.size(); ++s) {
+    SCOPED_TRACE("search " + (searches[s].empty() ? GetParam() + "'s" : searches[s]));
+    const int tools = 2 + int((s + GetParam().size()) % 3);  // two to four
+    const std::vector<std::vector<int>> tried = orders(tools, unsigned(17 + s));
+    std::vector<Outcome> outcomes;
+    for (const std::vector<int>& order : tried)
+      outcomes.push_back(run(brainScene(GetParam(), searches[s], order), "brain.vtu", "TLEDForceField", "force_updates"));
+    EXPECT_GT(outcomes.front().targetFigure, 40) << "the brain takes the tools' forces";
+    expectSameOutcomes(outcomes, tried, size_t(tools));
+  }
+}
+
+TEST_P(SharedTargetTest, BurrsOnOneSkullCutTheSameBoneInAnyOrder) {
+  // The thesis's law cuts the voxels the native back-end's contacts touch.
+  const std::vector<std::string> removals =
+      GetParam() == "native" ? std::vector<std::string>{"force", "thesis"} : std::vector<std::string>{"force"};
+  for (size_t r = 0; r < removals.size(); ++r) {
+    SCOPED_TRACE("removal " + removals[r]);
+    const int tools = 2 + int((r + GetParam().size() + 1) % 3);
+    const std::vector<std::vector<int>> tried = orders(tools, unsigned(29 + r));
+    std::vector<Outcome> outcomes;
+    for (const std::vector<int>& order : tried)
+      outcomes.push_back(run(skullScene(GetParam(), removals[r], order), "drilled.mha", "VoxelSkull", "voxels_removed"));
+    EXPECT_GT(outcomes.front().targetFigure, 10) << "the burrs drill";
+    expectSameOutcomes(outcomes, tried, size_t(tools));
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, SharedTargetTest, testing::ValuesIn(backends()),

@@ -74,7 +74,8 @@ class ThrowingTetBackend final : public trephine::tetra::TetBackend {
   void reserveShell(std::span<const trephine::ShellPoint>) override {}
   size_t siteCapacity() const override { return 0; }
   void moveNodes(const trephine::tetra::NodeFrame&) override {}
-  trephine::tetra::TetContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool) override {
+  trephine::tetra::TetContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool,
+                                      int32_t&) override {
     if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
     return {};
   }

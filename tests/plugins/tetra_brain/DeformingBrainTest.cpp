@@ -4,10 +4,15 @@
 // reaction on the nodes sums to the contact force and acts where it acts.
 #include <gtest/gtest.h>
 
+#include <array>
+
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Diagnostics.h"
+#include "framework/geometry/ContactFrame.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"
 #include "tests/support/AllocationCounter.h"
 #include "tests/support/TestSupport.h"
@@ -62,7 +67,7 @@ void expectSameContact(const ShellContact& a, const ShellContact& b, const std::
 TEST(DeformingBrainTest, TheOverlapCheckAnswersAsLocatingEveryInsetPoint) {
   const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
   FollowingBrain following(22);
-  following.brain.reserveShell(shell);
+  ContactMemory memory_following_brain_shell = following.brain.reserveShell(shell);
   const NativeTetBackend& native = shapes::native(following.brain);
   const double margin = native.displacementMargin();
   const double inset = 10 * following.brain.contactDepth();
@@ -92,7 +97,7 @@ TEST(DeformingBrainTest, TheOverlapCheckAnswersAsLocatingEveryInsetPoint) {
 TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
   const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
   FollowingBrain following(22);  // 9 mm cells, average edge about 11 mm: auto margin about 2.8 mm
-  following.brain.reserveShell(shell);
+  ContactMemory memory_following_brain_shell = following.brain.reserveShell(shell);
   const double margin = shapes::native(following.brain).displacementMargin();
   ASSERT_GT(margin, 2.0);
   const std::vector<Vec3> rest = following.brain.mesh().nodes;
@@ -106,7 +111,7 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
       TetraBrain rigid;
       rigid.setMesh(shape);
       ASSERT_EQ(rigid.report().invertedTets, 0u);
-      rigid.reserveShell(shell);
+      ContactMemory memory_rigid_shell = rigid.reserveShell(shell);
       for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(-70, 55, 0), Vec3(97.9, 3, 0)}) {
         const double top = 100 + amplitude * std::sin(2 * std::numbers::pi * xy.norm() / 120.0 - phase);
         for (const double press : {-0.5, 0.4, 1.3, 3.0}) {
@@ -114,7 +119,7 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
           const std::string where = "amplitude " + std::to_string(amplitude) + " phase " + std::to_string(phase) +
                                     " at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " +
                                     std::to_string(press);
-          expectSameContact(following.brain.collide(pose, shell, false), rigid.collide(pose, shell, false), where);
+          expectSameContact(following.brain.collide(pose, shell, false, memory_following_brain_shell), rigid.collide(pose, shell, false, memory_rigid_shell), where);
           EXPECT_EQ(following.brain.overlaps(pose, shell), rigid.overlaps(pose, shell)) << where;
           EXPECT_EQ(shapes::native(following.brain).locate(pose.position), shapes::native(rigid).locate(pose.position))
               << where;
@@ -145,7 +150,7 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
 TEST(DeformingBrainTest, AShapeFarBeyondTheGridsWidensTheQueriesByHalfAnEdgeAtMost) {
   const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
   FollowingBrain following(22);
-  following.brain.reserveShell(shell);
+  ContactMemory memory_following_brain_shell = following.brain.reserveShell(shell);
   const NativeTetBackend& native = shapes::native(following.brain);
   std::vector<Vec3> flung = following.brain.mesh().nodes;
   for (Vec3& p : flung)
@@ -156,13 +161,13 @@ TEST(DeformingBrainTest, AShapeFarBeyondTheGridsWidensTheQueriesByHalfAnEdgeAtMo
   EXPECT_DOUBLE_EQ(native.queryWidening(), std::max(cell, 0.5 * native.averageEdge()));
   TetraBrain rest;
   cubeBrain(rest, 22);
-  rest.reserveShell(shell);
+  ContactMemory memory_rest_shell = rest.reserveShell(shell);
   for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(60, 55, 0)})
     for (const double press : {-0.5, 1.3, 3.0}) {
       const Pose pose{xy + Vec3(0, 0, 100 + 2.5 - press), Quat::Identity()};
       const std::string where = "at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " +
                                 std::to_string(press);
-      expectSameContact(following.brain.collide(pose, shell, false), rest.collide(pose, shell, false), where);
+      expectSameContact(following.brain.collide(pose, shell, false, memory_following_brain_shell), rest.collide(pose, shell, false, memory_rest_shell), where);
       EXPECT_EQ(following.brain.overlaps(pose, shell), rest.overlaps(pose, shell)) << where;
     }
 }
@@ -191,11 +196,11 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
     brain.connectChannels(hub);
     ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
     const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
-    brain.reserveShell(shell);
+    ContactMemory memory_brain_shell = brain.reserveShell(shell);
     brain.prepare(RunPlan{});
-    const ShellContact contact = brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false);
+    const ShellContact contact = brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false, memory_brain_shell);
     ASSERT_GT(contact.points, 10);
-    brain.respond(shell, pressing(1.0, Vec3(0, 0, -0.3), contact.sites));
+    shapes::respondAlone(brain, pressing(1.0, Vec3(0, 0, -0.3), contact.sites));
     ASSERT_TRUE(reader.fetch());
     out = reader.read().forces;
     // The counter of the largest frame, on either path (spread or not).
@@ -222,11 +227,11 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
   EXPECT_LT((spreadCentre - pressedCentre).head<2>().norm(), 3.0) << "mm, on a 9 mm mesh";
 }
 
-// Two tools on the brain in one frame: the node forces published after the
-// second response carry both forces, each where it acts, and are the same
-// to the bit whichever tool answered first. A tool's sites stay its own
+// Two tools on the brain in one frame: the node forces published for the
+// frame carry both forces, each where it acts, and are the same to the bit
+// whichever tool queried first. A tool's sites stay its own (its memory)
 // while the other tool queries.
-TEST(DeformingBrainTest, TwoToolsForcesAddUpWhicheverAnswersFirst) {
+TEST(DeformingBrainTest, TwoToolsForcesAddUpWhicheverQueriesFirst) {
   const std::vector<ShellPoint> left = sphereShell(2.5, 266), right = sphereShell(2.0, 200);
   const Pose leftPose{Vec3(10.0, -4.2, 100 + 2.5 - 0.8), Quat::Identity()};
   const Pose rightPose{Vec3(13.5, -2.0, 100 + 2.0 - 0.6), Quat::Identity()};
@@ -237,17 +242,26 @@ TEST(DeformingBrainTest, TwoToolsForcesAddUpWhicheverAnswersFirst) {
     cubeBrain(brain, 22);
     brain.connectChannels(hub);
     ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
-    brain.reserveShell(left);
-    brain.reserveShell(right);
+    ContactMemory memory_brain_left = brain.reserveShell(left);
+    ContactMemory memory_brain_right = brain.reserveShell(right);
     brain.prepare(RunPlan{});
     brain.beginFrame(0.5);
-    // Both query before either responds (two proxies, then two force feedbacks).
-    const ShellContact a = brain.collide(leftFirst ? leftPose : rightPose, leftFirst ? left : right, false);
-    const ShellContact b = brain.collide(leftFirst ? rightPose : leftPose, leftFirst ? right : left, false);
-    EXPECT_GT(a.points, 5);
-    EXPECT_GT(b.points, 5);
-    brain.respond(leftFirst ? left : right, pressing(0.5, leftFirst ? leftForce : rightForce, a.sites));
-    brain.respond(leftFirst ? right : left, pressing(0.5, leftFirst ? rightForce : leftForce, b.sites));
+    // Both query before either responds (two proxies, then two force
+    // feedbacks), each with its own memory; the responses come in the contact
+    // frame's order (the renderers' paths), one call.
+    ShellContact l, r;
+    if (leftFirst) {
+      l = brain.collide(leftPose, left, false, memory_brain_left);
+      r = brain.collide(rightPose, right, false, memory_brain_right);
+    } else {
+      r = brain.collide(rightPose, right, false, memory_brain_right);
+      l = brain.collide(leftPose, left, false, memory_brain_left);
+    }
+    EXPECT_GT(l.points, 5);
+    EXPECT_GT(r.points, 5);
+    const std::array<ContactResponse, 2> responses = {pressing(0.5, leftForce, l.sites),
+                                                      pressing(0.5, rightForce, r.sites)};
+    brain.respond(0.5, responses);
     EXPECT_TRUE(reader.fetch());
     return reader.read().forces;
   };
@@ -262,6 +276,64 @@ TEST(DeformingBrainTest, TwoToolsForcesAddUpWhicheverAnswersFirst) {
   }
 }
 
+// In real time the FEM takes the node forces on its own thread, one value a
+// tick: each value it can take is one whole frame's sum of every tool's
+// force, never a frame with only some of its tools' (the contact frame hands
+// the brain all of a frame's responses in one call, published once). A
+// reader on another thread checks every value it takes against the frame's
+// total, while the haptic thread runs frames of two tools whose forces change
+// every frame.
+TEST(DeformingBrainTest, AReaderOnAnotherThreadTakesOnlyWholeFramesOfNodeForces) {
+  ChannelHub hub;
+  TetraBrain brain;
+  cubeBrain(brain, 22);
+  brain.connectChannels(hub);
+  ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
+  const std::vector<ShellPoint> left = sphereShell(2.5, 266), right = sphereShell(2.0, 200);
+  ContactMemory leftMemory = brain.reserveShell(left), rightMemory = brain.reserveShell(right);
+  brain.prepare(RunPlan{});
+  ContactFrame frame;
+  ShellContactTarget* targets[] = {&brain};
+  const size_t leftSlot = frame.addResponder("/left/force", targets);
+  const size_t rightSlot = frame.addResponder("/right/force", targets);
+  frame.seal();
+  const Pose leftPose{Vec3(10.0, -4.2, 100 + 2.5 - 0.8), Quat::Identity()};
+  const Pose rightPose{Vec3(13.5, -2.0, 100 + 2.0 - 0.6), Quat::Identity()};
+  // N on the brain in frame k: each tool's own rhythm, so that a value with
+  // one tool's force alone (or another frame's) never sums to the total.
+  const auto leftForce = [](int k) -> Vec3 { return Vec3(0.05, -0.02, -0.3) * (1 + k % 5); };
+  const auto rightForce = [](int k) -> Vec3 { return Vec3(-0.03, 0.04, -0.2) * (1 + k % 3); };
+  constexpr int kFrames = 20000;
+  std::atomic<bool> done{false};
+  std::atomic<int> taken{0}, partial{0};
+  std::thread fem([&] {
+    while (!done.load()) {
+      if (!reader.fetch()) continue;
+      const NodeForces& value = reader.read();
+      if (value.forces.empty()) continue;
+      const int k = int(std::lround(value.t * 1e4));
+      Vec3 sum = Vec3::Zero();
+      for (const NodeForce& f : value.forces) sum += f.force;
+      ++taken;
+      if ((sum - (leftForce(k) + rightForce(k))).norm() > 1e-9) ++partial;
+    }
+  });
+  for (int k = 1; k <= kFrames; ++k) {
+    const double t = k * 1e-4;
+    frame.begin(t);
+    frame.frameOf(brain);
+    const ShellContact l = brain.collide(leftPose, left, false, leftMemory);
+    const ShellContact r = brain.collide(rightPose, right, false, rightMemory);
+    frame.respond(leftSlot, brain, pressing(t, leftForce(k), l.sites));
+    frame.respond(rightSlot, brain, pressing(t, rightForce(k), r.sites));
+    frame.end();
+  }
+  done = true;
+  fem.join();
+  EXPECT_GT(taken.load(), 100) << "the reader took values while the frames ran";
+  EXPECT_EQ(partial.load(), 0) << "of " << taken.load() << " values taken, some were not a whole frame's sum";
+}
+
 TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   ChannelHub hub;
   TetraBrain brain;
@@ -269,13 +341,13 @@ TEST(DeformingBrainTest, NodeForcesSumToTheContactForceAndActWhereItActs) {
   brain.connectChannels(hub);
   ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
   const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
-  brain.reserveShell(shell);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
   brain.prepare(RunPlan{});
   const Pose pose{Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()};
-  const ShellContact contact = brain.collide(pose, shell, false);
+  const ShellContact contact = brain.collide(pose, shell, false, memory_brain_shell);
   ASSERT_GT(contact.points, 10);
   const Vec3 force(0.05, -0.02, -0.3);  // N, on the brain
-  brain.respond(shell, pressing(1.25, force, contact.sites));
+  shapes::respondAlone(brain, pressing(1.25, force, contact.sites));
   ASSERT_TRUE(reader.fetch()) << "a reader is there: the node forces are published";
   const NodeForces& forces = reader.read();
   EXPECT_DOUBLE_EQ(forces.t, 1.25);
@@ -315,7 +387,7 @@ TEST_P(PublishingNodeForces, EveryFrameAllocatesNothing) {
   brain.connectChannels(hub);
   ChannelReader<NodeForces> reader = hub.subscribe<NodeForces>(brain, kNodeForcesChannel);
   const std::vector<ShellPoint> shell = sphereShell(8.0, 466);  // an 8 mm tool over 9 mm cells
-  brain.reserveShell(shell);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
   brain.prepare(RunPlan{});
   size_t published = 0, largest = 0;
   test::startCountingAllocations();
@@ -323,9 +395,9 @@ TEST_P(PublishingNodeForces, EveryFrameAllocatesNothing) {
   for (int frame = 0; frame < 400; ++frame) {
     const double press = 6.0 * std::sin(frame * 0.05);
     const Pose pose{Vec3(13.1 + 0.01 * frame, -4.2, 100 + 8.0 - press), Quat::Identity()};
-    const ShellContact contact = brain.collide(pose, shell, false);
+    const ShellContact contact = brain.collide(pose, shell, false, memory_brain_shell);
     if (contact.points > 0)
-      brain.respond(shell, pressing(frame * 1e-3, Vec3(0, 0, -0.3 * press), contact.sites));
+      shapes::respondAlone(brain, pressing(frame * 1e-3, Vec3(0, 0, -0.3 * press), contact.sites));
     if (reader.fetch()) {
       ++published;
       largest = std::max(largest, reader.read().forces.size());

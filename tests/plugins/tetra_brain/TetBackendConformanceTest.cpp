@@ -72,12 +72,13 @@ class TetBackendConformanceTest : public ::testing::TestWithParam<Backend> {
     shell = shapes::sphereShell(kBurr, 266);
     brain.setBackend(GetParam().create());
     shapes::cubeBrain(brain, kCells);
-    brain.reserveShell(shell);
+    memory_brain_shell = brain.reserveShell(shell);
   }
-  ShellContact touch(const Vec3& centre) { return brain.collide(Pose{centre, Quat::Identity()}, shell, false); }
+  ShellContact touch(const Vec3& centre) { return brain.collide(Pose{centre, Quat::Identity()}, shell, false, memory_brain_shell); }
 
   std::vector<ShellPoint> shell;
   TetraBrain brain;
+  ContactMemory memory_brain_shell;
 };
 
 TEST_P(TetBackendConformanceTest, ContactWithTheTopFaceFollowsTheClosedFormFromGrazingToBelowIt) {
@@ -143,7 +144,7 @@ TEST_P(TetBackendConformanceTest, TheReactionOnTheNodesSumsToTheContactForce) {
   const Vec3 force(0.3, -0.2, -1.5);
   const ShellContact contact = touch(Vec3(13, -7, 100 + kBurr - 0.8));
   ASSERT_GT(contact.points, 0);
-  brain.respond(shell, shapes::pressing(0.25, force, contact.sites));
+  shapes::respondAlone(brain, shapes::pressing(0.25, force, contact.sites));
   ASSERT_TRUE(forces.fetch());
   Vec3 sum = Vec3::Zero();
   // On the nodes of the touched triangle (mesh back-ends), or of the
@@ -162,7 +163,7 @@ TEST_P(TetBackendConformanceTest, ADeformingMeshAnswersAsTheSameShapeBuiltRigidW
   ChannelHub hub;
   auto& channel = hub.publish<NodePositions>(producer, kNodePositionsChannel);
   ASSERT_FALSE(brain.followDeformation(producer, hub).has_value());
-  brain.reserveShell(shell);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
   const std::vector<Vec3> rest = brain.mesh().nodes;
   uint64_t step = 0;
   // Half the 20 mm edges' quarter (the native margin, 5 mm) and half edge
@@ -180,13 +181,13 @@ TEST_P(TetBackendConformanceTest, ADeformingMeshAnswersAsTheSameShapeBuiltRigidW
       TetMesh shape = brain.mesh();
       shape.nodes = frame.positions;
       rigid.setMesh(shape);
-      rigid.reserveShell(shell);
+      ContactMemory memory_rigid_shell = rigid.reserveShell(shell);
       for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(-70, 55, 0)}) {
         const double top = 100 + amplitude * std::sin(2 * std::numbers::pi * xy.norm() / 120.0 - phase);
         for (const double press : {0.4, 1.3}) {
           const Pose pose{xy + Vec3(0, 0, top + kBurr - press), Quat::Identity()};
           SCOPED_TRACE(b.name + " amplitude " + std::to_string(amplitude) + " press " + std::to_string(press));
-          const ShellContact moving = brain.collide(pose, shell, false), built = rigid.collide(pose, shell, false);
+          const ShellContact moving = brain.collide(pose, shell, false, memory_brain_shell), built = rigid.collide(pose, shell, false, memory_rigid_shell);
           EXPECT_EQ(moving.points, built.points);
           EXPECT_NEAR(moving.penetration, built.penetration, 1e-9);
           EXPECT_NEAR((moving.normal - built.normal).norm(), 0.0, 1e-9);
@@ -297,20 +298,20 @@ TEST(TetBackendFieldTest, ABurrOnAShaftMeasuresTheClosedFormAtAnyDepth) {
     TetraBrain brain;
     brain.setBackend(backend.create());
     shapes::cubeBrain(brain, kCells);
-    brain.reserveShell(shell);
+    ContactMemory memory_brain_shell = brain.reserveShell(shell);
     if (backend.name == "bullet")  // without a shaft the shell is neither a sphere nor a burr on a shaft
       EXPECT_THROW(brain.describeTool(shell, ToolSolid{kBurr, 0, 0, Vec3::UnitZ()}), std::runtime_error);
     brain.describeTool(shell, ToolSolid{kBurr, r, L, axis});
     for (const double press : {0.6, 1.5, 3.0}) {
       const double height = 100 - press + L * std::sin(theta) + r * std::cos(theta);
       ASSERT_GT(height - kBurr, 100.5) << "the burr is clear of the face";
-      const ShellContact c = brain.collide({Vec3(3, -2, height), Quat::Identity()}, shell, false);
+      const ShellContact c = brain.collide({Vec3(3, -2, height), Quat::Identity()}, shell, false, memory_brain_shell);
       ASSERT_GT(c.points, 0) << backend.name << ", " << press << " mm";
       EXPECT_NEAR(c.penetration, press, backend.tolerance) << backend.name << ", " << press << " mm";
       worst = std::max(worst, std::abs(c.penetration - press));
       EXPECT_GT(c.normal.z(), 1 - 1e-3) << backend.name << ", " << press << " mm: " << c.normal.transpose();
       // Lifted 0.1 mm clear: no contact.
-      EXPECT_EQ(brain.collide({Vec3(3, -2, height + press + 0.1), Quat::Identity()}, shell, false).points, 0)
+      EXPECT_EQ(brain.collide({Vec3(3, -2, height + press + 0.1), Quat::Identity()}, shell, false, memory_brain_shell).points, 0)
           << backend.name;
     }
     RecordProperty(backend.name + "_worst_penetration_error_mm", std::to_string(worst));
@@ -341,7 +342,7 @@ TEST(TetBackendFieldTest, APluginsOwnToolShapeMeasuresTheClosedFormOrIsRefused) 
     shapes::cubeBrain(brain, kCells);
     if (backend.name != "native") {
       try {
-        brain.reserveShell(ellipsoid);
+        ContactMemory memory_brain_ellipsoid = brain.reserveShell(ellipsoid);
         brain.describeTool(ellipsoid, none);
         ADD_FAILURE() << backend.name << " took a tool it cannot measure";
       } catch (const std::runtime_error& e) {
@@ -349,7 +350,7 @@ TEST(TetBackendFieldTest, APluginsOwnToolShapeMeasuresTheClosedFormOrIsRefused) 
       }
       continue;
     }
-    brain.reserveShell(ellipsoid);
+    ContactMemory memory_brain_ellipsoid = brain.reserveShell(ellipsoid);
     brain.describeTool(ellipsoid, none);
     double worst = 0;
     for (const Quat& turn : {Quat::Identity(), Quat(Eigen::AngleAxisd(0.6, Vec3(1, 2, 0.5).normalized())),
@@ -357,7 +358,7 @@ TEST(TetBackendFieldTest, APluginsOwnToolShapeMeasuresTheClosedFormOrIsRefused) 
       for (const double press : {0.3, 0.8, 1.5}) {
         const double support = axes.cwiseProduct(turn.conjugate() * Vec3::UnitZ()).norm();
         const Vec3 centre(3, -2, 100 + support - press);
-        const ShellContact c = brain.collide({centre, turn}, ellipsoid, false);
+        const ShellContact c = brain.collide({centre, turn}, ellipsoid, false, memory_brain_ellipsoid);
         ASSERT_GT(c.points, 0) << press;
         EXPECT_NEAR(c.penetration, press, 0.02) << press;
         EXPECT_GT(c.normal.z(), std::cos(0.06)) << press << ": " << c.normal.transpose();

@@ -46,4 +46,10 @@ inline ContactResponse pressing(double t, const Vec3& force, std::span<const Con
   return response;
 }
 
+// One tool's response as the whole of its frame's (as the contact frame
+// hands a target the responses of a frame).
+inline void respondAlone(ShellContactTarget& target, const ContactResponse& response) {
+  target.respond(response.t, {&response, 1});
+}
+
 }  // namespace trephine::tetra::shapes

@@ -33,8 +33,8 @@ TEST(TetraBrainTest, PointsOnFacesEdgesAndVerticesAreCountedOnce) {
   EXPECT_EQ(shapes::native(brain).locate(Vec3(0, 0, 100.001)), -1);
   // A shell whose points sit on shared faces: each counted once, contact consistent.
   std::vector<ShellPoint> shell = {{Vec3(0, 0, 0), Vec3(0, 0, 1)}, {Vec3(0, 50, 0), Vec3(0, 0, 1)}};
-  brain.reserveShell(shell);
-  const ShellContact c = brain.collide(Pose{Vec3(0, 0, 95), Quat::Identity()}, shell, false);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
+  const ShellContact c = brain.collide(Pose{Vec3(0, 0, 95), Quat::Identity()}, shell, false, memory_brain_shell);
   EXPECT_EQ(c.points, 2);
   EXPECT_GT(c.normal.z(), 0.99);
   EXPECT_NEAR(c.penetration, 5.0, 1e-9);
@@ -50,9 +50,9 @@ TEST(TetraBrainTest, DegenerateTetrahedraAreReportedAndHoldNoPoint) {
   brain.setMesh(mesh);
   EXPECT_GE(brain.report().degenerateTets, 1u);
   const std::vector<ShellPoint> shell = sphereShell(2.5, 200);
-  brain.reserveShell(shell);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
   for (double z : {-99.0, 0.0, 99.0}) {
-    const ShellContact c = brain.collide(Pose{Vec3(1, 2, z), Quat::Identity()}, shell, false);
+    const ShellContact c = brain.collide(Pose{Vec3(1, 2, z), Quat::Identity()}, shell, false, memory_brain_shell);
     EXPECT_TRUE(c.normal.allFinite());
     EXPECT_TRUE(std::isfinite(c.penetration));
   }
@@ -67,9 +67,9 @@ TEST(TetraBrainTest, SharpRidgeFallsBackToTheNearestFace) {
   TetraBrain brain;
   brain.setMesh(mesh);
   const std::vector<ShellPoint> shell = sphereShell(2.0, 300);
-  brain.reserveShell(shell);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
   // The sphere pressed straight down onto the ridge line.
-  const ShellContact c = brain.collide(Pose{Vec3(0, 0, 11.0), Quat::Identity()}, shell, false);
+  const ShellContact c = brain.collide(Pose{Vec3(0, 0, 11.0), Quat::Identity()}, shell, false, memory_brain_shell);
   ASSERT_GT(c.points, 0);
   EXPECT_TRUE(c.normal.allFinite());
   EXPECT_NEAR(c.normal.norm(), 1.0, 1e-9);
@@ -82,9 +82,9 @@ TEST(TetraBrainTest, ToolsSmallerAndLargerThanTheTetrahedraMeasureTheSameDepth) 
     TetraBrain brain;
     cubeBrain(brain, cells);
     const std::vector<ShellPoint> shell = sphereShell(radius, 466);
-    brain.reserveShell(shell);
+    ContactMemory memory_brain_shell = brain.reserveShell(shell);
     // Pressed 0.8 mm into the top face (z = 100).
-    const ShellContact c = brain.collide(Pose{Vec3(3, -7, 100 + radius - 0.8), Quat::Identity()}, shell, false);
+    const ShellContact c = brain.collide(Pose{Vec3(3, -7, 100 + radius - 0.8), Quat::Identity()}, shell, false, memory_brain_shell);
     EXPECT_NEAR(c.penetration, 0.8, 0.05) << cells << " cells, radius " << radius;
     EXPECT_GT(c.normal.z(), 0.999) << cells << " cells, radius " << radius;
   }
@@ -96,11 +96,11 @@ TEST(TetraBrainTest, AMeshFarFromTheOriginGivesTheSameContact) {
   cubeBrain(near, 13);
   cubeBrain(away, 13, far);
   const std::vector<ShellPoint> shell = sphereShell(2.5, 466);
-  near.reserveShell(shell);
-  away.reserveShell(shell);
+  ContactMemory memory_near_shell = near.reserveShell(shell);
+  ContactMemory memory_away_shell = away.reserveShell(shell);
   const Vec3 centre(11.3, -4.7, 101.7);
-  const ShellContact a = near.collide(Pose{centre, Quat::Identity()}, shell, false);
-  const ShellContact b = away.collide(Pose{centre + far, Quat::Identity()}, shell, false);
+  const ShellContact a = near.collide(Pose{centre, Quat::Identity()}, shell, false, memory_near_shell);
+  const ShellContact b = away.collide(Pose{centre + far, Quat::Identity()}, shell, false, memory_away_shell);
   EXPECT_EQ(a.points, b.points);
   EXPECT_NEAR(a.penetration, b.penetration, 1e-6);
   EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-9);
@@ -112,8 +112,8 @@ TEST(TetraBrainTest, ToolDeepInsideMeasuresToTheNearestBoundaryFace) {
   TetraBrain brain;
   cubeBrain(brain, 22);  // 9 mm cells
   const std::vector<ShellPoint> shell = sphereShell(2.5, 466);
-  brain.reserveShell(shell);
-  const ShellContact c = brain.collide(Pose{Vec3(1, 1, 100 - 12), Quat::Identity()}, shell, false);
+  ContactMemory memory_brain_shell = brain.reserveShell(shell);
+  const ShellContact c = brain.collide(Pose{Vec3(1, 1, 100 - 12), Quat::Identity()}, shell, false, memory_brain_shell);
   EXPECT_EQ(c.points, 466);
   EXPECT_NEAR(c.penetration, 12 + 2.5, 0.1) << "the deepest point, below the top face";
   EXPECT_GT(c.normal.z(), 0.99);
@@ -131,8 +131,8 @@ TEST(TetraBrainTest, TheThesisSearchesFindTheSameContactsAsTheGrid) {
       TetraBrain brain;
       ASSERT_TRUE(brain.findField("search")->assign(search, {}, {}) == std::nullopt);
       cubeBrain(brain, 13);
-      brain.reserveShell(shell);
-      results[k++] = brain.collide(Pose{centre, Quat::Identity()}, shell, false);
+      ContactMemory memory_brain_shell = brain.reserveShell(shell);
+      results[k++] = brain.collide(Pose{centre, Quat::Identity()}, shell, false, memory_brain_shell);
     }
     for (int i = 1; i < 3; ++i) {
       EXPECT_EQ(results[i].points, results[0].points) << centre.transpose() << " search " << i;
