@@ -6,8 +6,12 @@
 // so nothing here depends on the force clamp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
+#include "framework/core/Diagnostics.h"
+#include "framework/runtime/RunOutputs.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -157,6 +161,81 @@ TEST(ForceFeedbackTest, MaxForceStepLeavesASmoothPressAlone) {
   const HapticFrameLog& log = simulation->hapticLog();
   for (size_t i = 0; i < log.size(); ++i)
     EXPECT_NEAR(log[i].force.z(), 0.5 * std::max(0.0, kRadius - script.z(log[i].t)), 1e-3) << "t = " << log[i].t;
+}
+
+// Every tool is measured: two burrs on one half-space, the first writing
+// trace.csv and the summary's haptics, the second its own
+// trace.second.force.csv; summary.json's tools holds both, each with the
+// figures of its own frames (the second presses twice as deep: twice the
+// force), and the printed summary has one haptics line per tool, named.
+TEST(ForceFeedbackTest, EveryToolHasItsTraceItsFiguresAndItsLine) {
+  const std::string xml = R"(<Node name="root">
+  <RequiredPlugin name="voxel_skull"/>
+  <RequiredPlugin name="haptics"/>
+  <VoxelSkull name="skull" file="phantom:halfspace?voxel=0.5" isovalue="500"/>
+  <Node name="first">
+    <ScriptedDevice name="device" record="false" path="waypoints" waypoints="0 -10 0 4  0.1 -10 0 2  0.3 -10 0 2"/>
+    <PointshellTool name="burr" radius="2.5" angleStep="10" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/skull"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="1" maxForce="10"/>
+  </Node>
+  <Node name="second">
+    <ScriptedDevice name="device" record="false" path="waypoints" waypoints="0 10 0 4  0.1 10 0 1.5  0.3 10 0 1.5"/>
+    <PointshellTool name="burr" radius="2.5" angleStep="10" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@burr" target="@/skull"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="1" maxForce="10" trace="false"/>
+  </Node>
+</Node>)";
+  test::TempDir dir;
+  Diagnostics d;
+  SimulationOptions options;
+  options.outputDirectory = dir.path();
+  auto simulation = test::loadScene(xml, d, options);
+  ASSERT_TRUE(simulation) << test::messages(d);
+  simulation->run();
+  const std::vector<std::string> written = simulation->writeOutputs(dir.path());
+  EXPECT_NE(std::find(written.begin(), written.end(), "trace.second.force.csv"), written.end());
+  const std::string first = test::readFile(dir / "trace.csv"), second = test::readFile(dir / "trace.second.force.csv");
+  ASSERT_FALSE(second.empty());
+  EXPECT_EQ(second.substr(0, second.find('\n')), kTraceHeader);
+  EXPECT_NE(first, second);
+  // The last rows: each burr held at its depth, k p with p = 2.5 - z (N).
+  const auto lastForceZ = [](const std::string& csv) {
+    const std::string row = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+    std::vector<double> values;
+    size_t at = 0;
+    for (int column = 0; column < 10; ++column) {
+      const size_t comma = row.find(',', at);
+      values.push_back(std::stod(row.substr(at, comma - at)));
+      at = comma + 1;
+    }
+    return values[9];
+  };
+  EXPECT_NEAR(lastForceZ(first), 0.5, 0.05);
+  EXPECT_NEAR(lastForceZ(second), 1.0, 0.05);
+  const std::string summary = test::readFile(dir / "summary.json");
+  const size_t tools = summary.find("\"tools\"");
+  ASSERT_NE(tools, std::string::npos) << summary;
+  const size_t firstEntry = summary.find("\"/first/force\"", tools), secondEntry = summary.find("\"/second/force\"", tools);
+  ASSERT_NE(firstEntry, std::string::npos);
+  ASSERT_NE(secondEntry, std::string::npos);
+  const auto figure = [&](size_t from, const std::string& key) {
+    const size_t at = summary.find("\"" + key + "\"", from);
+    return std::stod(summary.substr(summary.find(':', at) + 1));
+  };
+  EXPECT_EQ(figure(firstEntry, "frames"), 300);
+  EXPECT_EQ(figure(secondEntry, "frames"), 300);
+  const double firstMax = figure(summary.find("\"force_N\"", firstEntry), "max");
+  const double secondMax = figure(summary.find("\"force_N\"", secondEntry), "max");
+  EXPECT_NEAR(secondMax, 2 * firstMax, 0.1 * firstMax) << "each tool's figures are its own";
+  // haptics stays trace.csv's tool's.
+  EXPECT_NEAR(figure(summary.find("\"force_N\"", summary.find("\"haptics\"")), "max"), firstMax, 1e-12);
+  std::ostringstream printed;
+  printRunSummary(*simulation, printed);
+  const std::string text = printed.str();
+  EXPECT_NE(text.find("tool      /first/force (trace.csv)\nhaptics   300 frames"), std::string::npos) << text;
+  EXPECT_NE(text.find("tool      /second/force (trace.second.force.csv)\nhaptics   300 frames"), std::string::npos)
+      << text;
 }
 
 }  // namespace
