@@ -76,11 +76,18 @@ void TLEDForceField::scaleMass() {
 std::optional<std::string> TLEDForceField::checkTimeStep() const {
   const double critical = m_model->criticalTimeStep(d_damping.value());
   if (d_dt.value() <= critical || d_acceptUnstable.value()) return std::nullopt;
-  return "dt = " + seconds(d_dt.value()) + " is above the critical time step of this mesh, " + seconds(critical) +
-         " (element " + std::to_string(m_model->criticalElement()) +
-         ": its characteristic length over the dilatational wave speed, with the damping): the explicit integration "
-         "would diverge. Use dt <= " +
-         seconds(critical) + ", or massScaling=\"true\" (" + std::to_string(m_model->elementsBelowStep(d_dt.value())) +
+  const std::string problem =
+      "dt = " + seconds(d_dt.value()) + " is above the critical time step of this mesh, " + seconds(critical) +
+      " (element " + std::to_string(m_model->criticalElement()) +
+      ": its characteristic length over the dilatational wave speed, with the damping): the explicit integration "
+      "would diverge. ";
+  const size_t below = m_model->elementsBelowStep(d_dt.value());
+  if (d_massScaling.value())  // already on: more mass is not what is missing
+    return problem + "massScaling is on already" +
+           (below == 0 ? std::string(" and every element's own step reaches dt: the damping limits it")
+                       : ", and " + std::to_string(below) + " elements stay below dt") +
+           ". Use dt <= " + seconds(critical) + ", less damping, or acceptUnstableTimeStep=\"true\"";
+  return problem + "Use dt <= " + seconds(critical) + ", or massScaling=\"true\" (" + std::to_string(below) +
          " elements are below dt), or acceptUnstableTimeStep=\"true\"";
 }
 

@@ -4,7 +4,8 @@
 // run (ProxySettings), what the proxy keeps from one frame to the next
 // (ProxyMemory) and this frame's inputs (ProxyInput) give this frame's answer
 // (ProxyFrame) and the memory for the next. The target is the world it is
-// stepped against: its collide() may remove bone. Nothing else is carried
+// stepped against: its collide() only answers (a cut is the response's, after
+// the force is known, and acts on the next frame's shape). Nothing else is carried
 // between frames, so a copy of the memory replays the frames after it exactly,
 // and a test drives the proxy without a scene graph.
 //
@@ -12,7 +13,8 @@
 //  1. sweep before moving: the proxy moves from its last position towards the
 //     device until the target stops it (placed contactDepth into the target);
 //  2. detection at that position: colliding shell points, contact normal and
-//     raw penetration from the target (drilling happens here if the target drills);
+//     raw penetration from the target, and what a cut would take (the
+//     tool's ContactMemory keeps them);
 //  3. god-object projection: the device is projected on the constraint plane
 //     through the proxy (lifted out to the contact depth when the raw
 //     penetration is deeper), so the proxy slides along the surface;

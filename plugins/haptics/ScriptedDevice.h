@@ -75,9 +75,18 @@ class ScriptedDevice final : public HapticDevice {
       20.0,
       {.help = "Average speed of approach, slide and retract moves", .unit = "mm/s", .min = 0.0, .minExclusive = true}};
   Field<double> d_slideDistance{
-      this, "slideDistance", 20.0, {.help = "Slide length along the surface", .unit = "mm", .min = 0.0}};
-  Field<Vec3> d_slideDirection{
-      this, "slideDirection", Vec3::UnitX(), {.help = "Slide direction (projected on the surface)"}};
+      this,
+      "slideDistance",
+      20.0,
+      {.help = "Slide length (approach-press-slide): a straight line in the tangent plane of the pressed point, "
+               "depth below it; on a curved surface the depth below the surface itself grows or shrinks along the "
+               "slide (a convex one: deeper)",
+       .unit = "mm",
+       .min = 0.0}};
+  Field<Vec3> d_slideDirection{this,
+                               "slideDirection",
+                               Vec3::UnitX(),
+                               {.help = "Slide direction, projected on the tangent plane of the pressed point"}};
   Field<double> d_feedSpeed{this,
                             "feedSpeed",
                             1.0,

@@ -612,6 +612,21 @@ ViewerDataSummary writeViewerData(const fs::path& run, const OutputFolder& dataR
   std::error_code ec;
   summary.plots =
       fs::exists(fs::symlink_status(run / "trace.csv", ec)) && readPlots(inRun(run, "trace.csv"), plots, end, summary);
+  // Every other tool's trace (trace.PATH.csv: its renderer's path with dots
+  // for slashes), plotted beside trace.csv's and named by that path.
+  std::vector<std::pair<std::string, Plots>> toolPlots;
+  for (const auto& entry : fs::directory_iterator(run, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool toolTrace = name.size() > 10 && name.rfind("trace.", 0) == 0 && name != "trace.csv" &&
+                           name.compare(name.size() - 4, 4, ".csv") == 0;
+    if (!toolTrace) continue;
+    Plots tool;
+    if (!readPlots(inRun(run, name), tool, end, summary)) continue;
+    std::string path = "/" + name.substr(6, name.size() - 10);
+    std::replace(path.begin(), path.end(), '.', '/');
+    toolPlots.emplace_back(path, std::move(tool));
+  }
+  std::sort(toolPlots.begin(), toolPlots.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
 
   std::ostringstream manifest;
   manifest << "window.trephineRuns = window.trephineRuns || [];\nwindow.trephineRuns[" << index << "] = ";
@@ -673,6 +688,17 @@ ViewerDataSummary writeViewerData(const fs::path& run, const OutputFolder& dataR
   } else {
     json.null();
   }
+  json.key("toolPlots").beginArray();
+  for (const auto& [path, tool] : toolPlots) {
+    json.beginObject().field("name", path);
+    for (auto [name, values] : {std::pair{"t", &tool.time}, {"force", &tool.force}, {"penetration", &tool.penetration}}) {
+      json.key(name).beginArray();
+      for (double v : *values) json.value(v);
+      json.endArray();
+    }
+    json.endObject();
+  }
+  json.endArray();
   json.endObject();
   manifest << ";\n";
   // The run's summary (its events, for the plots and the time slider), as

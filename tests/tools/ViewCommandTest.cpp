@@ -217,6 +217,27 @@ TEST(ViewCommandTest, TraceRowsThePlotsCannotUseAreSaidByLine) {
   EXPECT_EQ(out.find("trace.csv:10:"), std::string::npos) << "device_x is not plotted: its row stays\n" << out;
 }
 
+// Every tool's trace is plotted: beside trace.csv's, each trace.PATH.csv of a
+// run with several tools, named by its renderer's path (dots back to slashes).
+TEST(ViewCommandTest, EveryToolsTraceIsPlottedAndNamed) {
+  test::TempDir dir;
+  const fs::path run = dir.path() / "run";
+  std::string out;
+  ASSERT_EQ(runProgram({"run", (test::sourceDir() / "scenes/examples/fem_press_export.xml").string(), "--duration",
+                        "0.2", "--out", run.string(), "--quiet"},
+                       &out),
+            0)
+      << out;
+  fs::copy_file(run / "trace.csv", run / "trace.left.force.csv");
+  FakeAssets assets;
+  ASSERT_EQ(runProgram({"view", run.string()}, &out, assets.environment()), 0) << out;
+  const std::string manifest = test::readFile(run / "view/data/manifest.js");
+  const size_t tools = manifest.find("\"toolPlots\": [");
+  ASSERT_NE(tools, std::string::npos) << manifest.substr(0, 300);
+  EXPECT_NE(manifest.find("\"name\": \"/left/force\"", tools), std::string::npos);
+  EXPECT_NE(manifest.find("\"force\": [", tools), std::string::npos);
+}
+
 TEST(ViewCommandTest, RunsItCannotShowAreClearErrors) {
   test::TempDir dir;
   FakeAssets assets;

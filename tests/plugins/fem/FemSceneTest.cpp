@@ -85,6 +85,18 @@ TEST(FemSceneTest, ATimeStepAboveTheCriticalOneIsALoadErrorGivingBoth) {
   EXPECT_NE(m.find("inline.xml:5:"), std::string::npos) << m;
   EXPECT_NE(m.find("dt = 1 ms is above the critical time step of this mesh, 0.3"), std::string::npos) << m;
   EXPECT_NE(m.find("massScaling=\"true\""), std::string::npos) << m;
+  // With mass scaling on already, and a damping that limits the step, the
+  // error does not suggest turning it on: it says what limits the step.
+  Diagnostics damped;
+  std::string dampedScene = barScene("", -10, R"(dt="1e-3" massScaling="true")");
+  dampedScene.replace(dampedScene.find("damping=\"11\""), 13, "damping=\"2000\"");
+  EXPECT_FALSE(test::loadScene(dampedScene, damped));
+  const std::string dampedMessage = test::messages(damped);
+  EXPECT_NE(dampedMessage.find("massScaling is on already and every element's own step reaches dt: the damping "
+                               "limits it. Use dt <= 0.908 ms, less damping"),
+            std::string::npos)
+      << dampedMessage;
+  EXPECT_EQ(dampedMessage.find("or massScaling=\"true\""), std::string::npos) << dampedMessage;
 
   // Accepted explicitly, it loads (and diverges: the positions stay finite, the divergence is counted).
   test::TempDir out;

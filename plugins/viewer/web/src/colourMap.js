@@ -15,11 +15,18 @@ export function turbo(t) {
   ];
 }
 
-// A table of 256 entries (bytes RGB) for colouring many values fast.
+// Where the viewer's map starts on Turbo: Turbo's own low end is near black
+// (luminance 0.10), which on the dark background drew a brain at rest (its
+// lowest value everywhere) as a dark hole; from 0.1 the lowest value is a
+// clear blue (luminance 0.37), and the rest of the map is Turbo's.
+export const kMapStart = 0.1;
+
+// A table of 256 entries (bytes RGB) for colouring many values fast: the
+// value t in [0, 1] at Turbo's kMapStart + (1 - kMapStart) t.
 export const kTurboBytes = (() => {
   const table = new Uint8Array(256 * 3);
   for (let i = 0; i < 256; ++i) {
-    const [r, g, b] = turbo(i / 255);
+    const [r, g, b] = turbo(kMapStart + (1 - kMapStart) * (i / 255));
     table.set([Math.round(255 * r), Math.round(255 * g), Math.round(255 * b)], 3 * i);
   }
   return table;

@@ -280,6 +280,7 @@ async function start() {
   status.events = events;
   scene.end = end;
   const plots = new Plots(document.getElementById('plots'), manifest.plots, end, (t) => seek(t), events);
+  plots.setTools(manifest.toolPlots || []);
   status.plots = plots;
   let maxForce = 0;
   if (manifest.plots && manifest.plots.force) for (const f of manifest.plots.force) maxForce = Math.max(maxForce, f);

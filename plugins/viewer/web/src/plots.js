@@ -2,13 +2,17 @@
 // view: each with its axis ticked in its unit and the time axis in s; the
 // run's events (breakthrough, tool change, contact warning, pedal, watchdog,
 // ...) as vertical marks, one colour a kind; a line at the time shown; a
-// read-out of the values under the cursor; a click goes to its time.
+// read-out of the values under the cursor; a click goes to its time. With
+// several tools, trace.csv's tool is drawn solid and every other tool's
+// (trace.PATH.csv) dashed in its own pattern, each named in a key at the top.
 import { niceTicks, tickLabel } from './colourMap.js';
 
 const kSeries = [
   { key: 'force', label: '|F| on the hand', unit: 'N', colour: '#f2553a' },
   { key: 'penetration', label: 'penetration', unit: 'mm', colour: '#4f8ff5' },
 ];
+// Dash patterns of the other tools' curves, in the order of their paths.
+export const kToolDashes = [[6, 3], [2, 2], [8, 3, 2, 3], [1, 4]];
 // Colours of event kinds, in the order kinds are first met (sorted by name).
 export const kEventColours = ['#ffd23f', '#3fe0d0', '#ff7ad9', '#9dff5c', '#ffa24f', '#b58cff', '#ffffff'];
 
@@ -38,6 +42,7 @@ export class Plots {
     this.time = 0;
     this.events = events;
     this.colours = eventColours(events);
+    this.tools = [];     // every other tool's plots: {name, t, force, penetration}
     this.cursor = null;  // CSS x of the mouse over the plots
     this.readout = null;
     this.margin = { left: 58, right: 12, top: 18, bottom: 18 };
@@ -70,6 +75,13 @@ export class Plots {
     const box = this.canvas.getBoundingClientRect();
     const width = box.width - this.margin.left - this.margin.right;
     return box.left + this.margin.left + ((t - this.start) / (this.end - this.start)) * width;
+  }
+
+  // The other tools' plots (the manifest's toolPlots), drawn dashed beside trace.csv's.
+  setTools(tools) {
+    this.tools = tools.filter((tool) => tool && tool.t && tool.t.length);
+    this.curves = null;
+    this.draw();
   }
 
   setTime(t) {
@@ -145,11 +157,19 @@ export class Plots {
   // The plotted values at time t (the last sample at or before it).
   valuesAt(t) {
     const i = this.sampleAt(t);
-    return Object.fromEntries(this.series().map((s) => [s.key, i >= 0 ? this.plots[s.key][i] : NaN]));
+    const values = Object.fromEntries(this.series().map((s) => [s.key, i >= 0 ? this.plots[s.key][i] : NaN]));
+    (this.tools || []).forEach((tool, k) => {
+      const j = this.sampleAt(t, tool);
+      for (const s of this.series()) values[`${s.key}_tool${k}`] = j >= 0 ? tool[s.key][j] : NaN;
+    });
+    return values;
   }
 
   readoutLine(t, values) {
-    return `t ${t.toFixed(3)} s   ` + this.series().map((s) => `${s.label} ${values[s.key].toPrecision(3)} ${s.unit}`).join('   ');
+    const line = `t ${t.toFixed(3)} s   ` + this.series().map((s) => `${s.label} ${values[s.key].toPrecision(3)} ${s.unit}`).join('   ');
+    const tools = (this.tools || []).map((tool, k) =>
+      `${tool.name}: ` + this.series().map((s) => `${values[`${s.key}_tool${k}`].toPrecision(3)} ${s.unit}`).join(' '));
+    return [line, ...tools].join('   ');
   }
 
   series() {
@@ -173,6 +193,8 @@ export class Plots {
       const values = this.plots[s.key];
       let high = 0;
       for (let i = 0; i < values.length; ++i) if (times[i] >= this.start && values[i] > high) high = values[i];
+      for (const tool of this.tools || [])
+        for (let i = 0; i < tool[s.key].length; ++i) if (tool.t[i] >= this.start && tool[s.key][i] > high) high = tool[s.key][i];
       const ticks = niceTicks(0, high > 0 ? high : 1, 3);
       high = Math.max(high, ticks[ticks.length - 1], 1e-9);
       const top = m.top + row * rowHeight + 4;
@@ -204,10 +226,43 @@ export class Plots {
         started = true;
       }
       g.stroke();
+      // Every other tool, dashed in its own pattern.
+      (this.tools || []).forEach((tool, k) => {
+        g.setLineDash(kToolDashes[k % kToolDashes.length]);
+        g.beginPath();
+        let begun = false;
+        for (let i = 0; i < tool[s.key].length; ++i) {
+          if (tool.t[i] < this.start) continue;
+          if (!begun) g.moveTo(x(tool.t[i]), y(tool[s.key][i]));
+          else g.lineTo(x(tool.t[i]), y(tool[s.key][i]));
+          begun = true;
+        }
+        g.stroke();
+        g.setLineDash([]);
+      });
       g.lineWidth = 1;
     });
+    if ((this.tools || []).length) this.drawToolKey(g, m.left + 4, m.top + 26);
     this.drawTimeAxisAndEvents(g, width, height, plotWidth, x);
     return canvas;
+  }
+
+  // Which curve is which tool: trace.csv's solid, the others dashed.
+  drawToolKey(g, left, top) {
+    const entries = [{ name: "trace.csv's tool", dash: [] }, ...this.tools.map((tool, k) => ({ name: tool.name, dash: kToolDashes[k % kToolDashes.length] }))];
+    let x = left;
+    g.strokeStyle = '#ddd';
+    g.fillStyle = '#ddd';
+    for (const entry of entries) {
+      g.setLineDash(entry.dash);
+      g.beginPath();
+      g.moveTo(x, top - 4);
+      g.lineTo(x + 22, top - 4);
+      g.stroke();
+      g.setLineDash([]);
+      g.fillText(entry.name, x + 26, top);
+      x += 26 + g.measureText(entry.name).width + 14;
+    }
   }
 
   drawTimeAxisAndEvents(g, width, height, plotWidth, x) {

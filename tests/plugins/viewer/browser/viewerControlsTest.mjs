@@ -267,6 +267,25 @@ try {
     }, readout.t);
     check(Math.abs(readout.t - t) < run.end / 500 && readout.force === expected.force && readout.penetration === expected.penetration,
           `the read-out at ${t.toFixed(3)} s says t ${readout.t.toFixed(3)} s, |F| ${readout.force.toPrecision(3)} N, penetration ${readout.penetration.toPrecision(3)} mm (the plotted values)`);
+    // Every tool is plotted and named: a second tool's trace (as a run with
+    // two tools gives, trace.PATH.csv) dashed beside trace.csv's, named in the
+    // key and in the read-out by its renderer's path.
+    const plotsCanvas = page.locator('#plots');
+    const before = await plotsCanvas.screenshot();
+    const tool = await page.evaluate((end) => {
+      const p = window.trephineViewer.plots;
+      const n = 200;
+      const ts = Array.from({ length: n }, (_, i) => (i * end) / (n - 1));
+      p.setTools([{ name: '/second/force', t: ts, force: ts.map((x) => 3 * Math.sin(x) ** 2), penetration: ts.map(() => 1.25) }]);
+      const at = end * 0.5;
+      const values = p.valuesAt(at);
+      return { line: p.readoutLine(at, values), penetration: values.penetration_tool0 };
+    }, run.end);
+    const after = await plotsCanvas.screenshot();
+    check(tool.penetration === 1.25 && tool.line.includes('/second/force: ') && tool.line.includes('1.25 mm'),
+          `the read-out names the second tool and gives its values: "${tool.line}"`);
+    check(!before.equals(after), 'the second tool is drawn in the plots (the canvas changes)');
+    await page.evaluate(() => window.trephineViewer.plots.setTools([]));
   }
   // URL parameters the page cannot follow are said, and it opens as by default.
   await page.goto(`${pathToFileURL(path.resolve(options.view, 'index.html')).href}?t=abc&brain=bogus&view=nonsense&speed=-2`);
