@@ -26,8 +26,11 @@ size_t ContactFrame::addResponder(std::string path, std::span<ShellContactTarget
 void ContactFrame::seal() {
   m_order.resize(m_responders.size());
   std::iota(m_order.begin(), m_order.end(), size_t{0});
-  std::stable_sort(m_order.begin(), m_order.end(),
-                   [&](size_t a, size_t b) { return m_responders[a].path < m_responders[b].path; });
+  // By path, then by slot (paths are unique in a scene; the slot keeps the order total).
+  std::sort(m_order.begin(), m_order.end(), [&](size_t a, size_t b) {
+    const int order = m_responders[a].path.compare(m_responders[b].path);
+    return order != 0 ? order < 0 : a < b;
+  });
   for (TargetEntry& entry : m_targets) entry.responses.reserve(m_responders.size());
 }
 
