@@ -12,12 +12,12 @@
 #include "framework/core/ChannelHub.h"
 #include "framework/core/CollisionBackend.h"
 #include "framework/logs/EventLog.h"
-#include "framework/logs/HapticFrameLog.h"
 
 namespace trephine {
 
 class Component;
 class BaseField;
+class HapticFrameLog;  // framework/logs/HapticFrameLog.h
 
 class InitContext {
  public:

@@ -7,10 +7,11 @@
 #include <string_view>
 
 #include "framework/data/TriangleMesh.h"
-#include "framework/devices/HapticDevice.h"
 #include "framework/math/Math.h"
 
 namespace trephine {
+
+class HapticDevice;  // framework/devices/HapticDevice.h
 
 struct ShellPoint {
   Vec3 position;      // mm, tool frame (origin at the tool's reference point)

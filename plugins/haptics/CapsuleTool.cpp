@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "framework/core/Lifecycle.h"
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 
 namespace trephine::haptics {
 

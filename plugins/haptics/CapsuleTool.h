@@ -6,6 +6,7 @@
 // One component is all a new tool shape needs: see ShellTool.
 #include <vector>
 
+#include "framework/devices/HapticDevice.h"
 #include "framework/geometry/ShellTool.h"
 #include "plugins/haptics/BurrFields.h"
 

@@ -1,7 +1,7 @@
 #include "plugins/haptics/PointshellTool.h"
 
 #include "framework/core/Lifecycle.h"
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 
 namespace trephine::haptics {
 

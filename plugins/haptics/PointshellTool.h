@@ -4,6 +4,7 @@
 // pointCount > 0, from an even-area distribution of that many points.
 #include <vector>
 
+#include "framework/devices/HapticDevice.h"
 #include "framework/geometry/ShellTool.h"
 #include "plugins/haptics/BurrFields.h"
 

@@ -9,24 +9,24 @@
 // between frames, so a copy of the memory replays the frames after it exactly,
 // and a test drives the proxy without a scene graph.
 //
-// Each haptic frame:
-//  1. sweep before moving: the proxy moves from its last position towards the
+// Each haptic frame (each stage a function of ProxyStep.cpp, named here):
+//  1. sweep before moving (sweepTowardsDevice): the proxy moves from its last position towards the
 //     device until the target stops it (placed contactDepth into the target);
-//  2. detection at that position: colliding shell points, contact normal and
+//  2. detection at that position (detectContact): colliding shell points, contact normal and
 //     raw penetration from the target, and what a cut would take (the
 //     tool's ContactMemory keeps them);
-//  3. god-object projection: the device is projected on the constraint plane
+//  3. god-object projection (followSurface, godObjectGoal): the device is projected on the constraint plane
 //     through the proxy (lifted out to the contact depth when the raw
 //     penetration is deeper), so the proxy slides along the surface;
-//  4. rectifying sweep from the proxy to that projection, so the new position
+//  4. rectifying sweep (rectifySlide) from the proxy to that projection, so the new position
 //     never crosses another part of the target;
-//  5. penetration = the depth of the device below the constraint plane (the
+//  5. penetration (renderSpring) = the depth of the device below the constraint plane (the
 //     device-proxy distance along the normal) plus the proxy's own contact depth;
-//  6. on a target being drilled, the spring's anchor (the proxy lifted by that
+//  6. on a target being drilled (holdAnchorToDeviceMotion), the spring's anchor (the proxy lifted by that
 //     depth) ends no farther from the device than last frame's anchor now is,
 //     so the proxy's own moves never stretch the spring (PassiveAnchor.h:
 //     passive at the sampled-data bound);
-//  7. a new place that shows the tool inside the target, where last frame's
+//  7. a new place (keepDisplayedToolOutside) that shows the tool inside the target, where last frame's
 //     did not, goes back along the move to the farthest free place.
 // In a crease, where this frame's projection would cross the last frame's
 // constraint plane, the proxy goes to the nearest point on both planes (the

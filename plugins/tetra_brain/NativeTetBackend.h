@@ -17,9 +17,9 @@
 // refresh tetrahedron boxes every frame (all of them, or those of the moved
 // nodes).
 //
-// Files: NativeTetBackend.cpp (grids, deformation, counters), TetLocation.cpp
-// (which tetrahedron holds a point, the scans, overlap), TetContact.cpp
-// (normal and penetration), TetSweep.cpp (sweeps and ray casts).
+// Files: NativeTetBackend.cpp (grids, deformation, counters), NativeTetLocation.cpp
+// (which tetrahedron holds a point, the scans, overlap), NativeTetContact.cpp
+// (normal and penetration), NativeTetSweep.cpp (sweeps and ray casts).
 #include <array>
 #include <vector>
 

@@ -8,6 +8,7 @@
 #include "plugins/tetra_brain/TetGridRebuild.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
+#include "plugins/tetra_brain/cell_size/CellSizeCommands.h"
 #include "framework/formats/mesh/MeditWriter.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
@@ -38,4 +39,6 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
                                 return std::to_string(mesh.nodeCount()) + " nodes, " + std::to_string(mesh.tetCount()) +
                                        " tetrahedra";
                               }});
+  // `trephine cellsize`: the grid cell-size experiments (the program links only the framework).
+  registrar.addService<trephine::PluginCommands>(trephine::tetra::makeCellSizeCommands());
 }

@@ -2,7 +2,7 @@
 // One frame of force-driven drilling on the codes of a density volume: every
 // voxel of the burr's footprint falls by w v dt |grad rho|, so that the
 // interpolated isosurface recedes by about v dt under the burr
-// (VoxelDrilling.cpp says why each part of the rule is there):
+// (VoxelSkullDrilling.cpp says why each part of the rule is there):
 //  - |grad rho| is each voxel's own density gradient, per axis the larger
 //    one-sided difference (codes per mm);
 //  - w = min(1, cos(angle from the load) + kSideCut) x a radial smoothstep, 1

@@ -4,7 +4,7 @@
 // smooth isosurface of the interpolated density, in flat vectorised loops
 // over occupancy cells; penetration by Algorithm 1 or the deepest point;
 // sweeps of the leading point, of ring lines or of the whole shell; no surface
-// mesh. VoxelCollision.cpp has the contact and overlap tests, VoxelSweep.cpp
+// mesh. NativeVoxelContact.cpp has the contact and overlap tests, NativeVoxelSweep.cpp
 // the sweeps and the ray cast.
 #include <vector>
 
@@ -30,7 +30,7 @@ class NativeVoxelBackend final : public VoxelBackend {
   const DensityVolume& volume() const { return *m_data.volume; }
   Vec3 densityGradient(const Vec3& p) const;
   // The line and cylinder sweeps on the smooth surface, all lines a step at a
-  // time (VoxelSweep.cpp); needs m_probeLines sized for the query.
+  // time (NativeVoxelSweep.cpp); needs m_probeLines sized for the query.
   SweepResult sweepSmoothLines(const SweepQuery& query, bool buried) const;
   // Sizes the smooth sweep's working memory for the reserved shells' radii.
   void reserveProbeLines();

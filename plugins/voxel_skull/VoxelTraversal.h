@@ -21,7 +21,7 @@ SegmentHit firstSolidOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3&
 
 // Smooth surface: where a -> b enters the bone between fractions lo (outside)
 // and hi (inside), to 1e-5 mm; the fraction returned is inside. For a march
-// that sampled the segment itself (the batched sweep of VoxelSweep.cpp).
+// that sampled the segment itself (the batched sweep of NativeVoxelSweep.cpp).
 double crossingOnSegment(const SolidGrid& grid, const Vec3& a, const Vec3& b, double lo, double hi);
 
 // Where a -> b first enters a free voxel (or leaves the grid), as a fraction of

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "framework/core/Lifecycle.h"
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
@@ -106,7 +106,7 @@ void BM_TetCollisionStep(benchmark::State& state) {
     return;
   }
   std::vector<ShellPoint> shell;
-  for (const Vec3& d : haptics::evenDirections(211)) shell.push_back({kToolRadius * d, -d});
+  for (const Vec3& d : evenDirections(211)) shell.push_back({kToolRadius * d, -d});
   brain.reserveShell(shell);
   auto& native = dynamic_cast<tetra::NativeTetBackend&>(*brain.backend());
 

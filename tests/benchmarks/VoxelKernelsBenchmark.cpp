@@ -14,7 +14,7 @@
 #include <random>
 
 #include "framework/runtime/TimingHistogram.h"
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "framework/data/IsoSurface.h"
 #include "plugins/voxel_skull/Phantoms.h"
@@ -84,7 +84,7 @@ void BM_ShellPointTest(benchmark::State& state) {
     grid.occupancy = built;
   }
   std::vector<ShellPoint> shell;
-  for (const Vec3& d : haptics::evenDirections(kShellPoints)) shell.push_back({kRadius * d, -d});
+  for (const Vec3& d : evenDirections(kShellPoints)) shell.push_back({kRadius * d, -d});
   ShellArrays arrays;
   arrays.assign(shell);
   std::vector<int64_t> voxels(shell.size());

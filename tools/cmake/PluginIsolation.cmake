@@ -89,3 +89,23 @@ function(trephine_check_plugin_isolation)
   endif()
   set(TREPHINE_PLUGIN_LIBRARIES_CHECKED ${checked} CACHE INTERNAL "Plugin libraries whose links were checked")
 endfunction()
+
+# trephine_check_links_no_plugin(<target>)
+#
+# A program of the framework (bin/trephine) links no plugin's library,
+# directly or through another: what a plugin gives it, it gets by loading the
+# plugin (a registry service, such as PluginCommands). Checked when the build
+# is configured, naming the library and its plugin.
+function(trephine_check_links_no_plugin target)
+  _trephine_links_of(${target} links)
+  if(NOT links)
+    message(FATAL_ERROR "trephine_check_links_no_plugin: ${target} links nothing this check can see")
+  endif()
+  foreach(link IN LISTS links)
+    _trephine_plugin_of(${link} plugin)
+    if(plugin)
+      message(FATAL_ERROR "${target} links ${link}, a library of plugin '${plugin}': the program loads plugins "
+                          "(a registry service, framework/runtime/PluginCommands.h), it does not link them")
+    endif()
+  endforeach()
+endfunction()

@@ -5,7 +5,7 @@
 include(CMakePackageConfigHelpers)
 
 set(_trephine_libraries trephine_math trephine_channels trephine_logs trephine_core trephine_geometry
-    trephine_devices trephine_scene trephine_runtime trephine_data trephine_formats trephine_meshing_interface trephine_study trephine_framework)
+    trephine_devices trephine_scene trephine_runtime trephine_data trephine_formats trephine_meshing_interface trephine_framework)
 install(TARGETS ${_trephine_libraries} EXPORT TrephineTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -6,12 +6,6 @@
 
 namespace trephine::cli {
 
-std::optional<std::string> Arguments::get(const std::string& option) const {
-  const auto it = options.find(option);
-  if (it == options.end()) return std::nullopt;
-  return it->second;
-}
-
 std::optional<std::string> parseArguments(int argc, char** argv, const std::vector<std::string>& valueOptions,
                                           const std::vector<std::string>& flags, Arguments& out) {
   std::vector<std::string> known = valueOptions;

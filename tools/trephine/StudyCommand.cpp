@@ -19,9 +19,9 @@
 
 #include "framework/core/OutputFolder.h"
 #include "framework/core/Strings.h"
-#include "framework/study/ReferenceChoice.h"
-#include "framework/study/StudyReport.h"
-#include "framework/study/StudySetting.h"
+#include "tools/trephine/study/ReferenceChoice.h"
+#include "tools/trephine/study/StudyReport.h"
+#include "tools/trephine/study/StudySetting.h"
 #include "tools/trephine/PlotScript.h"
 #include "tools/trephine/RunCommand.h"
 

@@ -6,10 +6,10 @@
 #include <string_view>
 #include <vector>
 
-#include "tools/trephine/CellSizeCommand.h"
 #include "tools/trephine/CommandLine.h"
 #include "tools/trephine/MeshCommand.h"
 #include "tools/trephine/PhantomCommand.h"
+#include "tools/trephine/PluginCommand.h"
 #include "tools/trephine/Reference.h"
 #include "tools/trephine/RunCommand.h"
 #include "tools/trephine/StudyCommand.h"

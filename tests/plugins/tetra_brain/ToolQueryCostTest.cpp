@@ -12,7 +12,7 @@
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "framework/data/TetTopology.h"
 #include "plugins/tetra_brain/cell_size/ToolQueryCost.h"
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"
 #include "tests/support/TestSupport.h"
 
@@ -179,7 +179,7 @@ TEST(ToolQueryCostTest, TetraBrainPicksItsCellByTheRule) {
   // The probe's shell: the angle-step points of a 2.5 mm sphere. The proxy
   // and the warning reserve it both; it counts once.
   std::vector<Vec3> shell;
-  for (const Vec3& d : haptics::angleStepDirections(15)) shell.push_back(2.5 * d);
+  for (const Vec3& d : angleStepDirections(15)) shell.push_back(2.5 * d);
   const double model = optimalToolCellSize(measureBoxMoments(mesh, 0.0), std::vector<std::vector<Vec3>>{shell}, edge,
                                           kRigidToolQueryWeights);
   const double tool = cellOf("");

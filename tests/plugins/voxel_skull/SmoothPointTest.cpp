@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/ShellPointClassifier.h"
 
@@ -40,7 +40,7 @@ std::vector<Variant> fastVariants() {
 
 std::vector<ShellPoint> burrShell(int count, double radius) {
   std::vector<ShellPoint> shell;
-  for (const Vec3& d : haptics::evenDirections(count)) shell.push_back({radius * d, -d});
+  for (const Vec3& d : evenDirections(count)) shell.push_back({radius * d, -d});
   return shell;
 }
 

@@ -20,7 +20,7 @@
 #include "framework/core/Node.h"
 #include "framework/geometry/FrontRings.h"
 #include "framework/geometry/ShellContactTarget.h"
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "plugins/voxel_skull/SolidGrid.h"
 #include "tests/support/TestSupport.h"
@@ -119,7 +119,7 @@ LoadedSkull loadSkull(const std::string& file, double isovalue) {
     return loaded;
   }
   loaded.skull = dynamic_cast<ShellContactTarget*>(loaded.simulation->scene().findComponent("/skull"));
-  for (const Vec3& u : haptics::evenDirections(466)) loaded.shell.push_back({kRadius * u, -u});
+  for (const Vec3& u : evenDirections(466)) loaded.shell.push_back({kRadius * u, -u});
   if (loaded.skull) loaded.skull->reserveShell(loaded.shell);
   return loaded;
 }

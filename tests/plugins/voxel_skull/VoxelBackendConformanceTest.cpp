@@ -30,7 +30,7 @@
 #include <functional>
 #include <random>
 
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "plugins/voxel_skull/MeshVoxelBackend.h"
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
@@ -71,7 +71,7 @@ std::vector<Backend> backends() {
 class VoxelBackendConformanceTest : public ::testing::TestWithParam<Backend> {
  protected:
   void SetUp() override {
-    for (const Vec3& d : haptics::evenDirections(466)) shell.push_back({kBurr * d, -d});
+    for (const Vec3& d : evenDirections(466)) shell.push_back({kBurr * d, -d});
     bindSolid([](const Vec3& p) { return kBall - p.norm(); });
   }
   // Bone where `depth` (mm below the surface) is positive, its density rising
@@ -230,7 +230,7 @@ TEST_P(VoxelBackendConformanceTest, ABurrOnAShaftTouchesWithItsShaftAsTheClosedF
   bindSolid([&](const Vec3& p) { return -p.dot(n); });
   constexpr double kShaft = 1.0, kLength = 20.0;
   std::vector<ShellPoint> capsule;
-  for (const Vec3& d : haptics::evenDirections(466))
+  for (const Vec3& d : evenDirections(466))
     if (!(d.z() > 0 && (kBurr * d - kBurr * d.z() * Vec3::UnitZ()).norm() < kShaft)) capsule.push_back({kBurr * d, -d});
   const double wallStart = std::sqrt(kBurr * kBurr - kShaft * kShaft);
   for (int ring = 0; wallStart + 0.25 * (ring - 1) < kLength; ++ring) {

@@ -4,7 +4,7 @@
 
 #include <numeric>
 
-#include "plugins/haptics/ShellSampling.h"
+#include "framework/geometry/ShellSampling.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "framework/formats/volume/VolumeReader.h"
 #include "framework/formats/volume/VolumeWriter.h"
@@ -317,14 +317,14 @@ TEST(VoxelSkullTest, VoxelsFarFinerThanTheToolKeepTheWorkBounded) {
 TEST(PointshellTest, CountsOfTheAngleStepSchemeAndEvenShells) {
   // The angle-step grid of Eq. 3.1 with the pole duplicates merged (the thesis
   // reports 466 and 211 for its own variant of the scheme).
-  EXPECT_EQ(haptics::angleStepDirections(10).size(), 614u);
-  EXPECT_EQ(haptics::angleStepDirections(15).size(), 266u);
-  const auto even = haptics::evenDirections(466);
+  EXPECT_EQ(angleStepDirections(10).size(), 614u);
+  EXPECT_EQ(angleStepDirections(15).size(), 266u);
+  const auto even = evenDirections(466);
   EXPECT_EQ(even.size(), 466u);
   for (const Vec3& d : even) EXPECT_NEAR(d.norm(), 1.0, 1e-12);
   // Even spreading leaves smaller holes than the angle grid with as many points.
-  EXPECT_LT(haptics::largestGapAngle(haptics::evenDirections(614)),
-            haptics::largestGapAngle(haptics::angleStepDirections(10)));
+  EXPECT_LT(largestGapAngle(evenDirections(614)),
+            largestGapAngle(angleStepDirections(10)));
 }
 
 TEST(PointshellTest, PointCountAndAngleStepTogetherIsAnError) {

@@ -1,0 +1,344 @@
+#include "tools/trephine/study/StudyReport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "framework/core/AtomicFile.h"
+#include "framework/math/Math.h"
+#include "tools/trephine/study/StudySetting.h"
+#include "tools/trephine/study/StudyTable.h"
+
+namespace trephine::study {
+
+namespace {
+
+constexpr double kMismatchDepth = 0.1;  // mm
+
+// One contact answer at a pose.
+struct Answer {
+  double penetration = 0;  // mm, 0 without contact
+  Vec3 normal = Vec3::Zero();
+};
+
+std::vector<Answer> readAnswers(const std::filesystem::path& file, const char* penetration, const char* nx,
+                                const char* ny, const char* nz) {
+  const Table table = readTable(file);
+  const size_t p = column(table, penetration, file), x = column(table, nx, file), y = column(table, ny, file),
+               z = column(table, nz, file);
+  std::vector<Answer> answers;
+  for (size_t r = 1; r < table.size(); ++r)
+    answers.push_back(
+        {toNumber(table[r][p]), Vec3(toNumber(table[r][x]), toNumber(table[r][y]), toNumber(table[r][z]))});
+  return answers;
+}
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  // Nearest rank: the smallest value with at least a fraction q at or below it.
+  const double rank = std::ceil(q * static_cast<double>(values.size()));
+  return values[std::clamp<size_t>(static_cast<size_t>(std::max(rank, 1.0)) - 1, 0, values.size() - 1)];
+}
+
+// The accuracy at the poses `indices` (rows of poses.csv).
+void compare(PairAccuracy& row, const std::vector<Answer>& measured, const std::vector<Answer>& reference,
+             const std::vector<size_t>& indices) {
+  std::vector<double> penetrationErrors, normalErrors;
+  for (const size_t i : indices) {
+    if (i >= measured.size()) continue;
+    ++row.poses;
+    if (i >= reference.size()) continue;  // no reference to compare with
+    const Answer& m = measured[i];
+    const Answer& r = reference[i];
+    const bool inM = m.penetration > 0, inR = r.penetration > 0;
+    if (!inM && !inR) continue;  // neither touches: nothing to compare
+    ++row.comparedPoses;
+    // A contact one side misses by more than kMismatchDepth (a pose right at
+    // the surface is in contact or not by a hair: no mismatch).
+    if (std::abs(m.penetration - r.penetration) > kMismatchDepth && (!inM || !inR)) ++row.contactMismatches;
+    penetrationErrors.push_back(std::abs(m.penetration - r.penetration));
+    if (inM && inR && m.normal.norm() > 0.5 && r.normal.norm() > 0.5) {
+      const double c = std::clamp(m.normal.normalized().dot(r.normal.normalized()), -1.0, 1.0);
+      normalErrors.push_back(std::acos(c) * 180.0 / std::numbers::pi);
+    }
+  }
+  row.penetrationErrorP50 = percentile(penetrationErrors, 0.5);
+  row.penetrationErrorP99 = percentile(penetrationErrors, 0.99);
+  row.penetrationErrorMax =
+      penetrationErrors.empty() ? std::nan("") : *std::max_element(penetrationErrors.begin(), penetrationErrors.end());
+  row.normalErrorP50 = percentile(normalErrors, 0.5);
+  row.normalErrorP99 = percentile(normalErrors, 0.99);
+}
+
+// Time per frame (median) against penetration error (p99): a setting is on
+// the front when no other is at least as good in both and better in one.
+// A reference setting without an exact shape has no error by definition: it
+// takes no part.
+void markPareto(std::vector<StudyRow>& rows, bool referenceIsExact) {
+  const auto competes = [&](const StudyRow& row) {
+    return row.error.empty() && (referenceIsExact || !row.isReference);
+  };
+  for (StudyRow& a : rows) {
+    const double ta = a.runValue("step_p50_us"), ea = a.penetrationErrorP99;
+    a.pareto = competes(a) && std::isfinite(ta) && std::isfinite(ea);
+    if (!a.pareto) continue;
+    for (const StudyRow& b : rows) {
+      if (&a == &b || !competes(b)) continue;
+      const double tb = b.runValue("step_p50_us"), eb = b.penetrationErrorP99;
+      if (tb <= ta && eb <= ea && (tb < ta || eb < ea)) a.pareto = false;
+    }
+  }
+}
+
+std::string format(double value, int digits) {
+  if (!std::isfinite(value)) return "-";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << value;
+  return s.str();
+}
+
+std::string csvQuoted(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+double StudyRow::runValue(const std::string& name) const {
+  for (const auto& [key, value] : run)
+    if (key == name) return toNumber(value);
+  return std::nan("");
+}
+
+StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
+                        int referenceIndex, const std::string& referenceChoice) {
+  StudyReport report;
+  const std::filesystem::path posesFile = out / kPosesFile;
+  const Table poses = readTable(posesFile);
+  const size_t toolColumn = column(poses, "tool", posesFile), targetColumn = column(poses, "target", posesFile);
+  const std::vector<Answer> exact = readAnswers(posesFile, "exact_penetration", "exact_nx", "exact_ny", "exact_nz");
+  // The pairs in the order of poses.csv (the studied one first), and their rows.
+  std::vector<std::vector<size_t>> rowsOfPair;
+  for (size_t r = 1; r < poses.size(); ++r) {
+    const std::string &tool = poses[r][toolColumn], &target = poses[r][targetColumn];
+    size_t p = 0;
+    while (p < report.pairs.size() && !(report.pairs[p].tool == tool && report.pairs[p].target == target)) ++p;
+    if (p == report.pairs.size()) report.pairs.push_back({tool, target, true, ""}), rowsOfPair.emplace_back();
+    rowsOfPair[p].push_back(r - 1);
+  }
+  if (report.pairs.empty()) throw std::runtime_error(posesFile.string() + ": no pose");
+  // Why a pair has no exact contact: "TOOL on TARGET: why" lines.
+  std::vector<std::string> whyLines;
+  {
+    std::ifstream why(out / kNoExactShapeFile);
+    for (std::string line; std::getline(why, line);) whyLines.push_back(line);
+  }
+  const StudySetting& referenceSetting = settings.at(static_cast<size_t>(referenceIndex));
+  std::vector<Answer> settingReference;
+  std::string unreadable;
+  bool settingReferenceRead = false;
+  for (size_t p = 0; p < report.pairs.size(); ++p) {
+    StudiedPair& pair = report.pairs[p];
+    for (const size_t i : rowsOfPair[p]) pair.exact = pair.exact && std::isfinite(exact[i].penetration);
+    if (pair.exact) {
+      pair.reference = "the exact shape of the phantom";
+      continue;
+    }
+    std::string why;
+    const std::string prefix = pair.tool + " on " + pair.target + ": ";
+    for (const std::string& line : whyLines)
+      if (line.rfind(prefix, 0) == 0) why = line.substr(prefix.size());
+    pair.reference = "setting " + std::to_string(referenceIndex + 1) + " (" + referenceSetting.label() + ")" +
+                     (referenceChoice.empty() ? std::string() : ", " + referenceChoice) +
+                     ": no exact shape for this target" + (why.empty() ? std::string() : ": " + why);
+    if (!settingReferenceRead) {
+      settingReferenceRead = true;
+      try {
+        settingReference =
+            readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
+      } catch (const std::exception& e) {
+        // The other settings' rows are still worth having (their time, their
+        // closed loop); their accuracy is unknown.
+        unreadable = "; its answers cannot be read (" + std::string(e.what()) + "), so no error is measured";
+      }
+    }
+    pair.reference += unreadable;
+  }
+  report.reference = report.pairs.front().reference;
+  for (const StudySetting& setting : settings) {
+    StudyRow row;
+    row.setting = setting;
+    row.isReference = setting.index == referenceIndex;
+    const std::filesystem::path directory = out / setting.directoryName();
+    if (std::filesystem::is_regular_file(directory / kErrorFile)) {
+      row.error = settingErrorMessage(directory / kErrorFile);
+      report.rows.push_back(std::move(row));
+      continue;
+    }
+    try {
+      const std::vector<Answer> measured = readAnswers(directory / kProbeFile, "penetration", "nx", "ny", "nz");
+      for (size_t p = 0; p < report.pairs.size(); ++p) {
+        PairAccuracy accuracy;
+        compare(accuracy, measured, report.pairs[p].exact ? exact : settingReference, rowsOfPair[p]);
+        row.pairs.push_back(accuracy);
+      }
+      static_cast<PairAccuracy&>(row) = row.pairs.front();
+      const Table probe = readTable(directory / kProbeFile);
+      const size_t q = column(probe, "query_us", directory / kProbeFile);
+      const size_t b = column(probe, "broad_us", directory / kProbeFile);
+      const size_t c = column(probe, "candidates", directory / kProbeFile);
+      std::vector<double> times, broad, narrow, candidates;
+      for (size_t r = 1; r < probe.size(); ++r) {
+        const double query = toNumber(probe[r][q]), broadUs = toNumber(probe[r][b]);
+        times.push_back(query);
+        if (!std::isfinite(broadUs)) continue;
+        broad.push_back(broadUs);
+        narrow.push_back(std::max(0.0, query - broadUs));
+        candidates.push_back(toNumber(probe[r][c]));
+      }
+      row.queryP50 = percentile(times, 0.5);
+      row.queryP99 = percentile(times, 0.99);
+      row.broadP50 = percentile(broad, 0.5);
+      row.narrowP50 = percentile(narrow, 0.5);
+      row.candidatesP50 = percentile(candidates, 0.5);
+      const Table result = readTable(directory / kResultFile);
+      if (result.size() != 2) throw std::runtime_error((directory / kResultFile).string() + ": expected one row");
+      for (size_t c = 0; c < result[0].size(); ++c) row.run.emplace_back(result[0][c], result[1][c]);
+    } catch (const std::exception& e) {
+      row.error = e.what();
+    }
+    report.rows.push_back(std::move(row));
+  }
+  markPareto(report.rows, report.pairs.front().exact);
+  return report;
+}
+
+std::vector<std::string> writeStudy(const StudyReport& report, const std::filesystem::path& out,
+                                    const std::string& scene) {
+  std::vector<std::string> runColumns;
+  for (const StudyRow& row : report.rows)
+    if (row.error.empty() && !row.run.empty()) {
+      for (const auto& [key, value] : row.run) runColumns.push_back(key);
+      break;
+    }
+  std::ostringstream csv;
+  csv << "setting,label";
+  if (!report.rows.empty())
+    for (const auto& [field, value] : report.rows.front().setting.assignments) csv << ',' << csvQuoted(field);
+  csv << ",status,reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
+         "normal_err_p50_deg,normal_err_p99_deg,query_p50_us,query_p99_us,broad_p50_us,narrow_p50_us,candidates_p50";
+  for (const std::string& c : runColumns) csv << ',' << c;
+  csv << ",pareto\n";
+  for (const StudyRow& row : report.rows) {
+    csv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label());
+    for (const auto& [field, value] : row.setting.assignments) csv << ',' << csvQuoted(value);
+    csv << ',' << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << (row.isReference ? 1 : 0) << ','
+        << csvQuoted(report.pairs.front().tool) << ',' << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
+    for (double v : {row.penetrationErrorP50, row.penetrationErrorP99, row.penetrationErrorMax, row.normalErrorP50,
+                     row.normalErrorP99, row.queryP50, row.queryP99, row.broadP50, row.narrowP50, row.candidatesP50})
+      csv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+    for (const std::string& c : runColumns) {
+      const double v = row.runValue(c);
+      csv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+    }
+    csv << ',' << (row.pareto ? 1 : 0) << '\n';
+  }
+
+  // A row per setting and pair.
+  std::ostringstream pairsCsv;
+  pairsCsv << "setting,label,status,tool,target,exact_reference,poses,compared_poses,contact_mismatches,"
+              "pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,normal_err_p50_deg,normal_err_p99_deg\n";
+  for (const StudyRow& row : report.rows)
+    for (size_t p = 0; p < report.pairs.size(); ++p) {
+      const StudiedPair& pair = report.pairs[p];
+      pairsCsv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label()) << ','
+               << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << csvQuoted(pair.tool) << ','
+               << csvQuoted(pair.target) << ',' << (pair.exact ? 1 : 0);
+      if (p >= row.pairs.size()) {
+        pairsCsv << ",0,0,0,nan,nan,nan,nan,nan\n";
+        continue;
+      }
+      const PairAccuracy& a = row.pairs[p];
+      pairsCsv << ',' << a.poses << ',' << a.comparedPoses << ',' << a.contactMismatches;
+      for (double v : {a.penetrationErrorP50, a.penetrationErrorP99, a.penetrationErrorMax, a.normalErrorP50,
+                       a.normalErrorP99})
+        pairsCsv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+      pairsCsv << '\n';
+    }
+
+  std::ostringstream md;
+  int poses = 0;
+  for (const StudyRow& row : report.rows) poses = std::max(poses, row.poses);
+  md << "# Study of " << scene << "\n\n"
+     << "Accuracy of " << report.pairs.front().tool << " on " << report.pairs.front().target << " at " << poses
+     << " tool poses (proxy and device positions of the reference setting's frames where they touched), against "
+     << report.reference << ". Time: the haptic step of each setting's own run (µs) and one target query at the "
+     << "poses (µs), split into its broad phase alone (the search for candidates: shell points in bone, triangles in "
+        "reach) and the rest. Contact mismatches: poses where one side finds no contact and the other one deeper than "
+        "0.1 mm. "
+        "Pareto: no other setting is both faster (step p50) and more accurate (penetration error p99).\n\n"
+     << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | contact mismatches | "
+        "step p50 / p99 (µs) | query p50 / p99 (µs) | broad + narrow p50 (µs) | dF p99 / max (N) | proxy inside | NaN "
+        "| "
+        "removed | Pareto |\n"
+     << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+  for (const StudyRow& row : report.rows) {
+    md << "| " << row.setting.index + 1 << " | " << row.setting.label() << (row.isReference ? " (reference)" : "")
+       << " | ";
+    if (!row.error.empty()) {
+      std::string oneLine = row.error;
+      for (char& c : oneLine)
+        if (c == '\n' || c == '|') c = c == '|' ? '/' : ' ';
+      md << "failed: " << oneLine << " | | | | | | | | | | |\n";
+      continue;
+    }
+    md << format(row.penetrationErrorP50, 3) << " / " << format(row.penetrationErrorP99, 3) << " | "
+       << format(row.normalErrorP50, 2) << " / " << format(row.normalErrorP99, 2) << " | " << row.contactMismatches
+       << " of " << row.comparedPoses << " | " << format(row.runValue("step_p50_us"), 1) << " / "
+       << format(row.runValue("step_p99_us"), 1) << " | " << format(row.queryP50, 1) << " / " << format(row.queryP99, 1)
+       << " | " << format(row.broadP50, 1) << " + " << format(row.narrowP50, 1) << " | "
+       << format(row.runValue("force_step_p99_N"), 3) << " / " << format(row.runValue("force_step_max_N"), 3) << " | "
+       << format(row.runValue("proxy_inside_frames"), 0) << " | " << format(row.runValue("nan_frames"), 0) << " | "
+       << format(row.runValue("removed"), 0) << " | " << (row.pareto ? "yes" : "") << " |\n";
+  }
+  if (report.pairs.size() > 1) {
+    md << "\n## Every tool on every target it touched\n\n"
+       << "The table above is of " << report.pairs.front().tool << " on " << report.pairs.front().target
+       << ". Each tool and target that touched in the reference's run, at poses from their own frames in contact:\n\n"
+       << "| # | setting | tool | target | pen. error p50 / p99 / max (mm) | normal error p50 / p99 (deg) | contact "
+          "mismatches |\n"
+       << "|---:|---|---|---|---:|---:|---:|\n";
+    for (const StudyRow& row : report.rows)
+      for (size_t p = 0; p < report.pairs.size() && p < row.pairs.size(); ++p) {
+        const PairAccuracy& a = row.pairs[p];
+        md << "| " << row.setting.index + 1 << " | " << row.setting.label() << " | " << report.pairs[p].tool << " | "
+           << report.pairs[p].target << " | " << format(a.penetrationErrorP50, 3) << " / "
+           << format(a.penetrationErrorP99, 3) << " / " << format(a.penetrationErrorMax, 3) << " | "
+           << format(a.normalErrorP50, 2) << " / " << format(a.normalErrorP99, 2) << " | " << a.contactMismatches
+           << " of " << a.comparedPoses << " |\n";
+      }
+    md << "\nReferences:\n\n";
+    for (const StudiedPair& pair : report.pairs)
+      md << "- " << pair.tool << " on " << pair.target << ": " << pair.reference << "\n";
+  }
+  AtomicFile pairsFile(out / "pairs.csv");
+  pairsFile.write(pairsCsv.str());
+  pairsFile.commit();
+  AtomicFile csvFile(out / "study.csv");
+  csvFile.write(csv.str());
+  csvFile.commit();
+  AtomicFile mdFile(out / "study.md");
+  mdFile.write(md.str());
+  mdFile.commit();
+  return {"study.csv", "pairs.csv", "study.md"};
+}
+
+}  // namespace trephine::study

@@ -1,0 +1,61 @@
+#pragma once
+// Gathers the settings of a study (settings/NNN/ and poses.csv) into
+// study.csv (a row per setting) and study.md (the same as a table).
+// Accuracy, for every tool and target that touched (a pair): at each of the
+// pair's poses, the penetration and normal of the setting's target against
+// the reference: the exact contact when the target has an exact shape (a
+// phantom) and the tool is a sphere, else the reference setting's own answer.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tools/trephine/study/StudyPlan.h"
+
+namespace trephine::study {
+
+// A setting's accuracy for one tool on one target, at that pair's poses.
+struct PairAccuracy {
+  int poses = 0, comparedPoses = 0, contactMismatches = 0;
+  double penetrationErrorP50 = 0, penetrationErrorP99 = 0, penetrationErrorMax = 0;  // mm
+  double normalErrorP50 = 0, normalErrorP99 = 0;                                     // deg
+};
+
+// A tool and a target that touched in the reference's run, and what its
+// accuracy is measured against.
+struct StudiedPair {
+  std::string tool, target;  // component paths
+  bool exact = false;        // against the exact shape, else the reference setting
+  std::string reference;     // "the exact shape of the phantom" or "setting N (label): why"
+};
+
+struct StudyRow : PairAccuracy {  // the accuracy of the studied pair (the first)
+  StudySetting setting;
+  std::string error;  // empty when the setting ran
+  bool isReference = false;
+  std::vector<PairAccuracy> pairs;  // one per StudyReport::pairs
+  double queryP50 = 0, queryP99 = 0;                                                 // µs per target query
+  double broadP50 = 0, narrowP50 = 0;  // µs: the broad phase alone, the rest of the query (NaN if not split)
+  double candidatesP50 = 0;            // candidates of the broad phase (points in bone, triangles in reach)
+  std::vector<std::pair<std::string, std::string>> run;  // result.csv, column by column
+  bool pareto = false;
+  double runValue(const std::string& column) const;  // NaN when absent
+};
+
+struct StudyReport {
+  std::string reference;  // the studied pair's (the first): "the exact shape ..." or "setting N (label): why"
+  std::vector<StudiedPair> pairs;
+  std::vector<StudyRow> rows;
+};
+
+// Reads what the settings wrote; throws std::runtime_error naming the file
+// when poses.csv is missing or malformed. `referenceChoice`: why the
+// reference setting is the one it is (for the report), e.g. "the finest".
+StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
+                        int referenceIndex, const std::string& referenceChoice = "");
+
+// Writes study.csv (the studied pair's accuracy), pairs.csv (a row per
+// setting and pair) and study.md into `out`; returns their names.
+std::vector<std::string> writeStudy(const StudyReport& report, const std::filesystem::path& out,
+                                    const std::string& scene);
+
+}  // namespace trephine::study
