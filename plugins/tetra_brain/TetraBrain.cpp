@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "framework/core/BackendBinding.h"
+#include "framework/geometry/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "framework/core/BackendBinding.h"
+#include "framework/geometry/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "framework/formats/volume/Resample.h"

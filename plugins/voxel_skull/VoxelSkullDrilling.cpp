@@ -23,7 +23,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "framework/core/BackendBinding.h"
+#include "framework/geometry/BackendBinding.h"
 #include "framework/logs/EventLog.h"
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/VoxelSkull.h"

@@ -1,4 +1,4 @@
-#include "framework/core/BackendBinding.h"
+#include "framework/geometry/BackendBinding.h"
 
 #include <algorithm>
 #include <stdexcept>
