@@ -363,7 +363,11 @@ TEST(IGTLinkExporterTest, ClientsThatComeAndGoGetTheSkullInSlabsWithinTheGroupsB
   EXPECT_EQ(differ, 0u) << "the client that stayed holds the drilled skull";
   EXPECT_GT(accepted, 20) << "clients came and went";
   EXPECT_GT(calls, kTimingChecked ? 50u : 10u);  // 60 in 2 s at 30 Hz; a sanitizer's are slower
-  if (kTimingChecked) EXPECT_EQ(misses, 0u) << "of " << calls << " ticks of the exporter's group";
+  // A whole-skull IMAGE a new client cost 50 misses in 60 ticks; in slabs
+  // none are the slabs' own, but the suite runs beside other tests on two
+  // cores, where a tick now and then is late for reasons not the exporter's
+  // (one in 60 was seen on a loaded machine): 1 in 20 still tells the two apart.
+  if (kTimingChecked) EXPECT_LE(misses, calls / 20) << "of " << calls << " ticks of the exporter's group";
 }
 
 // A client that takes nothing it is sent (it never reads) is let go after
