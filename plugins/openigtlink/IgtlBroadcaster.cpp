@@ -12,39 +12,16 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "plugins/openigtlink/ListeningSocket.h"
+
 namespace trephine::openigtlink {
-
-namespace {
-
-uint64_t steadyNs() {
-  return static_cast<uint64_t>(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-          .count());
-}
-
-}  // namespace
 
 IgtlBroadcaster::IgtlBroadcaster(const std::string& host, uint16_t port, size_t maxClients, size_t maxQueued,
                                  double clientTimeoutS)
     : m_maxClients(maxClients), m_maxQueued(maxQueued), m_timeoutNs(static_cast<uint64_t>(clientTimeoutS * 1e9)) {
-  const std::string where = host + ":" + std::to_string(port);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(port);
-  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1)
-    throw std::runtime_error("host '" + host + "' is not a dotted IPv4 address");
-  m_listener = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (m_listener < 0) throw std::runtime_error("cannot open a socket: " + std::string(std::strerror(errno)));
-  const int yes = 1;
-  setsockopt(m_listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-  socklen_t length = sizeof address;
-  if (bind(m_listener, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 || listen(m_listener, 8) != 0 ||
-      getsockname(m_listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::close(m_listener);
-    throw std::runtime_error("cannot listen on " + where + ": " + reason);
-  }
-  m_port = ntohs(address.sin_port);
+  const Listener listener = listenOn(host, port);
+  m_listener = listener.fd;
+  m_port = listener.port;
 }
 
 IgtlBroadcaster::~IgtlBroadcaster() {

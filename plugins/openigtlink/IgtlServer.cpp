@@ -17,16 +17,11 @@
 #include <stdexcept>
 
 #include "plugins/openigtlink/IgtlStreamReader.h"
+#include "plugins/openigtlink/ListeningSocket.h"
 
 namespace trephine::openigtlink {
 
 namespace {
-
-uint64_t steadyNs() {
-  return static_cast<uint64_t>(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-          .count());
-}
 
 constexpr uint64_t kSlowClientNs = 1'000'000'000;  // a full send buffer for this long: disconnected
 
@@ -58,24 +53,9 @@ bool addressMatches(const std::string& wanted, const sockaddr_in& address) {
 }  // namespace
 
 IgtlServer::IgtlServer(IgtlServerOptions options) : m_options(std::move(options)) {
-  const std::string where = m_options.host + ":" + std::to_string(m_options.port);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(m_options.port);
-  if (inet_pton(AF_INET, m_options.host.c_str(), &address.sin_addr) != 1)
-    throw std::runtime_error("host '" + m_options.host + "' is not a dotted IPv4 address");
-  m_listener = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (m_listener < 0) throw std::runtime_error("cannot open a socket: " + std::string(std::strerror(errno)));
-  const int yes = 1;
-  setsockopt(m_listener, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-  socklen_t length = sizeof address;
-  if (bind(m_listener, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
-      listen(m_listener, 8) != 0 || getsockname(m_listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
-    const std::string reason = std::strerror(errno);
-    close(m_listener);
-    throw std::runtime_error("cannot listen on " + where + ": " + reason);
-  }
-  m_port = ntohs(address.sin_port);
+  const Listener listener = listenOn(m_options.host, m_options.port);
+  m_listener = listener.fd;
+  m_port = listener.port;
   m_wake = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (m_wake < 0) {
     close(m_listener);

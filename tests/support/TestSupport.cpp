@@ -44,6 +44,13 @@ std::unique_ptr<Simulation> loadScene(const std::string& xml, Diagnostics& diagn
   return Simulation::fromString(xml, fileName, options, diagnostics);
 }
 
+std::unique_ptr<Simulation> loadSceneFile(const std::string& relative, const SimulationOptions& options) {
+  Diagnostics d;
+  auto simulation = Simulation::fromFile(sourceDir() / relative, options, d);
+  EXPECT_TRUE(simulation) << relative << ":\n" << messages(d);
+  return simulation;
+}
+
 std::unique_ptr<Simulation> runScene(const std::string& xml) {
   Diagnostics d;
   auto simulation = loadScene(xml, d);

@@ -47,6 +47,10 @@ std::unique_ptr<Simulation> loadScene(const std::string& xml, Diagnostics& diagn
                                       const SimulationOptions& options = {},
                                       const std::string& fileName = "inline.xml");
 
+// Loads one of the project's scene files (`relative` to the source tree); a
+// scene that fails to load is a test failure (with its errors) and gives null.
+std::unique_ptr<Simulation> loadSceneFile(const std::string& relative, const SimulationOptions& options = {});
+
 // Loads a scene from an XML string and runs it to its end; a scene that fails
 // to load is a test failure (with its errors) and gives null.
 std::unique_ptr<Simulation> runScene(const std::string& xml);

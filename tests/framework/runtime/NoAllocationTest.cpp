@@ -18,11 +18,9 @@ TEST(NoAllocationTest, TheCounterSeesAnAllocation) {
 }
 
 size_t allocationsDuringRun(const char* scene, double durationS) {
-  Diagnostics d;
   SimulationOptions options;
   options.duration = durationS;
-  auto simulation = Simulation::fromFile(test::sourceDir() / scene, options, d);
-  EXPECT_TRUE(simulation) << test::messages(d);
+  auto simulation = test::loadSceneFile(scene, options);
   if (!simulation) return 0;
   test::startCountingAllocations();
   simulation->run();

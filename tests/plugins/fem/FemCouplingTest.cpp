@@ -34,12 +34,10 @@ TEST(FemCouplingTest, SmoothingTheToolsForceStopsTheChatter) {
 // scenes/bench/hand_brain_press.xml on the coarse phantom: the hand means to
 // push 60 mm in and slide 10 mm, so the probe presses at the 3.3 N limit.
 std::unique_ptr<Simulation> handPress(const std::vector<std::string>& more) {
-  Diagnostics d;
   SimulationOptions options;
   options.overrides = {"/patient/brain.file=phantom:brain?tets=1200", "/tool/intent.depth=60"};
   options.overrides.insert(options.overrides.end(), more.begin(), more.end());
-  auto simulation = Simulation::fromFile(test::sourceDir() / "scenes/bench/hand_brain_press.xml", options, d);
-  EXPECT_TRUE(simulation) << test::messages(d);
+  auto simulation = test::loadSceneFile("scenes/bench/hand_brain_press.xml", options);
   if (simulation) simulation->run();
   return simulation;
 }

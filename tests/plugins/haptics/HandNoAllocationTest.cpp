@@ -9,11 +9,9 @@ namespace trephine {
 namespace {
 
 size_t allocationsDuringRun(double durationS) {
-  Diagnostics d;
   SimulationOptions options;
   options.duration = durationS;
-  auto simulation = Simulation::fromFile(test::sourceDir() / "scenes/examples/hand_touch.xml", options, d);
-  EXPECT_TRUE(simulation) << test::messages(d);
+  auto simulation = test::loadSceneFile("scenes/examples/hand_touch.xml", options);
   if (!simulation) return 0;
   test::startCountingAllocations();
   simulation->run();

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "plugins/openigtlink/IGTLinkDevice.h"
+#include "tests/plugins/openigtlink/TrackerMessages.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine::test {
@@ -78,23 +79,12 @@ struct Tracker {
   void startReading() {
     reader = std::thread([this] {
       for (;;) {
-        auto header = igtl::MessageHeader::New();
-        header->InitPack();
-        if (socket->Receive(header->GetPackPointer(), header->GetPackSize()) != header->GetPackSize()) return;
-        header->Unpack();
-        if (std::strcmp(header->GetDeviceType(), "SENSOR") != 0) {
-          socket->Skip(header->GetBodySizeToRead(), 0);
-          continue;
-        }
-        auto sensor = igtl::SensorMessage::New();
-        sensor->SetMessageHeader(header);
-        sensor->AllocatePack();
-        if (socket->Receive(sensor->GetPackBodyPointer(), sensor->GetPackBodySize()) != sensor->GetPackBodySize())
-          return;
+        const igtltest::ReceivedSensor received = igtltest::receiveSensor(*socket);
+        if (!received.message) return;
+        const auto& sensor = received.message;
         igtl_unit_data unit;
-        if (sensor->Unpack(1) != igtl::MessageHeader::UNPACK_BODY || sensor->GetLength() != 3 ||
-            std::strcmp(sensor->GetDeviceName(), "Force") != 0 || igtl_unit_unpack(sensor->GetUnit(), &unit) != 1 ||
-            unit.unit[0] != IGTL_UNIT_SI_DERIVED_NEWTON) {
+        if (!received.unpacked || sensor->GetLength() != 3 || std::strcmp(sensor->GetDeviceName(), "Force") != 0 ||
+            igtl_unit_unpack(sensor->GetUnit(), &unit) != 1 || unit.unit[0] != IGTL_UNIT_SI_DERIVED_NEWTON) {
           ++badSensors;
           continue;
         }
@@ -105,17 +95,20 @@ struct Tracker {
       }
     });
   }
-  void sendPose(float x, float y, float z) {
-    auto message = igtl::TransformMessage::New();
-    message->SetDeviceName("Tool");
-    igtl::Matrix4x4 m;
-    igtl::IdentityMatrix(m);
-    m[0][3] = x;
-    m[1][3] = y;
-    m[2][3] = z;
-    message->SetMatrix(m);
-    message->Pack();
-    socket->Send(message->GetPackPointer(), message->GetPackSize());
+  void sendPose(float x, float y, float z) { igtltest::sendPose(*socket, "Tool", x, y, z); }
+  // Sends the pose every 5 ms (200 Hz), `count` times at most, while the
+  // simulation runs to its end in this thread.
+  void sendWhileRunning(Simulation& simulation, float x, float y, float z, int count) {
+    std::atomic<bool> done{false};
+    std::thread sender([&] {
+      for (int i = 0; !done && i < count; ++i) {
+        sendPose(x, y, z);
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    });
+    simulation.run();
+    done = true;
+    sender.join();
   }
   void sendString(const char* name, const char* text) {
     auto message = igtl::StringMessage::New();
@@ -309,16 +302,7 @@ TEST(IGTLinkDeviceTest, APoseInSlicersRasIsTurnedIntoTheScenesLps) {
   Tracker tracker;
   ASSERT_TRUE(tracker.connect(loaded.port));
   tracker.startReading();
-  std::atomic<bool> done{false};
-  std::thread sender([&] {
-    for (int i = 0; !done && i < 200; ++i) {
-      tracker.sendPose(3.0f, 2.0f, 1.5f);
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-  });
-  loaded.simulation->run();
-  done = true;
-  sender.join();
+  tracker.sendWhileRunning(*loaded.simulation, 3.0f, 2.0f, 1.5f, 200);
   const auto* device = dynamic_cast<const IGTLinkDevice*>(loaded.simulation->scene().findComponent("/tool/device"));
   ASSERT_NE(device, nullptr);
   EXPECT_LT((device->state().pose.position - Vec3(-3, -2, 1.5)).norm(), 1e-5);
@@ -336,16 +320,7 @@ TEST(IGTLinkDeviceTest, OnlyTheClientNamedDrivesTheDevice) {
   Tracker tracker;
   ASSERT_TRUE(tracker.connect(loaded.port));
   tracker.startReading();
-  std::atomic<bool> done{false};
-  std::thread sender([&] {
-    for (int i = 0; !done && i < 200; ++i) {
-      tracker.sendPose(0.0f, 0.0f, 1.5f);
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-  });
-  loaded.simulation->run();
-  done = true;
-  sender.join();
+  tracker.sendWhileRunning(*loaded.simulation, 0.0f, 0.0f, 1.5f, 200);
   const auto count = [&](const char* name) { return componentCounterAt(*loaded.simulation, "/tool/device", name); };
   EXPECT_GT(count("poses_other_clients"), 20);
   EXPECT_EQ(count("transforms_received"), 0);

@@ -4,9 +4,6 @@
 // back, and prints what it saw as one JSON object.
 //
 //   igtl_tracker_client PORT HZ SECONDS X Y Z
-#include <igtlClientSocket.h>
-#include <igtlSensorMessage.h>
-#include <igtlTransformMessage.h>
 
 #include <atomic>
 #include <chrono>
@@ -16,6 +13,8 @@
 #include <cstring>
 #include <thread>
 #include <vector>
+
+#include "tests/plugins/openigtlink/TrackerMessages.h"
 
 int main(int argc, char** argv) {
   if (argc != 7) {
@@ -41,19 +40,10 @@ int main(int argc, char** argv) {
   std::atomic<double> lastZ{NAN};
   std::thread reader([&] {
     for (;;) {
-      auto header = igtl::MessageHeader::New();
-      header->InitPack();
-      if (socket->Receive(header->GetPackPointer(), header->GetPackSize()) != header->GetPackSize()) return;
-      header->Unpack();
-      if (std::strcmp(header->GetDeviceType(), "SENSOR") != 0) {
-        socket->Skip(header->GetBodySizeToRead(), 0);
-        continue;
-      }
-      auto sensor = igtl::SensorMessage::New();
-      sensor->SetMessageHeader(header);
-      sensor->AllocatePack();
-      if (socket->Receive(sensor->GetPackBodyPointer(), sensor->GetPackBodySize()) != sensor->GetPackBodySize()) return;
-      if (sensor->Unpack(1) != igtl::MessageHeader::UNPACK_BODY || sensor->GetLength() != 3) {
+      const trephine::igtltest::ReceivedSensor received = trephine::igtltest::receiveSensor(*socket);
+      if (!received.message) return;
+      const auto& sensor = received.message;
+      if (!received.unpacked || sensor->GetLength() != 3) {
         ++bad;
         continue;
       }
@@ -67,16 +57,7 @@ int main(int argc, char** argv) {
   for (auto next = start; std::chrono::steady_clock::now() - start < std::chrono::duration<double>(seconds);
        next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period)) {
     std::this_thread::sleep_until(next);
-    auto message = igtl::TransformMessage::New();
-    message->SetDeviceName("Tool");
-    igtl::Matrix4x4 m;
-    igtl::IdentityMatrix(m);
-    m[0][3] = x;
-    m[1][3] = y;
-    m[2][3] = z;
-    message->SetMatrix(m);
-    message->Pack();
-    if (socket->Send(message->GetPackPointer(), message->GetPackSize()) != 1) break;
+    if (!trephine::igtltest::sendPose(*socket, "Tool", x, y, z)) break;
     ++sent;
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -16,11 +16,10 @@ namespace {
 
 void expectThreeStablePaths(const char* scene) {
   for (const char* path : {"circle", "random-walk", "pokes"}) {
-    Diagnostics d;
     SimulationOptions options;
     options.overrides = {std::string("/tool/device.path=") + path};
-    auto simulation = Simulation::fromFile(test::sourceDir() / scene, options, d);
-    ASSERT_TRUE(simulation) << test::messages(d);
+    auto simulation = test::loadSceneFile(scene, options);
+    ASSERT_TRUE(simulation);
     simulation->run();
     ASSERT_TRUE(simulation->complete()) << path;
     const HapticFrameLog& log = simulation->hapticLog();

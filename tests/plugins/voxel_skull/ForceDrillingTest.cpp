@@ -347,9 +347,8 @@ TEST(ForceDrillingTest, PressedAtTheLimitWhileSlidingTheProbingSweepsStaySmooth)
   for (const char* sweep : {"line", "cylinder", "spheres"}) {
     SimulationOptions options;
     options.overrides = {std::string("/tool/proxy.sweep=") + sweep, "/tool/device.speed=25"};
-    Diagnostics d;
-    auto simulation = Simulation::fromFile(test::sourceDir() / "scenes/bench/drill_press_slide.xml", options, d);
-    ASSERT_TRUE(simulation) << test::messages(d);
+    auto simulation = test::loadSceneFile("scenes/bench/drill_press_slide.xml", options);
+    ASSERT_TRUE(simulation);
     simulation->run();
     const HapticStats s = simulation->hapticLog().stats();
     EXPECT_GT(s.forceMax, 3.2) << sweep << ": pressed at the clamp";
