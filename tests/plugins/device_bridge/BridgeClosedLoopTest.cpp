@@ -13,12 +13,14 @@
 #include <cstdio>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <thread>
 
 #include "tests/support/TestSupport.h"
 #include "trephine_bridge.h"
+#include "trephine_bridge_shm.h"
 #include "trephine_bridge_udp.h"
 
 namespace trephine::test {
@@ -123,7 +125,6 @@ TEST_P(BridgeClosedLoopTest, TheEmulatorInAnotherProcessPressesTheBurrIntoTheSku
   EXPECT_EQ(jsonNumber(sim, "rejected_jump", "/tool/device"), 0);
   EXPECT_EQ(jsonNumber(emu, "forces_malformed", "/tool/device"), 0);
   EXPECT_GT(jsonNumber(sim, "contact_frames"), 300) << "the hand pressed the burr on the bone";
-  EXPECT_GE(jsonNumber(sim, "min_energy_in_mJ"), 0) << "passive";
   // The hand on the far side felt the force: the simulation's, at most the limit.
   EXPECT_GT(jsonNumber(sim, "max", "force_N"), 1.0);
   // Force steps beyond what the device's own motion explains: the hard-case bounds of the in-process
@@ -138,6 +139,9 @@ TEST_P(BridgeClosedLoopTest, TheEmulatorInAnotherProcessPressesTheBurrIntoTheSku
   if (!kTimingChecked) return;
   // 3 s at 1 kHz: nearly every pose taken and answered within its frame.
   EXPECT_GT(jsonNumber(sim, "poses_received", "/tool/device"), 2500);
+  // Passive when the loop keeps its rate: a sampled loop that misses frames holds each force for longer
+  // while the hand moves, which puts energy in (-7.9 mJ over UDP under a sanitizer on a loaded machine).
+  EXPECT_GE(jsonNumber(sim, "min_energy_in_mJ"), 0) << "passive";
   EXPECT_GT(jsonNumber(emu, "answered_in_frame", "/tool/device"), 2500);
   EXPECT_EQ(jsonNumber(sim, "watchdog_trips", "/tool/device"), 0);
 }
@@ -166,6 +170,37 @@ std::vector<Row> readBridgeRecord(const fs::path& file) {
   return rows;
 }
 
+// Polls the channel's force slot (read only: the test neither claims nor writes it) until the force the
+// simulation sends has stayed above `newtons` for `held`, or `timeout` passes. Whether it did.
+bool waitUntilPressing(const std::string& channel, double newtons, std::chrono::milliseconds held,
+                       std::chrono::seconds timeout) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + timeout;
+  trephine_bridge_shm* shm = nullptr;
+  while (shm == nullptr && Clock::now() < deadline) {
+    int error = 0;
+    shm = trephine_bridge_shm_open(channel.c_str(), 0, &error);
+    if (shm == nullptr) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (shm == nullptr) return false;
+  bool pressing = false;
+  std::optional<Clock::time_point> since;
+  while (!pressing && Clock::now() < deadline && trephine_bridge_shm_intact(shm)) {
+    unsigned char bytes[TREPHINE_BRIDGE_FORCE_SIZE];
+    trephine_bridge_force force{};
+    if (trephine_bridge_shm_read_force(shm, bytes) == 1 &&
+        trephine_bridge_decode_force(bytes, sizeof bytes, &force) == TREPHINE_BRIDGE_OK) {
+      const bool above = std::hypot(force.force_n[0], force.force_n[1], force.force_n[2]) > newtons;
+      if (!above) since.reset();
+      else if (!since) since = Clock::now();
+      pressing = since && Clock::now() - *since >= held;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  trephine_bridge_shm_close(shm, channel.c_str(), 0);
+  return pressing;
+}
+
 TEST(BridgeClosedLoopTest, ASimulationKilledMidContactLeavesTheHandNoForceWithinTheEmulatorsTimeAndRamp) {
   const Channel owned("kill");
   const std::string& channel = owned.name;
@@ -173,12 +208,15 @@ TEST(BridgeClosedLoopTest, ASimulationKilledMidContactLeavesTheHandNoForceWithin
   const int simulation = startProgram(concat(
       {"run", kSimulationScene, "--realtime", "--duration", "20", "--out", (dir / "sim").string()},
       transportArguments("shm", channel, 0)));
-  // Under a sanitizer the two take seconds to load: the kill comes later, the emulator runs longer.
-  const int emulator = startProgram(concat({"run", kEmulatorScene, "--realtime", "--duration", kTimingChecked ? "3" : "8",
+  // Under a sanitizer the two take seconds to load: the emulator runs longer, to be there well after the kill.
+  const int emulator = startProgram(concat({"run", kEmulatorScene, "--realtime", "--duration", kTimingChecked ? "4" : "12",
                                             "--out", (dir / "emulator").string()},
                                            emulatorTransport("shm", channel, 0)));
-  std::this_thread::sleep_for(std::chrono::milliseconds(kTimingChecked ? 2000 : 5000));
+  // The kill comes once the simulation has pushed back for 200 ms in a row, read from the channel's force
+  // slot: a fixed delay found the hand between presses on a slow machine under a sanitizer.
+  const bool pressing = waitUntilPressing(channel, 0.5, std::chrono::milliseconds(200), std::chrono::seconds(30));
   ASSERT_EQ(kill(simulation, SIGKILL), 0);
+  ASSERT_TRUE(pressing) << "the simulation never pushed back 0.5 N for 200 ms";
   waitForProgram(simulation);
   ASSERT_EQ(waitForProgram(emulator), 0) << "the emulator outlives the simulation";
 
