@@ -191,7 +191,7 @@ BulletShaft::BulletShaft(const ToolSolid& solid)
       m_shape(btVector3(solid.shaftRadius, solid.shaftRadius, 0.5 * solid.shaftLength)) {
   // Bullet's cylinder lies along its z axis, centred: turned onto the shaft's
   // axis and moved half its length along it.
-  const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), solid.shaftAxis.normalized());
+  const Quat toAxis = rotationBetween(Vec3::UnitZ(), solid.shaftAxis.normalized());
   m_local = btTransform(btQuaternion(toAxis.x(), toAxis.y(), toAxis.z(), toAxis.w()),
                         toBullet(0.5 * solid.shaftLength * solid.shaftAxis.normalized()));
   // A thousandth of a millimetre of margin (Bullet's default, 0.04, rounds

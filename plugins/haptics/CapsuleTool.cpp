@@ -21,7 +21,7 @@ void CapsuleTool::init(InitContext& context) {
     return;
   }
   const Vec3 axis = d_axis.value().normalized();
-  const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), axis);
+  const Quat toAxis = rotationBetween(Vec3::UnitZ(), axis);
   m_points.clear();
   // Burr: about one point per h^2 of its area, minus the cap inside the shaft.
   const int burrCount = std::max(12, static_cast<int>(std::ceil(4 * std::numbers::pi * R * R / (h * h))));

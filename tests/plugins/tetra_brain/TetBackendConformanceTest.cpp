@@ -277,7 +277,7 @@ TEST(TetBackendFieldTest, ABurrOnAShaftMeasuresTheClosedFormAtAnyDepth) {
   constexpr double r = 1.0, L = 20.0, theta = 15.0 * std::numbers::pi / 180.0;
   const Vec3 axis(std::cos(theta), 0, -std::sin(theta));
   std::vector<ShellPoint> shell = shapes::sphereShell(kBurr, 266);
-  const Quat toAxis = Quat::FromTwoVectors(Vec3::UnitZ(), axis);
+  const Quat toAxis = rotationBetween(Vec3::UnitZ(), axis);
   for (int k = 0; k <= 40; ++k)
     for (int i = 0; i < 12; ++i) {
       const double phi = 2 * std::numbers::pi * i / 12;

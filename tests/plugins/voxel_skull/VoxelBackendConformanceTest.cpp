@@ -247,7 +247,7 @@ TEST_P(VoxelBackendConformanceTest, ABurrOnAShaftTouchesWithItsShaftAsTheClosedF
   for (const double degrees : {9.3, 10.0, 10.7, 12.0, 15.0, 20.0, 25.0}) {
     const double tilt = degrees * M_PI / 180;
     const Vec3 axis = std::cos(tilt) * along - std::sin(tilt) * n;  // the shaft, dipping into the plane
-    const Quat orientation = Quat::FromTwoVectors(Vec3::UnitZ(), axis);
+    const Quat orientation = rotationBetween(Vec3::UnitZ(), axis);
     const Vec3 burr = -6.0 * along + 4.0 * n;
     const Vec3 end = burr + kLength * axis;
     const double depth = -(end.dot(n) - kShaft * std::sqrt(1 - axis.dot(n) * axis.dot(n)));
