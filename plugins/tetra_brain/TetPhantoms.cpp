@@ -5,6 +5,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "framework/core/MadeOnce.h"
 #include "framework/core/SourceSpec.h"
 #include "plugins/tetra_brain/BrainPhantom.h"
 #include "plugins/tetra_brain/CubePhantom.h"
@@ -63,7 +64,16 @@ TetPhantomDefinition defineTetPhantom(const std::string& specification) {
 
 }  // namespace
 
-TetMesh makeTetPhantom(const std::string& specification) { return defineTetPhantom(specification).mesh(); }
+TetMesh makeTetPhantom(const std::string& specification) {
+  // Meshing the brain or the sphere takes seconds: kept for the process's next
+  // load of the same phantom (the last four, each up to 64 MB).
+  static MadeOnce<TetMesh> made(4, size_t(64) << 20, [](const TetMesh& mesh) {
+    return mesh.nodes.size() * sizeof(Vec3) + mesh.tets.size() * sizeof(TetIndices) +
+           mesh.labels.size() * sizeof(int32_t);
+  });
+  const TetPhantomDefinition definition = defineTetPhantom(specification);  // refuses a bad one every time
+  return made.get(specification, definition.mesh);
+}
 
 LevelSet tetPhantomShape(const std::string& specification) { return defineTetPhantom(specification).shape; }
 

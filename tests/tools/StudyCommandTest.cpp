@@ -404,8 +404,9 @@ TEST(StudyCommandTest, ARerunIntoTheSameFolderUnderTwoRanksTakesOnlyItsOwnPoses)
   ASSERT_EQ(fresh.size(), 2u);
   for (size_t i = 0; i < rerun.size(); ++i)
     for (const auto& [column, value] : fresh[i])
-      if (column.find("penetration") != std::string::npos || column.find("normal") != std::string::npos)
+      if (column.find("penetration") != std::string::npos || column.find("normal") != std::string::npos) {
         EXPECT_EQ(rerun[i].at(column), value) << column << " of setting " << i + 1;
+      }
 }
 
 // The same under Open MPI's own launcher, when it is installed (tools/setup

@@ -367,7 +367,9 @@ TEST(IGTLinkExporterTest, ClientsThatComeAndGoGetTheSkullInSlabsWithinTheGroupsB
   // none are the slabs' own, but the suite runs beside other tests on two
   // cores, where a tick now and then is late for reasons not the exporter's
   // (one in 60 was seen on a loaded machine): 1 in 20 still tells the two apart.
-  if (kTimingChecked) EXPECT_LE(misses, calls / 20) << "of " << calls << " ticks of the exporter's group";
+  if (kTimingChecked) {
+    EXPECT_LE(misses, calls / 20) << "of " << calls << " ticks of the exporter's group";
+  }
 }
 
 // A client that takes nothing it is sent (it never reads) is let go after

@@ -299,8 +299,9 @@ TEST(TetBackendFieldTest, ABurrOnAShaftMeasuresTheClosedFormAtAnyDepth) {
     brain.setBackend(backend.create());
     shapes::cubeBrain(brain, kCells);
     ContactMemory memory_brain_shell = brain.reserveShell(shell);
-    if (backend.name == "bullet")  // without a shaft the shell is neither a sphere nor a burr on a shaft
+    if (backend.name == "bullet") {  // without a shaft the shell is neither a sphere nor a burr on a shaft
       EXPECT_THROW(brain.describeTool(shell, ToolSolid{kBurr, 0, 0, Vec3::UnitZ()}), std::runtime_error);
+    }
     brain.describeTool(shell, ToolSolid{kBurr, r, L, axis});
     for (const double press : {0.6, 1.5, 3.0}) {
       const double height = 100 - press + L * std::sin(theta) + r * std::cos(theta);
