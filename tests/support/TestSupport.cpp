@@ -59,6 +59,12 @@ std::unique_ptr<Simulation> runScene(const std::string& xml) {
   return simulation;
 }
 
+void expectLoadError(const std::string& xml, const std::string& expected, const std::string& what) {
+  Diagnostics d;
+  EXPECT_FALSE(loadScene(xml, d)) << what;
+  EXPECT_NE(messages(d).find(expected), std::string::npos) << what << ":\n" << messages(d);
+}
+
 std::string messages(const Diagnostics& diagnostics) {
   std::string s;
   for (const Diagnostic& d : diagnostics.all()) s += d.str() + "\n";

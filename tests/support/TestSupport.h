@@ -55,6 +55,10 @@ std::unique_ptr<Simulation> loadSceneFile(const std::string& relative, const Sim
 // to load is a test failure (with its errors) and gives null.
 std::unique_ptr<Simulation> runScene(const std::string& xml);
 
+// The scene must fail to load, with `expected` in its errors; `what` names
+// the case in a failure (the attribute tried, say).
+void expectLoadError(const std::string& xml, const std::string& expected, const std::string& what);
+
 // All diagnostics as one string, one per line.
 std::string messages(const Diagnostics& diagnostics);
 

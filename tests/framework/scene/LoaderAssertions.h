@@ -28,6 +28,33 @@ inline ::testing::AssertionResult mentionsNowhere(const Diagnostics& diagnostics
   return ::testing::AssertionFailure() << "unexpected \"" << text << "\" in:\n" << messages(diagnostics);
 }
 
+// A scene that loads: a 2.5 mm sphere on a scripted device touching a plane
+// through a spring of 2 N/mm (its target a relative link).
+inline constexpr const char* kPlaneTouchScene = R"(<Node name="root">
+  <RequiredPlugin name="analytic"/>
+  <RequiredPlugin name="haptics"/>
+  <Node name="patient">
+    <AnalyticPlane name="plane"/>
+  </Node>
+  <Node name="tool">
+    <ScriptedDevice name="device" target="@/patient/plane" rate="1000"/>
+    <SphereTool name="burr" device="@device"/>
+    <SpringForce name="force" tool="@burr" target="@../patient/plane" stiffness="2"/>
+  </Node>
+</Node>)";
+
+// A scene that must not load, and where and what its error is: a row of a
+// table of such cases.
+struct LocatedErrorCase {
+  const char* name;  // what the case shows, as the test's name
+  std::string xml;
+  const char* location;  // file:line:col the error must start with
+  const char* message;   // a part of the error
+  const char* fileName = "inline.xml";
+};
+
+inline std::string caseName(const ::testing::TestParamInfo<LocatedErrorCase>& info) { return info.param.name; }
+
 // Loads `xml` as "inline.xml" (or `fileName`) and returns what the load reported;
 // the load is expected to fail.
 inline Diagnostics loadFailure(const std::string& xml, const SimulationOptions& options = {},

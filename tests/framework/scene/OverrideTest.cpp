@@ -6,18 +6,7 @@
 namespace trephine::test {
 namespace {
 
-constexpr const char* kScene = R"(<Node name="root">
-  <RequiredPlugin name="analytic"/>
-  <RequiredPlugin name="haptics"/>
-  <Node name="patient">
-    <AnalyticPlane name="plane"/>
-  </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" target="@/patient/plane" rate="1000"/>
-    <SphereTool name="burr" device="@device"/>
-    <SpringForce name="force" tool="@burr" target="@/patient/plane" stiffness="2"/>
-  </Node>
-</Node>)";
+constexpr const char* kScene = kPlaneTouchScene;
 
 SimulationOptions withOverrides(std::vector<std::string> overrides) {
   SimulationOptions options;

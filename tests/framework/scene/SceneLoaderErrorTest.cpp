@@ -10,19 +10,7 @@ namespace {
 
 TEST(SceneLoaderErrorTest, ValidSceneLoadsWithoutDiagnostics) {
   Diagnostics d;
-  auto simulation = loadScene(R"(<Node name="root">
-  <RequiredPlugin name="analytic"/>
-  <RequiredPlugin name="haptics"/>
-  <Node name="patient">
-    <AnalyticPlane name="plane"/>
-  </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" target="@/patient/plane" rate="1000"/>
-    <SphereTool name="burr" device="@device"/>
-    <SpringForce name="force" tool="@burr" target="@../patient/plane"/>
-  </Node>
-</Node>)",
-                              d);
+  auto simulation = loadScene(kPlaneTouchScene, d);
   ASSERT_NE(simulation, nullptr) << messages(d);
   EXPECT_TRUE(d.all().empty()) << messages(d);
   EXPECT_NE(simulation->scene().findComponent("/tool/force"), nullptr);

@@ -9,72 +9,72 @@
 namespace trephine::test {
 namespace {
 
-TEST(XmlSyntaxErrorTest, MismatchedEndTagPointsAtTheEndTagAndNamesTheOpenElement) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
+const LocatedErrorCase kCases[] = {
+    {"MismatchedEndTagPointsAtTheEndTagAndNamesTheOpenElement", R"(<Node name="root">
   <Recorder name="r"></Recordr>
-</Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:22",
-                       "malformed XML: end tag </Recordr> does not match <Recorder> opened at line 2, column 3"));
-  EXPECT_EQ(d.errorCount(), 1);
-}
-
-TEST(XmlSyntaxErrorTest, UnclosedAttributeValueIsReportedAtTheValueWithWhereItRanInto) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
+</Node>)",
+     "inline.xml:2:22", "malformed XML: end tag </Recordr> does not match <Recorder> opened at line 2, column 3"},
+    {"UnclosedAttributeValueIsReportedAtTheValueWithWhereItRanInto", R"(<Node name="root">
   <Recorder name="r/>
-</Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:19",
-                       "malformed XML: value of attribute 'name' is not closed before the '<' at line 3, column 1"));
-  EXPECT_EQ(d.errorCount(), 1);
-}
-
-TEST(XmlSyntaxErrorTest, AttributeValueUnclosedAtEndOfFile) {
-  const Diagnostics d = loadFailure(R"(<Node name="root)");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:13", "malformed XML: value of attribute 'name' is not closed"));
-}
-
-TEST(XmlSyntaxErrorTest, MissingEqualsSignIsReportedWhereItWasExpected) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
+</Node>)",
+     "inline.xml:2:19", "malformed XML: value of attribute 'name' is not closed before the '<' at line 3, column 1"},
+    {"AttributeValueUnclosedAtEndOfFile", R"(<Node name="root)", "inline.xml:1:13",
+     "malformed XML: value of attribute 'name' is not closed"},
+    {"MissingEqualsSignIsReportedWhereItWasExpected", R"(<Node name="root">
   <Recorder name "r"/>
-</Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:18", "malformed XML: expected '=' after attribute 'name'"));
-}
-
-TEST(XmlSyntaxErrorTest, UnquotedValueIsReported) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
+</Node>)",
+     "inline.xml:2:18", "malformed XML: expected '=' after attribute 'name'"},
+    {"UnquotedValueIsReported", R"(<Node name="root">
   <Recorder name=r/>
-</Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:18", "malformed XML: expected a quoted value for attribute 'name'"));
-}
-
-TEST(XmlSyntaxErrorTest, ElementUnclosedAtEndOfFileIsReportedAtItsStart) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
+</Node>)",
+     "inline.xml:2:18", "malformed XML: expected a quoted value for attribute 'name'"},
+    {"ElementUnclosedAtEndOfFileIsReportedAtItsStart", R"(<Node name="root">
   <Node name="a"/>
-)");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:1", "malformed XML: element <Node> is never closed"));
-  EXPECT_EQ(d.errorCount(), 1);
-}
-
-TEST(XmlSyntaxErrorTest, StartTagUnclosedAtEndOfFile) {
-  const Diagnostics d = loadFailure(R"(<Node name="root")");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:1", "malformed XML: start tag <Node> is not closed with '>'"));
-}
-
-TEST(XmlSyntaxErrorTest, SecondRootElementIsReportedAtItsStart) {
-  const Diagnostics d = loadFailure(R"(<Node name="root"/>
-<Node name="two"/>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:1", "a scene file has one root element; found a second one <Node>"));
-  EXPECT_EQ(d.errorCount(), 1);
-}
-
-TEST(XmlSyntaxErrorTest, TextInsideAnElementIsReportedAtItsFirstCharacter) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
+)",
+     "inline.xml:1:1", "malformed XML: element <Node> is never closed"},
+    {"StartTagUnclosedAtEndOfFile", R"(<Node name="root")", "inline.xml:1:1",
+     "malformed XML: start tag <Node> is not closed with '>'"},
+    {"SecondRootElementIsReportedAtItsStart", R"(<Node name="root"/>
+<Node name="two"/>)",
+     "inline.xml:2:1", "a scene file has one root element; found a second one <Node>"},
+    {"TextInsideAnElementIsReportedAtItsFirstCharacter", R"(<Node name="root">
   <Node name="a">hello</Node>
-</Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:18", "unexpected text inside <Node>; scene content goes in attributes"));
-  EXPECT_EQ(d.errorCount(), 1);
+</Node>)",
+     "inline.xml:2:18", "unexpected text inside <Node>; scene content goes in attributes"},
+    {"TextOutsideTheRootElementIsReported", R"(<Node name="root"/>
+  oops)",
+     "inline.xml:2:3", "malformed XML: text outside the root element"},
+    {"TextBeforeTheRootElementIsReported", R"(scene: <Node name="root"/>)", "inline.xml:1:1",
+     "malformed XML: text outside the root element"},
+    {"RepeatedAttributeIsReportedAtTheSecondOne", R"(<Node name="root" name="again"/>)", "inline.xml:1:19",
+     "malformed XML: attribute 'name' is given twice in <Node> (first at line 1, column 7)"},
+    {"UnclosedCommentIsReportedAtItsStart", R"(<Node name="root">
+  <!-- note
+</Node>)",
+     "inline.xml:2:3", "malformed XML: comment is not closed with '-->'"},
+    {"EmptyFileHasNoRootElement", "", "inline.xml:1:1", "malformed XML: the file has no root element"},
+    {"CommentOnlyFileHasNoRootElement", "<!-- nothing -->\n", "inline.xml:1:1",
+     "malformed XML: the file has no root element"},
+    {"NulByteIsReportedWhereItIs", std::string("<Node name=\"root\">\n  ") + '\0' + "</Node>", "inline.xml:2:3",
+     "malformed XML: NUL byte in the file"},
+    {"InvalidElementNameIsReportedAtTheName", R"(<Node name="root"><1st/></Node>)", "inline.xml:1:20",
+     "malformed XML: '1st' is not a valid element name"},
+    {"EndTagWithoutANameIsReported", R"(<Node name="root"></ Node>)", "inline.xml:1:21",
+     "malformed XML: expected an element name right after '</'"},
+};
+
+class XmlSyntaxErrorTest : public ::testing::TestWithParam<LocatedErrorCase> {};
+
+TEST_P(XmlSyntaxErrorTest, TheFirstMistakeIsTheOneErrorAndSaysWhereItIs) {
+  const LocatedErrorCase& c = GetParam();
+  const Diagnostics d = loadFailure(c.xml, {}, c.fileName);
+  EXPECT_TRUE(hasError(d, c.location, c.message));
+  EXPECT_EQ(d.errorCount(), 1) << messages(d);
 }
 
-TEST(XmlSyntaxErrorTest, TextAfterBlankLinesIsReportedWhereItStarts) {
+INSTANTIATE_TEST_SUITE_P(Syntax, XmlSyntaxErrorTest, ::testing::ValuesIn(kCases), caseName);
+
+TEST(XmlSyntaxTest, TextAfterBlankLinesIsReportedWhereItStarts) {
   const Diagnostics d = loadFailure(R"(<Node name="root">
 
     stray words
@@ -87,7 +87,7 @@ TEST(XmlSyntaxErrorTest, TextAfterBlankLinesIsReportedWhereItStarts) {
   EXPECT_EQ(d.errorCount(), 3);
 }
 
-TEST(XmlSyntaxErrorTest, CommentsBlankCdataAndDeclarationsAreAllowed) {
+TEST(XmlSyntaxTest, CommentsBlankCdataAndDeclarationsAreAllowed) {
   Diagnostics d;
   auto simulation = loadScene(R"(<?xml version="1.0" encoding="UTF-8"?>
 <!DOCTYPE scene [ <!ENTITY unit "mm"> ]>
@@ -100,55 +100,6 @@ TEST(XmlSyntaxErrorTest, CommentsBlankCdataAndDeclarationsAreAllowed) {
 )",
                               d);
   EXPECT_NE(simulation, nullptr) << messages(d);
-}
-
-TEST(XmlSyntaxErrorTest, TextOutsideTheRootElementIsReported) {
-  const Diagnostics d = loadFailure(R"(<Node name="root"/>
-  oops)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:3", "malformed XML: text outside the root element"));
-}
-
-TEST(XmlSyntaxErrorTest, TextBeforeTheRootElementIsReported) {
-  const Diagnostics d = loadFailure(R"(scene: <Node name="root"/>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:1", "malformed XML: text outside the root element"));
-}
-
-TEST(XmlSyntaxErrorTest, RepeatedAttributeIsReportedAtTheSecondOne) {
-  const Diagnostics d = loadFailure(R"(<Node name="root" name="again"/>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:19",
-                       "malformed XML: attribute 'name' is given twice in <Node> (first at line 1, column 7)"));
-}
-
-TEST(XmlSyntaxErrorTest, UnclosedCommentIsReportedAtItsStart) {
-  const Diagnostics d = loadFailure(R"(<Node name="root">
-  <!-- note
-</Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:3", "malformed XML: comment is not closed with '-->'"));
-}
-
-TEST(XmlSyntaxErrorTest, EmptyFileHasNoRootElement) {
-  const Diagnostics d = loadFailure("");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:1", "malformed XML: the file has no root element"));
-}
-
-TEST(XmlSyntaxErrorTest, CommentOnlyFileHasNoRootElement) {
-  const Diagnostics d = loadFailure("<!-- nothing -->\n");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:1", "malformed XML: the file has no root element"));
-}
-
-TEST(XmlSyntaxErrorTest, NulByteIsReportedWhereItIs) {
-  const Diagnostics d = loadFailure(std::string("<Node name=\"root\">\n  ") + '\0' + "</Node>");
-  EXPECT_TRUE(hasError(d, "inline.xml:2:3", "malformed XML: NUL byte in the file"));
-}
-
-TEST(XmlSyntaxErrorTest, InvalidElementNameIsReportedAtTheName) {
-  const Diagnostics d = loadFailure(R"(<Node name="root"><1st/></Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:20", "malformed XML: '1st' is not a valid element name"));
-}
-
-TEST(XmlSyntaxErrorTest, EndTagWithoutANameIsReported) {
-  const Diagnostics d = loadFailure(R"(<Node name="root"></ Node>)");
-  EXPECT_TRUE(hasError(d, "inline.xml:1:21", "malformed XML: expected an element name right after '</'"));
 }
 
 }  // namespace

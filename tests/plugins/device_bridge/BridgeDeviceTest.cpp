@@ -5,18 +5,18 @@
 // force that ramps to zero at the watchdog's slope and a logged event, and is
 // taken where it is when it comes back; hostile packets are dropped and
 // counted by what is wrong with them; the force sent is limited.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <optional>
 #include <atomic>
-#include <thread>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <string>
+#include <thread>
 
 #include "FakeBridgePeer.h"
 #include "framework/logs/EventLog.h"
@@ -25,13 +25,8 @@
 namespace trephine::test {
 namespace {
 
-constexpr double kStiffness = 2.0;  // N/mm, the scene's spring
+constexpr double kStiffness = 2.0;               // N/mm, the scene's spring
 constexpr double kTimeout = 0.02, kRamp = 0.02;  // s, BridgeDevice's defaults
-
-std::string uniqueChannel(const char* what) {
-  static int count = 0;
-  return "/trephine-test-" + std::string(what) + "-" + std::to_string(getpid()) + "-" + std::to_string(++count);
-}
 
 // A sphere of 2.5 mm on the bridged device over the plane z = 0; the spring has no damping, so
 // a device held still at height z (mm) is pushed up with k (2.5 - z) N.
@@ -79,16 +74,8 @@ struct Transport {
 class BridgeTransportTest : public ::testing::TestWithParam<Transport> {};
 
 TEST_P(BridgeTransportTest, APosePressedIntoAPlaneComesBackAsTheSpringsForceAndPacesTheFrames) {
-  PeerLink link;
-  std::string attributes;
-  if (GetParam().udp) {
-    link.simulationPort = freeUdpPort();
-    attributes = "transport=\"udp\" address=\"127.0.0.1:" + std::to_string(link.simulationPort) + "\"";
-  } else {
-    link.channel = uniqueChannel("press");
-    attributes = "channel=\"" + link.channel + "\"";
-  }
-  auto simulation = loadRealtime(pressScene(attributes), 0.6);
+  const PeerLink link = GetParam().udp ? PeerLink::udp() : PeerLink::sharedMemory("press");
+  auto simulation = loadRealtime(pressScene(link.attributes()), 0.6);
   ASSERT_TRUE(simulation);
   FakeDevice device(link, [](double) { return poseAt(3.0, 1.5); });  // 1 mm deep
   device.start();
@@ -133,9 +120,8 @@ INSTANTIATE_TEST_SUITE_P(BothTransports, BridgeTransportTest,
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(BridgeDeviceTest, AQuietDeviceFeelsTheForceRampToZeroAndIsTakenWhereItIsWhenItReturns) {
-  PeerLink link;
-  link.channel = uniqueChannel("quiet");
-  auto simulation = loadRealtime(pressScene("channel=\"" + link.channel + "\""), 0.7);
+  const PeerLink link = PeerLink::sharedMemory("quiet");
+  auto simulation = loadRealtime(pressScene(link.attributes()), 0.7);
   ASSERT_TRUE(simulation);
   // Pressing 1 mm for 0.25 s; quiet until 0.4 s; back 8 mm to the side, pressing 0.5 mm.
   FakeDevice device(
@@ -165,7 +151,8 @@ TEST(BridgeDeviceTest, AQuietDeviceFeelsTheForceRampToZeroAndIsTakenWhereItIsWhe
       // is allowed for the difference.
       const double dt = static_cast<double>(f.simulation_time_ns - previous->simulation_time_ns) * 1e-9;
       const double step = std::abs(norm(f.force_n) - norm(previous->force_n));
-      EXPECT_LE(step, kStiffness * 1.0 * (dt + 0.0005) / kRamp + 1e-9) << "at " << (r.atNs - device.startNs()) * 1e-9 << " s";
+      EXPECT_LE(step, kStiffness * 1.0 * (dt + 0.0005) / kRamp + 1e-9)
+          << "at " << (r.atNs - device.startNs()) * 1e-9 << " s";
     }
     previous = &f;
     const bool quiet = f.simulation_time_ns > lastBefore && f.simulation_time_ns < firstAfter;
@@ -186,8 +173,10 @@ TEST(BridgeDeviceTest, AQuietDeviceFeelsTheForceRampToZeroAndIsTakenWhereItIsWhe
   // Under a sanitizer a thread stalled past the 20 ms timeout is a quiet
   // spell too (seen once in a full run): there, at least the one planned.
   const double trips = componentCounterAt(*simulation, "/tool/device", "watchdog_trips");
-  if (kTimingChecked) EXPECT_EQ(trips, 1);
-  else EXPECT_GE(trips, 1);
+  if (kTimingChecked)
+    EXPECT_EQ(trips, 1);
+  else
+    EXPECT_GE(trips, 1);
   EXPECT_EQ(componentCounterAt(*simulation, "/tool/device", "rejected_jump"), 0) << "taken where it is";
   int tripped = 0, recovered = 0;
   const EventLog& events = simulation->events();
@@ -212,10 +201,8 @@ std::vector<unsigned char> poseBytes(uint64_t session, uint64_t sequence, void (
 }
 
 TEST(BridgeDeviceTest, HostilePacketsAreDroppedAndCountedByWhatIsWrongWithThem) {
-  PeerLink link;
-  link.simulationPort = freeUdpPort();
-  auto simulation = loadRealtime(
-      pressScene("transport=\"udp\" address=\"127.0.0.1:" + std::to_string(link.simulationPort) + "\""), 0.8);
+  const PeerLink link = PeerLink::udp();
+  auto simulation = loadRealtime(pressScene(link.attributes()), 0.8);
   ASSERT_TRUE(simulation);
   FakeDevice device(link, [](double) { return poseAt(3.0, 1.5); });
   std::thread attacker([&] {
@@ -282,13 +269,12 @@ TEST(BridgeDeviceTest, HostilePacketsAreDroppedAndCountedByWhatIsWrongWithThem) 
 // 5,000 junk packets a second), the device's poses are taken, and the
 // watchdog trips when they stop however much junk still comes.
 TEST(BridgeDeviceTest, JunkNeitherPacesTheFramesNorHidesADeviceThatStopped) {
-  PeerLink link;
-  link.simulationPort = freeUdpPort();
+  const PeerLink link = PeerLink::udp();
   constexpr double kDuration = 0.8;
-  auto simulation = loadRealtime(
-      pressScene("transport=\"udp\" address=\"127.0.0.1:" + std::to_string(link.simulationPort) + "\""), kDuration);
+  auto simulation = loadRealtime(pressScene(link.attributes()), kDuration);
   ASSERT_TRUE(simulation);
-  FakeDevice device(link, [](double) { return poseAt(3.0, 1.5); }, [](double t) { return t < 0.4; });
+  FakeDevice device(
+      link, [](double) { return poseAt(3.0, 1.5); }, [](double t) { return t < 0.4; });
   std::atomic<bool> done{false};
   std::atomic<uint64_t> junkSent{0};
   std::thread stranger([&] {
@@ -327,22 +313,17 @@ TEST(BridgeDeviceTest, JunkNeitherPacesTheFramesNorHidesADeviceThatStopped) {
 // memory and over UDP, and over UDP also from a new port with no fixed peer
 // (before, never heard again).
 TEST_P(BridgeTransportTest, ADeviceProgramStartedAgainIsHeardWithinTheWatchdogsTime) {
-  PeerLink link;
-  std::string attributes;
-  if (GetParam().udp) {
-    link.simulationPort = freeUdpPort();
-    attributes = "transport=\"udp\" address=\"127.0.0.1:" + std::to_string(link.simulationPort) + "\"";
-  } else {
-    link.channel = uniqueChannel("restart");
-    attributes = "channel=\"" + link.channel + "\"";
-  }
-  auto simulation = loadRealtime(pressScene(attributes), 0.9);
+  const PeerLink link = GetParam().udp ? PeerLink::udp() : PeerLink::sharedMemory("restart");
+  auto simulation = loadRealtime(pressScene(link.attributes()), 0.9);
   ASSERT_TRUE(simulation);
   // The first program: restarted in place at 0.25 s, gone at 0.5 s.
-  FakeDevice first(link, [](double) { return poseAt(3.0, 1.5); }, [](double t) { return t < 0.5; });
+  FakeDevice first(
+      link, [](double) { return poseAt(3.0, 1.5); }, [](double t) { return t < 0.5; });
   // Over UDP, a second program from a port of its own, from 0.55 s, pressing 0.5 mm.
   std::optional<FakeDevice> second;
-  if (GetParam().udp) second.emplace(link, [](double) { return poseAt(3.0, 2.0); }, [](double t) { return t >= 0.55; });
+  if (GetParam().udp)
+    second.emplace(
+        link, [](double) { return poseAt(3.0, 2.0); }, [](double t) { return t >= 0.55; });
   first.start();
   if (second) second->start();
   std::thread restarter([&] {
@@ -374,9 +355,8 @@ TEST_P(BridgeTransportTest, ADeviceProgramStartedAgainIsHeardWithinTheWatchdogsT
 // marked running): the run hears no more poses, says why, ramps the force
 // to zero and ends as planned.
 TEST(BridgeDeviceTest, ATruncatedSharedMemoryEndsTheDeviceNotTheRun) {
-  PeerLink link;
-  link.channel = uniqueChannel("truncated");
-  auto simulation = loadRealtime(pressScene("channel=\"" + link.channel + "\""), 0.5);
+  const PeerLink link = PeerLink::sharedMemory("truncated");
+  auto simulation = loadRealtime(pressScene(link.attributes()), 0.5);
   ASSERT_TRUE(simulation);
   FakeDevice device(link, [](double) { return poseAt(3.0, 1.5); });
   std::thread vandal([&] {
@@ -401,9 +381,8 @@ TEST(BridgeDeviceTest, ATruncatedSharedMemoryEndsTheDeviceNotTheRun) {
 }
 
 TEST(BridgeDeviceTest, TheForceSentIsLimitedToMaxForceWithItsDirectionKept) {
-  PeerLink link;
-  link.channel = uniqueChannel("limit");
-  auto simulation = loadRealtime(pressScene("channel=\"" + link.channel + "\" maxForce=\"1.25\""), 0.4);
+  const PeerLink link = PeerLink::sharedMemory("limit");
+  auto simulation = loadRealtime(pressScene(link.attributes() + " maxForce=\"1.25\""), 0.4);
   ASSERT_TRUE(simulation);
   // Pressing 1 mm on a slope of the plane's normal: the spring's 2 N straight up.
   FakeDevice device(link, [](double) { return poseAt(0.0, 1.5); });
@@ -431,15 +410,13 @@ TEST(BridgeDeviceTest, BadFieldsAreLoadErrorsThatSayWhatWasExpected) {
            {"transport=\"udp\" peer=\"127.0.0.1\"", "port from 1 to 65535"},
            {"transport=\"serial\"", "one of"},
            {"timeout=\"0\"", "timeout"}}) {
-    Diagnostics diagnostics;
-    EXPECT_FALSE(loadScene(pressScene(attributes), diagnostics)) << attributes;
-    EXPECT_NE(messages(diagnostics).find(expected), std::string::npos) << attributes << ":\n" << messages(diagnostics);
+    expectLoadError(pressScene(attributes), expected, attributes);
   }
 }
 
 TEST(BridgeDeviceTest, InVirtualTimeTheLoadWarnsThatTheDeviceIsNotWaitedFor) {
   Diagnostics diagnostics;
-  auto simulation = loadScene(pressScene("channel=\"" + uniqueChannel("virtual") + "\""), diagnostics);
+  auto simulation = loadScene(pressScene(PeerLink::sharedMemory("virtual").attributes()), diagnostics);
   ASSERT_TRUE(simulation) << messages(diagnostics);
   EXPECT_NE(messages(diagnostics).find("--realtime"), std::string::npos) << messages(diagnostics);
   simulation->run();

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstring>
@@ -24,6 +25,18 @@ uint16_t freeUdpPort() {
   const uint16_t port = trephine_bridge_udp_local(udp).port;
   trephine_bridge_udp_close(udp);
   return port;
+}
+
+PeerLink PeerLink::sharedMemory(const std::string& what) {
+  static std::atomic<int> count{0};
+  return {"/trephine-test-" + what + "-" + std::to_string(getpid()) + "-" + std::to_string(++count), 0};
+}
+
+PeerLink PeerLink::udp() { return {"", freeUdpPort()}; }
+
+std::string PeerLink::attributes() const {
+  if (!channel.empty()) return "channel=\"" + channel + "\"";
+  return "transport=\"udp\" address=\"127.0.0.1:" + std::to_string(simulationPort) + "\"";
 }
 
 FakeDevice::FakeDevice(PeerLink link, PoseAt poseAt, Sending sending)

@@ -23,8 +23,15 @@ uint16_t freeUdpPort();
 
 // Where packets go: one shared memory object, or UDP to a port on 127.0.0.1.
 struct PeerLink {
-  std::string channel;      // shm when not empty
+  std::string channel;          // shm when not empty
   uint16_t simulationPort = 0;  // UDP otherwise: the simulation's port
+
+  // A shared memory object of its own, named for `what` and this process.
+  static PeerLink sharedMemory(const std::string& what);
+  // UDP to a port that was free a moment ago.
+  static PeerLink udp();
+  // The BridgeDevice attributes that open this link (channel, or transport and address).
+  std::string attributes() const;
 };
 
 // A device program: sends the pose `poseAt(t)` (t: s since start) each
@@ -38,7 +45,8 @@ class FakeDevice {
   using PoseAt = std::function<trephine_bridge_pose(double t)>;
   using Sending = std::function<bool(double t)>;
 
-  FakeDevice(PeerLink link, PoseAt poseAt, Sending sending = [](double) { return true; });
+  FakeDevice(
+      PeerLink link, PoseAt poseAt, Sending sending = [](double) { return true; });
   ~FakeDevice();
   void start();
   // Stops the thread and returns everything received.

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "framework/core/Diagnostics.h"
+#include "tests/support/BrainProbe.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine::fem::scenes {
@@ -43,13 +44,10 @@ inline std::string pressScene(std::string femAttributes = "") {
          femAttributes + R"(/>
     <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -45"/>
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
-                    tipOffset="2.5" standoff="5" speed="20" depth="4" feedSpeed="16" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" +
+         test::brainProbeNode(R"(path="drill-in" center="10 10 0" standoff="5" speed="20" depth="4" feedSpeed="16")",
+                              R"(sweep="line")") +
+         R"(
 </Node>)";
 }
 

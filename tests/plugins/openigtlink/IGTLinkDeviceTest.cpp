@@ -19,6 +19,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <thread>
 #include <vector>
 
@@ -97,18 +98,26 @@ struct Tracker {
   }
   void sendPose(float x, float y, float z) { igtltest::sendPose(*socket, "Tool", x, y, z); }
   // Sends the pose every 5 ms (200 Hz), `count` times at most, while the
-  // simulation runs to its end in this thread.
-  void sendWhileRunning(Simulation& simulation, float x, float y, float z, int count) {
+  // simulation runs to its end in this thread; `afterEach(i)` after the i-th
+  // pose (a button, say), and `beside(done)` in a thread of its own meanwhile
+  // (other clients; `done` once the run has ended).
+  void sendWhileRunning(Simulation& simulation, float x, float y, float z, int count,
+                        const std::function<void(int)>& afterEach = {},
+                        const std::function<void(const std::atomic<bool>&)>& beside = {}) {
     std::atomic<bool> done{false};
     std::thread sender([&] {
       for (int i = 0; !done && i < count; ++i) {
         sendPose(x, y, z);
+        if (afterEach) afterEach(i);
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       }
     });
+    std::thread other;
+    if (beside) other = std::thread([&] { beside(done); });
     simulation.run();
     done = true;
     sender.join();
+    if (other.joinable()) other.join();
   }
   void sendString(const char* name, const char* text) {
     auto message = igtl::StringMessage::New();
@@ -130,20 +139,13 @@ TEST(IGTLinkDeviceTest, ATrackersPosesPressASphereAndEveryFrameAfterTheFirstSend
   Tracker tracker;
   ASSERT_TRUE(tracker.connect(loaded.port));
   tracker.startReading();
-  std::atomic<bool> done{false};
-  std::thread sender([&] {
-    // 200 Hz, pressing 1 mm (the sphere's centre at 1.5 mm over the plane); the pedal down after 0.3 s.
-    for (int i = 0; !done && i < 400; ++i) {
-      tracker.sendPose(3.0f, 0.0f, 1.5f);
-      if (i == 60) tracker.sendString("Pedal", "1");
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+  // Pressing 1 mm (the sphere's centre at 1.5 mm over the plane); the pedal down after 0.3 s.
+  tracker.sendWhileRunning(*loaded.simulation, 3.0f, 0.0f, 1.5f, 400, [&](int i) {
+    if (i == 60) tracker.sendString("Pedal", "1");
   });
-  loaded.simulation->run();
-  done = true;
-  sender.join();
   const auto& simulation = *loaded.simulation;
-  const uint64_t transforms = static_cast<uint64_t>(componentCounterAt(simulation, "/tool/device", "transforms_received"));
+  const uint64_t transforms =
+      static_cast<uint64_t>(componentCounterAt(simulation, "/tool/device", "transforms_received"));
   const double sensorsSent = componentCounterAt(simulation, "/tool/device", "sensors_sent");
   const double samples = componentCounterAt(simulation, "/tool/device", "samples");
   const auto* device = dynamic_cast<const HapticDevice*>(simulation.scene().findComponent("/tool/device"));
@@ -191,14 +193,7 @@ TEST(IGTLinkDeviceTest, ClientsThatBreakTheProtocolAreCutOffAndTheOthersGoOn) {
   Tracker tracker;
   ASSERT_TRUE(tracker.connect(loaded.port));
   tracker.startReading();
-  std::atomic<bool> done{false};
-  std::thread sender([&] {
-    for (int i = 0; !done && i < 400; ++i) {
-      tracker.sendPose(0.0f, 0.0f, 1.5f);
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-  });
-  std::thread attackers([&] {
+  tracker.sendWhileRunning(*loaded.simulation, 0.0f, 0.0f, 1.5f, 400, {}, [&](const std::atomic<bool>&) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     // Garbage: not a header.
     int fd = rawClient(loaded.port);
@@ -230,10 +225,6 @@ TEST(IGTLinkDeviceTest, ClientsThatBreakTheProtocolAreCutOffAndTheOthersGoOn) {
     EXPECT_EQ(recv(refused, &c, 1, 0), 0) << "closed by the server";
     for (const int f : {fd, crcClient, hugeClient, stay1, stay2, refused}) close(f);
   });
-  loaded.simulation->run();
-  done = true;
-  sender.join();
-  attackers.join();
   const auto count = [&](const char* name) { return componentCounterAt(*loaded.simulation, "/tool/device", name); };
   EXPECT_EQ(count("clients_broken"), 3);
   EXPECT_EQ(count("clients_refused"), 1);
@@ -258,14 +249,8 @@ TEST(IGTLinkDeviceTest, AStrayFarPoseAndASecondClientNeverDriveTheDevice) {
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
   ASSERT_TRUE(tracker.connect(loaded.port));
   tracker.startReading();
-  std::atomic<bool> done{false};
-  std::thread sender([&] {
-    for (int i = 0; !done && i < 400; ++i) {
-      tracker.sendPose(0.0f, 0.0f, 1.5f);  // 1 mm into the plane: 2 N
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-  });
-  std::thread other([&] {
+  // 1 mm into the plane: 2 N.
+  tracker.sendWhileRunning(*loaded.simulation, 0.0f, 0.0f, 1.5f, 400, {}, [&](const std::atomic<bool>& done) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     ASSERT_TRUE(intruder.connect(loaded.port));
     for (int i = 0; !done && i < 100; ++i) {
@@ -273,10 +258,6 @@ TEST(IGTLinkDeviceTest, AStrayFarPoseAndASecondClientNeverDriveTheDevice) {
       std::this_thread::sleep_for(std::chrono::milliseconds(3));
     }
   });
-  loaded.simulation->run();
-  done = true;
-  sender.join();
-  other.join();
   const auto count = [&](const char* name) { return componentCounterAt(*loaded.simulation, "/tool/device", name); };
   EXPECT_EQ(count("poses_outside_workspace"), 1);
   EXPECT_GT(count("poses_other_clients"), 20) << "the intruder's poses, ignored";
@@ -374,16 +355,14 @@ TEST(IGTLinkDeviceTest, AClientStoppedMidMessageOrHoldingASlotIsLetGo) {
 }
 
 TEST(IGTLinkDeviceTest, BadFieldsAreLoadErrorsThatSayWhatWasExpected) {
-  for (const auto& [attributes, expected] : std::vector<std::pair<std::string, std::string>>{
-           {"host=\"localhost\"", "dotted IPv4"},
-           {"buttonsName=\"APedalNameLongerThanTwenty\"", "20-byte"},
-           {"maxClients=\"0\"", "maxClients"},
-           {"client=\"localhost\"", "not HOST or HOST:PORT"},
-           {"client=\"127.0.0.1:0\"", "not HOST or HOST:PORT"},
-           {"workspace=\"0\"", "workspace"}}) {
-    Diagnostics diagnostics;
-    EXPECT_FALSE(loadScene(pressScene(attributes), diagnostics)) << attributes;
-    EXPECT_NE(messages(diagnostics).find(expected), std::string::npos) << attributes << ":\n" << messages(diagnostics);
+  for (const auto& [attributes, expected] :
+       std::vector<std::pair<std::string, std::string>>{{"host=\"localhost\"", "dotted IPv4"},
+                                                        {"buttonsName=\"APedalNameLongerThanTwenty\"", "20-byte"},
+                                                        {"maxClients=\"0\"", "maxClients"},
+                                                        {"client=\"localhost\"", "not HOST or HOST:PORT"},
+                                                        {"client=\"127.0.0.1:0\"", "not HOST or HOST:PORT"},
+                                                        {"workspace=\"0\"", "workspace"}}) {
+    expectLoadError(pressScene(attributes), expected, attributes);
   }
   // A port another server holds: the load says which and why.
   Loaded holder = loadRealtime(pressScene(), 1.0);
@@ -394,8 +373,7 @@ TEST(IGTLinkDeviceTest, BadFieldsAreLoadErrorsThatSayWhatWasExpected) {
   realtime.realtime = true;
   Diagnostics second;
   EXPECT_FALSE(loadScene(xml, second, realtime));
-  EXPECT_NE(messages(second).find("127.0.0.1:" + std::to_string(holder.port)), std::string::npos)
-      << messages(second);
+  EXPECT_NE(messages(second).find("127.0.0.1:" + std::to_string(holder.port)), std::string::npos) << messages(second);
 }
 
 TEST(IGTLinkDeviceTest, InVirtualTimeTheLoadWarnsAndNoServerListens) {

@@ -5,14 +5,13 @@
 // for voxel; the brain's boundary as POLYDATA; the device's and proxy's
 // TRANSFORMs and the force's SENSOR at the exporter's rate, every message's
 // CRC checked by the library.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <igtlClientSocket.h>
 #include <igtlImageMessage.h>
 #include <igtlPolyDataMessage.h>
 #include <igtlSensorMessage.h>
 #include <igtlTransformMessage.h>
-
-#include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -29,6 +28,7 @@
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
 #include "plugins/openigtlink/IGTLinkExporter.h"
+#include "tests/support/BrainProbe.h"
 #include "tests/support/TestSupport.h"
 
 // Debian's libopenigtlink (1.11) leaks what it allocates to read a POLYDATA
@@ -88,10 +88,14 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
     igtl::ImageMessage::Pointer image;
     igtl::PolyDataMessage::Pointer poly;
     igtl::TransformMessage::Pointer transform;
-    if (type == "IMAGE") body = image = igtl::ImageMessage::New();
-    else if (type == "POLYDATA") body = poly = igtl::PolyDataMessage::New();
-    else if (type == "TRANSFORM") body = transform = igtl::TransformMessage::New();
-    else if (type == "SENSOR") body = igtl::SensorMessage::New();
+    if (type == "IMAGE")
+      body = image = igtl::ImageMessage::New();
+    else if (type == "POLYDATA")
+      body = poly = igtl::PolyDataMessage::New();
+    else if (type == "TRANSFORM")
+      body = transform = igtl::TransformMessage::New();
+    else if (type == "SENSOR")
+      body = igtl::SensorMessage::New();
     else {
       socket->Skip(header->GetBodySizeToRead(), 0);
       continue;
@@ -110,8 +114,8 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
       const bool whole = size[0] == r.dims[0] && size[1] == r.dims[1] && size[2] == r.dims[2];
       // The skull comes whole, or in slabs of whole slices that together
       // are (a large one), then as the blocks the drill changed.
-      const bool slab = !whole && offset[0] == 0 && offset[1] == 0 && size[0] == r.dims[0] &&
-                        size[1] == r.dims[1] && offset[2] == r.slabSlices;
+      const bool slab = !whole && offset[0] == 0 && offset[1] == 0 && size[0] == r.dims[0] && size[1] == r.dims[1] &&
+                        offset[2] == r.slabSlices;
       if (r.volume.empty()) r.volume.assign(size_t(r.dims[0]) * r.dims[1] * r.dims[2], 0);
       if (whole) {
         ++r.wholeImages;
@@ -146,7 +150,8 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
       for (int k = 0; k < size[2]; ++k)
         for (int j = 0; j < size[1]; ++j)
           for (int i = 0; i < size[0]; ++i) {
-            const size_t at = size_t(offset[0] + i) + size_t(r.dims[0]) * (size_t(offset[1] + j) + size_t(r.dims[1]) * (offset[2] + k));
+            const size_t at = size_t(offset[0] + i) +
+                              size_t(r.dims[0]) * (size_t(offset[1] + j) + size_t(r.dims[1]) * (offset[2] + k));
             r.volume[at] = static_cast<int16_t>((bytes[2 * n] << 8) | bytes[2 * n + 1]);
             ++n;
           }
@@ -174,7 +179,8 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
 // exporter (/stream/slicer) from the start; `inspect` sees the scene after the
 // run, before it goes (which closes the server and ends the client's reading).
 template <class Inspect, class Started = void (*)(int)>
-Received runStreamed(const std::string& xml, double duration, Inspect&& inspect, Started started = [](int) {}) {
+Received runStreamed(
+    const std::string& xml, double duration, Inspect&& inspect, Started started = [](int) {}) {
   SimulationOptions options;
   options.duration = duration;
   options.realtime = true;
@@ -259,7 +265,8 @@ TEST(IGTLinkExporterTest, ASlicerLikeClientRebuildsTheDrilledSkullAndGetsTheBrai
 }
 
 // A cube of tissue on the TLED FEM, fixed at its base, pressed 4 mm by a probe.
-const std::string kDeformingScene = R"(<Node name="root" units="mm">
+const std::string kDeformingScene =
+    R"(<Node name="root" units="mm">
   <RequiredPlugin name="tetra_brain"/>
   <RequiredPlugin name="haptics"/>
   <RequiredPlugin name="fem"/>
@@ -269,13 +276,10 @@ const std::string kDeformingScene = R"(<Node name="root" units="mm">
     <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" group="fem"/>
     <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -19"/>
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="0 0 0"
-                    tipOffset="2.5" standoff="3" speed="20" depth="4" feedSpeed="8" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" sweep="line" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" +
+    test::brainProbeNode(R"(path="drill-in" center="0 0 0" standoff="3" speed="20" depth="4" feedSpeed="8")",
+                         R"(sweep="line")") +
+    R"(
   <Node name="stream">
     <IGTLinkExporter name="slicer" port="0" force="@/tool/force" brain="@/patient/brain" rate="30"/>
   </Node>

@@ -45,50 +45,50 @@ std::optional<trephine::SurfaceHit> floorHit(const trephine::Vec3& origin, const
   return trephine::SurfaceHit{origin + s * direction, trephine::Vec3::UnitZ(), s};
 }
 
-// A VoxelSkull back-end whose contact query throws at its 100th call (as a
-// third-party library might): the target must end the run naming itself.
-class ThrowingVoxelBackend final : public trephine::voxel::VoxelBackend {
+// What both throwing back-ends answer besides contacts: nothing near, and
+// rays that hit the floor; `countContact()` throws at the 100th contact
+// query (as a third-party library might): the target must end the run
+// naming itself.
+template <class Backend>
+class ThrowingBackend : public Backend {
  public:
-  void bind(const trephine::voxel::VoxelData&) override {}
   void reserveShell(std::span<const trephine::ShellPoint>) override {}
-  trephine::voxel::VoxelContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool) override {
-    if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
-    return {};
-  }
   size_t broadPhase(const trephine::Pose&, std::span<const trephine::ShellPoint>) override { return 0; }
   trephine::SweepResult sweep(const trephine::SweepQuery&) const override { return {}; }
   bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
   std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
                                               double) const override {
     return floorHit(origin, direction);
+  }
+
+ protected:
+  void countContact() {
+    if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
   }
 
  private:
   int m_calls = 0;
 };
 
-// The same for TetraBrain.
-class ThrowingTetBackend final : public trephine::tetra::TetBackend {
+class ThrowingVoxelBackend final : public ThrowingBackend<trephine::voxel::VoxelBackend> {
+ public:
+  void bind(const trephine::voxel::VoxelData&) override {}
+  trephine::voxel::VoxelContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool) override {
+    countContact();
+    return {};
+  }
+};
+
+class ThrowingTetBackend final : public ThrowingBackend<trephine::tetra::TetBackend> {
  public:
   void bind(const trephine::tetra::TetData&) override {}
-  void reserveShell(std::span<const trephine::ShellPoint>) override {}
   size_t siteCapacity() const override { return 0; }
   void moveNodes(const trephine::tetra::NodeFrame&) override {}
   trephine::tetra::TetContact collide(const trephine::Pose&, std::span<const trephine::ShellPoint>, bool,
                                       int32_t&) override {
-    if (++m_calls == 100) throw std::runtime_error("deliberate back-end failure");
+    countContact();
     return {};
   }
-  size_t broadPhase(const trephine::Pose&, std::span<const trephine::ShellPoint>) override { return 0; }
-  trephine::SweepResult sweep(const trephine::SweepQuery&) const override { return {}; }
-  bool overlaps(const trephine::Pose&, std::span<const trephine::ShellPoint>) const override { return false; }
-  std::optional<trephine::SurfaceHit> raycast(const trephine::Vec3& origin, const trephine::Vec3& direction,
-                                              double) const override {
-    return floorHit(origin, direction);
-  }
-
- private:
-  int m_calls = 0;
 };
 
 }  // namespace

@@ -7,15 +7,21 @@
 // mesher out.
 #include <gtest/gtest.h>
 
+#include "tests/support/BrainProbe.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
 namespace {
 
-TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcrossThreads) {
+SimulationOptions realtimeForOneSecond() {
   SimulationOptions options;
   options.realtime = true;
   options.duration = 1.0;  // s
+  return options;
+}
+
+TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcrossThreads) {
+  const SimulationOptions options = realtimeForOneSecond();
   Diagnostics d;
   // A cube of 2,560 tetrahedra: under ThreadSanitizer a rebuild of 11,000
   // takes 150 ms, the adopted grids fall behind the wave, every haptic query
@@ -29,13 +35,8 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
                          rate="250"/>
     <TetGridRebuild name="grids" mesh="@brain" threshold="0.25" rate="100"/>
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
-                    tipOffset="2.5" standoff="3" depth="2" speed="40" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" + test::brainProbeNode(R"(path="pokes" center="5 5 0" standoff="3" depth="2" speed="40")") +
+                                        R"(
 </Node>)",
                                     d, options);
   ASSERT_TRUE(simulation) << test::messages(d);
@@ -56,9 +57,7 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
 TEST(DeformingBrainRealtimeTest, TheFemRunsInAThreadOfItsOwnBesideTheHapticLoop) {
   // The FEM at the haptic rate but in its own group (group="fem"): two
   // threads at 1 kHz exchanging node positions and node forces through channels.
-  SimulationOptions options;
-  options.realtime = true;
-  options.duration = 1.0;  // s
+  const SimulationOptions options = realtimeForOneSecond();
   Diagnostics d;
   auto simulation = test::loadScene(R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
@@ -69,13 +68,8 @@ TEST(DeformingBrainRealtimeTest, TheFemRunsInAThreadOfItsOwnBesideTheHapticLoop)
     <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" rate="1000" group="fem"/>
     <FixedConstraint name="base" fem="@fem" box="-100 -100 -100 100 100 -44"/>
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="10 10 0"
-                    tipOffset="2.5" standoff="3" speed="20" depth="4" feedSpeed="16" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" + test::brainProbeNode(R"(path="drill-in" center="10 10 0" standoff="3" speed="20" depth="4" feedSpeed="16")") +
+                                        R"(
 </Node>)",
                                     d, options);
   ASSERT_TRUE(simulation) << test::messages(d);

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-
 #include <atomic>
 #include <cmath>
 #include <thread>
@@ -15,6 +14,7 @@
 #include "framework/geometry/ContactFrame.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"
 #include "tests/support/AllocationCounter.h"
+#include "tests/support/BrainProbe.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine::tetra {
@@ -119,7 +119,8 @@ TEST(DeformingBrainTest, EveryQueryMatchesTheSameShapeBuiltAsARigidMesh) {
           const std::string where = "amplitude " + std::to_string(amplitude) + " phase " + std::to_string(phase) +
                                     " at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " +
                                     std::to_string(press);
-          expectSameContact(following.brain.collide(pose, shell, false, memory_following_brain_shell), rigid.collide(pose, shell, false, memory_rigid_shell), where);
+          expectSameContact(following.brain.collide(pose, shell, false, memory_following_brain_shell),
+                            rigid.collide(pose, shell, false, memory_rigid_shell), where);
           EXPECT_EQ(following.brain.overlaps(pose, shell), rigid.overlaps(pose, shell)) << where;
           EXPECT_EQ(shapes::native(following.brain).locate(pose.position), shapes::native(rigid).locate(pose.position))
               << where;
@@ -165,9 +166,10 @@ TEST(DeformingBrainTest, AShapeFarBeyondTheGridsWidensTheQueriesByHalfAnEdgeAtMo
   for (const Vec3& xy : {Vec3(0, 0, 0), Vec3(31.4, -12.9, 0), Vec3(60, 55, 0)})
     for (const double press : {-0.5, 1.3, 3.0}) {
       const Pose pose{xy + Vec3(0, 0, 100 + 2.5 - press), Quat::Identity()};
-      const std::string where = "at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " +
-                                std::to_string(press);
-      expectSameContact(following.brain.collide(pose, shell, false, memory_following_brain_shell), rest.collide(pose, shell, false, memory_rest_shell), where);
+      const std::string where =
+          "at " + std::to_string(xy.x()) + "," + std::to_string(xy.y()) + " press " + std::to_string(press);
+      expectSameContact(following.brain.collide(pose, shell, false, memory_following_brain_shell),
+                        rest.collide(pose, shell, false, memory_rest_shell), where);
       EXPECT_EQ(following.brain.overlaps(pose, shell), rest.overlaps(pose, shell)) << where;
     }
 }
@@ -198,7 +200,8 @@ TEST(DeformingBrainTest, SpreadNodeForcesSumToTheContactForceOverMoreNodes) {
     const std::vector<ShellPoint> shell = sphereShell(2.5, 266);
     ContactMemory memory_brain_shell = brain.reserveShell(shell);
     brain.prepare(RunPlan{});
-    const ShellContact contact = brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false, memory_brain_shell);
+    const ShellContact contact =
+        brain.collide({Vec3(13.1, -4.2, 100 + 2.5 - 0.8), Quat::Identity()}, shell, false, memory_brain_shell);
     ASSERT_GT(contact.points, 10);
     shapes::respondAlone(brain, pressing(1.0, Vec3(0, 0, -0.3), contact.sites));
     ASSERT_TRUE(reader.fetch());
@@ -419,13 +422,8 @@ std::string deformingScene(const std::string& brain, const std::string& deformat
     )" + deformation +
          R"(
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
-                    tipOffset="2.5" standoff="5" depth="2" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" + test::brainProbeNode(R"(path="pokes" center="5 5 0" standoff="5" depth="2")") +
+         R"(
 </Node>)";
 }
 

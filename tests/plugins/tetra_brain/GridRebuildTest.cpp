@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "framework/core/Diagnostics.h"
+#include "tests/support/BrainProbe.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -21,15 +22,11 @@ std::string wavingCube(bool rebuild) {
     <TetraBrain name="brain" file="phantom:cube?cells=8"/>
     <ScriptedDeformation name="wave" mesh="@brain" amplitude="20" wavelength="250" center="5 5 100" period="2"
                          rate="250"/>
-    )") + (rebuild ? R"(<TetGridRebuild name="grids" mesh="@brain" rate="100"/>)" : "") + R"(
+    )") + (rebuild ? R"(<TetGridRebuild name="grids" mesh="@brain" rate="100"/>)" : "") +
+         R"(
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
-                    tipOffset="2.5" standoff="3" depth="2" speed="40" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" + test::brainProbeNode(R"(path="pokes" center="5 5 0" standoff="3" depth="2" speed="40")") +
+         R"(
 </Node>)";
 }
 
@@ -71,8 +68,7 @@ TEST(GridRebuildTest, ItNeedsADeformationBeforeIt) {
   xml.insert(xml.find("<ScriptedDeformation"), rebuild + "\n    ");
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(xml, d));
-  EXPECT_NE(test::messages(d).find("place it after the deformation component"), std::string::npos)
-      << test::messages(d);
+  EXPECT_NE(test::messages(d).find("place it after the deformation component"), std::string::npos) << test::messages(d);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "framework/runtime/Simulation.h"
 #include "plugins/tetra_brain/MeshTetBackend.h"
 #include "tests/plugins/tetra_brain/TetTestShapes.h"
+#include "tests/support/BrainProbe.h"
 #include "tests/support/TestSupport.h"
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
 #include "plugins/embree/EmbreeEngine.h"
@@ -51,10 +52,12 @@ void PrintTo(const Backend& backend, std::ostream* os) { *os << backend.name; }
 std::vector<Backend> backends() {
   std::vector<Backend> list = {{"native", [] { return std::make_unique<NativeTetBackend>(); }, 0.01, 1e-6, false}};
 #ifdef TREPHINE_HAS_EMBREE_BACKEND
-  list.push_back({"embree", [] { return std::make_unique<MeshTetBackend>(std::make_unique<embree::EmbreeEngine>()); }, 1e-4, 1e-3, true});
+  list.push_back({"embree", [] { return std::make_unique<MeshTetBackend>(std::make_unique<embree::EmbreeEngine>()); },
+                  1e-4, 1e-3, true});
 #endif
 #ifdef TREPHINE_HAS_BULLET_BACKEND
-  list.push_back({"bullet", [] { return std::make_unique<MeshTetBackend>(std::make_unique<bullet::BulletEngine>()); }, 1e-6, 1e-3, true});
+  list.push_back({"bullet", [] { return std::make_unique<MeshTetBackend>(std::make_unique<bullet::BulletEngine>()); },
+                  1e-6, 1e-3, true});
 #endif
   return list;
 }
@@ -74,7 +77,9 @@ class TetBackendConformanceTest : public ::testing::TestWithParam<Backend> {
     shapes::cubeBrain(brain, kCells);
     memory_brain_shell = brain.reserveShell(shell);
   }
-  ShellContact touch(const Vec3& centre) { return brain.collide(Pose{centre, Quat::Identity()}, shell, false, memory_brain_shell); }
+  ShellContact touch(const Vec3& centre) {
+    return brain.collide(Pose{centre, Quat::Identity()}, shell, false, memory_brain_shell);
+  }
 
   std::vector<ShellPoint> shell;
   TetraBrain brain;
@@ -187,7 +192,8 @@ TEST_P(TetBackendConformanceTest, ADeformingMeshAnswersAsTheSameShapeBuiltRigidW
         for (const double press : {0.4, 1.3}) {
           const Pose pose{xy + Vec3(0, 0, top + kBurr - press), Quat::Identity()};
           SCOPED_TRACE(b.name + " amplitude " + std::to_string(amplitude) + " press " + std::to_string(press));
-          const ShellContact moving = brain.collide(pose, shell, false, memory_brain_shell), built = rigid.collide(pose, shell, false, memory_rigid_shell);
+          const ShellContact moving = brain.collide(pose, shell, false, memory_brain_shell),
+                             built = rigid.collide(pose, shell, false, memory_rigid_shell);
           EXPECT_EQ(moving.points, built.points);
           EXPECT_NEAR(moving.penetration, built.penetration, 1e-9);
           EXPECT_NEAR((moving.normal - built.normal).norm(), 0.0, 1e-9);
@@ -235,13 +241,8 @@ std::string pulsatingScene(const std::string& backend, const std::string& brainF
          backend + "\" " + brainFields + R"(/>
     <ScriptedDeformation name="wave" mesh="@brain" amplitude="1" center="5 5 100" rate="1000"/>
   </Node>
-  <Node name="tool">
-    <ScriptedDevice name="device" path="pokes" target="@/patient/brain" direction="0 0 -1" center="5 5 0"
-                    tipOffset="2.5" standoff="5" depth="2" rate="1000"/>
-    <PointshellTool name="probe" radius="2.5" angleStep="15" device="@device"/>
-    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/brain" rate="1000"/>
-    <ForceFeedback name="force" proxy="@proxy" stiffness="0.3" damping="0.001" maxForce="3.3" rate="1000"/>
-  </Node>
+  )" + test::brainProbeNode(R"(path="pokes" center="5 5 0" standoff="5" depth="2")") +
+         R"(
 </Node>)";
 }
 
@@ -291,7 +292,8 @@ TEST(TetBackendFieldTest, ABurrOnAShaftMeasuresTheClosedFormAtAnyDepth) {
   };
   std::vector<Case> cases = {{"native", [] { return std::make_unique<NativeTetBackend>(); }, 0.04}};
 #ifdef TREPHINE_HAS_BULLET_BACKEND
-  cases.push_back({"bullet", [] { return std::make_unique<MeshTetBackend>(std::make_unique<bullet::BulletEngine>()); }, 1e-3});
+  cases.push_back(
+      {"bullet", [] { return std::make_unique<MeshTetBackend>(std::make_unique<bullet::BulletEngine>()); }, 1e-3});
 #endif
   for (const Case& backend : cases) {
     double worst = 0;
@@ -312,7 +314,9 @@ TEST(TetBackendFieldTest, ABurrOnAShaftMeasuresTheClosedFormAtAnyDepth) {
       worst = std::max(worst, std::abs(c.penetration - press));
       EXPECT_GT(c.normal.z(), 1 - 1e-3) << backend.name << ", " << press << " mm: " << c.normal.transpose();
       // Lifted 0.1 mm clear: no contact.
-      EXPECT_EQ(brain.collide({Vec3(3, -2, height + press + 0.1), Quat::Identity()}, shell, false, memory_brain_shell).points, 0)
+      EXPECT_EQ(
+          brain.collide({Vec3(3, -2, height + press + 0.1), Quat::Identity()}, shell, false, memory_brain_shell).points,
+          0)
           << backend.name;
     }
     RecordProperty(backend.name + "_worst_penetration_error_mm", std::to_string(worst));

@@ -186,6 +186,15 @@ std::string upgrade(const std::string& host, const std::string& origin = "") {
 
 std::string loopback(int port) { return "127.0.0.1:" + std::to_string(port); }
 
+// Opens the WebSocket stream on `c` with a receive buffer of 4 KiB, so that
+// what the client does not read soon fills the server's side.
+void openSlowStream(Connection& c, int port) {
+  c.receiveBuffer(4096);
+  ASSERT_TRUE(c.connectTo(port));
+  c.write(upgrade(loopback(port)));
+  ASSERT_NE(c.readHeader().find("101"), std::string::npos);
+}
+
 // Opens descriptors until there are none left (the soft limit lowered to 256
 // first, so that it takes few), and gives them all back when it goes.
 class DescriptorsExhausted {
@@ -362,10 +371,7 @@ TEST(LiveServerTest, AWebSocketClientThatStopsReadingIsClosed) {
   Assets assets;
   LiveServer server(0, assets.dir.path(), "", quickLimits());
   Connection c;
-  c.receiveBuffer(4096);
-  ASSERT_TRUE(c.connectTo(server.port()));
-  c.write(upgrade(loopback(server.port())));
-  ASSERT_NE(c.readHeader().find("101"), std::string::npos);
+  ASSERT_NO_FATAL_FAILURE(openSlowStream(c, server.port()));
   // More than the socket buffers on both sides hold (bytes), then not a byte read.
   const size_t message = 1 << 20;
   for (int i = 0; i < 16; ++i) server.send("block/" + std::to_string(i), std::string(message, 'x'), true);
@@ -419,10 +425,7 @@ TEST(LiveServerTest, AWebSocketClientThatReadsTooSlowlyIsClosed) {
   Assets assets;
   LiveServer server(0, assets.dir.path(), "", quickLimits());
   Connection c;
-  c.receiveBuffer(4096);
-  ASSERT_TRUE(c.connectTo(server.port()));
-  c.write(upgrade(loopback(server.port())));
-  ASSERT_NE(c.readHeader().find("101"), std::string::npos);
+  ASSERT_NO_FATAL_FAILURE(openSlowStream(c, server.port()));
   server.send("block/0", std::string(size_t(4) << 20, 'x'), true);
   const auto start = Clock::now();
   bool closed = false;
