@@ -46,9 +46,14 @@ TEST(DeformingBrainRealtimeTest, TheHapticGroupReadsTheDeformationsPositionsAcro
   const HapticStats s = simulation->hapticLog().stats();
   EXPECT_EQ(s.nanFrames, 0u);
   EXPECT_GT(s.contactFrames, 50u);
-  // The brain took new shapes from the other thread (about 250 of them; fewer
-  // if the machine stalls).
-  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 100.0);
+  // The brain took new shapes from the other thread (about 250 of them when
+  // both keep their pace), never more than were published: counts relative
+  // to what the other thread did, since a loaded or instrumented machine
+  // keeps neither thread's pace.
+  const double taken = test::componentCounter(*simulation, "TetraBrain", "deformation_frames");
+  const double published = test::componentCounter(*simulation, "ScriptedDeformation", "published_steps");
+  EXPECT_GE(taken, 10.0);
+  EXPECT_LE(taken, published);
   // And grids built on the deformed shape in a third thread, adopted by the haptic one.
   EXPECT_GE(test::componentCounter(*simulation, "TetGridRebuild", "rebuilds"), 2.0);
   EXPECT_GE(test::componentCounter(*simulation, "TetraBrain", "adopted_grids"), 2.0);
@@ -78,10 +83,14 @@ TEST(DeformingBrainRealtimeTest, TheFemRunsInAThreadOfItsOwnBesideTheHapticLoop)
   EXPECT_TRUE(simulation->complete()) << simulation->incompleteReason();
   EXPECT_EQ(simulation->hapticLog().stats().nanFrames, 0u);
   // Counts that hold on a loaded machine too (about 400 contact frames and
-  // 1000 shapes when the threads keep their pace).
+  // 1000 shapes when the threads keep their pace; 41 shapes were seen under
+  // ThreadSanitizer on a loaded 2-core machine): the exchange went both ways,
+  // repeatedly, and the brain never took more shapes than the FEM published.
   EXPECT_GT(simulation->hapticLog().stats().contactFrames, 20u);
   EXPECT_GT(test::componentCounter(*simulation, "TLEDForceField", "force_updates"), 5.0);
-  EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "deformation_frames"), 50.0);
+  const double taken = test::componentCounter(*simulation, "TetraBrain", "deformation_frames");
+  EXPECT_GE(taken, 10.0);
+  EXPECT_LE(taken, test::componentCounter(*simulation, "TLEDForceField", "published_steps"));
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "non_finite_ticks"), 0.0);
 }
 
