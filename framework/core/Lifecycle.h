@@ -88,6 +88,10 @@ struct RunPlan {
   // scene's exporter serves the browser viewer there and streams the run to
   // it. -1: no live view; 0: any free port.
   int liveViewPort = -1;
+  // Devices keep the raw input they read in memory (HapticDevice::recorded)
+  // whatever their `record` field says: a study takes the reference
+  // setting's motion from them.
+  bool keepDeviceInput = false;
   // Number of calls a component of `rateHz` receives in this run.
   uint64_t callsAt(double rateHz) const;
 };

@@ -10,15 +10,24 @@
 namespace trephine {
 
 void HapticDevice::prepare(const RunPlan& plan) {
-  m_recorded.assign(d_record.value() ? plan.callsAt(rateHz()) : 0, DeviceSample{});
+  m_recorded.assign(d_record.value() || plan.keepDeviceInput ? plan.callsAt(rateHz()) : 0, DeviceSample{});
   m_recordedSize = 0;
+  m_replacement.rewind();
 }
+
+void HapticDevice::replaceInput(std::vector<DeviceSample> stream) { m_replacement = DeviceStreamPlayer(std::move(stream)); }
 
 void HapticDevice::tick(const TickContext& context) {
   m_tickEvents = context.events;
-  const DeviceSample raw = readSample(context.t);
+  DeviceSample raw;
+  if (m_replacement.empty()) {
+    raw = readSample(context.t);
+  } else {
+    raw = m_replacement.at(context.t);
+    raw.t = context.t;
+  }
   m_tickEvents = nullptr;
-  if (!connected()) return;
+  if (m_replacement.empty() && !connected()) return;
   ++m_samples;
   if (m_recordedSize < m_recorded.size()) m_recorded[m_recordedSize++] = raw;
 

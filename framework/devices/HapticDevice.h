@@ -6,12 +6,14 @@
 // exactly with a ReplayDevice. Force goes back through applyForce().
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "framework/core/Component.h"
 #include "framework/devices/DevicePoseFilter.h"
+#include "framework/devices/DeviceStreamPlayer.h"
 #include "framework/devices/DeviceSample.h"
 
 namespace trephine {
@@ -54,6 +56,18 @@ class HapticDevice : public Component {
   void reportCounters(std::vector<Counter>& counters) const override;
   void declareOutputs(std::vector<OutputFile>& outputs) const override;
 
+  // The raw stream this run has read so far (empty unless `record` or the
+  // plan's keepDeviceInput).
+  std::span<const DeviceSample> recorded() const { return {m_recorded.data(), m_recordedSize}; }
+  // From the next prepare() on, the device reads `stream` (another run's
+  // recorded input, played as ReplayDevice plays a file) instead of its own
+  // input, and records it as its own: a study runs every setting on the
+  // reference setting's motion this way, whatever path the device would have
+  // planned against this setting's model. A device whose motion answers the
+  // force (a simulated hand) then moves as it did in that run, open loop.
+  void replaceInput(std::vector<DeviceSample> stream);
+  bool inputReplaced() const { return !m_replacement.empty(); }
+
   // Samples received and rejected so far.
   uint64_t samples() const { return m_samples; }
   uint64_t rejectedNonFinite() const { return m_rejectedNonFinite; }
@@ -86,6 +100,7 @@ class HapticDevice : public Component {
   DeviceState m_state;
   Vec3 m_commandedForce = Vec3::Zero();
   DevicePoseFilter m_filter;
+  DeviceStreamPlayer m_replacement;     // replaceInput's stream (empty: the device's own input)
   std::vector<DeviceSample> m_recorded;  // preallocated in prepare()
   size_t m_recordedSize = 0;
   uint64_t m_samples = 0, m_rejectedNonFinite = 0, m_rejectedJump = 0;

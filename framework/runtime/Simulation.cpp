@@ -293,6 +293,7 @@ std::unique_ptr<Simulation> Simulation::initialise(std::unique_ptr<Simulation> s
   s.m_plan.seed = options.seed;
   s.m_plan.outputDirectory = options.outputDirectory;
   s.m_plan.liveViewPort = options.liveViewPort;
+  s.m_plan.keepDeviceInput = options.keepDeviceInput;
   checkRateGroupLinks(components, diagnostics);
   checkDeclaredOutputs(components, diagnostics);
   if (diagnostics.hasErrors()) return nullptr;

@@ -39,6 +39,8 @@ struct SimulationOptions {
   std::filesystem::path outputDirectory;
   // The live view's port (RunPlan::liveViewPort); -1: none.
   int liveViewPort = -1;
+  // RunPlan::keepDeviceInput.
+  bool keepDeviceInput = false;
 };
 
 // Registers the components that need no plugin (Recorder).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "framework/core/Lifecycle.h"
@@ -14,6 +15,15 @@ namespace {
 constexpr double kNewtonsToModelForce = 1000.0;  // N -> mN (kg mm / s^2)
 // N s/mm: above this a contactDamping is taken for a slip of units (warned).
 constexpr double kMostPlausibleContactDamping = 0.1;
+// Mass scaling beyond this fraction of the mesh's own mass is warned of (a few percent changes little).
+constexpr double kAddedMassWarned = 0.05;
+
+// A fraction as a percentage of four significant digits ("2.325%").
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g%%", 100 * fraction);
+  return text;
+}
 
 std::string seconds(double s) {
   std::ostringstream out;
@@ -45,6 +55,20 @@ void TLEDForceField::init(InitContext& context) {
   m_model->setElementPrecision(d_precision.is("single") ? ElementPrecision::kSingle : ElementPrecision::kDouble);
   scaleMass();
   if (auto error = checkTimeStep()) context.error(d_dt, *error);
+  if (d_massScaling.value()) {
+    // The added mass slows the mesh's dynamics: said at every load, warned of
+    // beyond a few percent, refused beyond maxAddedMass.
+    const std::string added = "massScaling added " + percent(addedMassFraction()) +
+                              "% of the mesh's mass to " + std::to_string(m_massScaledElements) + " of its " +
+                              std::to_string(m_model->elementCount()) + " elements";
+    if (auto problem = addedMassProblem())
+      context.error(d_massScaling, *problem);
+    else if (addedMassFraction() > kAddedMassWarned)
+      context.warning(d_massScaling, added + ": the tissue responds more slowly than its material says (a smaller "
+                                             "dt, or a mesh without its smallest or flattest elements, adds less)");
+    else
+      context.note(d_massScaling, added);
+  }
 
   m_channel = &context.channels().publish<NodePositions>(*this, kNodePositionsChannel);
   m_stressChannel = &context.channels().publish<ElementStress>(*this, kElementStressChannel);
@@ -73,6 +97,22 @@ void TLEDForceField::scaleMass() {
   m_massScaledElements = m_model->scaleMassForStep(d_dt.value() * (1 + d_damping.value() * d_dt.value()));
 }
 
+double TLEDForceField::addedMassFraction() const {
+  const double own = m_model->totalMass() - m_model->addedMass();
+  return own > 0 ? m_model->addedMass() / own : 0.0;
+}
+
+std::optional<std::string> TLEDForceField::addedMassProblem() const {
+  if (!d_massScaling.value() || addedMassFraction() <= d_maxAddedMass.value()) return std::nullopt;
+  return "massScaling would add " + percent(addedMassFraction()) + " of the mesh's mass (to " +
+         std::to_string(m_massScaledElements) + " of its " + std::to_string(m_model->elementCount()) +
+         " elements), more than maxAddedMass = " + percent(d_maxAddedMass.value()) +
+         ": the dynamics would be another material's. Use a smaller dt (the critical step of this mesh is " +
+         seconds(m_model->unscaledCriticalTimeStep()) +
+         "), a mesh without its smallest or flattest elements (or at the right scale: a mesh in metres read as mm "
+         "needs a million times the mass), or raise maxAddedMass to accept it";
+}
+
 std::optional<std::string> TLEDForceField::checkTimeStep() const {
   const double critical = m_model->criticalTimeStep(d_damping.value());
   if (d_dt.value() <= critical || d_acceptUnstable.value()) return std::nullopt;
@@ -99,6 +139,7 @@ std::optional<std::string> TLEDForceField::assignLabelMaterial(int label, const 
   if (elements.empty()) return "no element of " + brainPath() + " has label " + std::to_string(label);
   m_model->assignMaterial(elements, material);
   scaleMass();
+  if (auto problem = addedMassProblem()) return problem;
   return checkTimeStep();
 }
 

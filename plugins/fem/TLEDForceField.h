@@ -51,6 +51,10 @@ class TLEDForceField final : public Component {
   std::optional<std::string> checkTimeStep() const;
   // With massScaling, scales the elements whose step is below dt (again after a material change).
   void scaleMass();
+  // The mass scaling added (a fraction of the mesh's own mass), and why it is
+  // refused when above maxAddedMass.
+  double addedMassFraction() const;
+  std::optional<std::string> addedMassProblem() const;
 
   // Followed at init only: the ticks exchange positions and forces with the
   // brain through channels, so the FEM may run in a rate group of its own.
@@ -131,6 +135,14 @@ class TLEDForceField final : public Component {
       {.help = "Selective mass scaling: the elements whose own critical time step is below dt get the density that "
                "makes it dt (the rest keep theirs), so that dt is stable on a mesh with a few small or flat "
                "elements. The added mass is reported (added_mass_fraction)"}};
+  Field<double> d_maxAddedMass{
+      this,
+      "maxAddedMass",
+      0.25,
+      {.help = "Most mass that massScaling may add, as a fraction of the mesh's own: beyond it the load is refused "
+               "(the dynamics would no longer be the tissue's: a smaller dt, or a mesh without its smallest or "
+               "flattest elements, is the fix; raise this to accept it). Above 0.05 the load warns",
+       .min = 0.0}};
   Field<double> d_stressInterval{
       this,
       "stressInterval",

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -223,6 +224,16 @@ size_t TLEDModel::scaleMassForStep(double dt) {
   findCriticalStep();
   if (m_dt > 0) setTimeStep(m_dt, m_damping);
   return scaled;
+}
+
+double TLEDModel::unscaledCriticalTimeStep() const {
+  double smallest = std::numeric_limits<double>::infinity();
+  const TLEDElements& el = m_elements;
+  for (size_t k = 0; k < el.count; ++k) {
+    const ElasticModuli moduli{el.muVolume[k] / m_volume[k], el.kappaVolume[k] / m_volume[k]};
+    smallest = std::min(smallest, m_length[k] / moduli.dilatationalWaveSpeed(m_materialDensity[k]));
+  }
+  return smallest;
 }
 
 double TLEDModel::addedMass() const {

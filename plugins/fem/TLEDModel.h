@@ -137,6 +137,9 @@ class TLEDModel {
   size_t scaleMassForStep(double dt);
   // Mass added by the scaling, kg.
   double addedMass() const;
+  // The critical time step (s, undamped) of the materials' own densities,
+  // as it was before any mass scaling.
+  double unscaledCriticalTimeStep() const;
 
   // The element loop's arithmetic (double by default). Allocates: at setup.
   void setElementPrecision(ElementPrecision precision);

@@ -15,8 +15,8 @@ void ReplayDevice::init(InitContext& context) {
     context.error(d_file, read.error);
     return;
   }
-  m_samples = std::move(read.samples);
-  for (DeviceSample& s : m_samples) s.position += d_offset.value();
+  for (DeviceSample& s : read.samples) s.position += d_offset.value();
+  m_stream = DeviceStreamPlayer(std::move(read.samples));
   if (auto problem = timesProblem()) context.error(d_file, d_file.path().string() + ": " + *problem);
 }
 
@@ -24,18 +24,19 @@ std::optional<std::string> ReplayDevice::timesProblem() const {
   // Times are seconds from the run's start. A recording in other units, or
   // in a clock of its own, would otherwise replay as no motion at all (all
   // before the start, or after the longest run) or crushed into a few frames.
-  const double first = m_samples.front().t, last = m_samples.back().t;
+  const std::vector<DeviceSample>& samples = m_stream.samples();
+  const double first = samples.front().t, last = samples.back().t;
   const std::string units = " (the column t is in seconds from the start of the run)";
   if (last < 0) return "every sample is before the run starts at t = 0 (the last at " + formatDouble(last) + " s)" + units;
   if (first > RunPlan::kMaxDuration)
     return "the first sample is at " + formatDouble(first) + " s, after the longest run (" +
            formatDouble(RunPlan::kMaxDuration) + " s)" + units;
-  if (m_samples.size() < 2) return std::nullopt;
+  if (samples.size() < 2) return std::nullopt;
   const double period = 1.0 / rateHz();
-  const double spacing = (last - first) / double(m_samples.size() - 1);  // s, mean between samples
+  const double spacing = (last - first) / double(samples.size() - 1);  // s, mean between samples
   if (spacing < 0.01 * period) {
     char text[160];
-    std::snprintf(text, sizeof text, "%zu samples over %.3g s are %.3g s apart", m_samples.size(), last - first,
+    std::snprintf(text, sizeof text, "%zu samples over %.3g s are %.3g s apart", samples.size(), last - first,
                   spacing);
     return text + (", a hundredth of the device's period (" + formatDouble(period) +
                    " s) or less: are the times in milliseconds, microseconds or nanoseconds?") +
@@ -46,23 +47,23 @@ std::optional<std::string> ReplayDevice::timesProblem() const {
 
 void ReplayDevice::prepare(const RunPlan& plan) {
   HapticDevice::prepare(plan);
-  m_cursor = 0;
+  m_stream.rewind();
   m_pass = 0;
   // One pass lasts from the first sample to one period after the last.
-  m_loopSpan = m_samples.back().t - m_samples.front().t + 1.0 / rateHz();
+  m_loopSpan = m_stream.samples().back().t - m_stream.samples().front().t + 1.0 / rateHz();
 }
 
 double ReplayDevice::preferredDuration() const {
   // A looping replay has no natural end: the run length comes from --duration or other components.
-  if (m_samples.empty() || d_loop.value()) return 0;
-  return m_samples.back().t + 1.0 / rateHz();
+  if (m_stream.empty() || d_loop.value()) return 0;
+  return m_stream.samples().back().t + 1.0 / rateHz();
 }
 
 DeviceSample ReplayDevice::readSample(double scheduledT) {
   // With loop, the recording is looked up at a wrapped time; the sample keeps
   // the scheduled time so that time never runs backwards in the run.
   double t = scheduledT;
-  const double first = m_samples.front().t, last = m_samples.back().t;
+  const double first = m_stream.samples().front().t, last = m_stream.samples().back().t;
   if (d_loop.value() && t > last) {
     t = first + std::fmod(t - first, m_loopSpan);
     const uint64_t pass = static_cast<uint64_t>((scheduledT - first) / m_loopSpan);
@@ -71,19 +72,7 @@ DeviceSample ReplayDevice::readSample(double scheduledT) {
       forgetLastSample();  // jumping back to the start is intended, not a glitch
     }
   }
-  // Times only move forward within one pass, so the cursor search is amortised O(1).
-  if (m_cursor >= m_samples.size() || m_samples[m_cursor].t > t) m_cursor = 0;
-  while (m_cursor + 1 < m_samples.size() && m_samples[m_cursor + 1].t <= t) ++m_cursor;
-  DeviceSample sample = m_samples[m_cursor];
-  const bool between = t > sample.t && m_cursor + 1 < m_samples.size();
-  if (between) {
-    const DeviceSample& next = m_samples[m_cursor + 1];
-    const double u = (t - sample.t) / (next.t - sample.t);
-    if (next.position.allFinite() && sample.position.allFinite())
-      sample.position += u * (next.position - sample.position);
-    if (next.orientation.coeffs().allFinite() && sample.orientation.coeffs().allFinite())
-      sample.orientation = sample.orientation.normalized().slerp(u, next.orientation.normalized());
-  }
+  DeviceSample sample = m_stream.at(t);
   sample.t = scheduledT;
   return sample;
 }

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "framework/devices/DeviceStreamPlayer.h"
 #include "framework/devices/HapticDevice.h"
 
 namespace trephine::haptics {
@@ -28,8 +29,7 @@ class ReplayDevice final : public HapticDevice {
   Field<bool> d_loop{this, "loop", false, {.help = "Start again from the beginning after the last sample"}};
   Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Added to every recorded position", .unit = "mm"}};
 
-  std::vector<DeviceSample> m_samples;
-  size_t m_cursor = 0;
+  DeviceStreamPlayer m_stream;
   double m_loopSpan = 0;  // s
   uint64_t m_pass = 0;
 };

@@ -29,9 +29,14 @@ struct PassivityVerdict {
 // K in N/mm, B and b in N*s/mm, the rendering rate in Hz (T = 1 / rate).
 PassivityVerdict sampledDataPassivity(double stiffness, double virtualDamping, double rateHz, double physicalDamping);
 
-// Warns at `stiffnessField` when `device` reports a physical damping and the
-// rendering (K, B at rateHz) is not passive on it. Devices without dynamics
-// (scripted, replayed) are not checked.
+// N*s/mm: a desktop haptic device's own damping, taken high, for the check
+// of a device that models none: it catches a slip of units (N/m typed as
+// N/mm), not a marginal gain.
+inline constexpr double kGenerousDeviceDamping = 0.01;
+
+// Warns at `stiffnessField` when the rendering (K, B at rateHz) is not
+// passive on `device`: on its physical damping where it reports one, else
+// (scripted, replayed) on kGenerousDeviceDamping.
 void warnIfNotPassive(InitContext& context, const BaseField& stiffnessField, double stiffness, double virtualDamping,
                       double rateHz, const HapticDevice& device);
 

@@ -8,6 +8,7 @@
 
 #include "framework/geometry/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
+#include "framework/core/Strings.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "framework/formats/volume/Resample.h"
 #include "framework/formats/volume/VolumeReader.h"
@@ -52,6 +53,7 @@ void VoxelSkull::init(InitContext& context) {
   }
   for (const std::string& note : notes.notes) context.note(d_file, note);
   for (const std::string& warning : notes.warnings) context.warning(d_file, warning);
+  if (!d_file.isScheme()) checkHounsfieldUnits(context, volume);
   if (!d_saveDrilled.value().empty()) {
     const std::string& name = d_saveDrilled.value();
     const bool meta = name.size() > 4 && (name.ends_with(".mha") || name.ends_with(".mhd"));
@@ -87,6 +89,29 @@ void VoxelSkull::init(InitContext& context) {
       context.events().log(0, "drill_rate_fast", "the densest bone is cut through in under 10 frames", this,
                            m_framesToDrillDensest);
   }
+}
+
+void VoxelSkull::checkHounsfieldUnits(InitContext& context, const DensityVolume& volume) const {
+  // A CT in Hounsfield units holds air near -1000 HU around the head. A scan
+  // whose lowest value is far above that is in raw scanner units (or lost
+  // its rescale), where soft tissue can read 500 to 1100: the isovalue, given
+  // in HU, would take the scalp for bone.
+  const double lowest = volume.minDensity(), highest = volume.maxDensity();
+  if (!(lowest > kNoAirAbove)) return;
+  char range[96];
+  std::snprintf(range, sizeof range, "the volume's values run from %.6g to %.6g", lowest, highest);
+  const std::string why = std::string(range) +
+                          ", with no air near -1000: they do not look like Hounsfield units (raw scanner units, or "
+                          "a file whose rescale was lost)";
+  if (d_isovalue.isSet()) {
+    context.note(d_isovalue, why + "; isovalue=" + formatDouble(d_isovalue.value()) +
+                                 " is taken in the volume's own units");
+    return;
+  }
+  context.warning(d_isovalue, why + ", so the default isovalue of " + formatDouble(d_isovalue.value()) +
+                                  " HU may take soft tissue for bone. Give the scan in HU (a DICOM series is "
+                                  "rescaled to them; for a raw volume, subtract its air value and add -1000), or set "
+                                  "isovalue in the volume's own units (between its soft tissue and its bone)");
 }
 
 void VoxelSkull::checkRemovalFields(InitContext& context) {
@@ -184,7 +209,10 @@ void VoxelSkull::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"dims_x", double(d[0])});
   counters.push_back({"dims_y", double(d[1])});
   counters.push_back({"dims_z", double(d[2])});
-  counters.push_back({"voxel_size_mm", m_volume.spacing().minCoeff()});
+  counters.push_back({"voxel_size_mm", m_volume.spacing().minCoeff()});  // the smallest side
+  counters.push_back({"voxel_size_x_mm", m_volume.spacing().x()});
+  counters.push_back({"voxel_size_y_mm", m_volume.spacing().y()});
+  counters.push_back({"voxel_size_z_mm", m_volume.spacing().z()});
   counters.push_back({"bytes_per_voxel", double(sizeof(VoxelCode))});
   counters.push_back({"voxels_removed", double(m_voxelsRemoved)});
   if (d_drill.value() && !m_forceRemoval) counters.push_back({"frames_to_cut_densest_voxel", m_framesToDrillDensest});

@@ -88,6 +88,11 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   // one voxel: the breakthrough test.
   bool boneAhead(const Vec3& front, const Vec3& direction) const;
   void checkRemovalFields(InitContext& context);
+  // Warns when a scan read from a file does not look like Hounsfield units
+  // while the isovalue is the default, given in HU.
+  void checkHounsfieldUnits(InitContext& context, const DensityVolume& volume) const;
+  // HU: a CT's air is near -1000; a scan whose lowest value is above this has none.
+  static constexpr double kNoAirAbove = -500.0;
 
   FilePathField d_file{this,
                        "file",

@@ -134,6 +134,53 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
   EXPECT_NE(table.find("| 4 | file=phantom:halfspace?voxel=0.5"), std::string::npos) << table;
 }
 
+// trace.csv's device columns (device_x, device_y, device_z), a row a frame, as written.
+std::vector<std::string> deviceColumns(const std::filesystem::path& trace) {
+  std::ifstream in(trace);
+  std::vector<std::string> rows;
+  std::string line;
+  std::getline(in, line);
+  EXPECT_TRUE(line.starts_with("t,device_x,device_y,device_z,")) << trace << ": " << line;
+  while (std::getline(in, line)) {
+    size_t end = 0;
+    for (int comma = 0; comma < 4 && end != std::string::npos; ++comma) end = line.find(',', end + 1);
+    rows.push_back(line.substr(line.find(',') + 1, end - line.find(',') - 1));
+  }
+  return rows;
+}
+
+TEST(StudyCommandTest, EverySettingRunsOnTheReferenceSettingsMotion) {
+  // The random walk aims at the skull's surface as each setting's model
+  // places it, so a setting run alone moves the device on a path of its own.
+  test::TempDir dir("trephine-study-motion");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  const char* voxels =
+      "/patient/skull.file=phantom:halfspace?voxel=1.0&nx=0.3&ny=0.2&nz=0.93&size=30,"
+      "phantom:halfspace?voxel=0.7&nx=0.3&ny=0.2&nz=0.93&size=30";
+  std::string out;
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", voxels, "--out", (dir / "study").string(), "--poses", "20"},
+                       &out),
+            0)
+      << out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "study/motion.tool.device.csv")) << "the reference's recorded input";
+  const auto reference = deviceColumns(dir / "study/settings/001/trace.csv");
+  const auto other = deviceColumns(dir / "study/settings/002/trace.csv");
+  ASSERT_GT(reference.size(), 900u);
+  EXPECT_EQ(other, reference) << "the second setting replays the reference's device input";
+  // Run alone, the second setting plans its own path: the check above could fail.
+  ASSERT_EQ(runProgram({"run", scene.string(), "--set",
+                        "/patient/skull.file=phantom:halfspace?voxel=0.7&nx=0.3&ny=0.2&nz=0.93&size=30", "--out",
+                        (dir / "alone").string(), "--quiet"},
+                       &out),
+            0)
+      << out;
+  const auto alone = deviceColumns(dir / "alone/trace.csv");
+  ASSERT_EQ(alone.size(), reference.size());
+  EXPECT_NE(alone, reference) << "the setting's own path differs from the reference's";
+  EXPECT_NE(test::readFile(dir / "study/study.md").find("every setting runs on the same device input"),
+            std::string::npos);
+}
+
 TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
   test::TempDir dir("trephine-study");
   const auto scene = dir.write("halfspace.xml", kScene);
@@ -145,6 +192,12 @@ TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
       << out;
   EXPECT_NE(out.find("setting 2 failed"), std::string::npos) << out;
   EXPECT_NE(out.find("no collision back-end \"nonesuch\""), std::string::npos) << out;
+  // Said when it fails, with its error, not as done.
+  const size_t failed = out.find("setting 2/2 failed after ");
+  ASSERT_NE(failed, std::string::npos) << out;
+  const std::string line = out.substr(failed, out.find('\n', failed) - failed);
+  EXPECT_NE(line.find("nonesuch"), std::string::npos) << line;
+  EXPECT_EQ(out.find("setting 2/2 done in"), std::string::npos) << out;
   const auto rows = readStudy(dir / "study/study.csv");
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].at("status"), "ok");

@@ -278,24 +278,55 @@ void clearSetting(const StudyRequest& request, int index) {
 }
 
 // This rank's settings done so far, for "setting 3/8 done in 12.4 s; 3 of 8
-// done, 37 s so far, about 62 s left": the time left at the pace so far.
+// done, 37 s so far, about 62 s left", or "setting 3/8 failed after 0.1 s:
+// WHY; ...". The time left is what the settings that succeeded cost each, on
+// average, times those left, shared among the workers: a failed setting
+// (which ends at once) says nothing of what the others will cost, and none
+// is guessed before a setting has succeeded.
 struct StudyProgress {
   size_t all = 0;  // settings this rank runs
   size_t done = 0;
+  int jobs = 1;
+  double succeededSeconds = 0;  // s, the sum of the succeeded settings' own times
+  size_t succeeded = 0;
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 
-  std::string settingDone(int index, size_t total, double took) {
+  // `error`: the setting's error, empty when it succeeded.
+  std::string settingEnded(int index, size_t total, double took, const std::string& error) {
     ++done;
+    if (error.empty()) {
+      ++succeeded;
+      succeededSeconds += took;
+    }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::ostringstream line;
     line.setf(std::ios::fixed);
     line.precision(1);
-    line << "setting " << index + 1 << "/" << total << " done in " << took << " s; " << done << " of " << all
-         << " done, " << elapsed << " s so far";
-    if (done < all) line << ", about " << std::ceil(elapsed / double(done) * double(all - done)) << " s left";
+    line << "setting " << index + 1 << "/" << total;
+    if (error.empty()) {
+      line << " done in " << took << " s";
+    } else {
+      std::string firstLine = error.substr(0, error.find('\n'));
+      line << " failed after " << took << " s: " << firstLine;
+    }
+    line << "; " << done << " of " << all << " done, " << elapsed << " s so far";
+    const size_t left = all - done;
+    if (left > 0 && succeeded > 0) {
+      const double workers = double(std::min<size_t>(left, size_t(std::max(jobs, 1))));
+      line << ", about " << std::ceil(succeededSeconds / double(succeeded) * double(left) / workers) << " s left";
+    } else if (left > 0) {
+      line << ", time left unknown until a setting succeeds";
+    }
     return line.str();
   }
 };
+
+// The error a setting's worker left (its error.txt, when it is this study's), or "".
+std::string settingError(const StudyRequest& request, int index) {
+  const std::filesystem::path file = request.options.out / request.settings[index].directoryName() / kErrorFile;
+  if (studyOfFile(file) != request.options.studyId) return "";
+  return settingErrorMessage(file);
+}
 
 // Runs the settings in worker processes, at most `jobs` at a time, saying
 // when each starts and ends, and the time the study has left.
@@ -318,7 +349,8 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
       if (pid < 0) {
         recordAbnormalEnd(request, index,
                           std::string("the worker process could not start: ") + std::strerror(spawnError));
-        std::cout << progress.settingDone(index, request.settings.size(), 0) << std::endl;
+        std::cout << progress.settingEnded(index, request.settings.size(), 0, settingError(request, index))
+                  << std::endl;
         continue;
       }
       running[pid] = {index, Steady::now()};
@@ -335,7 +367,9 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
     if (auto it = running.find(ended); it != running.end()) {
       recordAbnormalEnd(request, it->second.index, describeStatus(status));
       const double took = std::chrono::duration<double>(Steady::now() - it->second.started).count();
-      std::cout << progress.settingDone(it->second.index, request.settings.size(), took) << std::endl;
+      std::cout << progress.settingEnded(it->second.index, request.settings.size(), took,
+                                         settingError(request, it->second.index))
+                << std::endl;
       running.erase(it);
     }
   }
@@ -442,6 +476,7 @@ int studyCommand(const Arguments& a) {
   const bool ownsReference = referenceIndex % rank.size == rank.rank;
   StudyProgress progress;
   progress.all = mine.size() + (ownsReference ? 1 : 0);
+  progress.jobs = request->jobs;
   if (ownsReference) runWorkers(*request, {referenceIndex}, 1, progress);
   waitFor([&] {
     return ofThisStudy(*request, options.out / kPosesFile) || settingDone(*request, referenceIndex);

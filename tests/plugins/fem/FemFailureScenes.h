@@ -22,6 +22,8 @@ inline std::filesystem::path writeCube(const std::filesystem::path& file, const 
   return file;
 }
 
+// The coarse cube's elements all need mass for the 0.33 ms step (1.04 times
+// the mesh's own): accepted here, where only the failures are studied.
 inline std::string cubePressScene(const std::filesystem::path& mesh, const std::string& forceFeedback = "") {
   return R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
@@ -29,8 +31,8 @@ inline std::string cubePressScene(const std::filesystem::path& mesh, const std::
   <RequiredPlugin name="fem"/>
   <TetraBrain name="brain" file=")" +
          mesh.string() + R"("/>
-  <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" forceSmoothing="0" contactDamping="0"
-                  rate="1000" group="fem"/>
+  <TLEDForceField name="fem" mesh="@brain" dt="0.33e-3" massScaling="true" maxAddedMass="1.1" forceSmoothing="0"
+                  contactDamping="0" rate="1000" group="fem"/>
   <FixedConstraint name="base" fem="@fem" box="-200 -200 -200 200 200 -9"/>
   <ScriptedDevice name="device" record="false" path="drill-in" target="@brain" direction="0 0 -1" center="0 0 0"
                   tipOffset="2.5" standoff="5" speed="20" depth="5" feedSpeed="4"/>

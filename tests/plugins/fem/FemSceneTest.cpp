@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "framework/core/Diagnostics.h"
+#include "framework/core/Strings.h"
 #include "framework/formats/mesh/MeditWriter.h"
 #include "framework/formats/mesh/TetMeshReader.h"
 #include "plugins/fem/MaterialPlausibility.h"
@@ -129,7 +130,10 @@ TEST(FemSceneTest, AContactDampingInNewtonSecondsPerMetreIsWarnedOf) {
 TEST(FemSceneTest, MaterialConstantsFarOutsideTissueAreWarnedOfWithTheLikelyUnit) {
   const auto warnings = [](const std::string& fem, const std::string& extra = "") {
     Diagnostics d;
-    EXPECT_TRUE(test::loadScene(barScene(extra, -10, R"(dt="0.1e-3" massScaling="true" )" + fem), d));
+    // (A modulus a thousand times a tissue's needs far more mass for the same
+    // step: refused unless accepted, MassScalingIsSaidWarnedOfOrRefusedByHowMuchItAdds.)
+    EXPECT_TRUE(test::loadScene(barScene(extra, -10, R"(dt="0.1e-3" massScaling="true" maxAddedMass="1e9" )" + fem), d))
+        << test::messages(d);
     return test::messages(d);
   };
   std::string m = warnings(R"(youngModulus="30000")");
@@ -150,17 +154,16 @@ TEST(FemSceneTest, MaterialConstantsFarOutsideTissueAreWarnedOfWithTheLikelyUnit
   for (const double kPa : {0.049, 1001.0}) EXPECT_TRUE(implausibleYoungModulus(kPa)) << kPa;
 }
 
-TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {
-  test::TempDir out;
-  auto simulation = runFor(barScene("", -10, R"(dt="0.5e-3" massScaling="true")"), 0.3, out.path());
-  ASSERT_TRUE(simulation);
-  // Each element whose L / c is below dt (aimed 1 + damping dt above it) gets
-  // its density raised by (dt / (L / c))^2, L = 1 / |grad N|.
+// The fraction of the bar's mass that selective mass scaling adds for a time
+// step dt (s), computed here from the elements: each element whose L / c is
+// below dt (aimed 1 + damping dt above it) gets its density raised by
+// (dt / (L / c))^2, L = 1 / |grad N|.
+double barAddedMassFraction(double dt, double damping = 11) {
   const TetMesh bar = tetra::makeBoxMesh({20, 2, 2}, Vec3(0, -5, -5), Vec3(100, 5, 5));
   const ElementMaterial material{};
   const double c =
       ElasticModuli::fromYoung(material.youngModulus, material.poissonRatio).dilatationalWaveSpeed(material.density);
-  const double target = 0.5e-3 * (1 + 11 * 0.5e-3);
+  const double target = dt * (1 + damping * dt);
   double mass = 0, added = 0;
   for (const TetIndices& t : bar.tets) {
     Mat3 D;
@@ -171,10 +174,62 @@ TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {
     mass += m;
     if (step < target) added += m * ((target / step) * (target / step) - 1);
   }
-  EXPECT_NEAR(test::componentCounter(*simulation, "TLEDForceField", "added_mass_fraction"), added / mass, 1e-9);
+  return added / mass;
+}
+
+TEST(FemSceneTest, MassScalingMakesTheStepStableAndReportsWhatItAdded) {
+  test::TempDir out;
+  auto simulation = runFor(barScene("", -10, R"(dt="0.5e-3" massScaling="true" maxAddedMass="1e9")"), 0.3, out.path());
+  ASSERT_TRUE(simulation);
+  const double added = barAddedMassFraction(0.5e-3);
+  EXPECT_NEAR(test::componentCounter(*simulation, "TLEDForceField", "added_mass_fraction"), added, 1e-9);
   EXPECT_GT(added, 0.0);
   EXPECT_GE(test::componentCounter(*simulation, "TLEDForceField", "critical_dt_s"), 0.5e-3);
   EXPECT_EQ(test::componentCounter(*simulation, "TLEDForceField", "non_finite_ticks"), 0);
+}
+
+TEST(FemSceneTest, MassScalingIsSaidWarnedOfOrRefusedByHowMuchItAdds) {
+  // Time steps whose added mass falls in each band, found from the closed
+  // form above (the bar's critical step is about 0.2 ms).
+  double small = 0, warned = 0, refused = 0;  // s
+  for (double dt = 0.1e-3; dt < 5e-3; dt *= 1.02) {
+    const double f = barAddedMassFraction(dt);
+    if (f > 0.005 && f < 0.04 && small == 0) small = dt;
+    if (f > 0.07 && f < 0.2 && warned == 0) warned = dt;
+    if (f > 0.4 && refused == 0) refused = dt;
+  }
+  ASSERT_GT(small, 0);
+  ASSERT_GT(warned, 0);
+  ASSERT_GT(refused, 0);
+  const auto load = [](double dt, const std::string& extra, Diagnostics& d) {
+    return test::loadScene(barScene("", -10, "dt=\"" + formatDouble(dt) + "\" massScaling=\"true\" " + extra), d);
+  };
+  // The percentage a message gives after `lead`, NaN when it gives none.
+  const auto percentAfter = [](const std::string& text, const std::string& lead) {
+    const size_t at = text.find(lead);
+    return at == std::string::npos ? std::nan("") : std::stod(text.substr(at + lead.size()));
+  };
+  Diagnostics noted;
+  EXPECT_TRUE(load(small, "", noted)) << test::messages(noted);
+  EXPECT_EQ(noted.errorCount(), 0);
+  EXPECT_NEAR(percentAfter(test::messages(noted), "massScaling added "), 100 * barAddedMassFraction(small), 1e-3 * 100 * barAddedMassFraction(small))
+      << test::messages(noted);
+  EXPECT_EQ(test::messages(noted).find("warning:"), std::string::npos) << test::messages(noted);
+  Diagnostics warning;
+  EXPECT_TRUE(load(warned, "", warning)) << test::messages(warning);
+  EXPECT_NEAR(percentAfter(test::messages(warning), "massScaling added "), 100 * barAddedMassFraction(warned), 1e-3 * 100 * barAddedMassFraction(warned))
+      << test::messages(warning);
+  EXPECT_NE(test::messages(warning).find("warning:"), std::string::npos) << test::messages(warning);
+  EXPECT_NE(test::messages(warning).find("inline.xml:5:"), std::string::npos) << "at the field";
+  Diagnostics error;
+  EXPECT_FALSE(load(refused, "", error));
+  EXPECT_NEAR(percentAfter(test::messages(error), "massScaling would add "), 100 * barAddedMassFraction(refused), 1e-3 * 100 * barAddedMassFraction(refused))
+      << test::messages(error);
+  EXPECT_NE(test::messages(error).find("more than maxAddedMass = 25%"), std::string::npos) << test::messages(error);
+  // Asked for, it loads (with the warning).
+  Diagnostics accepted;
+  EXPECT_TRUE(load(refused, R"(maxAddedMass="1e9")", accepted)) << test::messages(accepted);
+  EXPECT_NE(test::messages(accepted).find("warning:"), std::string::npos) << test::messages(accepted);
 }
 
 TEST(FemSceneTest, ConstraintsAndMaterialsRefuseWhatSelectsNothing) {

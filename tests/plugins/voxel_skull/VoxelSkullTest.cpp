@@ -237,6 +237,65 @@ TEST(VoxelSkullTest, ADrillRateThatCutsBoneAtOnceIsReported) {
   EXPECT_NE(test::readFile(dir / "run/summary.json").find("drill_rate_fast"), std::string::npos);
 }
 
+// A head of 20 x 20 x 20 voxels of 1 x 1 x 2 mm: bone below k = 8, a scalp
+// of soft tissue up to k = 12, air above; in raw scanner units (air 0, soft
+// tissue 500, bone 1150, as in many CT files without their rescale) or in
+// Hounsfield units (air -1000, soft tissue 40, bone 1150).
+std::filesystem::path writeLayeredHead(const test::TempDir& dir, const std::string& name, bool hounsfield) {
+  const double air = hounsfield ? -1000 : 0, soft = hounsfield ? 40 : 500, bone = 1150;
+  DensityVolume volume({20, 20, 20}, Vec3(1, 1, 2), Vec3::Zero(), DensityEncoding::fit(air, bone, true));
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i) volume.setDensity(i, j, k, k < 8 ? bone : k < 12 ? soft : air);
+  formats::writeMetaImage(volume, dir / name, false);
+  return dir / name;
+}
+
+TEST(VoxelSkullTest, AScanNotInHounsfieldUnitsIsWarnedOfWhileTheIsovalueIsTheDefault) {
+  test::TempDir dir;
+  const std::string raw = writeLayeredHead(dir, "raw.mha", false).string();
+  const std::string hounsfield = writeLayeredHead(dir, "hounsfield.mha", true).string();
+  Diagnostics warned;
+  auto simulation = test::loadScene(skullScene("file=\"" + raw + "\""), warned);
+  ASSERT_TRUE(simulation) << test::messages(warned);
+  ASSERT_EQ(warned.all().size(), 1u) << test::messages(warned);
+  EXPECT_EQ(warned.all()[0].severity, Severity::Warning);
+  const std::string& message = warned.all()[0].message;
+  EXPECT_NE(message.find("the volume's values run from 0 to 1150, with no air near -1000"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("the default isovalue of 400 HU may take soft tissue for bone"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("set isovalue in the volume's own units"), std::string::npos) << message;
+  // Every side of the voxel in the summary's figures, the smallest as before.
+  EXPECT_EQ(test::componentCounter(*simulation, "VoxelSkull", "voxel_size_x_mm"), 1.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "VoxelSkull", "voxel_size_y_mm"), 1.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "VoxelSkull", "voxel_size_z_mm"), 2.0);
+  EXPECT_EQ(test::componentCounter(*simulation, "VoxelSkull", "voxel_size_mm"), 1.0);
+  // An isovalue the scene sets is taken in the volume's units: a note only.
+  Diagnostics noted;
+  SimulationOptions strict;
+  strict.strict = true;
+  EXPECT_TRUE(test::loadScene(skullScene("file=\"" + raw + "\" isovalue=\"800\""), noted, strict))
+      << test::messages(noted);
+  ASSERT_EQ(noted.all().size(), 1u) << test::messages(noted);
+  EXPECT_EQ(noted.all()[0].severity, Severity::Note);
+  EXPECT_NE(noted.all()[0].message.find("isovalue=800 is taken in the volume's own units"), std::string::npos)
+      << noted.all()[0].message;
+  // The same head in Hounsfield units: nothing to say.
+  Diagnostics quiet;
+  EXPECT_TRUE(test::loadScene(skullScene("file=\"" + hounsfield + "\""), quiet, strict)) << test::messages(quiet);
+  EXPECT_TRUE(quiet.all().empty()) << test::messages(quiet);
+}
+
+TEST(VoxelSkullTest, TheRealCtHeadInRawUnitsIsWarnedOf) {
+  // VTK's headsq: raw CT units 0 to 3926 (skin about 500, bone about 1150).
+  const std::filesystem::path head = test::sourceDir() / "../shared/data/ct_head_vtk_headsq/quarter.nhdr";
+  if (!std::filesystem::exists(head)) GTEST_SKIP() << head << " is absent (the shared data folder)";
+  Diagnostics d;
+  EXPECT_TRUE(test::loadScene(skullScene("file=\"" + head.string() + "\""), d)) << test::messages(d);
+  EXPECT_NE(test::messages(d).find("do not look like Hounsfield units"), std::string::npos) << test::messages(d);
+}
+
 TEST(VoxelSkullTest, SaveDrilledWithoutDrillingIsALoadError) {
   Diagnostics d;
   EXPECT_FALSE(test::loadScene(skullScene(R"(file="phantom:skull?voxel=2" saveDrilled="out.mha")"), d));

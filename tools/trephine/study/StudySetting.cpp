@@ -6,11 +6,14 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
 #include "framework/core/AtomicFile.h"
+#include "framework/core/Lifecycle.h"
 #include "framework/geometry/ExactShape.h"
+#include "framework/devices/DeviceStream.h"
 #include "framework/devices/HapticDevice.h"
 #include "framework/geometry/ShellTool.h"
 #include "framework/geometry/ShellContactTarget.h"
@@ -41,6 +44,7 @@ std::unique_ptr<Simulation> load(const StudyOptions& options, const StudySetting
                                  const std::filesystem::path& outputDirectory = {}) {
   SimulationOptions simulationOptions = options.simulation;
   simulationOptions.outputDirectory = outputDirectory;
+  simulationOptions.keepDeviceInput = true;  // the reference's motion, for every other setting
   for (const std::string& o : setting.overrides()) simulationOptions.overrides.push_back(o);
   Diagnostics diagnostics;
   auto simulation = Simulation::fromFile(options.scene, simulationOptions, diagnostics);
@@ -233,6 +237,53 @@ std::vector<StudyPose> readPoses(const std::filesystem::path& file) {
   return poses;
 }
 
+// The scene's devices, in the order of the scene.
+std::vector<HapticDevice*> devicesOf(const Simulation& simulation) {
+  std::vector<HapticDevice*> devices;
+  for (Component* c : simulation.scene().components())
+    if (auto* device = dynamic_cast<HapticDevice*>(c)) devices.push_back(device);
+  return devices;
+}
+
+std::filesystem::path motionFile(const std::filesystem::path& out, const HapticDevice& device) {
+  return out / FinishContext::defaultFileName(kMotionFilePrefix, device);
+}
+
+// The reference run's device input, each device's in a file of the study's
+// folder (a device stream, as a run records it), written before poses.csv,
+// for which the other settings wait. An earlier study's are removed first.
+void writeMotion(const Simulation& simulation, const std::filesystem::path& out) {
+  std::error_code ec;
+  for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with(std::string(kMotionFilePrefix) + ".") && name.ends_with(".csv") && !entry.is_symlink(ec) &&
+        entry.is_regular_file(ec))
+      std::filesystem::remove(entry.path(), ec);
+  }
+  for (const HapticDevice* device : devicesOf(simulation)) {
+    const std::span<const DeviceSample> input = device->recorded();
+    std::ostringstream text;
+    writeDeviceStream(text, std::vector<DeviceSample>(input.begin(), input.end()), input.size());
+    AtomicFile file(motionFile(out, *device));
+    file.write(text.str());
+    file.commit();
+  }
+}
+
+// Every device of this setting reads the reference run's input instead of
+// its own: one motion for every setting, whatever path a device would plan
+// against this setting's model.
+void replayReferenceMotion(Simulation& simulation, const std::filesystem::path& out) {
+  for (HapticDevice* device : devicesOf(simulation)) {
+    DeviceStreamReadResult read = readDeviceStream(motionFile(out, *device));
+    if (!read.error.empty())
+      throw SettingError("the reference run's motion of " + device->path() + ": " + read.error);
+    if (read.samples.empty())
+      throw SettingError("the reference run's motion of " + device->path() + " has no sample");
+    device->replaceInput(std::move(read.samples));
+  }
+}
+
 // Queries the pristine targets at every pose with the pose's tool, held in
 // the world's orientation (the study's poses are positions): first the broad
 // phase alone at every pose (when the target splits its query), then the
@@ -381,6 +432,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
         if (!why.empty()) noExactShape += pair.tool + " on " + pair.target + ": " + why + "\n";
         poses.insert(poses.end(), ofPair.begin(), ofPair.end());
       }
+      writeMotion(*simulation, options.out);
       writePoses(posesFile, poses, options.studyId);
       std::filesystem::remove(options.out / kNoExactShapeFile, ec);
       if (!noExactShape.empty()) {
@@ -395,6 +447,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
         throw SettingError(posesFile.string() + " is not this study's (an earlier study's, left in the same folder)");
       probe(*probed, readPoses(posesFile), directory / kProbeFile);
       probed.reset();
+      replayReferenceMotion(*simulation, options.out);
       simulation->run();
     }
     std::vector<std::string> errors;

@@ -41,6 +41,9 @@ std::string settingErrorMessage(const std::filesystem::path& file);
 
 inline constexpr const char* kPosesFile = "poses.csv";
 inline constexpr const char* kProbeFile = "probe.csv";
+// The reference run's device input, replayed by every other setting:
+// motion.<device path with / as .>.csv in the study's folder.
+inline constexpr const char* kMotionFilePrefix = "motion";
 // Written by the reference's run when a tool and target it studies have no
 // exact contact: a line "TOOL on TARGET: why" for each such pair.
 inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
