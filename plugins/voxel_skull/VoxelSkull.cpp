@@ -184,6 +184,11 @@ LevelSet VoxelSkull::exactShape() const {
   return d_file.isScheme() ? phantomShape(std::string(d_file.schemeBody())) : LevelSet{};
 }
 
+std::optional<ScanAsRead> VoxelSkull::scanAsRead() const {
+  if (d_file.isScheme()) return std::nullopt;
+  return ScanAsRead{std::make_shared<const DensityVolume>(formats::readVolume(d_file.path())), d_isovalue.value()};
+}
+
 Box3 VoxelSkull::bounds() const { return m_volume.bounds(); }
 
 void VoxelSkull::declareOutputs(std::vector<OutputFile>& outputs) const {

@@ -43,6 +43,7 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   std::optional<size_t> broadPhase(const Pose& X_WT, std::span<const ShellPoint> shell) override;
   // A phantom's solid (file="phantom:..."); none for a scan.
   LevelSet exactShape() const override;
+  std::optional<ScanAsRead> scanAsRead() const override;
   std::optional<SurfaceHit> raycast(const Vec3& origin, const Vec3& direction, double maxDistance) const override;
   // ShellContactTarget
   ContactMemory reserveShell(std::span<const ShellPoint> shell) override;

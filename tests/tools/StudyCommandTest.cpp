@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,9 @@
 #include <sstream>
 #include <thread>
 
+#include "framework/formats/mesh/MeditWriter.h"
+#include "framework/formats/volume/VolumeWriter.h"
+#include "plugins/tetra_brain/CubePhantom.h"
 #include "tests/support/TestSupport.h"
 
 namespace trephine {
@@ -226,6 +230,77 @@ TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
             std::string::npos)
       << out;
   EXPECT_NE(test::readFile(dir / "study/study.md").find("the tool is not a sphere"), std::string::npos);
+}
+
+// A scan and a mesh read from files have no closed form: every setting, the
+// finest (the reference setting) included, is measured against the data
+// itself (the scan's interpolated isosurface, the mesh's boundary
+// triangles), and the finest takes part in the Pareto front.
+TEST(StudyCommandTest, AScanAndAMeshFromFilesAreMeasuredAgainstTheirOwnData) {
+  test::TempDir dir("trephine-study-data");
+  // The scan: CT numbers in Hounsfield units falling across the tilted plane
+  // of kScene (bone below, air above), 1 mm voxels: its isosurface at 500
+  // is that plane.
+  const Vec3 n = Vec3(0.3, 0.2, 0.93).normalized();
+  DensityVolume scan({31, 31, 31}, Vec3::Ones(), Vec3::Constant(-15), DensityEncoding::fit(-1000, 2000, true));
+  for (int k = 0; k < 31; ++k)
+    for (int j = 0; j < 31; ++j)
+      for (int i = 0; i < 31; ++i)
+        scan.setDensity(i, j, k, std::clamp(std::round(500 - 400 * scan.voxelCenter(i, j, k).dot(n)), -1000.0, 2000.0));
+  formats::writeMetaImage(scan, dir / "scan.mha", false);
+  std::string scanScene = kScene;
+  const std::string phantom = "phantom:halfspace?voxel=1.0&amp;nx=0.3&amp;ny=0.2&amp;nz=0.93&amp;size=30";
+  scanScene.replace(scanScene.find(phantom), phantom.size(), (dir / "scan.mha").string());
+  const auto scanFile = dir.write("scan.xml", scanScene);
+  std::string out;
+  ASSERT_EQ(runProgram({"study", scanFile.string(), "--vary", "/patient/skull.voxelSize=0,2", "--out",
+                        (dir / "scan").string(), "--poses", "30"},
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("reference: the isosurface at 500 of the scan's density interpolated trilinearly (1 x 1 x 1 mm "
+                     "voxels, as its file holds them)"),
+            std::string::npos)
+      << out;
+  auto rows = readStudy(dir / "scan/study.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].at("status"), "ok") << rows[r].at("label");
+    // The native method's own error on voxels of 1 and 2 mm, measured
+    // against the plane the scan holds: never zero, within half a voxel.
+    EXPECT_GT(number(rows[r], "pen_err_p99_mm"), 0) << rows[r].at("label") << ": not scored 0 by construction";
+    EXPECT_LT(number(rows[r], "pen_err_p99_mm"), r == 0 ? 0.5 : 1.0) << rows[r].at("label");
+  }
+  EXPECT_EQ(rows[0].at("reference"), "1");
+  EXPECT_EQ(number(rows[0], "agree_ref_p99_mm"), 0) << "the reference setting agrees with itself";
+  // The reference setting takes part in the front: the more accurate of the
+  // two (whichever it is: on this ramp the surface is found as well on 2 mm
+  // voxels as on 1) cannot be beaten in accuracy, so it is on it.
+  const size_t best = number(rows[0], "pen_err_p99_mm") < number(rows[1], "pen_err_p99_mm") ? 0 : 1;
+  EXPECT_EQ(rows[best].at("pareto"), "1") << rows[best].at("label");
+  // The mesh: a box of tetrahedra, touched by the random walk's sphere.
+  formats::writeMeditMesh(tetra::makeBoxMesh({6, 6, 6}, Vec3::Constant(-15), Vec3(15, 15, 0)), dir / "box.mesh");
+  std::string meshScene = kScene;
+  const size_t skull = meshScene.find("<VoxelSkull");
+  meshScene.replace(skull, meshScene.find("/>", skull) + 2 - skull,
+                    "<TetraBrain name=\"skull\" file=\"" + (dir / "box.mesh").string() + "\"/>");
+  meshScene.replace(meshScene.find("voxel_skull"), 11, "tetra_brain");
+  meshScene.replace(meshScene.find("direction=\"-0.3 -0.2 -0.93\""), 29, "direction=\"0 0 -1\"");
+  const auto meshFile = dir.write("mesh.xml", meshScene);
+  ASSERT_EQ(runProgram({"study", meshFile.string(), "--vary", "/tool/burr.pointCount=162,466", "--out",
+                        (dir / "mesh").string(), "--poses", "30"},
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("reference: the mesh's 432 boundary triangles at rest, by exact point-to-triangle distance"),
+            std::string::npos)
+      << out;
+  rows = readStudy(dir / "mesh/study.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.at("status"), "ok") << row.at("label");
+    EXPECT_TRUE(std::isfinite(number(row, "pen_err_p99_mm"))) << row.at("label");
+  }
 }
 
 // A procedure with a tool change: the burr presses a half-space of bone,

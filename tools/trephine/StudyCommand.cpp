@@ -463,7 +463,7 @@ int studyCommand(const Arguments& a) {
   const StudyOptions& options = request->options;
   const Rank rank = mpiRank();
   if (rank.size == 1)
-    for (const char* stale : {kPosesFile, kNoExactShapeFile, "study.csv", "pairs.csv", "study.md", "pareto.png"})
+    for (const char* stale : {kPosesFile, kNoExactShapeFile, kReferencesFile, "study.csv", "pairs.csv", "study.md", "pareto.png"})
       std::filesystem::remove(options.out / stale, ec);
 
   const int count = static_cast<int>(request->settings.size());

@@ -135,41 +135,43 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
     rowsOfPair[p].push_back(r - 1);
   }
   if (report.pairs.empty()) throw std::runtime_error(posesFile.string() + ": no pose");
-  // Why a pair has no exact contact: "TOOL on TARGET: why" lines.
-  std::vector<std::string> whyLines;
-  {
-    std::ifstream why(out / kNoExactShapeFile);
-    for (std::string line; std::getline(why, line);) whyLines.push_back(line);
-  }
+  // Why a pair has no exact contact, and what the exact one is: "TOOL on TARGET: text" lines.
+  const auto readLines = [](const std::filesystem::path& file) {
+    std::vector<std::string> lines;
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  };
+  const std::vector<std::string> whyLines = readLines(out / kNoExactShapeFile);
+  const std::vector<std::string> referenceLines = readLines(out / kReferencesFile);
   const StudySetting& referenceSetting = settings.at(static_cast<size_t>(referenceIndex));
+  // The reference setting's own answers: the reference of a pair without an
+  // exact contact, and what every setting's agreement is measured against.
   std::vector<Answer> settingReference;
   std::string unreadable;
-  bool settingReferenceRead = false;
+  try {
+    settingReference = readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
+  } catch (const std::exception& e) {
+    // The other settings' rows are still worth having (their time, their
+    // closed loop); their accuracy against it is unknown.
+    unreadable = "; its answers cannot be read (" + std::string(e.what()) + "), so no error is measured";
+  }
   for (size_t p = 0; p < report.pairs.size(); ++p) {
     StudiedPair& pair = report.pairs[p];
     for (const size_t i : rowsOfPair[p]) pair.exact = pair.exact && std::isfinite(exact[i].penetration);
+    const std::string prefix = pair.tool + " on " + pair.target + ": ";
     if (pair.exact) {
       pair.reference = "the exact shape of the phantom";
+      for (const std::string& line : referenceLines)
+        if (line.rfind(prefix, 0) == 0) pair.reference = line.substr(prefix.size());
       continue;
     }
     std::string why;
-    const std::string prefix = pair.tool + " on " + pair.target + ": ";
     for (const std::string& line : whyLines)
       if (line.rfind(prefix, 0) == 0) why = line.substr(prefix.size());
     pair.reference = "setting " + std::to_string(referenceIndex + 1) + " (" + referenceSetting.label() + ")" +
                      (referenceChoice.empty() ? std::string() : ", " + referenceChoice) +
                      ": no exact shape for this target" + (why.empty() ? std::string() : ": " + why);
-    if (!settingReferenceRead) {
-      settingReferenceRead = true;
-      try {
-        settingReference =
-            readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
-      } catch (const std::exception& e) {
-        // The other settings' rows are still worth having (their time, their
-        // closed loop); their accuracy is unknown.
-        unreadable = "; its answers cannot be read (" + std::string(e.what()) + "), so no error is measured";
-      }
-    }
     pair.reference += unreadable;
   }
   report.reference = report.pairs.front().reference;
@@ -188,6 +190,9 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
       for (size_t p = 0; p < report.pairs.size(); ++p) {
         PairAccuracy accuracy;
         compare(accuracy, measured, report.pairs[p].exact ? exact : settingReference, rowsOfPair[p]);
+        PairAccuracy agreement;
+        compare(agreement, measured, settingReference, rowsOfPair[p]);
+        accuracy.agreementP99 = agreement.penetrationErrorP99;
         row.pairs.push_back(accuracy);
       }
       static_cast<PairAccuracy&>(row) = row.pairs.front();
@@ -234,7 +239,8 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   if (!report.rows.empty())
     for (const auto& [field, value] : report.rows.front().setting.assignments) csv << ',' << csvQuoted(field);
   csv << ",status,reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
-         "normal_err_p50_deg,normal_err_p99_deg,query_p50_us,query_p99_us,broad_p50_us,narrow_p50_us,candidates_p50";
+         "normal_err_p50_deg,normal_err_p99_deg,agree_ref_p99_mm,query_p50_us,query_p99_us,broad_p50_us,narrow_p50_us,"
+         "candidates_p50";
   for (const std::string& c : runColumns) csv << ',' << c;
   csv << ",pareto\n";
   for (const StudyRow& row : report.rows) {
@@ -243,7 +249,8 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
     csv << ',' << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << (row.isReference ? 1 : 0) << ','
         << csvQuoted(report.pairs.front().tool) << ',' << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
     for (double v : {row.penetrationErrorP50, row.penetrationErrorP99, row.penetrationErrorMax, row.normalErrorP50,
-                     row.normalErrorP99, row.queryP50, row.queryP99, row.broadP50, row.narrowP50, row.candidatesP50})
+                     row.normalErrorP99, row.agreementP99, row.queryP50, row.queryP99, row.broadP50, row.narrowP50,
+                     row.candidatesP50})
       csv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
     for (const std::string& c : runColumns) {
       const double v = row.runValue(c);
@@ -255,7 +262,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   // A row per setting and pair.
   std::ostringstream pairsCsv;
   pairsCsv << "setting,label,status,tool,target,exact_reference,poses,compared_poses,contact_mismatches,"
-              "pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,normal_err_p50_deg,normal_err_p99_deg\n";
+              "pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,normal_err_p50_deg,normal_err_p99_deg,agree_ref_p99_mm\n";
   for (const StudyRow& row : report.rows)
     for (size_t p = 0; p < report.pairs.size(); ++p) {
       const StudiedPair& pair = report.pairs[p];
@@ -263,13 +270,13 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
                << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << csvQuoted(pair.tool) << ','
                << csvQuoted(pair.target) << ',' << (pair.exact ? 1 : 0);
       if (p >= row.pairs.size()) {
-        pairsCsv << ",0,0,0,nan,nan,nan,nan,nan\n";
+        pairsCsv << ",0,0,0,nan,nan,nan,nan,nan,nan\n";
         continue;
       }
       const PairAccuracy& a = row.pairs[p];
       pairsCsv << ',' << a.poses << ',' << a.comparedPoses << ',' << a.contactMismatches;
       for (double v : {a.penetrationErrorP50, a.penetrationErrorP99, a.penetrationErrorMax, a.normalErrorP50,
-                       a.normalErrorP99})
+                       a.normalErrorP99, a.agreementP99})
         pairsCsv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
       pairsCsv << '\n';
     }
@@ -283,19 +290,24 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
      << report.reference << ". Time: the haptic step of each setting's own run (µs) and one target query at the "
      << "poses (µs), split into its broad phase alone (the search for candidates: shell points in bone, triangles in "
         "reach) and the rest. Contact mismatches: poses where one side finds no contact and the other one deeper than "
-        "0.1 mm. "
-        "Pareto: no other setting is both faster (step p50) and more accurate (penetration error p99).\n\n"
+        "0.1 mm. Compared poses: those where the setting or the reference finds a contact (a pose neither touches "
+        "says nothing of accuracy), so their count differs between settings. Agreement: the penetration's p99 "
+        "difference from the reference setting's own answers, beside the error against the reference. "
+        "Pareto front, one rule for every setting that ran (the reference setting too when the reference is exact; "
+        "when the reference is that setting, it has no error by definition and takes no part): a setting is on the "
+        "front when no other is at least as fast (step p50) and as accurate (penetration error p99) and better in "
+        "one.\n\n"
      << "Motion: every setting runs on the same device input. The reference setting's run reads its devices as "
         "the scene says (a scripted path planned against its own model, a replay, a simulated hand) and its input is "
         "recorded (motion.DEVICE.csv in this folder); every other setting's devices replay that input instead of "
         "their own, sample for sample, so the step times, force steps and removed bone of every row come from one "
         "motion. A device whose motion answers the force (a simulated hand) is replayed open loop in the other "
         "settings, as it moved in the reference's run.\n\n"
-     << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | contact mismatches | "
+     << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | agreement p99 (mm) | contact mismatches | "
         "step p50 / p99 (µs) | query p50 / p99 (µs) | broad + narrow p50 (µs) | dF p99 / max (N) | proxy inside | NaN "
         "| "
         "removed | Pareto |\n"
-     << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+     << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   for (const StudyRow& row : report.rows) {
     md << "| " << row.setting.index + 1 << " | " << row.setting.label() << (row.isReference ? " (reference)" : "")
        << " | ";
@@ -303,11 +315,12 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
       std::string oneLine = row.error;
       for (char& c : oneLine)
         if (c == '\n' || c == '|') c = c == '|' ? '/' : ' ';
-      md << "failed: " << oneLine << " | | | | | | | | | | |\n";
+      md << "failed: " << oneLine << " | | | | | | | | | | | |\n";
       continue;
     }
     md << format(row.penetrationErrorP50, 3) << " / " << format(row.penetrationErrorP99, 3) << " | "
-       << format(row.normalErrorP50, 2) << " / " << format(row.normalErrorP99, 2) << " | " << row.contactMismatches
+       << format(row.normalErrorP50, 2) << " / " << format(row.normalErrorP99, 2) << " | "
+       << format(row.agreementP99, 3) << " | " << row.contactMismatches
        << " of " << row.comparedPoses << " | " << format(row.runValue("step_p50_us"), 1) << " / "
        << format(row.runValue("step_p99_us"), 1) << " | " << format(row.queryP50, 1) << " / " << format(row.queryP99, 1)
        << " | " << format(row.broadP50, 1) << " + " << format(row.narrowP50, 1) << " | "

@@ -3,8 +3,11 @@
 // study.csv (a row per setting) and study.md (the same as a table).
 // Accuracy, for every tool and target that touched (a pair): at each of the
 // pair's poses, the penetration and normal of the setting's target against
-// the reference: the exact contact when the target has an exact shape (a
-// phantom) and the tool is a sphere, else the reference setting's own answer.
+// the reference: the exact contact when the tool is a sphere (a phantom's
+// closed form, a scan's interpolated isosurface, a mesh's boundary
+// triangles), else the reference setting's own answer; and, beside it, the
+// agreement with the reference setting.
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -18,6 +21,8 @@ struct PairAccuracy {
   int poses = 0, comparedPoses = 0, contactMismatches = 0;
   double penetrationErrorP50 = 0, penetrationErrorP99 = 0, penetrationErrorMax = 0;  // mm
   double normalErrorP50 = 0, normalErrorP99 = 0;                                     // deg
+  // Penetration disagreement with the reference setting's answers (p99), whatever the reference is.
+  double agreementP99 = std::nan("");  // mm
 };
 
 // A tool and a target that touched in the reference's run, and what its

@@ -18,7 +18,10 @@
 #include "framework/geometry/ShellTool.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/runtime/Scheduler.h"
+#include "framework/geometry/DeformableMesh.h"
 #include "tools/trephine/study/ExactSphereContact.h"
+#include "tools/trephine/study/MeshSurfaceReference.h"
+#include "tools/trephine/study/ScanIsosurface.h"
 #include "tools/trephine/study/StudyTable.h"
 
 namespace trephine::study {
@@ -29,6 +32,11 @@ namespace {
 struct SettingError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// mm: the ray step of the search on a scan's isosurface (a twentieth of a
+// 1 mm voxel), and how many poses its convergence is checked at.
+constexpr double kScanStep = 0.05;
+constexpr size_t kConvergencePoses = 20;
 
 struct StudyPose {
   std::string kind;    // "proxy" or "device"
@@ -184,26 +192,66 @@ std::string number(double value) {
   return s.str();
 }
 
-// The exact contact at every pose, or why there is none.
-std::string addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const ShellTool& tool) {
-  const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
-  if (!source) return targetComponent.path() + " (" + targetComponent.typeName() + ") gives no exact shape";
-  const LevelSet shape = source->exactShape();
-  if (!shape)
-    return targetComponent.path() + " is read from a file (a scan or a mesh), which has no closed form; a phantom "
-           "(file=\"phantom:...\") has one";
+// The exact contact at every pose of one tool on one target, and what the
+// reference is (`description`), or why there is none (returned). The
+// reference is independent of every back-end and of the setting: a
+// phantom's closed form; a scan's isosurface of its trilinearly interpolated
+// density, read again from its file, by root finding (with a convergence
+// check); a mesh's boundary triangles at rest, by exact distance.
+std::string addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const ShellTool& tool,
+                             std::string& description) {
   // The exact contact is that of a sphere: only for a spherical tool.
   if (tool.boundingRadius() != tool.leadingRadius())
     return "the tool is not a sphere (its bounding radius " + number(tool.boundingRadius()) + " mm, its burr's " +
            number(tool.leadingRadius()) + " mm): the exact contact is a sphere's";
-  for (StudyPose& pose : poses) {
-    const ExactSphereContact exact = exactSphereContact(shape, pose.position, tool.leadingRadius());
-    pose.exactPenetration = std::max(0.0, exact.penetration);
-    pose.exactNormal = exact.normal;
+  const double radius = tool.leadingRadius();
+  const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
+  if (const LevelSet shape = source ? source->exactShape() : LevelSet{}) {
+    for (StudyPose& pose : poses) {
+      const ExactSphereContact exact = exactSphereContact(shape, pose.position, radius);
+      pose.exactPenetration = std::max(0.0, exact.penetration);
+      pose.exactNormal = exact.normal;
+    }
+    description = "the exact shape of the phantom";
+    return "";
   }
-  return "";
+  if (const std::optional<ScanAsRead> scan = source ? source->scanAsRead() : std::nullopt) {
+    const LevelSet isosurface = scanIsosurface(*scan);
+    for (StudyPose& pose : poses) {
+      const ExactSphereContact exact = exactSphereContact(isosurface, pose.position, radius, kScanStep);
+      pose.exactPenetration = std::max(0.0, exact.penetration);
+      pose.exactNormal = exact.normal;
+    }
+    // Convergence: the same search with a step a quarter as long, at up to
+    // kConvergencePoses poses spread over the pair's.
+    double largest = 0;
+    const size_t checked = std::min(poses.size(), kConvergencePoses);
+    for (size_t j = 0; j < checked; ++j) {
+      const StudyPose& pose = poses[j * poses.size() / checked];
+      const double finer = std::max(0.0, exactSphereContact(isosurface, pose.position, radius, kScanStep / 4).penetration);
+      largest = std::max(largest, std::abs(finer - pose.exactPenetration));
+    }
+    const Vec3& spacing = scan->volume->spacing();
+    description = "the isosurface at " + number(scan->isovalue) + " of the scan's density interpolated trilinearly (" +
+                  number(spacing.x()) + " x " + number(spacing.y()) + " x " + number(spacing.z()) +
+                  " mm voxels, as its file holds them), found by root finding along rays in double precision; "
+                  "with a step a quarter as long the penetration changed by at most " +
+                  number(largest) + " mm at " + std::to_string(checked) + " poses";
+    return "";
+  }
+  if (const auto* deformable = dynamic_cast<const DeformableMesh*>(&targetComponent)) {
+    const BoundarySurface surface = boundarySurface(deformable->mesh());
+    for (StudyPose& pose : poses) {
+      const ExactSphereContact exact = meshSphereContact(surface, pose.position, radius);
+      pose.exactPenetration = std::max(0.0, exact.penetration);
+      pose.exactNormal = exact.normal;
+    }
+    description = "the mesh's " + std::to_string(surface.triangles.size()) +
+                  " boundary triangles at rest, by exact point-to-triangle distance (inside by the winding number)";
+    return "";
+  }
+  return targetComponent.path() + " (" + targetComponent.typeName() + ") is neither a phantom, a scan nor a mesh";
 }
-
 
 void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses, const std::string& study) {
   std::ostringstream s;
@@ -424,17 +472,26 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
       auto probed = load(options, setting);
       std::vector<StudyPose> poses;
       std::string noExactShape;  // why, per pair, for study.md (none: the exact shape)
+      std::string references;    // what the exact reference is, per pair
       for (const ContactPair& pair : pairs) {
         std::vector<StudyPose> ofPair = posesOfPair(*simulation, pair, options.posesPerKind);
         const Component* target = probed->scene().findComponent(pair.target);
         if (!target) throw SettingError(pair.target + ": no component there in a fresh load of the scene");
-        const std::string why = addExactContacts(ofPair, *target, findTool(*probed, pair.tool));
+        std::string description;
+        const std::string why = addExactContacts(ofPair, *target, findTool(*probed, pair.tool), description);
         if (!why.empty()) noExactShape += pair.tool + " on " + pair.target + ": " + why + "\n";
+        if (!description.empty()) references += pair.tool + " on " + pair.target + ": " + description + "\n";
         poses.insert(poses.end(), ofPair.begin(), ofPair.end());
       }
       writeMotion(*simulation, options.out);
       writePoses(posesFile, poses, options.studyId);
       std::filesystem::remove(options.out / kNoExactShapeFile, ec);
+      std::filesystem::remove(options.out / kReferencesFile, ec);
+      if (!references.empty()) {
+        AtomicFile what(options.out / kReferencesFile);
+        what.write(references);
+        what.commit();
+      }
       if (!noExactShape.empty()) {
         AtomicFile why(options.out / kNoExactShapeFile);
         why.write(noExactShape);

@@ -47,6 +47,9 @@ inline constexpr const char* kMotionFilePrefix = "motion";
 // Written by the reference's run when a tool and target it studies have no
 // exact contact: a line "TOOL on TARGET: why" for each such pair.
 inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
+// Written by the reference's run for the pairs it has an exact contact for:
+// a line "TOOL on TARGET: what the reference is" for each.
+inline constexpr const char* kReferencesFile = "references.txt";
 inline constexpr const char* kResultFile = "result.csv";
 inline constexpr const char* kErrorFile = "error.txt";
 
