@@ -6,7 +6,8 @@ usage: tools/plot_study.py DIR/study.csv [--budget-us US]
 Writes DIR/pareto.png: for every setting that ran, time per haptic frame
 (median, with a bar to its p99) against the penetration error at the study's
 poses (p99), each point labelled with its setting; the Pareto front (no other
-setting both faster and more accurate) is joined and its points filled; the
+setting as fast and as accurate and better in one) is joined and its points
+filled; a reference setting measured against itself is a cross apart; the
 haptic frame's budget (US, 1000 by default: a 1 kHz loop) is a dashed line.
 """
 import csv
@@ -50,25 +51,32 @@ def main(argv):
     points = []
     for r in rows:
         t50, t99, err = number(r["step_p50_us"]), number(r["step_p99_us"]), number(r["pen_err_p99_mm"])
+        # A reference setting measured against itself (no exact reference) has
+        # no error by definition and takes no part in the front: drawn apart.
+        itself = r.get("reference") == "1" and r.get("exact_reference", "1") != "1"
         if math.isfinite(t50) and math.isfinite(err):
-            points.append((t50, t99, err, r["setting"] + ": " + r["label"], r["pareto"] == "1"))
+            points.append((t50, t99, err, r["setting"] + ": " + r["label"], r["pareto"] == "1", itself))
     if not points:
         sys.exit(f"plot_study.py: {source}: no setting with both a time and an error")
-    fig, ax = plt.subplots(figsize=(8, 6.2))
-    for t50, t99, err, label, on_front in points:
-        ax.errorbar([t50], [err], xerr=[[0], [max(0.0, t99 - t50)]], fmt="o", color="C0" if on_front else "C7",
-                    mfc="C0" if on_front else "white", capsize=3)
+    fig, ax = plt.subplots(figsize=(8, 7.0))
+    for t50, t99, err, label, on_front, itself in points:
+        ax.errorbar([t50], [err], xerr=[[0], [max(0.0, t99 - t50)]], fmt="x" if itself else "o",
+                    color="C0" if on_front else "C3" if itself else "C7", mfc="C0" if on_front else "white",
+                    capsize=3)
         ax.annotate(label, (t50, err), textcoords="offset points", xytext=(5, 4), fontsize=7)
     front = sorted((p for p in points if p[4]), key=lambda p: p[0])
     if len(front) > 1:
         ax.plot([p[0] for p in front], [p[2] for p in front], "-", color="C0", label="Pareto front")
     # What the markers mean, and the frame's budget.
-    ax.plot([], [], "o", color="C0", label="on the front: no setting both faster and more accurate")
+    ax.plot([], [], "o", color="C0",
+            label="on the front: no other setting as fast and as accurate, and better in one")
     ax.plot([], [], "o", color="C7", mfc="white", label="off the front")
+    if any(p[5] for p in points):
+        ax.plot([], [], "x", color="C3", label="the reference setting, measured against itself: not compared")
     ax.axvline(budget_us, color="black", linestyle="--", linewidth=1.0,
                label=f"haptic frame budget ({budget_us:g} µs)")
     # Below the axes, clear of the settings' labels.
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize="small", frameon=False)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=1, fontsize="small", frameon=False)
     ax.set_xscale("log")
     ax.set_xlabel("haptic step (µs): median, bar to p99")
     ax.set_ylabel("penetration error p99 (mm)")

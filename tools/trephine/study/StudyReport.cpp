@@ -238,7 +238,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   csv << "setting,label";
   if (!report.rows.empty())
     for (const auto& [field, value] : report.rows.front().setting.assignments) csv << ',' << csvQuoted(field);
-  csv << ",status,reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
+  csv << ",status,reference,exact_reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
          "normal_err_p50_deg,normal_err_p99_deg,agree_ref_p99_mm,query_p50_us,query_p99_us,broad_p50_us,narrow_p50_us,"
          "candidates_p50";
   for (const std::string& c : runColumns) csv << ',' << c;
@@ -247,7 +247,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
     csv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label());
     for (const auto& [field, value] : row.setting.assignments) csv << ',' << csvQuoted(value);
     csv << ',' << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << (row.isReference ? 1 : 0) << ','
-        << csvQuoted(report.pairs.front().tool) << ',' << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
+        << (report.pairs.front().exact ? 1 : 0) << ',' << csvQuoted(report.pairs.front().tool) << ',' << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
     for (double v : {row.penetrationErrorP50, row.penetrationErrorP99, row.penetrationErrorMax, row.normalErrorP50,
                      row.normalErrorP99, row.agreementP99, row.queryP50, row.queryP99, row.broadP50, row.narrowP50,
                      row.candidatesP50})
