@@ -117,8 +117,13 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
     // benchmarks compare times, within one run).
     EXPECT_GT(number(row, "broad_p50_us"), 0);
     EXPECT_GT(number(row, "candidates_p50"), 0);
-    for (const char* file : {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv"})
+    for (const char* file : {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv", "timing-2.csv",
+                             "timing-3.csv"})
       EXPECT_TRUE(std::filesystem::exists(dir / "study/settings" / ("00" + row.at("setting")) / file)) << file;
+    // Three runs by default, the step the median of their medians.
+    EXPECT_EQ(number(row, "timing_runs"), 3) << row.at("label");
+    EXPECT_LE(number(row, "step_p50_min_us"), number(row, "step_p50_us"));
+    EXPECT_GE(number(row, "step_p50_max_us"), number(row, "step_p50_us"));
   }
   // Halving the voxel size shrinks the error, whatever the shell (0.06 to
   // 0.08 mm at 1 mm voxels, 0.02 to 0.03 mm at 0.5 mm measured).
@@ -136,6 +141,10 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
   }
   const std::string table = test::readFile(dir / "study/study.md");
   EXPECT_NE(table.find("| 4 | file=phantom:halfspace?voxel=0.5"), std::string::npos) << table;
+  EXPECT_NE(table.find("the medians over 3 runs of each setting, interleaved"), std::string::npos) << table;
+  EXPECT_NE(table.find("Machine: "), std::string::npos) << table;
+  for (int round = 2; round <= 3; ++round)
+    EXPECT_NE(out.find("timing round " + std::to_string(round) + " of 3: 4 settings"), std::string::npos) << out;
 }
 
 // trace.csv's device columns (device_x, device_y, device_z), a row a frame, as written.
@@ -393,8 +402,9 @@ TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) 
   const std::string voxels =
       "/patient/skull.file=phantom:halfspace?voxel=1.4&nx=0.3&ny=0.2&nz=0.93&size=40,"
       "phantom:halfspace?voxel=0.7&nx=0.3&ny=0.2&nz=0.93&size=40";
+  // One run a setting: this test is of the pairs, not of the timing.
   std::vector<std::string> args = {"study", scene.string(), "--vary", backends, "--vary", voxels,
-                                   "--poses", "40", "--jobs", "2"};
+                                   "--poses", "40", "--jobs", "2", "--repeat", "1"};
   std::string out;
   auto studyArgs = args;
   studyArgs.insert(studyArgs.end(), {"--out", (dir / "study").string()});
@@ -450,6 +460,15 @@ TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
   EXPECT_EQ(runProgram({"study", scene.string(), "--out", dir.path().string()}, &out), 2) << "no --vary";
   EXPECT_NE(out.find("at least one --vary"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=1,,2"}, &out), 2);
+  for (const char* repeat : {"0", "21", "x"}) {
+    EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162,466", "--repeat", repeat,
+                          "--out", (dir / "r").string()},
+                         &out),
+              2)
+        << repeat << ": " << out;
+    EXPECT_NE(out.find("--repeat"), std::string::npos) << out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "r/settings")) << "nothing is run";
   // A billion settings (four fields of 180 values): a usage error at once, not an abort on memory.
   std::string values;
   for (int v = 1; v <= 180; ++v) values += (v > 1 ? "," : "") + std::to_string(v);

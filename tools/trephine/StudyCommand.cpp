@@ -36,7 +36,7 @@ namespace {
 constexpr const char* kUsageLine =
     "usage: trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N] [--duration S]\n"
     "                     [--seed N] [--set path.field=value ...] [--target PATH] [--reference K]\n"
-    "                     [--coarse-reference] [--poses N]\n";
+    "                     [--coarse-reference] [--poses N] [--repeat N]\n";
 
 // This process's place among the ranks of an MPI launch (mpirun sets these
 // variables; Open MPI, then MPICH and Intel MPI): rank 0 of 1 otherwise.
@@ -72,6 +72,8 @@ std::optional<int> positiveInteger(const Arguments& a, const std::string& option
 
 // Settings a study runs at most (each is a run of its own and a folder).
 constexpr size_t kMostSettings = 10000;
+// Most runs of one setting (--repeat).
+constexpr int kMostRepeats = 20;
 
 // Which study this process is part of. Under mpirun every rank of one launch
 // has the same (Open MPI's job: the launcher's address and its job id, new
@@ -107,7 +109,9 @@ struct StudyRequest {
   std::vector<StudySetting> settings;
   std::vector<std::string> variationTexts;
   int jobs = 1;
+  int repeat = 3;                   // --repeat: runs of each setting, for its timing
   std::optional<int> onlySetting;  // --setting K: run that one here (the study's worker processes)
+  std::optional<int> timingRun;    // --timing-run R (with --setting): that setting's R-th run, timed only
   std::optional<int> describeOnly;  // --describe K: load that one and write what it resolves into --describe-to
   std::string describeTo;
   std::optional<int> askedReference;  // --reference K, 0-based
@@ -165,6 +169,11 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
     error = "--coarse-reference goes with --reference K (the coarser setting meant as the reference)";
   if (auto poses = positiveInteger(a, "--poses", error)) request.options.posesPerKind = *poses;
   if (auto only = positiveInteger(a, "--setting", error)) request.onlySetting = *only - 1;
+  if (auto repeat = positiveInteger(a, "--repeat", error)) request.repeat = *repeat;
+  if (auto run = positiveInteger(a, "--timing-run", error)) request.timingRun = *run;
+  if (request.repeat > kMostRepeats)
+    error = "--repeat " + std::to_string(request.repeat) + ": at most " + std::to_string(kMostRepeats) + " runs a setting";
+  if (request.timingRun && !request.onlySetting) error = "--timing-run goes with --setting K";
   if (auto describe = positiveInteger(a, "--describe", error)) request.describeOnly = *describe - 1;
   request.describeTo = a.get("--describe-to").value_or("");
   if (auto id = a.get("--study-id")) {
@@ -187,8 +196,9 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   return request;
 }
 
-// The command line of the worker process that runs setting `index`.
-std::vector<std::string> workerArguments(const StudyRequest& request, int index) {
+// The command line of the worker process that runs setting `index` (its
+// first run, measured in full; or with `timingRun` >= 2, a run timed only).
+std::vector<std::string> workerArguments(const StudyRequest& request, int index, int timingRun = 1) {
   std::vector<std::string> args = {"/proc/self/exe", "study", request.options.scene.string()};
   for (const std::string& v : request.variationTexts) args.insert(args.end(), {"--vary", v});
   for (const std::string& o : request.options.simulation.overrides) args.insert(args.end(), {"--set", o});
@@ -203,6 +213,7 @@ std::vector<std::string> workerArguments(const StudyRequest& request, int index)
   args.insert(args.end(), {"--reference", std::to_string(request.options.referenceIndex + 1), "--poses",
                            std::to_string(request.options.posesPerKind), "--out", request.options.out.string(),
                            "--setting", std::to_string(index + 1), "--study-id", request.options.studyId});
+  if (timingRun > 1) args.insert(args.end(), {"--timing-run", std::to_string(timingRun)});
   return args;
 }
 
@@ -264,6 +275,14 @@ void recordAbnormalEnd(const StudyRequest& request, int index, const std::string
   writeSettingError(directory, request.options.studyId, request.settings[index].label() + ": " + why);
 }
 
+// A timing run whose worker ended without its file: a file that says so, so
+// that the gathering rank does not wait for it.
+void recordFailedTimingRun(const StudyRequest& request, int index, int run, const std::string& why) {
+  const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
+  if (studyOfFile(timingFile(directory, run)) == request.options.studyId) return;  // the worker's own
+  writeTimingFailure(directory, run, request.options.studyId, why);
+}
+
 std::string describeStatus(int status) {
   if (WIFSIGNALED(status)) return "the worker process was ended by signal " + std::to_string(WTERMSIG(status));
   return "the worker process exited with status " + std::to_string(WEXITSTATUS(status)) + " and wrote no result";
@@ -275,6 +294,7 @@ void clearSetting(const StudyRequest& request, int index) {
   const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
   std::error_code ec;
   for (const char* stale : {kProbeFile, kResultFile, kErrorFile}) std::filesystem::remove(directory / stale, ec);
+  for (int run = 2; run <= kMostRepeats; ++run) std::filesystem::remove(timingFile(directory, run), ec);
 }
 
 // This rank's settings done so far, for "setting 3/8 done in 12.4 s; 3 of 8
@@ -330,7 +350,8 @@ std::string settingError(const StudyRequest& request, int index) {
 
 // Runs the settings in worker processes, at most `jobs` at a time, saying
 // when each starts and ends, and the time the study has left.
-void runWorkers(const StudyRequest& request, const std::vector<int>& indices, int jobs, StudyProgress& progress) {
+void runWorkers(const StudyRequest& request, const std::vector<int>& indices, int jobs, StudyProgress& progress,
+                int timingRun = 1) {
   using Steady = std::chrono::steady_clock;
   struct Running {
     int index;
@@ -341,11 +362,18 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
   while (next < indices.size() || !running.empty()) {
     while (next < indices.size() && static_cast<int>(running.size()) < jobs) {
       const int index = indices[next++];
-      std::cout << "setting " << index + 1 << "/" << request.settings.size() << ": " << request.settings[index].label()
-                << std::endl;
-      clearSetting(request, index);
+      if (timingRun == 1) {
+        std::cout << "setting " << index + 1 << "/" << request.settings.size() << ": "
+                  << request.settings[index].label() << std::endl;
+        clearSetting(request, index);
+      }
       int spawnError = 0;
-      const pid_t pid = spawn(workerArguments(request, index), false, &spawnError);
+      const pid_t pid = spawn(workerArguments(request, index, timingRun), false, &spawnError);
+      if (pid < 0 && timingRun > 1) {
+        recordFailedTimingRun(request, index, timingRun,
+                              std::string("the worker process could not start: ") + std::strerror(spawnError));
+        continue;
+      }
       if (pid < 0) {
         recordAbnormalEnd(request, index,
                           std::string("the worker process could not start: ") + std::strerror(spawnError));
@@ -360,8 +388,17 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
     const pid_t ended = waitpid(-1, &status, 0);
     if (ended < 0) {
       if (errno == EINTR) continue;
-      for (const auto& [pid, worker] : running) recordAbnormalEnd(request, worker.index, "its worker process was lost");
+      for (const auto& [pid, worker] : running)
+        if (timingRun > 1)
+          recordFailedTimingRun(request, worker.index, timingRun, "its worker process was lost");
+        else
+          recordAbnormalEnd(request, worker.index, "its worker process was lost");
       running.clear();
+      continue;
+    }
+    if (auto it = running.find(ended); it != running.end() && timingRun > 1) {
+      recordFailedTimingRun(request, it->second.index, timingRun, describeStatus(status));
+      running.erase(it);
       continue;
     }
     if (auto it = running.find(ended); it != running.end()) {
@@ -388,6 +425,16 @@ bool settingDone(const StudyRequest& request, int index) {
   return ofThisStudy(request, directory / kResultFile) || ofThisStudy(request, directory / kErrorFile);
 }
 
+// Its first run done and, when that succeeded, every timing run too.
+bool settingTimed(const StudyRequest& request, int index) {
+  const std::filesystem::path directory = request.options.out / request.settings[index].directoryName();
+  if (ofThisStudy(request, directory / kErrorFile)) return true;
+  if (!ofThisStudy(request, directory / kResultFile)) return false;
+  for (int run = 2; run <= request.repeat; ++run)
+    if (!ofThisStudy(request, timingFile(directory, run))) return false;
+  return true;
+}
+
 void waitFor(const std::function<bool()>& ready) {
   while (!ready()) std::this_thread::sleep_for(std::chrono::milliseconds(200));
 }
@@ -411,6 +458,10 @@ int studyCommand(const Arguments& a) {
     std::cerr << "trephine: " << error << "\n" << kUsageLine;
     return kUsage;
   }
+  if (request->onlySetting && request->timingRun && *request->timingRun > 1)
+    return runTimingRun(request->options, request->settings[*request->onlySetting], *request->timingRun)
+               ? kOk
+               : kRuntimeFailure;
   if (request->onlySetting)
     return runStudySetting(request->options, request->settings[*request->onlySetting]) ? kOk : kRuntimeFailure;
   if (request->describeOnly) {
@@ -488,17 +539,31 @@ int studyCommand(const Arguments& a) {
     return kRuntimeFailure;
   }
   runWorkers(*request, mine, request->jobs, progress);
+  // The timing runs, round by round: each round runs every setting of this
+  // rank that ran once more, on the same motion, so that a machine that
+  // slows down during the study slows every setting alike.
+  std::vector<int> timed;
+  if (ownsReference) timed.push_back(referenceIndex);
+  timed.insert(timed.end(), mine.begin(), mine.end());
+  std::erase_if(timed, [&](int i) {
+    return ofThisStudy(*request, options.out / request->settings[i].directoryName() / kErrorFile);
+  });
+  for (int run = 2; run <= request->repeat && !timed.empty(); ++run) {
+    std::cout << "timing round " << run << " of " << request->repeat << ": " << timed.size() << " settings"
+              << std::endl;
+    runWorkers(*request, timed, request->jobs, progress, run);
+  }
   if (rank.rank != 0) return kOk;
 
   waitFor([&] {
     for (int i = 0; i < count; ++i)
-      if (!settingDone(*request, i)) return false;
+      if (!settingTimed(*request, i)) return false;
     return true;
   });
   std::vector<std::string> written;
   StudyReport report;
   try {
-    report = gatherStudy(options.out, request->settings, referenceIndex, reference.reason);
+    report = gatherStudy(options.out, request->settings, referenceIndex, reference.reason, request->repeat);
     written = writeStudy(report, options.out, options.scene.string());
   } catch (const std::exception& e) {
     std::cerr << "trephine: " << e.what() << "\n";

@@ -70,15 +70,18 @@ const std::vector<Command>& commands() {
       {"study",
        R"(  trephine study SCENE --vary path.field=v1,v2[,...] [--vary ...] [--out DIR] [--jobs N]
                       [--duration S] [--seed N] [--set path.field=value ...] [--target PATH]
-                      [--reference K [--coarse-reference]] [--poses N]
+                      [--reference K [--coarse-reference]] [--poses N] [--repeat N]
       Run the scene once per setting of the varied fields (their cartesian
-      product, the first field varying slowest) on the same device motion, and
-      compare, for every tool on every target it touched (--target: that
-      target only): the penetration and normal at the same tool poses (2N
-      from the reference setting's frames where they touched, default
-      N = 200) against the exact shape of a phantom, or against the
-      reference setting where there is none; force steps, proxy inside, NaN;
-      time per frame. The reference is the setting that resolves every
+      product, the first field varying slowest) on the same device motion
+      (the reference setting's, replayed by every other), and compare, for
+      every tool on every target it touched (--target: that target only):
+      the penetration and normal at the same tool poses (2N from the
+      reference setting's frames where they touched, default N = 200)
+      against a reference no setting computes (a phantom's exact shape, a
+      scan's interpolated isosurface, a mesh's boundary triangles; for a
+      tool that is not a sphere, the reference setting); force steps, proxy
+      inside, NaN; time per frame, over --repeat runs of each setting
+      (default 3, interleaved: each round runs every setting once). The reference is the setting that resolves every
       target and tool finest (voxels, tetrahedra, shell spacing), else
       setting 1; --reference K names another, refused when it is coarser
       than another setting unless --coarse-reference. Writes study.csv (the
@@ -90,7 +93,7 @@ const std::vector<Command>& commands() {
       system).
 )",
        {"--vary", "--out", "--jobs", "--duration", "--seed", "--set", "--target", "--reference", "--poses",
-        "--setting", "--describe", "--describe-to", "--study-id"},
+        "--repeat", "--setting", "--timing-run", "--describe", "--describe-to", "--study-id"},
        {"--coarse-reference"},
        studyCommand},
       {"components",

@@ -6,6 +6,9 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
+
+#include <sys/utsname.h>
 
 #include "framework/core/AtomicFile.h"
 #include "framework/math/Math.h"
@@ -110,6 +113,62 @@ std::string csvQuoted(const std::string& text) {
   return quoted + "\"";
 }
 
+// The processor, its cores, the system and the build, for study.md.
+std::string machineDescription() {
+  std::string model = "an unknown processor";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  std::ostringstream text;
+  text << model << ", " << std::thread::hardware_concurrency() << " logical cores";
+  utsname system{};
+  if (uname(&system) == 0) text << ", " << system.sysname << " " << system.release;
+  text << "; trephine built " << TREPHINE_BUILD_TYPE << " by "
+#if defined(__clang__)
+       << "clang " << __clang_version__;
+#elif defined(__GNUC__)
+       << "GCC " << __VERSION__;
+#else
+       << "an unknown compiler";
+#endif
+  return text.str();
+}
+
+void setRunValue(StudyRow& row, const std::string& key, double value) {
+  for (auto& [name, text] : row.run)
+    if (name == key) {
+      text = format(value, 6);
+      return;
+    }
+  row.run.emplace_back(key, format(value, 6));
+}
+
+double median(std::vector<double> values) { return percentile(std::move(values), 0.5); }
+
+// The step p50 and p99 of the row become the medians over its runs (the
+// first, then each timing-R.csv that completed); the spread of the p50 and
+// the count of runs are kept beside them.
+void combineTimingRuns(StudyRow& row, const std::filesystem::path& directory, int repeat) {
+  std::vector<double> p50s = {row.runValue("step_p50_us")}, p99s = {row.runValue("step_p99_us")};
+  for (int run = 2; run <= repeat; ++run) {
+    const std::filesystem::path file = timingFile(directory, run);
+    if (!std::filesystem::is_regular_file(file)) continue;
+    const Table timing = readTable(file);
+    if (timing.size() != 2 || toNumber(timing[1][column(timing, "complete", file)]) != 1) continue;
+    p50s.push_back(toNumber(timing[1][column(timing, "step_p50_us", file)]));
+    p99s.push_back(toNumber(timing[1][column(timing, "step_p99_us", file)]));
+  }
+  setRunValue(row, "first_run_step_p50_us", p50s.front());
+  setRunValue(row, "step_p50_us", median(p50s));
+  setRunValue(row, "step_p99_us", median(p99s));
+  setRunValue(row, "step_p50_min_us", *std::min_element(p50s.begin(), p50s.end()));
+  setRunValue(row, "step_p50_max_us", *std::max_element(p50s.begin(), p50s.end()));
+  setRunValue(row, "timing_runs", double(p50s.size()));
+}
+
 }  // namespace
 
 double StudyRow::runValue(const std::string& name) const {
@@ -119,8 +178,9 @@ double StudyRow::runValue(const std::string& name) const {
 }
 
 StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
-                        int referenceIndex, const std::string& referenceChoice) {
+                        int referenceIndex, const std::string& referenceChoice, int repeat) {
   StudyReport report;
+  report.repeat = repeat;
   const std::filesystem::path posesFile = out / kPosesFile;
   const Table poses = readTable(posesFile);
   const size_t toolColumn = column(poses, "tool", posesFile), targetColumn = column(poses, "target", posesFile);
@@ -217,6 +277,7 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
       const Table result = readTable(directory / kResultFile);
       if (result.size() != 2) throw std::runtime_error((directory / kResultFile).string() + ": expected one row");
       for (size_t c = 0; c < result[0].size(); ++c) row.run.emplace_back(result[0][c], result[1][c]);
+      combineTimingRuns(row, directory, repeat);
     } catch (const std::exception& e) {
       row.error = e.what();
     }
@@ -287,7 +348,9 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   md << "# Study of " << scene << "\n\n"
      << "Accuracy of " << report.pairs.front().tool << " on " << report.pairs.front().target << " at " << poses
      << " tool poses (proxy and device positions of the reference setting's frames where they touched), against "
-     << report.reference << ". Time: the haptic step of each setting's own run (µs) and one target query at the "
+     << report.reference << ". Time: the haptic step of each setting's runs (µs; the medians over " << report.repeat
+     << " runs of each setting, interleaved: every setting ran once in each round, the first run with its accuracy "
+        "probe, the others timed only; the range is that of the runs' p50) and one target query at the "
      << "poses (µs), split into its broad phase alone (the search for candidates: shell points in bone, triangles in "
         "reach) and the rest. Contact mismatches: poses where one side finds no contact and the other one deeper than "
         "0.1 mm. Compared poses: those where the setting or the reference finds a contact (a pose neither touches "
@@ -297,6 +360,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
         "when the reference is that setting, it has no error by definition and takes no part): a setting is on the "
         "front when no other is at least as fast (step p50) and as accurate (penetration error p99) and better in "
         "one.\n\n"
+     << "Machine: " << machineDescription() << ".\n\n"
      << "Motion: every setting runs on the same device input. The reference setting's run reads its devices as "
         "the scene says (a scripted path planned against its own model, a replay, a simulated hand) and its input is "
         "recorded (motion.DEVICE.csv in this folder); every other setting's devices replay that input instead of "
@@ -304,7 +368,7 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
         "motion. A device whose motion answers the force (a simulated hand) is replayed open loop in the other "
         "settings, as it moved in the reference's run.\n\n"
      << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | agreement p99 (mm) | contact mismatches | "
-        "step p50 / p99 (µs) | query p50 / p99 (µs) | broad + narrow p50 (µs) | dF p99 / max (N) | proxy inside | NaN "
+        "step p50 / p99 (p50's range, runs) (µs) | query p50 / p99 (µs) | broad + narrow p50 (µs) | dF p99 / max (N) | proxy inside | NaN "
         "| "
         "removed | Pareto |\n"
      << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
@@ -322,7 +386,8 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
        << format(row.normalErrorP50, 2) << " / " << format(row.normalErrorP99, 2) << " | "
        << format(row.agreementP99, 3) << " | " << row.contactMismatches
        << " of " << row.comparedPoses << " | " << format(row.runValue("step_p50_us"), 1) << " / "
-       << format(row.runValue("step_p99_us"), 1) << " | " << format(row.queryP50, 1) << " / " << format(row.queryP99, 1)
+       << format(row.runValue("step_p99_us"), 1) << " (" << format(row.runValue("step_p50_min_us"), 1) << " to "
+       << format(row.runValue("step_p50_max_us"), 1) << ", " << format(row.runValue("timing_runs"), 0) << " runs) | " << format(row.queryP50, 1) << " / " << format(row.queryP99, 1)
        << " | " << format(row.broadP50, 1) << " + " << format(row.narrowP50, 1) << " | "
        << format(row.runValue("force_step_p99_N"), 3) << " / " << format(row.runValue("force_step_max_N"), 3) << " | "
        << format(row.runValue("proxy_inside_frames"), 0) << " | " << format(row.runValue("nan_frames"), 0) << " | "

@@ -47,6 +47,7 @@ struct StudyRow : PairAccuracy {  // the accuracy of the studied pair (the first
 };
 
 struct StudyReport {
+  int repeat = 1;  // runs of each setting asked for
   std::string reference;  // the studied pair's (the first): "the exact shape ..." or "setting N (label): why"
   std::vector<StudiedPair> pairs;
   std::vector<StudyRow> rows;
@@ -55,8 +56,10 @@ struct StudyReport {
 // Reads what the settings wrote; throws std::runtime_error naming the file
 // when poses.csv is missing or malformed. `referenceChoice`: why the
 // reference setting is the one it is (for the report), e.g. "the finest".
+// `repeat`: the runs of each setting; its step p50 and p99 are the medians
+// over them (the first run's result.csv and timing-R.csv for the rest).
 StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
-                        int referenceIndex, const std::string& referenceChoice = "");
+                        int referenceIndex, const std::string& referenceChoice = "", int repeat = 1);
 
 // Writes study.csv (the studied pair's accuracy), pairs.csv (a row per
 // setting and pair) and study.md into `out`; returns their names.

@@ -419,7 +419,58 @@ void writeResult(const Simulation& simulation, const std::filesystem::path& file
   out.commit();
 }
 
+// A timing file: one row of the run's step times, or why it failed.
+void writeTiming(const std::filesystem::path& file, bool complete, const TimingSummary& step, double wall,
+                 const std::string& why, const std::string& study) {
+  std::string reason = why;
+  for (char& c : reason)
+    if (c == ',' || c == '\n' || c == '"') c = ' ';
+  std::ostringstream s;
+  s << "complete,step_p50_us,step_p99_us,wall_s,error,study\n"
+    << (complete ? 1 : 0) << ',' << number(complete ? step.p50 : std::nan("")) << ','
+    << number(complete ? step.p99 : std::nan("")) << ',' << number(wall) << ',' << reason << ',' << study << '\n';
+  AtomicFile out(file);
+  out.write(s.str());
+  out.commit();
+}
+
 }  // namespace
+
+std::filesystem::path timingFile(const std::filesystem::path& settingDirectory, int run) {
+  return settingDirectory / ("timing-" + std::to_string(run) + ".csv");
+}
+
+void writeTimingFailure(const std::filesystem::path& directory, int run, const std::string& studyId,
+                        const std::string& why) {
+  try {
+    writeTiming(timingFile(directory, run), false, {}, std::nan(""), why, studyId);
+  } catch (const std::exception& e) {
+    std::cerr << "trephine: " << why << "; and the timing file cannot be written: " << e.what() << "\n";
+  }
+}
+
+bool runTimingRun(const StudyOptions& options, const StudySetting& setting, int run) {
+  std::filesystem::path directory;
+  try {
+    directory = settingFolder(options.out, setting);
+  } catch (const FileWriteError& e) {
+    std::cerr << "trephine: " << setting.label() << ": " << e.what() << "\n";
+    return false;
+  }
+  try {
+    auto simulation = load(options, setting);
+    replayReferenceMotion(*simulation, options.out);
+    simulation->run();
+    if (!simulation->complete()) throw SettingError("run incomplete: " + simulation->incompleteReason());
+    const RateGroup* group = hapticGroup(*simulation);
+    writeTiming(timingFile(directory, run), true, group ? group->stepHistogram.summary() : TimingSummary{},
+                simulation->wallTime(), "", options.studyId);
+    return true;
+  } catch (const std::exception& e) {
+    writeTimingFailure(directory, run, options.studyId, e.what());
+    return false;
+  }
+}
 
 std::filesystem::path settingFolder(const std::filesystem::path& out, const StudySetting& setting) {
   return OutputFolder::create(out).subfolder(setting.directoryName()).path();

@@ -51,11 +51,21 @@ inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
 // a line "TOOL on TARGET: what the reference is" for each.
 inline constexpr const char* kReferencesFile = "references.txt";
 inline constexpr const char* kResultFile = "result.csv";
+// timing-R.csv: the R-th run (R >= 2) of a setting, timed only.
+std::filesystem::path timingFile(const std::filesystem::path& settingDirectory, int run);
 inline constexpr const char* kErrorFile = "error.txt";
 
 // Returns true when the setting ran to completion and its files are written;
 // otherwise error.txt says why.
 bool runStudySetting(const StudyOptions& options, const StudySetting& setting);
+// The `run`-th run of a setting (run >= 2), after its first succeeded:
+// loaded fresh, on the reference's motion, timed only (nothing of the run is
+// written but timing-R.csv: complete, step p50 and p99, wall time, or why it
+// failed). Returns whether it completed.
+bool runTimingRun(const StudyOptions& options, const StudySetting& setting, int run);
+// Writes timing-R.csv of a run that failed, with why.
+void writeTimingFailure(const std::filesystem::path& directory, int run, const std::string& studyId,
+                        const std::string& why);
 
 // The folder of `setting` in the study's `out`, made when missing and
 // reached without following a link (a `settings/002` planted as a link to
