@@ -184,8 +184,13 @@ bool EmbreeScene::attachBlock(size_t index) {
 
 void EmbreeScene::rebuildBlocks(std::span<const size_t> changed) {
   if (!m_scene) return;
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   for (const size_t b : changed) m_counts.failedBlocks += attachBlock(b) ? 0 : 1;
+  const auto built = Clock::now();
   if (!changed.empty()) rtcCommitScene(m_scene);
+  m_counts.blockBuildMs += std::chrono::duration<double, std::milli>(built - start).count();
+  m_counts.topBuildMs += std::chrono::duration<double, std::milli>(Clock::now() - built).count();
   m_counts.rebuiltBlocks += changed.size();
 }
 

@@ -56,7 +56,11 @@ std::optional<SurfaceHit> MeshVoxelBackend::raycast(const Vec3& origin, const Ve
 
 void MeshVoxelBackend::dataChanged(const std::array<int64_t, 3>& first, const std::array<int64_t, 3>& last) {
   if (m_engine->empty()) return;
-  m_engine->rebuildBlocks(m_surface.update(*m_data.grid, first, last, m_data.grid->cellsWithoutSurface()));
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<size_t> changed = m_surface.update(*m_data.grid, first, last, m_data.grid->cellsWithoutSurface());
+  m_engine->counts().extractMs +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m_engine->rebuildBlocks(changed);
 }
 
 void MeshVoxelBackend::reportCounters(std::vector<Counter>& counters) const { m_engine->reportCounters(counters); }
