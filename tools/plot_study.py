@@ -86,6 +86,64 @@ def main(argv):
     out = source.with_name("pareto.png")
     save_figure(fig, out, dpi=120)
     print(out)
+    pairs_png = plot_pairs(source.with_name("pairs.csv"), rows, budget_us)
+    if pairs_png:
+        print(pairs_png)
+
+
+def front_of(points):
+    """The points (time, error) no other is at least as good as in both and better in one."""
+    return [p for p in points
+            if not any(q[0] <= p[0] and q[1] <= p[1] and (q[0] < p[0] or q[1] < p[1]) for q in points)]
+
+
+def plot_pairs(pairs_csv, rows, budget_us):
+    """pairs.png: a panel per tool and target, when the study has more than one."""
+    if not pairs_csv.exists():
+        return None
+    with open(pairs_csv, newline="") as f:
+        pairs = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    names = []
+    for r in pairs:
+        name = (r["tool"], r["target"])
+        if name not in names:
+            names.append(name)
+    if len(names) < 2:
+        return None
+    step = {r["setting"]: number(r["step_p50_us"]) for r in rows}
+    reference = {r["setting"] for r in rows if r.get("reference") == "1"}
+    fig, axes = plt.subplots(1, len(names), figsize=(5.2 * len(names), 4.8), squeeze=False)
+    for ax, (tool, target) in zip(axes[0], names):
+        points = []
+        for r in pairs:
+            if (r["tool"], r["target"]) != (tool, target):
+                continue
+            t, err = step.get(r["setting"], math.nan), number(r["pen_err_p99_mm"])
+            itself = r["exact_reference"] != "1" and r["setting"] in reference
+            if math.isfinite(t) and math.isfinite(err):
+                points.append((t, err, r["setting"], itself))
+        competing = [(p[0], p[1]) for p in points if not p[3]]
+        front = set(front_of(competing))
+        for t, err, setting, itself in points:
+            on = (t, err) in front and not itself
+            ax.plot([t], [err], "x" if itself else "o", color="C0" if on else "C3" if itself else "C7",
+                    mfc="C0" if on else "white")
+            ax.annotate(setting, (t, err), textcoords="offset points", xytext=(4, 3), fontsize=7)
+        line = sorted(front)
+        if len(line) > 1:
+            ax.plot([p[0] for p in line], [p[1] for p in line], "-", color="C0")
+        ax.axvline(budget_us, color="black", linestyle="--", linewidth=1.0)
+        ax.set_xscale("log")
+        ax.set_title(f"{tool} on {target}", fontsize=9)
+        ax.set_xlabel("haptic step p50 (µs)")
+        ax.set_ylabel("penetration error p99 (mm)")
+        ax.grid(True, which="both", alpha=0.3)
+    fig.suptitle("Every tool on every target it touched (numbers: the settings of study.csv; filled: on the "
+                 "front; x: the reference setting measured against itself)", fontsize=9)
+    fig.tight_layout()
+    out = pairs_csv.with_name("pairs.png")
+    save_figure(fig, out, dpi=110)
+    return out
 
 
 if __name__ == "__main__":

@@ -49,17 +49,20 @@ TriangleContact EmbreeEngine::contact(const Pose& X_WT, std::span<const ShellPoi
   ShellContact& contact = result.contact;
   const Eigen::Matrix3d R = X_WT.orientation.toRotationMatrix();
   Vec3 weighted = Vec3::Zero();
+  double deepest = 0;  // mm: the deepest point's triangle is where the contact acts (a brain's force sites)
   for (size_t i = 0; i < shell.size(); ++i) {
     s.depths[i] = 0;
     const Vec3 p = R * shell[i].position + X_WT.position;
     if (!s.scene.inside(p)) continue;
     Vec3 closest = Vec3::Zero();
     double d = 0;
-    if (!s.scene.closest(p, 2 * reserved->radius, closest, d) || !(d > 0)) continue;
+    TriangleRef which;
+    if (!s.scene.closest(p, 2 * reserved->radius, closest, d, nullptr, &which) || !(d > 0)) continue;
     s.depths[i] = d;
     s.normals[i] = (closest - p) / d;
     weighted += d * s.normals[i];
     ++contact.points;
+    if (d > deepest) deepest = d, result.nearest = which, result.nearestPoint = closest;
   }
   if (contact.points == 0) return result;
   contact.normal = weighted.norm() > 1e-12 ? Vec3(weighted.normalized()) : Vec3::Zero();

@@ -59,7 +59,7 @@ void TLEDForceField::init(InitContext& context) {
     // The added mass slows the mesh's dynamics: said at every load, warned of
     // beyond a few percent, refused beyond maxAddedMass.
     const std::string added = "massScaling added " + percent(addedMassFraction()) +
-                              "% of the mesh's mass to " + std::to_string(m_massScaledElements) + " of its " +
+                              " of the mesh's mass to " + std::to_string(m_massScaledElements) + " of its " +
                               std::to_string(m_model->elementCount()) + " elements";
     if (auto problem = addedMassProblem())
       context.error(d_massScaling, *problem);

@@ -30,10 +30,10 @@ void MeshTetBackend::bind(const TetData& data) {
 }
 
 void MeshTetBackend::reserveShell(std::span<const ShellPoint> shell) {
-  if (m_engine->reserveShell(shell) == ShellSupport::kPointwise)
-    throw std::runtime_error(owner() +
-                             " takes a spherical burr (every shell point at one radius, as PointshellTool); this "
-                             "tool's shell is not a sphere");
+  // Any shell: a sphere exactly, another point by point (the deepest point's
+  // triangle is where the contact's force acts on the nodes) or through the
+  // solid the tool describes, as the engine takes it.
+  m_engine->reserveShell(shell);
 }
 
 void MeshTetBackend::describeTool(std::span<const ShellPoint> shell, const ToolSolid& solid) {

@@ -5,8 +5,10 @@
 // nodes copied in place every frame and the engine's tree refitted, and
 // rebuilt once the nodes may have moved more than half an average boundary
 // edge since it was built (RefitPolicy). A contact presses on the three
-// nodes of the triangle nearest the burr's centre, so the engine must give
-// that triangle: a shell it takes only point by point is refused. The scale
+// nodes of the triangle the engine names: nearest the burr's centre for a
+// sphere, nearest the deepest shell point for a shell it takes point by
+// point (a capsule on Embree), nearest the solid for one it takes through
+// the tool's solid (Bullet). Every tool shape is taken. The scale
 // of the engine's sphere queries is the brain's: a proxy rests contactDepth
 // deep, sweeps sample every half average edge, and a displayed burr ten
 // contact depths in overlaps (as on the native back-end).

@@ -12,8 +12,12 @@ void TetGridRebuild::init(InitContext& context) {
   TetraBrain& brain = *l_mesh;
   const auto* native = dynamic_cast<const NativeTetBackend*>(brain.backend());
   if (!native || !brain.backend()->adoptsGrids()) {
-    context.error(l_mesh, "rebuilds the native back-end's grids; " + brain.path() +
-                              " uses another back-end, which refits its own tree");
+    // The same scene runs on every back-end (a study varies it): here there
+    // is nothing to rebuild, and the component stays idle.
+    context.note(l_mesh, "rebuilds the native back-end's grids; " + brain.path() +
+                             " uses another back-end, which refits or rebuilds its own tree as the mesh deforms, so "
+                             "this component does nothing");
+    m_idle = true;
     return;
   }
   if (!brain.deformer()) {
@@ -57,6 +61,7 @@ void TetGridRebuild::tick(const TickContext&) {
 }
 
 void TetGridRebuild::reportCounters(std::vector<Counter>& counters) const {
+  counters.push_back({"idle", m_idle ? 1.0 : 0.0});  // the brain's back-end keeps its own tree
   counters.push_back({"rebuilds", double(m_rebuilds)});
   counters.push_back({"longest_build_ms", m_longestBuildMs});
   counters.push_back({"largest_drift_mm", m_largestDrift});  // from the grids' shape when a rebuild began

@@ -9,8 +9,9 @@
 // builds new ones on the current shape (allocating, on its own thread) and
 // publishes them; the brain adopts them at the start of a haptic frame and
 // measures the displacement from their shape, so the queries stay narrow
-// whatever the deformation. Native back-end only (the mesh back-ends refit
-// their own trees).
+// whatever the deformation. For the native back-end only (the mesh back-ends
+// refit their own trees): on another it does nothing, with a note at load,
+// so that one scene runs on every back-end.
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,6 +57,7 @@ class TetGridRebuild final : public Component {
   const NativeTetBackend* m_native = nullptr;
   double m_margin = 0;
   uint64_t m_rebuilds = 0;
+  bool m_idle = false;  // the brain's back-end is not the native one: nothing to rebuild
   double m_longestBuildMs = 0, m_largestDrift = 0;
 };
 

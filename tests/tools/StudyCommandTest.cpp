@@ -241,6 +241,55 @@ TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
   EXPECT_NE(test::readFile(dir / "study/study.md").find("the tool is not a sphere"), std::string::npos);
 }
 
+// Two tools on one target, each rendered by its own renderer (the second
+// writes trace.tool2.force.csv): both are measured, each from its own frames,
+// with its own closed loop.
+TEST(StudyCommandTest, EveryToolIsMeasuredFromItsOwnFrames) {
+  test::TempDir dir("trephine-study-tools");
+  std::string scene = kScene;
+  const std::string second = R"(
+  <Node name="tool2">
+    <ScriptedDevice name="device" path="random-walk" target="@/patient/skull" direction="-0.3 -0.2 -0.93"
+                    tipOffset="2" standoff="1" depth="0.8" radius="3" walkDuration="1" seed="11" center="8 4 0"
+                    record="false" rate="1000"/>
+    <PointshellTool name="probe" radius="2" pointCount="266" device="@device"/>
+    <GodObjectProxy name="proxy" tool="@probe" target="@/patient/skull" sweep="line" rate="1000"/>
+    <ForceFeedback name="force" proxy="@proxy" stiffness="1.0" damping="0.002" maxForce="3.3" rate="1000"
+                   trace="false"/>
+  </Node>
+</Node>)";
+  scene.replace(scene.rfind("</Node>"), 7, second);
+  const auto file = dir.write("two.xml", scene);
+  std::string out;
+  ASSERT_EQ(runProgram({"study", file.string(), "--vary", "/tool/burr.pointCount=162,466", "--out",
+                        (dir / "study").string(), "--poses", "20", "--repeat", "1"},
+                       &out),
+            0)
+      << out;
+  const auto pairs = readStudy(dir / "study/pairs.csv");
+  ASSERT_EQ(pairs.size(), 4u) << "two settings, two tools";
+  for (const auto& row : pairs) {
+    ASSERT_EQ(row.at("status"), "ok");
+    const bool second = row.at("tool") == "/tool2/probe";
+    EXPECT_EQ(row.at("renderer"), second ? "/tool2/force" : "/tool/force");
+    EXPECT_EQ(row.at("exact_reference"), "1") << "spheres on the half-space";
+    EXPECT_EQ(number(row, "poses"), 40);
+    EXPECT_GT(number(row, "compared_poses"), 20) << row.at("tool");
+    EXPECT_GT(number(row, "force_step_p99_N"), 0) << row.at("tool") << ": its own closed loop";
+    EXPECT_EQ(number(row, "proxy_inside_frames"), 0);
+    EXPECT_EQ(number(row, "nan_frames"), 0);
+  }
+  EXPECT_NE(pairs[0].at("tool"), pairs[1].at("tool")) << "each setting has both tools";
+  // A panel a pair, when the plots can be drawn (python3-matplotlib).
+  if (out.find("pareto    ") != std::string::npos) {
+    EXPECT_NE(out.find("pairs     "), std::string::npos) << out;
+    EXPECT_TRUE(std::filesystem::exists(dir / "study/pairs.png"));
+  }
+  // The second tool's poses are its own: near its walk's centre, not the first tool's.
+  const std::string poses = test::readFile(dir / "study/poses.csv");
+  EXPECT_NE(poses.find(",/tool2/probe,/patient/skull,/tool2/force,"), std::string::npos) << poses.substr(0, 400);
+}
+
 // A scan and a mesh read from files have no closed form: every setting, the
 // finest (the reference setting) included, is measured against the data
 // itself (the scan's interpolated isosurface, the mesh's boundary

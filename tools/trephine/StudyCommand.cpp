@@ -439,11 +439,15 @@ void waitFor(const std::function<bool()>& ready) {
   while (!ready()) std::this_thread::sleep_for(std::chrono::milliseconds(200));
 }
 
-// pareto.png from study.csv by tools/plot_study.py (matplotlib); a study
-// without it still has its csv and table.
+// pareto.png from study.csv by tools/plot_study.py (matplotlib), and
+// pairs.png when several tools or targets touched; a study without them
+// still has its csv and tables.
 void drawPareto(const std::filesystem::path& out) {
-  if (runPlotScript("plot_study.py", {(out / "study.csv").string()}, "pareto.png"))
-    std::cout << "pareto    " << (out / "pareto.png").string() << "\n";
+  if (!runPlotScript("plot_study.py", {(out / "study.csv").string()}, "pareto.png")) return;
+  std::cout << "pareto    " << (out / "pareto.png").string() << "\n";
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(out / "pairs.png", ec))
+    std::cout << "pairs     " << (out / "pairs.png").string() << "\n";
 }
 
 }  // namespace
@@ -514,7 +518,8 @@ int studyCommand(const Arguments& a) {
   const StudyOptions& options = request->options;
   const Rank rank = mpiRank();
   if (rank.size == 1)
-    for (const char* stale : {kPosesFile, kNoExactShapeFile, kReferencesFile, "study.csv", "pairs.csv", "study.md", "pareto.png"})
+    for (const char* stale : {kPosesFile, kNoExactShapeFile, kReferencesFile, "study.csv", "pairs.csv", "study.md", "pareto.png",
+                              "pairs.png"})
       std::filesystem::remove(options.out / stale, ec);
 
   const int count = static_cast<int>(request->settings.size());

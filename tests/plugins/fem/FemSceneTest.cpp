@@ -215,6 +215,8 @@ TEST(FemSceneTest, MassScalingIsSaidWarnedOfOrRefusedByHowMuchItAdds) {
   EXPECT_NEAR(percentAfter(test::messages(noted), "massScaling added "), 100 * barAddedMassFraction(small), 1e-3 * 100 * barAddedMassFraction(small))
       << test::messages(noted);
   EXPECT_EQ(test::messages(noted).find("warning:"), std::string::npos) << test::messages(noted);
+  EXPECT_NE(test::messages(noted).find("% of the mesh's mass to "), std::string::npos) << test::messages(noted);
+  EXPECT_EQ(test::messages(noted).find("%%"), std::string::npos) << test::messages(noted);
   Diagnostics warning;
   EXPECT_TRUE(load(warned, "", warning)) << test::messages(warning);
   EXPECT_NEAR(percentAfter(test::messages(warning), "massScaling added "), 100 * barAddedMassFraction(warned), 1e-3 * 100 * barAddedMassFraction(warned))

@@ -71,5 +71,43 @@ TEST(GridRebuildTest, ItNeedsADeformationBeforeIt) {
   EXPECT_NE(test::messages(d).find("place it after the deformation component"), std::string::npos) << test::messages(d);
 }
 
+TEST(GridRebuildTest, OnAnotherBackEndTheSameSceneRunsAndTheRebuildIsIdle) {
+  // A study varies the brain's back-end on one scene: the rebuild of the
+  // native grids has nothing to do on a mesh back-end, and says so.
+#ifndef TREPHINE_HAS_MESH_BACKENDS
+  GTEST_SKIP() << "the embree and bullet plugins are not built";
+#endif
+  for (const char* backend : {"embree", "bullet"}) {
+    std::string xml = wavingCube(true);
+    xml.insert(xml.find("<RequiredPlugin name=\"haptics\"/>"),
+               std::string("<RequiredPlugin name=\"") + backend + "\"/>\n  ");
+    xml.insert(xml.find("file=\"phantom:cube?cells=8\""), std::string("backend=\"") + backend + "\" ");
+    test::TempDir with, without;
+    Diagnostics d;
+    SimulationOptions options;
+    options.duration = 1.0;
+    auto simulation = test::loadScene(xml, d, options);
+    ASSERT_TRUE(simulation) << backend << ": " << test::messages(d);
+    EXPECT_EQ(d.errorCount(), 0);
+    EXPECT_NE(test::messages(d).find("uses another back-end, which refits or rebuilds its own tree as the mesh "
+                                     "deforms, so this component does nothing"),
+              std::string::npos)
+        << test::messages(d);
+    simulation->run();
+    simulation->writeOutputs(with.path());
+    EXPECT_TRUE(simulation->complete());
+    EXPECT_EQ(test::componentCounter(*simulation, "TetGridRebuild", "idle"), 1.0);
+    EXPECT_EQ(test::componentCounter(*simulation, "TetGridRebuild", "rebuilds"), 0.0);
+    EXPECT_GT(test::componentCounter(*simulation, "TetraBrain", "contact_frames"), 20) << backend;
+    // And it changes nothing: the same scene without it gives the same trace.
+    std::string bare = xml;
+    const std::string rebuild = R"(<TetGridRebuild name="grids" mesh="@brain" rate="100"/>)";
+    bare.erase(bare.find(rebuild), rebuild.size());
+    auto alone = runInto(bare, without.path());
+    ASSERT_TRUE(alone);
+    EXPECT_EQ(test::readFile(with / "trace.csv"), test::readFile(without / "trace.csv")) << backend;
+  }
+}
+
 }  // namespace
 }  // namespace trephine

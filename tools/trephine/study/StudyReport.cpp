@@ -137,6 +137,21 @@ std::string machineDescription() {
   return text.str();
 }
 
+// The closed-loop figures of `renderer` from a setting's tools.csv (left NaN
+// when the file or the renderer is missing).
+void addClosedLoop(PairAccuracy& pair, const std::filesystem::path& file, const std::string& renderer) {
+  if (!std::filesystem::is_regular_file(file)) return;
+  const Table tools = readTable(file);
+  const size_t who = column(tools, "renderer", file);
+  for (size_t r = 1; r < tools.size(); ++r) {
+    if (tools[r][who] != renderer) continue;
+    pair.forceStepP99 = toNumber(tools[r][column(tools, "force_step_p99_N", file)]);
+    pair.unexplainedStepP99 = toNumber(tools[r][column(tools, "unexplained_step_p99_N", file)]);
+    pair.proxyInsideFrames = toNumber(tools[r][column(tools, "proxy_inside_frames", file)]);
+    pair.nanFrames = toNumber(tools[r][column(tools, "nan_frames", file)]);
+  }
+}
+
 void setRunValue(StudyRow& row, const std::string& key, double value) {
   for (auto& [name, text] : row.run)
     if (name == key) {
@@ -183,7 +198,8 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
   report.repeat = repeat;
   const std::filesystem::path posesFile = out / kPosesFile;
   const Table poses = readTable(posesFile);
-  const size_t toolColumn = column(poses, "tool", posesFile), targetColumn = column(poses, "target", posesFile);
+  const size_t toolColumn = column(poses, "tool", posesFile), targetColumn = column(poses, "target", posesFile),
+               rendererColumn = column(poses, "renderer", posesFile);
   const std::vector<Answer> exact = readAnswers(posesFile, "exact_penetration", "exact_nx", "exact_ny", "exact_nz");
   // The pairs in the order of poses.csv (the studied one first), and their rows.
   std::vector<std::vector<size_t>> rowsOfPair;
@@ -191,7 +207,8 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
     const std::string &tool = poses[r][toolColumn], &target = poses[r][targetColumn];
     size_t p = 0;
     while (p < report.pairs.size() && !(report.pairs[p].tool == tool && report.pairs[p].target == target)) ++p;
-    if (p == report.pairs.size()) report.pairs.push_back({tool, target, true, ""}), rowsOfPair.emplace_back();
+    if (p == report.pairs.size())
+      report.pairs.push_back({tool, target, poses[r][rendererColumn], true, ""}), rowsOfPair.emplace_back();
     rowsOfPair[p].push_back(r - 1);
   }
   if (report.pairs.empty()) throw std::runtime_error(posesFile.string() + ": no pose");
@@ -253,6 +270,7 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
         PairAccuracy agreement;
         compare(agreement, measured, settingReference, rowsOfPair[p]);
         accuracy.agreementP99 = agreement.penetrationErrorP99;
+        addClosedLoop(accuracy, directory / kToolsFile, report.pairs[p].renderer);
         row.pairs.push_back(accuracy);
       }
       static_cast<PairAccuracy&>(row) = row.pairs.front();
@@ -323,7 +341,8 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   // A row per setting and pair.
   std::ostringstream pairsCsv;
   pairsCsv << "setting,label,status,tool,target,exact_reference,poses,compared_poses,contact_mismatches,"
-              "pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,normal_err_p50_deg,normal_err_p99_deg,agree_ref_p99_mm\n";
+              "pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,normal_err_p50_deg,normal_err_p99_deg,agree_ref_p99_mm,"
+              "renderer,force_step_p99_N,unexplained_step_p99_N,proxy_inside_frames,nan_frames\n";
   for (const StudyRow& row : report.rows)
     for (size_t p = 0; p < report.pairs.size(); ++p) {
       const StudiedPair& pair = report.pairs[p];
@@ -331,13 +350,16 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
                << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << csvQuoted(pair.tool) << ','
                << csvQuoted(pair.target) << ',' << (pair.exact ? 1 : 0);
       if (p >= row.pairs.size()) {
-        pairsCsv << ",0,0,0,nan,nan,nan,nan,nan,nan\n";
+        pairsCsv << ",0,0,0,nan,nan,nan,nan,nan,nan," << csvQuoted(pair.renderer) << ",nan,nan,nan,nan\n";
         continue;
       }
       const PairAccuracy& a = row.pairs[p];
       pairsCsv << ',' << a.poses << ',' << a.comparedPoses << ',' << a.contactMismatches;
       for (double v : {a.penetrationErrorP50, a.penetrationErrorP99, a.penetrationErrorMax, a.normalErrorP50,
                        a.normalErrorP99, a.agreementP99})
+        pairsCsv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
+      pairsCsv << ',' << csvQuoted(pair.renderer);
+      for (double v : {a.forceStepP99, a.unexplainedStepP99, a.proxyInsideFrames, a.nanFrames})
         pairsCsv << ',' << (std::isfinite(v) ? format(v, 6) : "nan");
       pairsCsv << '\n';
     }
@@ -396,10 +418,11 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   if (report.pairs.size() > 1) {
     md << "\n## Every tool on every target it touched\n\n"
        << "The table above is of " << report.pairs.front().tool << " on " << report.pairs.front().target
-       << ". Each tool and target that touched in the reference's run, at poses from their own frames in contact:\n\n"
+       << ". Each tool and target that touched in the reference's run, at poses from their own frames in contact "
+          "(each tool's renderer's frames); the closed loop of each is its renderer's whole run:\n\n"
        << "| # | setting | tool | target | pen. error p50 / p99 / max (mm) | normal error p50 / p99 (deg) | contact "
-          "mismatches |\n"
-       << "|---:|---|---|---|---:|---:|---:|\n";
+          "mismatches | dF p99 / unexplained p99 (N) | proxy inside | NaN |\n"
+       << "|---:|---|---|---|---:|---:|---:|---:|---:|---:|\n";
     for (const StudyRow& row : report.rows)
       for (size_t p = 0; p < report.pairs.size() && p < row.pairs.size(); ++p) {
         const PairAccuracy& a = row.pairs[p];
@@ -407,7 +430,9 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
            << report.pairs[p].target << " | " << format(a.penetrationErrorP50, 3) << " / "
            << format(a.penetrationErrorP99, 3) << " / " << format(a.penetrationErrorMax, 3) << " | "
            << format(a.normalErrorP50, 2) << " / " << format(a.normalErrorP99, 2) << " | " << a.contactMismatches
-           << " of " << a.comparedPoses << " |\n";
+           << " of " << a.comparedPoses << " | " << format(a.forceStepP99, 3) << " / "
+           << format(a.unexplainedStepP99, 3) << " | " << format(a.proxyInsideFrames, 0) << " | "
+           << format(a.nanFrames, 0) << " |\n";
       }
     md << "\nReferences:\n\n";
     for (const StudiedPair& pair : report.pairs)

@@ -23,12 +23,16 @@ struct PairAccuracy {
   double normalErrorP50 = 0, normalErrorP99 = 0;                                     // deg
   // Penetration disagreement with the reference setting's answers (p99), whatever the reference is.
   double agreementP99 = std::nan("");  // mm
+  // The closed loop of the pair's force renderer in the setting's run (tools.csv).
+  double forceStepP99 = std::nan(""), unexplainedStepP99 = std::nan("");  // N
+  double proxyInsideFrames = std::nan(""), nanFrames = std::nan("");
 };
 
 // A tool and a target that touched in the reference's run, and what its
 // accuracy is measured against.
 struct StudiedPair {
   std::string tool, target;  // component paths
+  std::string renderer;      // the force renderer whose frames gave the poses
   bool exact = false;        // against the exact shape, else the reference setting
   std::string reference;     // "the exact shape of the phantom" or "setting N (label): why"
 };

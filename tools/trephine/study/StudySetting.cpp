@@ -42,7 +42,8 @@ struct StudyPose {
   std::string kind;    // "proxy" or "device"
   std::string tool;    // the path of the tool the pose is of
   std::string target;  // and of the target it touched
-  Vec3 position;       // mm
+  std::string renderer;  // the force renderer whose frames these are
+  Vec3 position;         // mm
   double exactPenetration = std::nan("");
   Vec3 exactNormal = Vec3::Constant(std::nan(""));
 };
@@ -110,9 +111,12 @@ std::string pathOf(const Simulation& simulation, const void* identity) {
   return "";
 }
 
-// A tool and a target that touched in a run, with its frames in contact.
+// A tool and a target that touched in a run, with its frames in contact in
+// the log of the renderer that rendered them.
 struct ContactPair {
   std::string tool, target;  // component paths
+  std::string renderer;      // the path of the force renderer whose log holds the frames
+  const HapticFrameLog* log = nullptr;
   std::vector<size_t> frames;
 };
 
@@ -123,27 +127,37 @@ struct ContactPair {
 // studied target.
 std::vector<ContactPair> pairsFromRun(const Simulation& simulation, const StudyOptions& options,
                                       const StudySetting& setting) {
-  const HapticFrameLog& log = simulation.hapticLog();
   std::vector<ContactPair> pairs;
   std::string fallbackTool, fallbackTarget;
-  for (size_t i = 0; i < log.size(); ++i) {
-    if (log[i].contacts <= 0) continue;
-    std::string tool = log[i].tool ? pathOf<ShellTool>(simulation, log[i].tool) : "";
-    std::string target = log[i].target ? pathOf<ShellContactTarget>(simulation, log[i].target) : "";
-    if (tool.empty()) {
-      if (fallbackTool.empty())
-        fallbackTool = dynamic_cast<const Component&>(findTool(simulation)).path();
-      tool = fallbackTool;
+  // Every renderer's log, trace.csv's first: each tool's own frames.
+  std::vector<Simulation::ToolLog> logs = simulation.toolLogs();
+  std::stable_partition(logs.begin(), logs.end(), [](const Simulation::ToolLog& l) { return l.writesTrace; });
+  for (const Simulation::ToolLog& toolLog : logs) {
+    const HapticFrameLog& log = *toolLog.log;
+    for (size_t i = 0; i < log.size(); ++i) {
+      if (log[i].contacts <= 0) continue;
+      std::string tool = log[i].tool ? pathOf<ShellTool>(simulation, log[i].tool) : "";
+      std::string target = log[i].target ? pathOf<ShellContactTarget>(simulation, log[i].target) : "";
+      if (tool.empty()) {
+        if (fallbackTool.empty()) fallbackTool = dynamic_cast<const Component&>(findTool(simulation)).path();
+        tool = fallbackTool;
+      }
+      if (target.empty()) {
+        if (fallbackTarget.empty()) fallbackTarget = findTarget(simulation, options, setting).second->path();
+        target = fallbackTarget;
+      }
+      auto it = std::find_if(pairs.begin(), pairs.end(),
+                             [&](const ContactPair& p) { return p.tool == tool && p.target == target; });
+      if (it == pairs.end())
+        it = pairs.insert(pairs.end(), ContactPair{tool, target, toolLog.renderer->path(), &log, {}});
+      if (it->log != &log) continue;  // the same tool rendered by two renderers: the first one's frames
+      it->frames.push_back(i);
     }
-    if (target.empty()) {
-      if (fallbackTarget.empty()) fallbackTarget = findTarget(simulation, options, setting).second->path();
-      target = fallbackTarget;
-    }
-    auto it = std::find_if(pairs.begin(), pairs.end(),
-                           [&](const ContactPair& p) { return p.tool == tool && p.target == target; });
-    if (it == pairs.end()) it = pairs.insert(pairs.end(), ContactPair{tool, target, {}});
-    it->frames.push_back(i);
   }
+  for (const ContactPair& p : pairs)
+    if (p.renderer.find(',') != std::string::npos)
+      throw SettingError("a study names tools and targets in its CSV files; rename the component with a comma in " +
+                         p.renderer);
   for (const ContactPair& p : pairs)
     if (p.tool.find(',') != std::string::npos || p.target.find(',') != std::string::npos)
       throw SettingError("a study names tools and targets in its CSV files; rename the component with a comma in " +
@@ -173,14 +187,15 @@ const RateGroup* hapticGroup(const Simulation& simulation) {
 
 // Poses from the frames of one pair (after a tool change the proxy touches
 // another target: its poses say nothing of the first).
-std::vector<StudyPose> posesOfPair(const Simulation& simulation, const ContactPair& pair, int perKind) {
-  const HapticFrameLog& log = simulation.hapticLog();
+std::vector<StudyPose> posesOfPair(const ContactPair& pair, int perKind) {
+  const HapticFrameLog& log = *pair.log;
   std::vector<StudyPose> poses;
   const size_t count = std::min<size_t>(pair.frames.size(), static_cast<size_t>(perKind));
   for (const char* kind : {"proxy", "device"})
     for (size_t j = 0; j < count; ++j) {
       const HapticFrame& frame = log[pair.frames[j * pair.frames.size() / count]];
-      poses.push_back({kind, pair.tool, pair.target, std::string(kind) == "proxy" ? frame.proxy : frame.device});
+      poses.push_back(
+          {kind, pair.tool, pair.target, pair.renderer, std::string(kind) == "proxy" ? frame.proxy : frame.device});
     }
   return poses;
 }
@@ -255,9 +270,9 @@ std::string addExactContacts(std::vector<StudyPose>& poses, const Component& tar
 
 void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>& poses, const std::string& study) {
   std::ostringstream s;
-  s << "kind,tool,target,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz,study\n";
+  s << "kind,tool,target,renderer,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz,study\n";
   for (const StudyPose& p : poses)
-    s << p.kind << ',' << p.tool << ',' << p.target << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
+    s << p.kind << ',' << p.tool << ',' << p.target << ',' << p.renderer << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
       << ',' << number(p.exactPenetration) << ',' << number(p.exactNormal.x()) << ',' << number(p.exactNormal.y())
       << ',' << number(p.exactNormal.z()) << ',' << study << '\n';
   AtomicFile out(file);  // other processes wait for it: it appears whole or not at all
@@ -280,7 +295,7 @@ std::vector<StudyPose> readPoses(const std::filesystem::path& file) {
     const Vec3 position(toNumber(table[r][x]), toNumber(table[r][y]), toNumber(table[r][z]));
     if (!position.allFinite())
       throw SettingError(file.string() + ":" + std::to_string(r + 1) + ": expected a position of three numbers");
-    poses.push_back({table[r][kind], table[r][tool], table[r][target], position});
+    poses.push_back({table[r][kind], table[r][tool], table[r][target], "", position});
   }
   return poses;
 }
@@ -414,6 +429,21 @@ void writeResult(const Simulation& simulation, const std::filesystem::path& file
     << (stats.hasUnexplainedSteps ? number(stats.unexplainedStepP99) : "nan") << ',' << stats.proxyInsideFrames << ','
     << stats.nanFrames << ',' << stats.forceReversals << ',' << removed << ',' << number(simulation.wallTime()) << ','
     << study << '\n';
+  // Every tool's closed loop, by its renderer (its whole run: after a tool
+  // change, both tools'), for the pairs of pairs.csv; written before result.csv, which the
+  // gathering rank waits for.
+  std::ostringstream tools;
+  tools << "renderer,frames,contact_frames,force_step_p99_N,force_step_max_N,unexplained_step_p99_N,"
+           "proxy_inside_frames,nan_frames,study\n";
+  for (const Simulation::ToolLog& toolLog : simulation.toolLogs()) {
+    const HapticStats t = toolLog.log->stats();
+    tools << toolLog.renderer->path() << ',' << t.frames << ',' << t.contactFrames << ',' << number(t.forceStepP99)
+          << ',' << number(t.forceStepMax) << ',' << (t.hasUnexplainedSteps ? number(t.unexplainedStepP99) : "nan")
+          << ',' << t.proxyInsideFrames << ',' << t.nanFrames << ',' << study << '\n';
+  }
+  AtomicFile toolsFile(file.parent_path() / kToolsFile);
+  toolsFile.write(tools.str());
+  toolsFile.commit();
   AtomicFile out(file);
   out.write(s.str());
   out.commit();
@@ -525,7 +555,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
       std::string noExactShape;  // why, per pair, for study.md (none: the exact shape)
       std::string references;    // what the exact reference is, per pair
       for (const ContactPair& pair : pairs) {
-        std::vector<StudyPose> ofPair = posesOfPair(*simulation, pair, options.posesPerKind);
+        std::vector<StudyPose> ofPair = posesOfPair(pair, options.posesPerKind);
         const Component* target = probed->scene().findComponent(pair.target);
         if (!target) throw SettingError(pair.target + ": no component there in a fresh load of the scene");
         std::string description;

@@ -51,6 +51,8 @@ inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
 // a line "TOOL on TARGET: what the reference is" for each.
 inline constexpr const char* kReferencesFile = "references.txt";
 inline constexpr const char* kResultFile = "result.csv";
+// Every tool's closed-loop figures in a setting's run, a row per force renderer.
+inline constexpr const char* kToolsFile = "tools.csv";
 // timing-R.csv: the R-th run (R >= 2) of a setting, timed only.
 std::filesystem::path timingFile(const std::filesystem::path& settingDirectory, int run);
 inline constexpr const char* kErrorFile = "error.txt";
