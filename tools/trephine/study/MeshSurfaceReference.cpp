@@ -12,6 +12,9 @@ namespace {
 
 // The point of triangle (a, b, c) nearest to p: Ericson, Real-Time Collision
 // Detection (2005), 5.1.5, by the Voronoi regions of its vertices, edges and face.
+// The mesh back-ends have their own (framework/geometry/ClosestPoint.h): this
+// second one is on purpose, so that the reference shares no code with what
+// it measures.
 Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);

@@ -479,14 +479,26 @@ void writeTimingFailure(const std::filesystem::path& directory, int run, const s
   }
 }
 
-bool runTimingRun(const StudyOptions& options, const StudySetting& setting, int run) {
-  std::filesystem::path directory;
+namespace {
+
+// A worker's setting folder, or nothing (said on stderr) when something is in
+// its way: nothing is written where a link points; the study's own check
+// names it.
+std::optional<std::filesystem::path> workerFolder(const StudyOptions& options, const StudySetting& setting) {
   try {
-    directory = settingFolder(options.out, setting);
+    return settingFolder(options.out, setting);
   } catch (const FileWriteError& e) {
     std::cerr << "trephine: " << setting.label() << ": " << e.what() << "\n";
-    return false;
+    return std::nullopt;
   }
+}
+
+}  // namespace
+
+bool runTimingRun(const StudyOptions& options, const StudySetting& setting, int run) {
+  const std::optional<std::filesystem::path> found = workerFolder(options, setting);
+  if (!found) return false;
+  const std::filesystem::path& directory = *found;
   try {
     auto simulation = load(options, setting);
     replayReferenceMotion(*simulation, options.out);
@@ -522,14 +534,9 @@ std::string settingFolderProblem(const std::filesystem::path& out, const StudySe
 }
 
 bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
-  std::filesystem::path directory;
-  try {
-    directory = settingFolder(options.out, setting);
-  } catch (const FileWriteError& e) {
-    // Nothing is written where a link points; the study's own check names it.
-    std::cerr << "trephine: " << setting.label() << ": " << e.what() << "\n";
-    return false;
-  }
+  const std::optional<std::filesystem::path> found = workerFolder(options, setting);
+  if (!found) return false;
+  const std::filesystem::path& directory = *found;
   std::error_code ec;
   for (const char* stale : {kProbeFile, kResultFile, kErrorFile}) std::filesystem::remove(directory / stale, ec);
   const std::filesystem::path posesFile = options.out / kPosesFile;
