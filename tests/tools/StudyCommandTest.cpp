@@ -117,8 +117,8 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
     // benchmarks compare times, within one run).
     EXPECT_GT(number(row, "broad_p50_us"), 0);
     EXPECT_GT(number(row, "candidates_p50"), 0);
-    for (const char* file : {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv", "timing-2.csv",
-                             "timing-3.csv"})
+    for (const char* file :
+         {"summary.json", "trace.csv", "timings.csv", "probe.csv", "result.csv", "timing-2.csv", "timing-3.csv"})
       EXPECT_TRUE(std::filesystem::exists(dir / "study/settings" / ("00" + row.at("setting")) / file)) << file;
     // Three runs by default, the step the median of their medians.
     EXPECT_EQ(number(row, "timing_runs"), 3) << row.at("label");
@@ -171,7 +171,8 @@ TEST(StudyCommandTest, EverySettingRunsOnTheReferenceSettingsMotion) {
       "/patient/skull.file=phantom:halfspace?voxel=1.0&nx=0.3&ny=0.2&nz=0.93&size=30,"
       "phantom:halfspace?voxel=0.7&nx=0.3&ny=0.2&nz=0.93&size=30";
   std::string out;
-  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", voxels, "--out", (dir / "study").string(), "--poses", "20"},
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", voxels, "--out", (dir / "study").string(), "--poses", "20",
+                        "--repeat", "1"},
                        &out),
             0)
       << out;
@@ -199,7 +200,7 @@ TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
   const auto scene = dir.write("halfspace.xml", kScene);
   std::string out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/patient/skull.backend=native,nonesuch", "--out",
-                        (dir / "study").string(), "--poses", "20"},
+                        (dir / "study").string(), "--poses", "20", "--repeat", "1"},
                        &out),
             3)
       << out;
@@ -222,13 +223,13 @@ TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
 TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
   test::TempDir dir("trephine-study");
   std::string capsule = kScene;
-  capsule.replace(capsule.find("<PointshellTool"), capsule.find("/>", capsule.find("<PointshellTool")) + 2 -
-                                                      capsule.find("<PointshellTool"),
+  capsule.replace(capsule.find("<PointshellTool"),
+                  capsule.find("/>", capsule.find("<PointshellTool")) + 2 - capsule.find("<PointshellTool"),
                   R"(<CapsuleTool name="burr" radius="2.5" shaftLength="10" device="@device"/>)");
   const auto scene = dir.write("capsule.xml", capsule);
   std::string out;
   ASSERT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointSpacing=0.4,0.6", "--out",
-                        (dir / "study").string(), "--poses", "20"},
+                        (dir / "study").string(), "--poses", "20", "--repeat", "1"},
                        &out),
             0)
       << out;
@@ -312,7 +313,7 @@ TEST(StudyCommandTest, AScanAndAMeshFromFilesAreMeasuredAgainstTheirOwnData) {
   const auto scanFile = dir.write("scan.xml", scanScene);
   std::string out;
   ASSERT_EQ(runProgram({"study", scanFile.string(), "--vary", "/patient/skull.voxelSize=0,2", "--out",
-                        (dir / "scan").string(), "--poses", "30"},
+                        (dir / "scan").string(), "--poses", "30", "--repeat", "1"},
                        &out),
             0)
       << out;
@@ -346,7 +347,7 @@ TEST(StudyCommandTest, AScanAndAMeshFromFilesAreMeasuredAgainstTheirOwnData) {
   meshScene.replace(meshScene.find("direction=\"-0.3 -0.2 -0.93\""), 29, "direction=\"0 0 -1\"");
   const auto meshFile = dir.write("mesh.xml", meshScene);
   ASSERT_EQ(runProgram({"study", meshFile.string(), "--vary", "/tool/burr.pointCount=162,466", "--out",
-                        (dir / "mesh").string(), "--poses", "30"},
+                        (dir / "mesh").string(), "--poses", "30", "--repeat", "1"},
                        &out),
             0)
       << out;
@@ -390,7 +391,7 @@ TEST(StudyCommandTest, AfterAToolChangeTheStudiedTargetIsProbedOnlyWhereTheToolT
 </Node>)");
   std::string out;
   ASSERT_EQ(runProgram({"study", scene.string(), "--vary", kVoxels, "--target", "/patient/skull", "--out",
-                        (dir / "study").string(), "--poses", "40"},
+                        (dir / "study").string(), "--poses", "40", "--repeat", "1"},
                        &out),
             0)
       << out;
@@ -452,8 +453,8 @@ TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) 
       "/patient/skull.file=phantom:halfspace?voxel=1.4&nx=0.3&ny=0.2&nz=0.93&size=40,"
       "phantom:halfspace?voxel=0.7&nx=0.3&ny=0.2&nz=0.93&size=40";
   // One run a setting: this test is of the pairs, not of the timing.
-  std::vector<std::string> args = {"study", scene.string(), "--vary", backends, "--vary", voxels,
-                                   "--poses", "40", "--jobs", "2", "--repeat", "1"};
+  std::vector<std::string> args = {"study",   scene.string(), "--vary", backends, "--vary",   voxels,
+                                   "--poses", "40",           "--jobs", "2",      "--repeat", "1"};
   std::string out;
   auto studyArgs = args;
   studyArgs.insert(studyArgs.end(), {"--out", (dir / "study").string()});
@@ -530,7 +531,8 @@ TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--reference", "2"}, &out), 2);
   EXPECT_NE(out.find("from 1 to 1"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--jobs", "0"}, &out), 2);
-  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--coarse-reference"}, &out), 2);
+  EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.pointCount=162", "--coarse-reference"}, &out),
+            2);
   EXPECT_NE(out.find("--coarse-reference goes with --reference K"), std::string::npos) << out;
   EXPECT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/burr.radiuss=2", "--out", dir.path().string()}, &out),
             1);
@@ -574,8 +576,11 @@ TEST(StudyCommandTest, ARerunIntoTheSameFolderUnderTwoRanksTakesOnlyItsOwnPoses)
   test::TempDir dir("trephine-study");
   const auto scene = dir.write("halfspace.xml", kScene);
   const auto study = [&](const std::string& id, const std::string& seed, const std::string& out) {
-    const std::vector<std::string> args = {"study", scene.string(), "--vary", "/tool/burr.pointCount=92,162",
-                                           "--set", "/tool/device.seed=" + seed, "--out", out, "--poses", "20"};
+    const std::vector<std::string> args = {"study",   scene.string(),
+                                           "--vary",  "/tool/burr.pointCount=92,162",
+                                           "--set",   "/tool/device.seed=" + seed,
+                                           "--out",   out,
+                                           "--poses", "20"};
     std::string out0, out1;
     int status1 = -1;
     std::thread rank1([&] {

@@ -4,10 +4,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <csignal>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -19,11 +19,11 @@
 
 #include "framework/core/OutputFolder.h"
 #include "framework/core/Strings.h"
+#include "tools/trephine/PlotScript.h"
+#include "tools/trephine/RunCommand.h"
 #include "tools/trephine/study/ReferenceChoice.h"
 #include "tools/trephine/study/StudyReport.h"
 #include "tools/trephine/study/StudySetting.h"
-#include "tools/trephine/PlotScript.h"
-#include "tools/trephine/RunCommand.h"
 
 extern char** environ;
 
@@ -89,8 +89,9 @@ std::optional<std::string> launchStudyId(int ranks, std::string& error) {
     for (const char* name : {"OMPI_MCA_orte_hnp_uri", "PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid"})
       if (const char* value = std::getenv(name)) launch += std::string(name) + "=" + value + ";";
   if (launch.empty() && ranks > 1) {
-    error = "under this MPI the ranks cannot tell one study from another: give them the same TREPHINE_STUDY_ID "
-            "(mpirun -genv TREPHINE_STUDY_ID=$(date +%s%N) ...)";
+    error =
+        "under this MPI the ranks cannot tell one study from another: give them the same TREPHINE_STUDY_ID "
+        "(mpirun -genv TREPHINE_STUDY_ID=$(date +%s%N) ...)";
     return std::nullopt;
   }
   uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a of the launch's names
@@ -110,8 +111,8 @@ struct StudyRequest {
   std::vector<std::string> variationTexts;
   int jobs = 1;
   int repeat = 3;                   // --repeat: runs of each setting, for its timing
-  std::optional<int> onlySetting;  // --setting K: run that one here (the study's worker processes)
-  std::optional<int> timingRun;    // --timing-run R (with --setting): that setting's R-th run, timed only
+  std::optional<int> onlySetting;   // --setting K: run that one here (the study's worker processes)
+  std::optional<int> timingRun;     // --timing-run R (with --setting): that setting's R-th run, timed only
   std::optional<int> describeOnly;  // --describe K: load that one and write what it resolves into --describe-to
   std::string describeTo;
   std::optional<int> askedReference;  // --reference K, 0-based
@@ -145,8 +146,8 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   double product = 1;
   for (const StudyVariation& v : variations) product *= double(v.values.size());
   if (product > double(kMostSettings)) {
-    error = "the --vary values make " + (product < 1e15 ? std::to_string(static_cast<long long>(product))
-                                                         : std::string("more than 10^15")) +
+    error = "the --vary values make " +
+            (product < 1e15 ? std::to_string(static_cast<long long>(product)) : std::string("more than 10^15")) +
             " settings, more than the " + std::to_string(kMostSettings) +
             " a study runs: vary fewer fields or fewer values";
     return std::nullopt;
@@ -172,7 +173,8 @@ std::optional<StudyRequest> readRequest(const Arguments& a, std::string& error) 
   if (auto repeat = positiveInteger(a, "--repeat", error)) request.repeat = *repeat;
   if (auto run = positiveInteger(a, "--timing-run", error)) request.timingRun = *run;
   if (request.repeat > kMostRepeats)
-    error = "--repeat " + std::to_string(request.repeat) + ": at most " + std::to_string(kMostRepeats) + " runs a setting";
+    error =
+        "--repeat " + std::to_string(request.repeat) + ": at most " + std::to_string(kMostRepeats) + " runs a setting";
   if (request.timingRun && !request.onlySetting) error = "--timing-run goes with --setting K";
   if (auto describe = positiveInteger(a, "--describe", error)) request.describeOnly = *describe - 1;
   request.describeTo = a.get("--describe-to").value_or("");
@@ -412,7 +414,6 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
   }
 }
 
-
 // Under MPI, other ranks write into the shared directory: a file counts only
 // when it says it is this study's, so that files an earlier study left in
 // the same directory (however recently) are never taken.
@@ -492,8 +493,7 @@ int studyCommand(const Arguments& a) {
       return kSceneError;
     }
   std::vector<SettingResolution> resolutions(request->settings.size());
-  const std::filesystem::path describing =
-      request->options.out / (".describe-" + std::to_string(getpid()));
+  const std::filesystem::path describing = request->options.out / (".describe-" + std::to_string(getpid()));
   const size_t candidate = size_t(request->askedReference.value_or(0));
   std::vector<int> first = {0};
   if (candidate != 0) first.push_back(int(candidate));
@@ -518,8 +518,8 @@ int studyCommand(const Arguments& a) {
   const StudyOptions& options = request->options;
   const Rank rank = mpiRank();
   if (rank.size == 1)
-    for (const char* stale : {kPosesFile, kNoExactShapeFile, kReferencesFile, "study.csv", "pairs.csv", "study.md", "pareto.png",
-                              "pairs.png"})
+    for (const char* stale : {kPosesFile, kNoExactShapeFile, kReferencesFile, "study.csv", "pairs.csv", "study.md",
+                              "pareto.png", "pairs.png"})
       std::filesystem::remove(options.out / stale, ec);
 
   const int count = static_cast<int>(request->settings.size());
@@ -534,9 +534,7 @@ int studyCommand(const Arguments& a) {
   progress.all = mine.size() + (ownsReference ? 1 : 0);
   progress.jobs = request->jobs;
   if (ownsReference) runWorkers(*request, {referenceIndex}, 1, progress);
-  waitFor([&] {
-    return ofThisStudy(*request, options.out / kPosesFile) || settingDone(*request, referenceIndex);
-  });
+  waitFor([&] { return ofThisStudy(*request, options.out / kPosesFile) || settingDone(*request, referenceIndex); });
   if (!ofThisStudy(*request, options.out / kPosesFile)) {
     std::cerr << "trephine: the reference setting failed, so no setting can be compared: "
               << settingErrorMessage(options.out / request->settings[referenceIndex].directoryName() / kErrorFile)

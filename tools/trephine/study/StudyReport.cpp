@@ -1,5 +1,7 @@
 #include "tools/trephine/study/StudyReport.h"
 
+#include <sys/utsname.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -7,8 +9,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
-
-#include <sys/utsname.h>
 
 #include "framework/core/AtomicFile.h"
 #include "framework/math/Math.h"
@@ -192,8 +192,8 @@ double StudyRow::runValue(const std::string& name) const {
   return std::nan("");
 }
 
-StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings,
-                        int referenceIndex, const std::string& referenceChoice, int repeat) {
+StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<StudySetting>& settings, int referenceIndex,
+                        const std::string& referenceChoice, int repeat) {
   StudyReport report;
   report.repeat = repeat;
   const std::filesystem::path posesFile = out / kPosesFile;
@@ -227,7 +227,8 @@ StudyReport gatherStudy(const std::filesystem::path& out, const std::vector<Stud
   std::vector<Answer> settingReference;
   std::string unreadable;
   try {
-    settingReference = readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
+    settingReference =
+        readAnswers(out / referenceSetting.directoryName() / kProbeFile, "penetration", "nx", "ny", "nz");
   } catch (const std::exception& e) {
     // The other settings' rows are still worth having (their time, their
     // closed loop); their accuracy against it is unknown.
@@ -317,7 +318,8 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
   csv << "setting,label";
   if (!report.rows.empty())
     for (const auto& [field, value] : report.rows.front().setting.assignments) csv << ',' << csvQuoted(field);
-  csv << ",status,reference,exact_reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_p99_mm,pen_err_max_mm,"
+  csv << ",status,reference,exact_reference,tool,target,poses,compared_poses,contact_mismatches,pen_err_p50_mm,pen_err_"
+         "p99_mm,pen_err_max_mm,"
          "normal_err_p50_deg,normal_err_p99_deg,agree_ref_p99_mm,query_p50_us,query_p99_us,broad_p50_us,narrow_p50_us,"
          "candidates_p50";
   for (const std::string& c : runColumns) csv << ',' << c;
@@ -326,7 +328,9 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
     csv << row.setting.index + 1 << ',' << csvQuoted(row.setting.label());
     for (const auto& [field, value] : row.setting.assignments) csv << ',' << csvQuoted(value);
     csv << ',' << csvQuoted(row.error.empty() ? "ok" : row.error) << ',' << (row.isReference ? 1 : 0) << ','
-        << (report.pairs.front().exact ? 1 : 0) << ',' << csvQuoted(report.pairs.front().tool) << ',' << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ',' << row.contactMismatches;
+        << (report.pairs.front().exact ? 1 : 0) << ',' << csvQuoted(report.pairs.front().tool) << ','
+        << csvQuoted(report.pairs.front().target) << ',' << row.poses << ',' << row.comparedPoses << ','
+        << row.contactMismatches;
     for (double v : {row.penetrationErrorP50, row.penetrationErrorP99, row.penetrationErrorMax, row.normalErrorP50,
                      row.normalErrorP99, row.agreementP99, row.queryP50, row.queryP99, row.broadP50, row.narrowP50,
                      row.candidatesP50})
@@ -389,8 +393,10 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
         "their own, sample for sample, so the step times, force steps and removed bone of every row come from one "
         "motion. A device whose motion answers the force (a simulated hand) is replayed open loop in the other "
         "settings, as it moved in the reference's run.\n\n"
-     << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | agreement p99 (mm) | contact mismatches | "
-        "step p50 / p99 (p50's range, runs) (µs) | query p50 / p99 (µs) | broad + narrow p50 (µs) | dF p99 / max (N) | proxy inside | NaN "
+     << "| # | setting | pen. error p50 / p99 (mm) | normal error p50 / p99 (deg) | agreement p99 (mm) | contact "
+        "mismatches | "
+        "step p50 / p99 (p50's range, runs) (µs) | query p50 / p99 (µs) | broad + narrow p50 (µs) | dF p99 / max (N) | "
+        "proxy inside | NaN "
         "| "
         "removed | Pareto |\n"
      << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
@@ -406,11 +412,11 @@ std::vector<std::string> writeStudy(const StudyReport& report, const std::filesy
     }
     md << format(row.penetrationErrorP50, 3) << " / " << format(row.penetrationErrorP99, 3) << " | "
        << format(row.normalErrorP50, 2) << " / " << format(row.normalErrorP99, 2) << " | "
-       << format(row.agreementP99, 3) << " | " << row.contactMismatches
-       << " of " << row.comparedPoses << " | " << format(row.runValue("step_p50_us"), 1) << " / "
-       << format(row.runValue("step_p99_us"), 1) << " (" << format(row.runValue("step_p50_min_us"), 1) << " to "
-       << format(row.runValue("step_p50_max_us"), 1) << ", " << format(row.runValue("timing_runs"), 0) << " runs) | " << format(row.queryP50, 1) << " / " << format(row.queryP99, 1)
-       << " | " << format(row.broadP50, 1) << " + " << format(row.narrowP50, 1) << " | "
+       << format(row.agreementP99, 3) << " | " << row.contactMismatches << " of " << row.comparedPoses << " | "
+       << format(row.runValue("step_p50_us"), 1) << " / " << format(row.runValue("step_p99_us"), 1) << " ("
+       << format(row.runValue("step_p50_min_us"), 1) << " to " << format(row.runValue("step_p50_max_us"), 1) << ", "
+       << format(row.runValue("timing_runs"), 0) << " runs) | " << format(row.queryP50, 1) << " / "
+       << format(row.queryP99, 1) << " | " << format(row.broadP50, 1) << " + " << format(row.narrowP50, 1) << " | "
        << format(row.runValue("force_step_p99_N"), 3) << " / " << format(row.runValue("force_step_max_N"), 3) << " | "
        << format(row.runValue("proxy_inside_frames"), 0) << " | " << format(row.runValue("nan_frames"), 0) << " | "
        << format(row.runValue("removed"), 0) << " | " << (row.pareto ? "yes" : "") << " |\n";

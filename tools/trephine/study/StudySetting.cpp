@@ -12,13 +12,13 @@
 
 #include "framework/core/AtomicFile.h"
 #include "framework/core/Lifecycle.h"
-#include "framework/geometry/ExactShape.h"
 #include "framework/devices/DeviceStream.h"
 #include "framework/devices/HapticDevice.h"
-#include "framework/geometry/ShellTool.h"
-#include "framework/geometry/ShellContactTarget.h"
-#include "framework/runtime/Scheduler.h"
 #include "framework/geometry/DeformableMesh.h"
+#include "framework/geometry/ExactShape.h"
+#include "framework/geometry/ShellContactTarget.h"
+#include "framework/geometry/ShellTool.h"
+#include "framework/runtime/Scheduler.h"
 #include "tools/trephine/study/ExactSphereContact.h"
 #include "tools/trephine/study/MeshSurfaceReference.h"
 #include "tools/trephine/study/ScanIsosurface.h"
@@ -39,9 +39,9 @@ constexpr double kScanStep = 0.05;
 constexpr size_t kConvergencePoses = 20;
 
 struct StudyPose {
-  std::string kind;    // "proxy" or "device"
-  std::string tool;    // the path of the tool the pose is of
-  std::string target;  // and of the target it touched
+  std::string kind;      // "proxy" or "device"
+  std::string tool;      // the path of the tool the pose is of
+  std::string target;    // and of the target it touched
   std::string renderer;  // the force renderer whose frames these are
   Vec3 position;         // mm
   double exactPenetration = std::nan("");
@@ -95,7 +95,8 @@ const ShellTool& findTool(const Simulation& simulation, const std::string& path 
   const ShellTool* tool = nullptr;
   for (Component* c : simulation.scene().components())
     if (auto* t = dynamic_cast<const ShellTool*>(c)) {
-      if (tool) throw SettingError("the scene has several pointshell tools and its renderer does not say which touched");
+      if (tool)
+        throw SettingError("the scene has several pointshell tools and its renderer does not say which touched");
       tool = t;
     }
   if (!tool) throw SettingError("the scene has no pointshell tool to probe the target with");
@@ -162,8 +163,7 @@ std::vector<ContactPair> pairsFromRun(const Simulation& simulation, const StudyO
     if (p.tool.find(',') != std::string::npos || p.target.find(',') != std::string::npos)
       throw SettingError("a study names tools and targets in its CSV files; rename the component with a comma in " +
                          (p.tool.find(',') != std::string::npos ? p.tool : p.target));
-  if (!options.target.empty())
-    std::erase_if(pairs, [&](const ContactPair& p) { return p.target != options.target; });
+  if (!options.target.empty()) std::erase_if(pairs, [&](const ContactPair& p) { return p.target != options.target; });
   std::string studied;
   if (options.target.empty() && !setting.assignments.empty()) {
     const std::string& field = setting.assignments.front().first;
@@ -243,7 +243,8 @@ std::string addExactContacts(std::vector<StudyPose>& poses, const Component& tar
     const size_t checked = std::min(poses.size(), kConvergencePoses);
     for (size_t j = 0; j < checked; ++j) {
       const StudyPose& pose = poses[j * poses.size() / checked];
-      const double finer = std::max(0.0, exactSphereContact(isosurface, pose.position, radius, kScanStep / 4).penetration);
+      const double finer =
+          std::max(0.0, exactSphereContact(isosurface, pose.position, radius, kScanStep / 4).penetration);
       largest = std::max(largest, std::abs(finer - pose.exactPenetration));
     }
     const Vec3& spacing = scan->volume->spacing();
@@ -272,9 +273,10 @@ void writePoses(const std::filesystem::path& file, const std::vector<StudyPose>&
   std::ostringstream s;
   s << "kind,tool,target,renderer,x,y,z,exact_penetration,exact_nx,exact_ny,exact_nz,study\n";
   for (const StudyPose& p : poses)
-    s << p.kind << ',' << p.tool << ',' << p.target << ',' << p.renderer << ',' << number(p.position.x()) << ',' << number(p.position.y()) << ',' << number(p.position.z())
-      << ',' << number(p.exactPenetration) << ',' << number(p.exactNormal.x()) << ',' << number(p.exactNormal.y())
-      << ',' << number(p.exactNormal.z()) << ',' << study << '\n';
+    s << p.kind << ',' << p.tool << ',' << p.target << ',' << p.renderer << ',' << number(p.position.x()) << ','
+      << number(p.position.y()) << ',' << number(p.position.z()) << ',' << number(p.exactPenetration) << ','
+      << number(p.exactNormal.x()) << ',' << number(p.exactNormal.y()) << ',' << number(p.exactNormal.z()) << ','
+      << study << '\n';
   AtomicFile out(file);  // other processes wait for it: it appears whole or not at all
   out.write(s.str());
   out.commit();
@@ -339,10 +341,8 @@ void writeMotion(const Simulation& simulation, const std::filesystem::path& out)
 void replayReferenceMotion(Simulation& simulation, const std::filesystem::path& out) {
   for (HapticDevice* device : devicesOf(simulation)) {
     DeviceStreamReadResult read = readDeviceStream(motionFile(out, *device));
-    if (!read.error.empty())
-      throw SettingError("the reference run's motion of " + device->path() + ": " + read.error);
-    if (read.samples.empty())
-      throw SettingError("the reference run's motion of " + device->path() + " has no sample");
+    if (!read.error.empty()) throw SettingError("the reference run's motion of " + device->path() + ": " + read.error);
+    if (read.samples.empty()) throw SettingError("the reference run's motion of " + device->path() + " has no sample");
     device->replaceInput(std::move(read.samples));
   }
 }
@@ -390,8 +390,8 @@ void probe(Simulation& simulation, const std::vector<StudyPose>& poses, const st
   std::vector<double> candidates(poses.size(), std::nan(""));
   for (size_t i = 0; i < poses.size(); ++i) {
     const auto start = Clock::now();
-    const std::optional<size_t> found = probed[i].target->broadPhase(Pose{poses[i].position, Quat::Identity()},
-                                                                     probed[i].shell);
+    const std::optional<size_t> found =
+        probed[i].target->broadPhase(Pose{poses[i].position, Quat::Identity()}, probed[i].shell);
     const double us = microseconds(Clock::now() - start);
     if (!found) continue;
     broadUs[i] = us;
@@ -401,9 +401,8 @@ void probe(Simulation& simulation, const std::vector<StudyPose>& poses, const st
   s << "penetration,nx,ny,nz,query_us,broad_us,candidates\n";
   for (size_t i = 0; i < poses.size(); ++i) {
     const auto start = Clock::now();
-    const ShellContact contact =
-        probed[i].target->collide(Pose{poses[i].position, Quat::Identity()}, probed[i].shell, false,
-                                  memories[probed[i].memory].memory);
+    const ShellContact contact = probed[i].target->collide(Pose{poses[i].position, Quat::Identity()}, probed[i].shell,
+                                                           false, memories[probed[i].memory].memory);
     const double us = microseconds(Clock::now() - start);
     const bool touching = contact.points > 0;
     const Vec3 n = touching ? contact.normal : Vec3::Zero();
@@ -552,8 +551,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
       simulation->run();
       const std::vector<ContactPair> pairs = pairsFromRun(*simulation, options, setting);
       if (pairs.empty()) {
-        const std::string what =
-            options.target.empty() ? std::string("any collision target") : options.target;
+        const std::string what = options.target.empty() ? std::string("any collision target") : options.target;
         throw SettingError("the reference run has no frame in contact with " + what +
                            ": there are no poses to compare");
       }
