@@ -327,6 +327,9 @@ void writeMotion(const Simulation& simulation, const std::filesystem::path& out)
   }
   for (const HapticDevice* device : devicesOf(simulation)) {
     const std::span<const DeviceSample> input = device->recorded();
+    // A device that read nothing (one outside the process that never
+    // connected) has no motion to replay: the other settings keep its own.
+    if (input.empty()) continue;
     std::ostringstream text;
     writeDeviceStream(text, std::vector<DeviceSample>(input.begin(), input.end()), input.size());
     AtomicFile file(motionFile(out, *device));
@@ -340,6 +343,8 @@ void writeMotion(const Simulation& simulation, const std::filesystem::path& out)
 // against this setting's model.
 void replayReferenceMotion(Simulation& simulation, const std::filesystem::path& out) {
   for (HapticDevice* device : devicesOf(simulation)) {
+    std::error_code ec;
+    if (!std::filesystem::exists(motionFile(out, *device), ec)) continue;  // it read nothing in the reference's run
     DeviceStreamReadResult read = readDeviceStream(motionFile(out, *device));
     if (!read.error.empty()) throw SettingError("the reference run's motion of " + device->path() + ": " + read.error);
     if (read.samples.empty()) throw SettingError("the reference run's motion of " + device->path() + " has no sample");
