@@ -109,23 +109,15 @@ void BlockedIsoSurface::build(const VoxelGrid& grid, const CellsWithoutSurface& 
 
 std::vector<size_t> BlockedIsoSurface::update(const VoxelGrid& grid, const std::array<int64_t, 3>& first,
                                               const std::array<int64_t, 3>& last, const CellsWithoutSurface& skip) {
-  // A cell with base corner c (from -1) has corners c and c + 1, so it has one
-  // in [first, last] when c is in [first - 1, last]; its block is (c + 1) / kBlockCells.
-  std::array<int64_t, 3> lo{}, hi{};
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = std::clamp<int64_t>(first[a] / kBlockCells, 0, m_blocksPerAxis[a] - 1);
-    hi[a] = std::clamp<int64_t>((last[a] + 1) / kBlockCells, 0, m_blocksPerAxis[a] - 1);
-    if (first[a] > last[a]) return {};
-  }
   std::vector<size_t> changed;
-  for (int64_t z = lo[2]; z <= hi[2]; ++z)
-    for (int64_t y = lo[1]; y <= hi[1]; ++y)
-      for (int64_t x = lo[0]; x <= hi[0]; ++x) {
-        const size_t b = size_t(x + m_blocksPerAxis[0] * (y + m_blocksPerAxis[1] * z));
-        extractBlock(grid, b, skip);
-        changed.push_back(b);
-      }
+  forBlocksTouching(first, last, [&](size_t b) { changed.push_back(b); });
+  reextract(grid, changed, skip);
   return changed;
+}
+
+void BlockedIsoSurface::reextract(const VoxelGrid& grid, std::span<const size_t> blocks,
+                                  const CellsWithoutSurface& skip) {
+  for (const size_t b : blocks) extractBlock(grid, b, skip);
 }
 
 void BlockedIsoSurface::extractBlock(const VoxelGrid& grid, size_t index, const CellsWithoutSurface& skip) {

@@ -20,9 +20,11 @@
 // re-extracted block by block; vertices on a block's faces are computed
 // identically on both sides, so the blocks meet without cracks. Triangles of
 // zero area (an isovalue equal to a corner's code) are dropped.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "framework/data/TriangleBlocks.h"
@@ -46,6 +48,24 @@ class BlockedIsoSurface final : public TriangleBlocks {
   // changed. Returns the indices of the blocks re-extracted.
   std::vector<size_t> update(const VoxelGrid& grid, const std::array<int64_t, 3>& first,
                              const std::array<int64_t, 3>& last, const CellsWithoutSurface& skip = {});
+  // The same in two steps, for a copy kept elsewhere: f(index) for every
+  // block a change of the codes in [first, last] re-extracts (no allocation),
+  // then the re-extraction of the blocks gathered.
+  template <class F>
+  void forBlocksTouching(const std::array<int64_t, 3>& first, const std::array<int64_t, 3>& last, F&& f) const {
+    // A cell with base corner c (from -1) has corners c and c + 1, so it has
+    // one in [first, last] when c is in [first - 1, last]; its block is (c + 1) / kBlockCells.
+    std::array<int64_t, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+      if (first[a] > last[a] || m_blocksPerAxis[a] == 0) return;
+      lo[a] = std::clamp<int64_t>(first[a] / kBlockCells, 0, m_blocksPerAxis[a] - 1);
+      hi[a] = std::clamp<int64_t>((last[a] + 1) / kBlockCells, 0, m_blocksPerAxis[a] - 1);
+    }
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t x = lo[0]; x <= hi[0]; ++x) f(size_t(x + m_blocksPerAxis[0] * (y + m_blocksPerAxis[1] * z)));
+  }
+  void reextract(const VoxelGrid& grid, std::span<const size_t> blocks, const CellsWithoutSurface& skip = {});
 
   size_t blockCount() const override { return m_blocks.size(); }
   // Blocks along x, y and z; block (x, y, z) is index x + nx (y + ny z) and

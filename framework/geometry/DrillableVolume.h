@@ -23,8 +23,9 @@ class TREPHINE_INTERFACE DrillableVolume {
   virtual const VoxelGrid& voxelGrid() const = 0;
   // Whether the scene drills this volume (its codes may change).
   virtual bool drills() const = 0;
-  // Every code change from now on goes to `edits` as well. Call it in init(),
-  // before the first frame.
+  // Every code change from now on goes to `edits` as well (each reader gives
+  // a queue of its own: an exporter, a rebuild of a back-end's surface). Call
+  // it in init(), before the first frame.
   virtual void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) = 0;
 };
 

@@ -52,6 +52,9 @@ class TREPHINE_INTERFACE TriangleEngine : public CollisionBackend {
 
   // The engine's name (the `backend` value that picks it), for messages.
   virtual std::string_view name() const = 0;
+  // A new, empty engine of the same library: a second copy of a surface, to
+  // be brought up to date on another thread while this one is queried.
+  virtual std::unique_ptr<TriangleEngine> another() const = 0;
   // Builds every block of `blocks`, kept by reference (they must outlive the
   // engine's use). `deformationMargin` (mm): the blocks' vertices will move by
   // up to this much from where they are at each build; 0 for a surface that

@@ -30,6 +30,7 @@ class BulletEngine final : public TriangleEngine {
   ~BulletEngine() override;
 
   std::string_view name() const override { return "bullet"; }
+  std::unique_ptr<TriangleEngine> another() const override { return std::make_unique<BulletEngine>(); }
   void build(const TriangleBlocks& blocks, double deformationMargin) override;
   void rebuildBlocks(std::span<const size_t> changed) override;
   void moveVertices(size_t block, bool rebuild) override;

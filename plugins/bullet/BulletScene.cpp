@@ -1,5 +1,7 @@
 #include "plugins/bullet/BulletScene.h"
 
+#include <BulletCollision/NarrowPhaseCollision/btRaycastCallback.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -56,41 +58,41 @@ btTransform at(const Vec3& p) { return btTransform(btQuaternion::getIdentity(), 
 // weights it by depth.
 Vec3 areaNormal(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a); }
 
-// The closest point of the surface to the sphere's centre among the
-// contacts Bullet reports (one per triangle within reach).
-struct ClosestContact final : btCollisionWorld::ContactResultCallback {
-  const btCollisionObject* tool = nullptr;
-  const TriangleBlocks* blocks = nullptr;
+// The closest point of the surface to a sphere's centre: Bullet's trees
+// find the triangles whose boxes meet the sphere's box (its dynamic AABB
+// tree over the blocks, then each block's BVH), the distance of each is
+// computed here, exactly, and those within the radius count. (Bullet's own
+// sphere-triangle contacts, through contactTest, report the same triangles
+// at several times the cost: a collision algorithm dispatched per triangle.)
+struct ClosestInBlock final : btTriangleCallback {
   Vec3 centre = Vec3::Zero();
   double reach = 0;  // mm, the sphere's radius
+  int block = -1;
   ClosestTriangle result;
-
-  btScalar addSingleResult(btManifoldPoint&, const btCollisionObjectWrapper* a, int, int indexA,
-                           const btCollisionObjectWrapper* b, int, int indexB) override {
-    // Bullet found the triangle; its closest point to the centre is computed
-    // here (Bullet's contact points of a sphere are on the sphere or the
-    // triangle depending on which object it takes first).
-    const bool toolIsA = a->getCollisionObject() == tool;
-    const btCollisionObject* mesh = toolIsA ? b->getCollisionObject() : a->getCollisionObject();
-    const int block = mesh->getUserIndex();
-    const int triangle = toolIsA ? indexB : indexA;
-    const TriangleMesh& triangles = blocks->block(size_t(block));
-    const auto& t = triangles.triangles[size_t(triangle)];
-    const Vec3 &v0 = triangles.vertices[size_t(t[0])], &v1 = triangles.vertices[size_t(t[1])],
-               &v2 = triangles.vertices[size_t(t[2])];
+  void processTriangle(btVector3* triangle, int, int index) override {
+    const Vec3 v0 = fromBullet(triangle[0]), v1 = fromBullet(triangle[1]), v2 = fromBullet(triangle[2]);
     const Vec3 onMesh = closestOnTriangle(centre, v0, v1, v2);
-    ++result.contacts;
     const double d = (onMesh - centre).norm();
+    if (!(d <= reach)) return;
+    ++result.contacts;
     if (d < reach) result.weighted += areaNormal(v0, v1, v2) * (reach - d);
     if (!result.found() || d < result.distance) {
       result.distance = d;
       result.point = onMesh;
-      result.which = {block, triangle};
+      result.which = {block, index};
     }
-    return 0;
   }
 };
-
+struct ClosestContact final : btBroadphaseAabbCallback {
+  ClosestInBlock triangles;
+  btVector3 min, max;
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    triangles.block = object->getUserIndex();
+    static_cast<const btConcaveShape*>(object->getCollisionShape())->processAllTriangles(&triangles, min, max);
+    return true;
+  }
+};
 // Counts the surface crossings along a ray (parity: inside when odd). A ray
 // through an edge or a vertex hits every triangle there at the same
 // distance: hits closer than 1e-9 of the ray's length are one crossing.
@@ -171,6 +173,55 @@ struct ConvexContacts final : btCollisionWorld::ContactResultCallback {
   }
 };
 
+// A sphere cast against one block's triangles, through Bullet's own
+// convex cast per triangle (btTriangleConvexcastCallback: GJK against each
+// triangle in the swept box), but for the triangles the sphere cannot reach:
+// a triangle farther than the cast radius from the path of the centre
+// (segmentTriangleDistance) is skipped. Near a contact the swept box holds hundreds of the
+// isosurface's small triangles of which a handful come within reach, and
+// Bullet's convexSweepTest would cast against every one.
+struct CulledSphereCast final : btTriangleConvexcastCallback {
+  CulledSphereCast(const btConvexShape* sphere, const btTransform& from, const btTransform& to, double radius)
+      : btTriangleConvexcastCallback(sphere, from, to, btTransform::getIdentity(), 0),
+        m_from(fromBullet(from.getOrigin())),
+        m_to(fromBullet(to.getOrigin())),
+        m_radius(radius) {}
+  void processTriangle(btVector3* triangle, int partId, int triangleIndex) override {
+    const Vec3 a = fromBullet(triangle[0]), b = fromBullet(triangle[1]), c = fromBullet(triangle[2]);
+    if (segmentTriangleDistance(m_from, m_to, a, b, c) > m_radius + kSweepTolerance) {
+      ++culled;
+      return;
+    }
+    ++cast;
+    btTriangleConvexcastCallback::processTriangle(triangle, partId, triangleIndex);
+  }
+  btScalar reportHit(const btVector3&, const btVector3& hitPoint, btScalar fraction, int, int) override {
+    if (fraction < m_hitFraction) {
+      m_hitFraction = fraction;  // the later triangles need only beat it
+      point = fromBullet(hitPoint);
+      hit = true;
+    }
+    return m_hitFraction;
+  }
+  bool hit = false;
+  Vec3 point = Vec3::Zero();
+  uint64_t culled = 0, cast = 0;
+
+ private:
+  Vec3 m_from, m_to;
+  double m_radius;
+};
+// Every block whose box meets the sweep's box, cast against.
+struct BlockCasts final : btBroadphaseAabbCallback {
+  CulledSphereCast* cast = nullptr;
+  btVector3 from, to, boxMin, boxMax;  // the path, and the sphere's box around its centre
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    const auto* shape = static_cast<const btBvhTriangleMeshShape*>(object->getCollisionShape());
+    const_cast<btBvhTriangleMeshShape*>(shape)->performConvexcast(cast, from, to, boxMin, boxMax);
+    return true;
+  }
+};
 Box3 boundsOf(const TriangleMesh& mesh) {
   Box3 box;
   for (const Vec3& v : mesh.vertices) box.extend(v);
@@ -222,7 +273,7 @@ std::optional<BulletTools::Tool> BulletTools::find(std::span<const ShellPoint> s
   return std::nullopt;
 }
 
-BulletScene::BulletScene() { m_tool.setCollisionShape(&m_sphere); }
+BulletScene::BulletScene() = default;
 BulletScene::~BulletScene() { clear(); }
 
 void BulletScene::clear() {
@@ -314,15 +365,13 @@ double BulletScene::farDistance() const { return 2.0 * m_bounds.diagonal().norm(
 
 ClosestTriangle BulletScene::closest(const Vec3& centre, double radius) const {
   ClosestContact c;
-  c.tool = &m_tool;
-  c.blocks = m_source;
-  c.centre = centre;
-  c.reach = radius;
-  m_sphere.setUnscaledRadius(radius);
-  m_tool.setWorldTransform(at(centre));
-  const_cast<btCollisionWorld&>(m_world).contactTest(&m_tool, c);
+  c.triangles.centre = centre;
+  c.triangles.reach = radius;
+  c.min = toBullet(centre - Vec3::Constant(radius));
+  c.max = toBullet(centre + Vec3::Constant(radius));
+  const_cast<btDbvtBroadphase&>(m_broadphase).aabbTest(c.min, c.max, c);
   ++m_contactTests;
-  return c.result;
+  return c.triangles.result;
 }
 
 // Whether `centre` is inside, given its closest surface point: behind that
@@ -441,16 +490,27 @@ SweepResult BulletScene::sweepSphere(const SweepQuery& query, double radius, dou
   const double allowed = sweepAllowance(touching, radius - start.distance, skin);
   const double castRadius = radius - allowed;
   if (!(castRadius > kSweepTolerance)) return result;
-  btCollisionWorld::ClosestConvexResultCallback hit(toBullet(query.from), toBullet(query.to));
   m_sphere.setUnscaledRadius(castRadius);
-  m_world.convexSweepTest(&m_sphere, at(query.from), at(query.to), hit);
+  CulledSphereCast cast(&m_sphere, at(query.from), at(query.to), castRadius);
+  BlockCasts blocks;
+  blocks.cast = &cast;
+  blocks.from = toBullet(query.from);
+  blocks.to = toBullet(query.to);
+  blocks.boxMin = btVector3(-castRadius, -castRadius, -castRadius);
+  blocks.boxMax = btVector3(castRadius, castRadius, castRadius);
+  const Vec3 reach = Vec3::Constant(castRadius);
+  const_cast<btDbvtBroadphase&>(m_broadphase)
+      .aabbTest(toBullet(query.from.cwiseMin(query.to) - reach), toBullet(query.from.cwiseMax(query.to) + reach),
+                blocks);
   ++m_casts;
-  if (!hit.hasHit()) return result;
+  m_culledTriangles += cast.culled;
+  m_castTriangles += cast.cast;
+  if (!cast.hit) return result;
   result.blocked = true;
   // Back off by the tolerance, so the stop itself is free.
-  result.freeFraction = std::max(0.0, double(hit.m_closestHitFraction) - kSweepTolerance / length);
+  result.freeFraction = std::max(0.0, double(cast.m_hitFraction) - kSweepTolerance / length);
   result.startsInside = touching && result.freeFraction * length <= kSweepTolerance;
-  result.contactPoint = fromBullet(hit.m_hitPointWorld);
+  result.contactPoint = cast.point;
   return result;
 }
 
@@ -480,6 +540,9 @@ void BulletScene::reportCounters(std::vector<Counter>& counters) const {
   m_counts.report(counters, m_source ? m_source->triangleCount() : 0);
   counters.push_back({"contact_tests", double(m_contactTests)});
   counters.push_back({"convex_casts", double(m_casts)});
+  // Of the triangles in the sweeps' boxes: cast against, and skipped as out of reach.
+  counters.push_back({"cast_triangles", double(m_castTriangles)});
+  counters.push_back({"culled_triangles", double(m_culledTriangles)});
   counters.push_back({"rays", double(m_rays)});
   counters.push_back({"queries", double(m_queries)});
   counters.push_back({"query_allocations", double(m_queryAllocations)});

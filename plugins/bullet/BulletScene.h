@@ -5,12 +5,14 @@
 // change (drilling) is rebuilt alone and a block whose vertices move
 // (deformation) is refitted alone. The library side of BulletEngine, with
 // the queries a spherical burr needs:
-//  - contact: the burr as a btSphereShape in contactTest; Bullet finds the
-//    triangles within reach, the closest point of each is computed here;
+//  - contact: Bullet's trees (the dynamic AABB tree over the blocks, each
+//    block's BVH) find the triangles whose boxes meet the burr's, the exact
+//    distance of each is computed here;
 //    inside: behind the closest triangle's face, or by ray parity at an edge
 //    or a vertex and beyond the radius;
-//  - sweeps: convexSweepTest of the sphere shrunk by the depth the proxy may
-//    keep; rays: rayTest.
+//  - sweeps: Bullet's convex cast of the sphere shrunk by the depth the proxy
+//    may keep, against the triangles of the blocks in the swept box that come
+//    within its reach (the others are skipped: CulledSphereCast); rays: rayTest.
 // Every allocation Bullet makes is counted (btAlignedAllocSetCustom).
 // Bullet's types stay in this plugin (this header is not installed).
 #include <btBulletCollisionCommon.h>
@@ -135,11 +137,10 @@ class BulletScene {
   btDbvtBroadphase m_broadphase;
   btCollisionWorld m_world{&m_dispatcher, &m_broadphase, &m_configuration};
   std::vector<Block> m_blocks;          // per block; empty members when it has no triangles
-  mutable btSphereShape m_sphere{1.0};  // the burr, its radius set per query
-  mutable btCollisionObject m_tool;
+  mutable btSphereShape m_sphere{1.0};  // the burr, its radius set per sweep
   mutable MeshSurfaceCounters m_counts;
   uint64_t m_refits = 0, m_followAllocations = 0, m_followBytes = 0;
-  mutable uint64_t m_contactTests = 0, m_casts = 0, m_rays = 0;
+  mutable uint64_t m_contactTests = 0, m_casts = 0, m_rays = 0, m_castTriangles = 0, m_culledTriangles = 0;
   mutable uint64_t m_queries = 0, m_queryAllocations = 0, m_queryBytes = 0;  // contact, sweep, overlap
 };
 

@@ -26,6 +26,7 @@ class EmbreeEngine final : public TriangleEngine {
   ~EmbreeEngine() override;
 
   std::string_view name() const override { return "embree"; }
+  std::unique_ptr<TriangleEngine> another() const override { return std::make_unique<EmbreeEngine>(); }
   void build(const TriangleBlocks& blocks, double deformationMargin) override;
   void rebuildBlocks(std::span<const size_t> changed) override;
   void moveVertices(size_t block, bool rebuild) override;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "framework/channels/ChangeQueue.h"
 #include "framework/data/DensityVolume.h"
@@ -36,10 +37,11 @@ struct SolidGrid : VoxelGrid {
   // cross (OccupancyCells.h), so the smooth point test interpolates only there.
   // Shared by copies of the grid, as the codes are. Null: every point interpolates.
   std::shared_ptr<OccupancyCells> occupancy;
-  // Optional: every code change, for a reader on another thread that keeps a
-  // copy of the codes (an exporter of the surface). Shared by copies of the
-  // grid. Null unless a reader asked (VoxelSkull::recordEdits).
-  std::shared_ptr<ChangeQueue<VoxelEdit>> edits;
+  // Optional: every code change, for the readers on other threads that keep
+  // a copy of the codes (an exporter of the surface, the rebuild of a mesh
+  // back-end's surface), one queue each. Shared by copies of the grid. Empty
+  // unless a reader asked (VoxelSkull::recordEdits); set at init only.
+  std::vector<std::shared_ptr<ChangeQueue<VoxelEdit>>> edits;
 
   static SolidGrid of(DensityVolume& volume, double isovalue, bool smoothSurface = false) {
     SolidGrid g;
@@ -70,14 +72,14 @@ struct SolidGrid : VoxelGrid {
   // point test would then report bone where the interpolation finds none.
   // Raising a code needs buildOccupancy() again.
   void noteLowered(int64_t voxel, VoxelCode newCode) {
-    if (edits) edits->push({voxel, newCode});
+    for (const auto& queue : edits) queue->push({voxel, newCode});
     if (occupancy) occupancy->lowered(voxel, newCode);
   }
   // The same, knowing the code before (drilling): a voxel lowered through the
   // outside threshold also turns the cells it empties "outside", so the cells
   // stay exactly what a build would give (OccupancyCells::emptied).
   void noteLowered(int64_t voxel, VoxelCode newCode, VoxelCode oldCode) {
-    if (edits) edits->push({voxel, newCode});
+    for (const auto& queue : edits) queue->push({voxel, newCode});
     if (!occupancy) return;
     occupancy->lowered(voxel, newCode);
     if (newCode <= occupancy->outsideCodeMax() && oldCode > occupancy->outsideCodeMax())

@@ -56,6 +56,10 @@ class VoxelBackend : public CollisionBackend {
     (void)first;
     (void)last;
   }
+  // The haptic loop's queries go to copy `copy` of the back-end's surface
+  // from now on (a back-end that keeps two, one brought up to date on
+  // another thread: MeshVoxelBackend). At the start of a frame.
+  virtual void adoptSurface(int copy) { (void)copy; }
 };
 
 }  // namespace trephine::voxel

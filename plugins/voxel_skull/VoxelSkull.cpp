@@ -9,6 +9,7 @@
 #include "framework/geometry/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
 #include "framework/core/Strings.h"
+#include "plugins/voxel_skull/MeshVoxelBackend.h"
 #include "plugins/voxel_skull/Phantoms.h"
 #include "framework/formats/volume/Resample.h"
 #include "framework/formats/volume/VolumeReader.h"
@@ -89,6 +90,17 @@ void VoxelSkull::init(InitContext& context) {
       context.events().log(0, "drill_rate_fast", "the densest bone is cut through in under 10 frames", this,
                            m_framesToDrillDensest);
   }
+}
+
+MeshVoxelBackend* VoxelSkull::meshBackend() const {
+  return m_bound ? dynamic_cast<MeshVoxelBackend*>(m_backend.get()) : nullptr;
+}
+
+std::optional<std::string> VoxelSkull::followSurfaceRebuild(const Component& rebuilder, ChannelHub& channels) {
+  if (m_surfaceReady) return "another component already rebuilds the surface of " + path();
+  m_surfaceReady = channels.subscribe<SurfaceCopy>(rebuilder, kSurfaceReadyChannel);
+  m_surfaceInUse = &channels.publish<SurfaceCopy>(*this, kSurfaceInUseChannel);
+  return std::nullopt;
 }
 
 void VoxelSkull::checkHounsfieldUnits(InitContext& context, const DensityVolume& volume) const {

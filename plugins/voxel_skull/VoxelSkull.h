@@ -13,9 +13,11 @@
 //    per haptic frame until they fall below the isovalue, whatever the force.
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "framework/core/ChannelHub.h"
 #include "framework/core/Component.h"
 #include "framework/geometry/DrillableVolume.h"
 #include "framework/geometry/ExactShape.h"
@@ -24,9 +26,12 @@
 #include "plugins/voxel_skull/FootprintCut.h"
 #include "plugins/voxel_skull/RemovalLaw.h"
 #include "plugins/voxel_skull/SolidGrid.h"
+#include "plugins/voxel_skull/SurfaceHandover.h"
 #include "plugins/voxel_skull/VoxelBackend.h"
 
 namespace trephine::voxel {
+
+class MeshVoxelBackend;
 
 class VoxelSkull final : public Component, public ShellContactTarget, public ExactShapeSource, public DrillableVolume {
  public:
@@ -68,8 +73,16 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
   // DrillableVolume (initialisation only: a reader on another thread that
   // keeps its own copy of the codes).
   const VoxelGrid& voxelGrid() const override { return m_grid; }
-  void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) override { m_grid.edits = std::move(edits); }
+  void recordEdits(std::shared_ptr<ChangeQueue<VoxelEdit>> edits) override { m_grid.edits.push_back(std::move(edits)); }
   uint64_t voxelsRemoved() const { return m_voxelsRemoved; }
+  // Init only, for a SkullSurfaceRebuild: the back-end when it keeps a copy
+  // of the surface of its own (a triangle engine's), else null (the native
+  // back-end reads the codes themselves).
+  MeshVoxelBackend* meshBackend() const;
+  // The rebuild's hand-over (SurfaceHandover.h): the skull adopts the copies
+  // `rebuilder` publishes and answers with the copy it queries. An error
+  // when another component already rebuilds this skull's surface.
+  std::optional<std::string> followSurfaceRebuild(const Component& rebuilder, ChannelHub& channels);
   const RemovalLaw& removalLaw() const { return m_law; }
   // Replaces the volume (tests and tools); call before the run.
   void setVolume(DensityVolume volume);
@@ -247,6 +260,9 @@ class VoxelSkull final : public Component, public ShellContactTarget, public Exa
 
   // The collision back-end (d_backend), bound to m_volume and m_grid.
   std::unique_ptr<VoxelBackend> m_backend;
+  // A SkullSurfaceRebuild's copies of the back-end's surface, and the answer.
+  std::optional<ChannelReader<SurfaceCopy>> m_surfaceReady;
+  Channel<SurfaceCopy>* m_surfaceInUse = nullptr;
   bool m_bound = false;  // m_backend is bound to the loaded volume
   uint64_t m_voxelsRemoved = 0;
 };

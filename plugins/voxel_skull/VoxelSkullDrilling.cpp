@@ -99,7 +99,16 @@ void VoxelSkull::respond(double, std::span<const ContactResponse> responses) {
     if (response.cutting && m_pendingCuts.size() < m_pendingCuts.capacity()) m_pendingCuts.push_back(response);
 }
 
-TargetFrame VoxelSkull::beginFrame(double t) { return {0, applyPendingCuts(t)}; }
+TargetFrame VoxelSkull::beginFrame(double t) {
+  // A copy of the surface the rebuild brought up to date: queried from this
+  // frame on, and the rebuild told so (it may then update the other one).
+  if (m_surfaceReady && m_surfaceReady->fetch()) {
+    const SurfaceCopy& ready = m_surfaceReady->read();
+    m_backend->adoptSurface(ready.copy);
+    m_surfaceInUse->publish(ready);
+  }
+  return {0, applyPendingCuts(t)};
+}
 
 int VoxelSkull::applyPendingCuts(double now) {
   // A force-driven cut lowers codes by their own gradients, so two cuts that

@@ -5,6 +5,7 @@
 #include "plugins/voxel_skull/MeshVoxelBackend.h"
 #include "plugins/voxel_skull/NativeVoxelBackend.h"
 #include "plugins/voxel_skull/Phantoms.h"
+#include "plugins/voxel_skull/SkullSurfaceRebuild.h"
 #include "plugins/voxel_skull/VoxelSkull.h"
 #include "framework/formats/volume/DicomWriter.h"
 #include "framework/formats/volume/VolumeWriter.h"
@@ -14,6 +15,10 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
       "VoxelSkull", "Rigid skull of CT density voxels: pointshell collision, sweeps and drilling");
   registrar.addBackend<trephine::voxel::NativeVoxelBackend>(
       "VoxelSkull", "native", "The thesis's voxel method: pointshell against voxels or the smooth isosurface");
+  registrar.add<trephine::voxel::SkullSurfaceRebuild>(
+      "SkullSurfaceRebuild",
+      "Rebuilds a drilled skull's surface for a mesh back-end (embree, bullet) off the haptic thread, in a second "
+      "copy the haptic loop adopts");
   // Every triangle engine (embree, bullet) is a back-end too, on the smooth isosurface.
   registrar.addEngineAdapter("VoxelSkull", [](std::unique_ptr<trephine::CollisionBackend> engine) {
     return trephine::adaptEngine<trephine::voxel::MeshVoxelBackend>(std::move(engine));
