@@ -1,5 +1,7 @@
 #include "framework/devices/HapticDevice.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "framework/core/AtomicFile.h"
@@ -12,10 +14,17 @@ namespace trephine {
 void HapticDevice::prepare(const RunPlan& plan) {
   m_recorded.assign(d_record.value() || plan.keepDeviceInput ? plan.callsAt(rateHz()) : 0, DeviceSample{});
   m_recordedSize = 0;
+  m_resets.assign(m_recorded.empty() ? 0 : kMostRecordedResets, 0.0);
+  m_resetCount = 0;
   m_replacement.rewind();
+  m_nextReset = 0;
 }
 
-void HapticDevice::replaceInput(std::vector<DeviceSample> stream) { m_replacement = DeviceStreamPlayer(std::move(stream)); }
+void HapticDevice::replaceInput(std::vector<DeviceSample> stream, std::vector<double> resets) {
+  m_replacement = DeviceStreamPlayer(std::move(stream));
+  std::sort(resets.begin(), resets.end());
+  m_replacementResets = std::move(resets);
+}
 
 void HapticDevice::tick(const TickContext& context) {
   m_tickEvents = context.events;
@@ -25,11 +34,20 @@ void HapticDevice::tick(const TickContext& context) {
   } else {
     raw = m_replacement.at(context.t);
     raw.t = context.t;
+    // The replayed run took this sample without the jump test: so does this one.
+    while (m_nextReset < m_replacementResets.size() && m_replacementResets[m_nextReset] <= context.t + 1e-9) {
+      if (std::abs(m_replacementResets[m_nextReset] - context.t) <= 1e-9) forgetLastSample();
+      ++m_nextReset;
+    }
   }
   m_tickEvents = nullptr;
   if (m_replacement.empty() && !connected()) return;
   ++m_samples;
-  if (m_recordedSize < m_recorded.size()) m_recorded[m_recordedSize++] = raw;
+  if (m_recordedSize < m_recorded.size()) {
+    m_recorded[m_recordedSize++] = raw;
+    if (m_forgetPending && m_resetCount < m_resets.size()) m_resets[m_resetCount++] = raw.t;
+  }
+  m_forgetPending = false;
 
   const SampleVerdict verdict = m_filter.check(raw, d_maxSpeed.value(), context.dt);
   if (verdict != SampleVerdict::Accepted) {

@@ -65,8 +65,15 @@ class HapticDevice : public Component {
   // reference setting's motion this way, whatever path the device would have
   // planned against this setting's model. A device whose motion answers the
   // force (a simulated hand) then moves as it did in that run, open loop.
-  void replaceInput(std::vector<DeviceSample> stream);
+  // `resets`: the times (s, sample times of `stream`) at which that run's
+  // device took its sample without the jump test (forgetLastSample: a
+  // looping replay starting over), so that the replay does the same.
+  void replaceInput(std::vector<DeviceSample> stream, std::vector<double> resets = {});
   bool inputReplaced() const { return !m_replacement.empty(); }
+  // The sample times this run took without the jump test (recorded with the
+  // stream; at most kMostRecordedResets).
+  std::span<const double> recordedResets() const { return {m_resets.data(), m_resetCount}; }
+  static constexpr size_t kMostRecordedResets = 4096;
 
   // Samples received and rejected so far.
   uint64_t samples() const { return m_samples; }
@@ -84,7 +91,10 @@ class HapticDevice : public Component {
   virtual bool connected() const { return true; }
   // The next sample is taken as it comes, without the jump test (an intended
   // discontinuity, such as a looping replay starting over).
-  void forgetLastSample() { m_filter.forget(); }
+  void forgetLastSample() {
+    m_filter.forget();
+    m_forgetPending = true;
+  }
 
   RateField d_rate{this, 1000.0, "Rate at which the device is read"};
   Field<double> d_maxSpeed{this,
@@ -101,6 +111,11 @@ class HapticDevice : public Component {
   Vec3 m_commandedForce = Vec3::Zero();
   DevicePoseFilter m_filter;
   DeviceStreamPlayer m_replacement;     // replaceInput's stream (empty: the device's own input)
+  std::vector<double> m_replacementResets;  // its resets' times, ascending
+  size_t m_nextReset = 0;
+  std::vector<double> m_resets;  // preallocated in prepare(): the times of this run's resets
+  size_t m_resetCount = 0;
+  bool m_forgetPending = false;  // forgetLastSample() during this tick's read
   std::vector<DeviceSample> m_recorded;  // preallocated in prepare()
   size_t m_recordedSize = 0;
   uint64_t m_samples = 0, m_rejectedNonFinite = 0, m_rejectedJump = 0;

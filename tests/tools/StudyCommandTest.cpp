@@ -132,13 +132,21 @@ TEST(StudyCommandTest, EverySettingIsMeasuredAgainstTheExactPlaneAtTheSamePoses)
         << rows[2 + shell].at("label");
   EXPECT_EQ(rows[0].at("reference"), "1");
   EXPECT_EQ(rows[3].at("/tool/burr.pointCount"), "466");
-  // Each setting says when it is done, and until the last the time the study has left.
+  // Each setting says when it is done and the time the study has left (the
+  // timing rounds are still to come after the last); so does each timing
+  // run, until the last.
   for (int done = 1; done <= 4; ++done) {
     const size_t at = out.find("; " + std::to_string(done) + " of 4 done, ");
     ASSERT_NE(at, std::string::npos) << out;
     const std::string line = out.substr(at, out.find('\n', at) - at);
-    EXPECT_EQ(line.find("s left") != std::string::npos, done < 4) << line;
+    EXPECT_NE(line.find("s left"), std::string::npos) << line;
   }
+  std::vector<std::string> timingLines;
+  for (size_t at = out.find("timing run "); at != std::string::npos; at = out.find("timing run ", at + 1))
+    timingLines.push_back(out.substr(at, out.find('\n', at) - at));
+  ASSERT_EQ(timingLines.size(), 8u) << out;
+  for (size_t i = 0; i < timingLines.size(); ++i)
+    EXPECT_EQ(timingLines[i].find("s left") != std::string::npos, i + 1 < timingLines.size()) << timingLines[i];
   const std::string table = test::readFile(dir / "study/study.md");
   EXPECT_NE(table.find("| 4 | file=phantom:halfspace?voxel=0.5"), std::string::npos) << table;
   EXPECT_NE(table.find("the medians over 3 runs of each setting, interleaved"), std::string::npos) << table;
@@ -195,6 +203,78 @@ TEST(StudyCommandTest, EverySettingRunsOnTheReferenceSettingsMotion) {
             std::string::npos);
 }
 
+// summary.json's duration_s of a run folder.
+double runDuration(const std::filesystem::path& folder) {
+  const std::string summary = test::readFile(folder / "summary.json");
+  const size_t at = summary.find("\"duration_s\":");
+  return at == std::string::npos ? -1 : std::stod(summary.substr(at + 13));
+}
+
+// A study that varies a device's own field compares motions: each setting
+// keeps that device's own input, for as long as it lasts; the reference's
+// duration is written with its motion (motion_duration.csv) for the
+// settings that replay it.
+TEST(StudyCommandTest, AVariedDeviceKeepsItsOwnMotionForAsLongAsItLasts) {
+  test::TempDir dir("trephine-study-motion");
+  const auto scene = dir.write("halfspace.xml", kScene);
+  std::string out;
+  ASSERT_EQ(runProgram({"study", scene.string(), "--vary", "/tool/device.walkDuration=1,1.5", "--out",
+                        (dir / "varied").string(), "--poses", "20", "--repeat", "1"},
+                       &out),
+            0)
+      << out;
+  const auto shorter = deviceColumns(dir / "varied/settings/001/trace.csv");
+  const auto longer = deviceColumns(dir / "varied/settings/002/trace.csv");
+  ASSERT_GT(shorter.size(), 900u);
+  EXPECT_GT(longer.size(), shorter.size() + 400) << "the second setting's walk is its own, 1.5 s";
+  // Each as long as its own path: the approach, then the walk.
+  EXPECT_NEAR(runDuration(dir / "varied/settings/002") - runDuration(dir / "varied/settings/001"), 0.5, 1e-9);
+  EXPECT_NE(test::readFile(dir / "varied/study.md").find("A device whose own field the study varies"),
+            std::string::npos);
+  const std::string handedOn = test::readFile(dir / "varied/motion_duration.csv");
+  std::ostringstream reference;
+  reference << "duration_s,devices,study\n" << runDuration(dir / "varied/settings/001") << ",/tool/device,";
+  EXPECT_TRUE(handedOn.starts_with(reference.str())) << handedOn;
+}
+
+// A looping replay starts over with an intended jump (its device takes that
+// sample without the jump test). Replayed in the other settings, the jump is
+// taken the same way: before, every setting but the reference held the pose
+// from the first loop on, rejecting every sample as a jump.
+TEST(StudyCommandTest, ALoopingReplayStartsOverInEverySetting) {
+  test::TempDir dir("trephine-study-loop");
+  // 0.4 s pressing 1 mm into the half-space's surface and sliding 8 mm, then
+  // starting over: an 8 mm jump back in one frame.
+  std::string stream = "t,x,y,z,qw,qx,qy,qz,buttons\n";
+  for (int i = 0; i <= 400; ++i) {
+    const double t = i * 0.001, slide = 20.0 * t;
+    // The surface: 0.3 x + 0.2 y + 0.93 z = 0 (the phantom's normal, unnormalised).
+    const Vec3 n = Vec3(0.3, 0.2, 0.93).normalized();
+    const Vec3 p = Vec3(slide - 4, 0, 0) - (Vec3(slide - 4, 0, 0).dot(n)) * n + (2.5 - 1.0) * n;
+    stream += std::to_string(t) + "," + std::to_string(p.x()) + "," + std::to_string(p.y()) + "," +
+              std::to_string(p.z()) + ",1,0,0,0,0\n";
+  }
+  dir.write("loop.csv", stream);
+  std::string scene = kScene;
+  const size_t from = scene.find("<ScriptedDevice"), to = scene.find("/>", from) + 2;
+  scene.replace(from, to - from,
+                R"(<ReplayDevice name="device" file=")" + (dir / "loop.csv").string() + R"(" loop="true" record="false"/>)");
+  const auto file = dir.write("loop.xml", scene);
+  std::string out;
+  ASSERT_EQ(runProgram({"study", file.string(), "--vary", kVoxels, "--duration", "1.0", "--out",
+                        (dir / "study").string(), "--poses", "20", "--repeat", "1"},
+                       &out),
+            0)
+      << out;
+  const std::string resets = test::readFile(dir / "study/motion_resets.csv");
+  EXPECT_NE(resets.find("/tool/device,"), std::string::npos) << "the reference's device started over: " << resets;
+  for (const char* setting : {"001", "002"}) {
+    const std::string summary = test::readFile(dir / "study/settings" / setting / "summary.json");
+    EXPECT_NE(summary.find("\"rejected_jump\": 0"), std::string::npos) << setting << ": " << summary.substr(0, 2000);
+  }
+  EXPECT_EQ(deviceColumns(dir / "study/settings/002/trace.csv"), deviceColumns(dir / "study/settings/001/trace.csv"));
+}
+
 TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
   test::TempDir dir("trephine-study");
   const auto scene = dir.write("halfspace.xml", kScene);
@@ -218,9 +298,9 @@ TEST(StudyCommandTest, AFailedSettingIsReportedAndTheOthersAreStillCompared) {
   EXPECT_NE(rows[1].at("status").find("nonesuch"), std::string::npos);
 }
 
-// Without an exact contact the reference is a setting, and the study says
-// why: here the tool, a burr on a shaft, is not a sphere.
-TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
+// A burr on a shaft is measured against the phantom's exact shape too
+// (ExactToolContact.h), every setting, and the study says the tool's shape.
+TEST(StudyCommandTest, ABurrOnAShaftIsMeasuredAgainstTheExactShape) {
   test::TempDir dir("trephine-study");
   std::string capsule = kScene;
   capsule.replace(capsule.find("<PointshellTool"),
@@ -233,13 +313,15 @@ TEST(StudyCommandTest, AReferenceThatIsASettingSaysWhyThereIsNoExactShape) {
                        &out),
             0)
       << out;
-  // Setting 1 is the reference as the finer of the two shells.
-  EXPECT_NE(out.find("reference: setting 1 (pointSpacing=0.4), the finest (the target /patient/skull 1 mm, the shell "
-                     "of /tool/burr 0.39 mm): no exact shape for this target: the tool is not a sphere (its bounding "
-                     "radius"),
-            std::string::npos)
-      << out;
-  EXPECT_NE(test::readFile(dir / "study/study.md").find("the tool is not a sphere"), std::string::npos);
+  EXPECT_NE(out.find("the exact shape of the phantom; the tool a burr on a shaft"), std::string::npos) << out;
+  const auto rows = readStudy(dir / "study/study.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("exact_reference"), "1") << row.at("label");
+    // A 1 mm voxel's surface against the exact plane: within half a voxel.
+    EXPECT_LT(number(row, "pen_err_p99_mm"), 0.5) << row.at("label");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "study/no_exact_shape.txt"));
 }
 
 // Two tools on one target, each rendered by its own renderer (the second
@@ -409,10 +491,10 @@ TEST(StudyCommandTest, AfterAToolChangeTheStudiedTargetIsProbedOnlyWhereTheToolT
 // pressing a soft cube under the TLED FEM. The study varies the skull's
 // back-end and voxel size. Every tool is measured on every target it
 // touched, at poses from their own frames: the probe on the brain against
-// the cube's exact shape, the capsule on the skull (no exact contact: it is
-// not a sphere) against the finest setting, chosen as such; errors of the
-// order of the voxel size (before, 38 to 40 mm: the skull was probed at the
-// brain phase's poses and the coarse setting was the reference).
+// the cube's exact shape, the capsule on the skull against the half-space's
+// exact shape (ExactToolContact.h); errors of the order of the voxel size
+// (before, 38 to 40 mm: the skull was probed at the brain phase's poses and
+// the coarse setting was the reference).
 TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) {
   test::TempDir dir("trephine-study");
   std::string backends = "/patient/skull.backend=native", plugins;
@@ -459,10 +541,13 @@ TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) 
   auto studyArgs = args;
   studyArgs.insert(studyArgs.end(), {"--out", (dir / "study").string()});
   ASSERT_EQ(runProgram(studyArgs, &out), 0) << out;
-  // The reference: the first setting with 0.7 mm voxels, the finest.
-  EXPECT_NE(out.find("reference: setting 2 (backend=native, file=phantom:halfspace?voxel=0.7"), std::string::npos)
+  // Every pair against an exact shape; the reference setting (of the
+  // agreement column) the first with 0.7 mm voxels, the finest.
+  EXPECT_NE(out.find("reference: the exact shape of the phantom; the tool a burr on a shaft"), std::string::npos)
       << out;
-  EXPECT_NE(out.find("the finest (the target /patient/skull 0.7 mm"), std::string::npos) << out;
+  EXPECT_NE(test::readFile(dir / "study/study.md").find("| 2 | backend=native, file=phantom:halfspace?voxel=0.7"),
+            std::string::npos);
+  EXPECT_NE(test::readFile(dir / "study/study.md").find("size=40 (reference) |"), std::string::npos);
   const auto pairs = readStudy(dir / "study/pairs.csv");
   const size_t settings = pairs.size() / 2;
   ASSERT_EQ(pairs.size(), 2 * settings);
@@ -474,7 +559,7 @@ TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) 
     const bool coarse = row.at("label").find("voxel=1.4") != std::string::npos;
     if (row.at("tool") == "/tool/burr") {
       EXPECT_EQ(row.at("target"), "/patient/skull");
-      EXPECT_EQ(row.at("exact_reference"), "0") << "a burr on a shaft has no exact contact";
+      EXPECT_EQ(row.at("exact_reference"), "1") << "a burr on a shaft on the half-space: the exact contact";
       // Of the order of the voxel size: within the coarser voxel's half-diagonal.
       EXPECT_LT(number(row, "pen_err_max_mm"), (coarse ? 1.4 : 0.7) * std::sqrt(3.0) / 2) << row.at("label");
     } else {
@@ -500,7 +585,11 @@ TEST(StudyCommandTest, AProcedureIsMeasuredToolByTargetAgainstTheFinestSetting) 
   EXPECT_FALSE(std::filesystem::exists(dir / "coarse/settings")) << "nothing is run";
   coarse.push_back("--coarse-reference");
   EXPECT_EQ(runProgram(coarse, &out), 0) << out;
-  EXPECT_NE(out.find("chosen with --coarse-reference"), std::string::npos) << out;
+  const std::string coarseMd = test::readFile(dir / "coarse/study.md");
+  EXPECT_NE(coarseMd.find("| 1 | backend=native, file=phantom:halfspace?voxel=1.4&nx=0.3&ny=0.2&nz=0.93&size=40 "
+                          "(reference) |"),
+            std::string::npos)
+      << coarseMd;
 }
 
 TEST(StudyCommandTest, UsageErrorsExitTwoAndABadSceneOne) {

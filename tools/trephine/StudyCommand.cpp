@@ -301,17 +301,47 @@ void clearSetting(const StudyRequest& request, int index) {
 
 // This rank's settings done so far, for "setting 3/8 done in 12.4 s; 3 of 8
 // done, 37 s so far, about 62 s left", or "setting 3/8 failed after 0.1 s:
-// WHY; ...". The time left is what the settings that succeeded cost each, on
-// average, times those left, shared among the workers: a failed setting
-// (which ends at once) says nothing of what the others will cost, and none
-// is guessed before a setting has succeeded.
+// WHY; ...", and its timing runs ("timing run 2 of setting 3/8 done in 9.1
+// s; about 40 s left"). The time left is what the runs that succeeded cost
+// each, on average, times the settings and timing runs left, shared among
+// the workers: a failed setting (which ends at once) says nothing of what the
+// others will cost, and none is guessed before a setting has succeeded.
 struct StudyProgress {
   size_t all = 0;  // settings this rank runs
   size_t done = 0;
+  size_t timingRunsLeft = 0;  // the later rounds' runs still to come (each setting that succeeded, repeat - 1 times)
+  int repeat = 1;
   int jobs = 1;
-  double succeededSeconds = 0;  // s, the sum of the succeeded settings' own times
+  double succeededSeconds = 0;  // s, the sum of the succeeded runs' own times
   size_t succeeded = 0;
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+
+  // " about 62 s left" for the runs left, or what is unknown.
+  std::string timeLeft() const {
+    const size_t left = all - done + timingRunsLeft;
+    std::ostringstream line;
+    if (left > 0 && succeeded > 0) {
+      const double workers = double(std::min<size_t>(left, size_t(std::max(jobs, 1))));
+      line << ", about " << std::ceil(succeededSeconds / double(succeeded) * double(left) / workers) << " s left";
+    } else if (left > 0) {
+      line << ", time left unknown until a setting succeeds";
+    }
+    return line.str();
+  }
+
+  std::string timingRunEnded(int index, size_t total, int run, double took, bool ok) {
+    if (timingRunsLeft > 0) --timingRunsLeft;
+    if (ok) {
+      ++succeeded;
+      succeededSeconds += took;
+    }
+    std::ostringstream line;
+    line.setf(std::ios::fixed);
+    line.precision(1);
+    line << "timing run " << run << " of setting " << index + 1 << "/" << total << (ok ? " done in " : " failed after ")
+         << took << " s" << (timeLeft().empty() ? "" : ";") << timeLeft();
+    return line.str();
+  }
 
   // `error`: the setting's error, empty when it succeeded.
   std::string settingEnded(int index, size_t total, double took, const std::string& error) {
@@ -319,6 +349,7 @@ struct StudyProgress {
     if (error.empty()) {
       ++succeeded;
       succeededSeconds += took;
+      timingRunsLeft += size_t(std::max(repeat - 1, 0));
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::ostringstream line;
@@ -331,14 +362,7 @@ struct StudyProgress {
       std::string firstLine = error.substr(0, error.find('\n'));
       line << " failed after " << took << " s: " << firstLine;
     }
-    line << "; " << done << " of " << all << " done, " << elapsed << " s so far";
-    const size_t left = all - done;
-    if (left > 0 && succeeded > 0) {
-      const double workers = double(std::min<size_t>(left, size_t(std::max(jobs, 1))));
-      line << ", about " << std::ceil(succeededSeconds / double(succeeded) * double(left) / workers) << " s left";
-    } else if (left > 0) {
-      line << ", time left unknown until a setting succeeds";
-    }
+    line << "; " << done << " of " << all << " done, " << elapsed << " s so far" << timeLeft();
     return line.str();
   }
 };
@@ -399,7 +423,11 @@ void runWorkers(const StudyRequest& request, const std::vector<int>& indices, in
       continue;
     }
     if (auto it = running.find(ended); it != running.end() && timingRun > 1) {
+      const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
       recordFailedTimingRun(request, it->second.index, timingRun, describeStatus(status));
+      const double took = std::chrono::duration<double>(Steady::now() - it->second.started).count();
+      std::cout << progress.timingRunEnded(it->second.index, request.settings.size(), timingRun, took, ok)
+                << std::endl;
       running.erase(it);
       continue;
     }
@@ -533,6 +561,7 @@ int studyCommand(const Arguments& a) {
   StudyProgress progress;
   progress.all = mine.size() + (ownsReference ? 1 : 0);
   progress.jobs = request->jobs;
+  progress.repeat = request->repeat;
   if (ownsReference) runWorkers(*request, {referenceIndex}, 1, progress);
   waitFor([&] { return ofThisStudy(*request, options.out / kPosesFile) || settingDone(*request, referenceIndex); });
   if (!ofThisStudy(*request, options.out / kPosesFile)) {

@@ -78,8 +78,9 @@ const std::vector<Command>& commands() {
       the penetration and normal at the same tool poses (2N from the
       reference setting's frames where they touched, default N = 200)
       against a reference no setting computes (a phantom's exact shape, a
-      scan's interpolated isosurface, a mesh's boundary triangles; for a
-      tool that is not a sphere, the reference setting); force steps, proxy
+      scan's interpolated isosurface, a mesh's boundary triangles, for a
+      sphere or a burr on a shaft; for another tool shape, the reference
+      setting); force steps, proxy
       inside, NaN; time per frame, over --repeat runs of each setting
       (default 3, interleaved: each round runs every setting once). The reference is the setting that resolves every
       target and tool finest (voxels, tetrahedra, shell spacing), else

@@ -20,6 +20,7 @@
 #include "framework/geometry/ShellTool.h"
 #include "framework/runtime/Scheduler.h"
 #include "tools/trephine/study/ExactSphereContact.h"
+#include "tools/trephine/study/ExactToolContact.h"
 #include "tools/trephine/study/MeshSurfaceReference.h"
 #include "tools/trephine/study/ScanIsosurface.h"
 #include "tools/trephine/study/StudyTable.h"
@@ -48,6 +49,44 @@ struct StudyPose {
   Vec3 exactNormal = Vec3::Constant(std::nan(""));
 };
 
+// The scene's devices, in the order of the scene.
+std::vector<HapticDevice*> devicesOf(const Simulation& simulation) {
+  std::vector<HapticDevice*> devices;
+  for (Component* c : simulation.scene().components())
+    if (auto* device = dynamic_cast<HapticDevice*>(c)) devices.push_back(device);
+  return devices;
+}
+
+// The reference run's simulated duration (s) and its devices' paths, written
+// with its motion: the other settings replay its input and run as long,
+// whatever their own devices would plan against their own model. Nothing
+// when the file is not this study's (before the reference ran).
+struct ReferenceRun {
+  double duration = 0;               // s
+  std::vector<std::string> devices;  // paths
+};
+std::optional<ReferenceRun> referenceRun(const StudyOptions& options) {
+  const std::filesystem::path file = options.out / kMotionDurationFile;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec) || studyOfFile(file) != options.studyId) return std::nullopt;
+  const Table table = readTable(file);
+  if (table.size() < 2) return std::nullopt;
+  ReferenceRun run;
+  run.duration = toNumber(table[1][column(table, "duration_s", file)]);
+  if (!(run.duration > 0)) throw SettingError(file.string() + ":2: expected a positive duration_s");
+  std::istringstream devices(table[1][column(table, "devices", file)]);
+  for (std::string path; std::getline(devices, path, ';');)
+    if (!path.empty()) run.devices.push_back(path);
+  return run;
+}
+
+// Whether the setting varies a field of the device at `path`, which then
+// keeps its own input (the motion is what is compared).
+bool variesDevice(const std::string& path, const StudySetting& setting) {
+  return std::any_of(setting.assignments.begin(), setting.assignments.end(),
+                     [&](const auto& a) { return a.first.starts_with(path + "."); });
+}
+
 // `outputDirectory`: where the setting's run writes (empty for the probes).
 std::unique_ptr<Simulation> load(const StudyOptions& options, const StudySetting& setting,
                                  const std::filesystem::path& outputDirectory = {}) {
@@ -55,6 +94,13 @@ std::unique_ptr<Simulation> load(const StudyOptions& options, const StudySetting
   simulationOptions.outputDirectory = outputDirectory;
   simulationOptions.keepDeviceInput = true;  // the reference's motion, for every other setting
   for (const std::string& o : setting.overrides()) simulationOptions.overrides.push_back(o);
+  // The reference's duration, unless --duration says or a device keeps its
+  // own motion (it runs as long as that motion, as it would alone).
+  if (setting.index != options.referenceIndex && !simulationOptions.duration)
+    if (const std::optional<ReferenceRun> reference = referenceRun(options))
+      if (std::none_of(reference->devices.begin(), reference->devices.end(),
+                       [&](const std::string& d) { return variesDevice(d, setting); }))
+        simulationOptions.duration = reference->duration;
   Diagnostics diagnostics;
   auto simulation = Simulation::fromFile(options.scene, simulationOptions, diagnostics);
   if (!simulation) throw SettingError(diagnostics.str());
@@ -215,27 +261,42 @@ std::string number(double value) {
 // check); a mesh's boundary triangles at rest, by exact distance.
 std::string addExactContacts(std::vector<StudyPose>& poses, const Component& targetComponent, const ShellTool& tool,
                              std::string& description) {
-  // The exact contact is that of a sphere: only for a spherical tool.
-  if (tool.boundingRadius() != tool.leadingRadius())
-    return "the tool is not a sphere (its bounding radius " + number(tool.boundingRadius()) + " mm, its burr's " +
-           number(tool.leadingRadius()) + " mm): the exact contact is a sphere's";
+  // A sphere, or a burr on a shaft (ExactToolContact.h); another shape has no
+  // reference here. Posed as the probe poses the tool: at each position, in
+  // the tool frame's orientation (the identity).
+  const ToolSolid solid = tool.solid();
+  const bool sphere = tool.boundingRadius() == tool.leadingRadius();
+  const bool shaft = solid.shaftLength > 0 && solid.shaftRadius > 0;
+  if (!sphere && !shaft)
+    return "the tool is neither a sphere nor a burr on a shaft (its bounding radius " +
+           number(tool.boundingRadius()) + " mm, its burr's " + number(tool.leadingRadius()) +
+           " mm, and it describes no shaft): the exact contact is a sphere's or a burr on a shaft's";
   const double radius = tool.leadingRadius();
-  const auto* source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
-  if (const LevelSet shape = source ? source->exactShape() : LevelSet{}) {
+  const std::string shape = sphere ? "" : "; the tool a burr on a shaft, the shaft's depth that of its cross-section";
+  // The exact contact of the tool at `position` from the exact contact of spheres.
+  const auto contactAt = [&](const SphereReference& spheres, const Vec3& position) {
+    return sphere ? spheres(position, radius) : exactToolContact(spheres, Pose{position, Quat::Identity()}, solid);
+  };
+  const auto source = dynamic_cast<const ExactShapeSource*>(&targetComponent);
+  if (const LevelSet exact = source ? source->exactShape() : LevelSet{}) {
+    const SphereReference spheres = [&](const Vec3& c, double r) { return exactSphereContact(exact, c, r); };
     for (StudyPose& pose : poses) {
-      const ExactSphereContact exact = exactSphereContact(shape, pose.position, radius);
-      pose.exactPenetration = std::max(0.0, exact.penetration);
-      pose.exactNormal = exact.normal;
+      const ExactSphereContact contact = contactAt(spheres, pose.position);
+      pose.exactPenetration = std::max(0.0, contact.penetration);
+      pose.exactNormal = contact.normal;
     }
-    description = "the exact shape of the phantom";
+    description = "the exact shape of the phantom" + shape;
     return "";
   }
   if (const std::optional<ScanAsRead> scan = source ? source->scanAsRead() : std::nullopt) {
     const LevelSet isosurface = scanIsosurface(*scan);
+    const auto withStep = [&](double step) -> SphereReference {
+      return [&isosurface, step](const Vec3& c, double r) { return exactSphereContact(isosurface, c, r, step); };
+    };
     for (StudyPose& pose : poses) {
-      const ExactSphereContact exact = exactSphereContact(isosurface, pose.position, radius, kScanStep);
-      pose.exactPenetration = std::max(0.0, exact.penetration);
-      pose.exactNormal = exact.normal;
+      const ExactSphereContact contact = contactAt(withStep(kScanStep), pose.position);
+      pose.exactPenetration = std::max(0.0, contact.penetration);
+      pose.exactNormal = contact.normal;
     }
     // Convergence: the same search with a step a quarter as long, at up to
     // kConvergencePoses poses spread over the pair's.
@@ -243,27 +304,28 @@ std::string addExactContacts(std::vector<StudyPose>& poses, const Component& tar
     const size_t checked = std::min(poses.size(), kConvergencePoses);
     for (size_t j = 0; j < checked; ++j) {
       const StudyPose& pose = poses[j * poses.size() / checked];
-      const double finer =
-          std::max(0.0, exactSphereContact(isosurface, pose.position, radius, kScanStep / 4).penetration);
+      const double finer = std::max(0.0, contactAt(withStep(kScanStep / 4), pose.position).penetration);
       largest = std::max(largest, std::abs(finer - pose.exactPenetration));
     }
     const Vec3& spacing = scan->volume->spacing();
     description = "the isosurface at " + number(scan->isovalue) + " of the scan's density interpolated trilinearly (" +
                   number(spacing.x()) + " x " + number(spacing.y()) + " x " + number(spacing.z()) +
-                  " mm voxels, as its file holds them), found by root finding along rays in double precision; "
-                  "with a step a quarter as long the penetration changed by at most " +
-                  number(largest) + " mm at " + std::to_string(checked) + " poses";
+                  " mm voxels, as its file holds them), found by root finding along rays in double precision" +
+                  shape + "; with a step a quarter as long the penetration changed by at most " + number(largest) +
+                  " mm at " + std::to_string(checked) + " poses";
     return "";
   }
   if (const auto* deformable = dynamic_cast<const DeformableMesh*>(&targetComponent)) {
     const BoundarySurface surface = boundarySurface(deformable->mesh());
+    const SphereReference spheres = [&](const Vec3& c, double r) { return meshSphereContact(surface, c, r); };
     for (StudyPose& pose : poses) {
-      const ExactSphereContact exact = meshSphereContact(surface, pose.position, radius);
-      pose.exactPenetration = std::max(0.0, exact.penetration);
-      pose.exactNormal = exact.normal;
+      const ExactSphereContact contact = contactAt(spheres, pose.position);
+      pose.exactPenetration = std::max(0.0, contact.penetration);
+      pose.exactNormal = contact.normal;
     }
     description = "the mesh's " + std::to_string(surface.triangles.size()) +
-                  " boundary triangles at rest, by exact point-to-triangle distance (inside by the winding number)";
+                  " boundary triangles at rest, by exact point-to-triangle distance (inside by the winding number)" +
+                  shape;
     return "";
   }
   return targetComponent.path() + " (" + targetComponent.typeName() + ") is neither a phantom, a scan nor a mesh";
@@ -302,14 +364,6 @@ std::vector<StudyPose> readPoses(const std::filesystem::path& file) {
   return poses;
 }
 
-// The scene's devices, in the order of the scene.
-std::vector<HapticDevice*> devicesOf(const Simulation& simulation) {
-  std::vector<HapticDevice*> devices;
-  for (Component* c : simulation.scene().components())
-    if (auto* device = dynamic_cast<HapticDevice*>(c)) devices.push_back(device);
-  return devices;
-}
-
 std::filesystem::path motionFile(const std::filesystem::path& out, const HapticDevice& device) {
   return out / FinishContext::defaultFileName(kMotionFilePrefix, device);
 }
@@ -317,13 +371,36 @@ std::filesystem::path motionFile(const std::filesystem::path& out, const HapticD
 // The reference run's device input, each device's in a file of the study's
 // folder (a device stream, as a run records it), written before poses.csv,
 // for which the other settings wait. An earlier study's are removed first.
-void writeMotion(const Simulation& simulation, const std::filesystem::path& out) {
+void writeMotion(const Simulation& simulation, const StudyOptions& options) {
+  const std::filesystem::path& out = options.out;
+  {
+    std::ostringstream text;
+    std::string devices;
+    for (const HapticDevice* device : devicesOf(simulation)) devices += (devices.empty() ? "" : ";") + device->path();
+    text << "duration_s,devices,study\n"
+         << number(simulation.plan().duration) << ',' << devices << ',' << options.studyId << '\n';
+    AtomicFile file(out / kMotionDurationFile);
+    file.write(text.str());
+    file.commit();
+  }
   std::error_code ec;
   for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
     if (name.starts_with(std::string(kMotionFilePrefix) + ".") && name.ends_with(".csv") && !entry.is_symlink(ec) &&
         entry.is_regular_file(ec))
       std::filesystem::remove(entry.path(), ec);
+  }
+  {
+    // The times each device took a sample without the jump test (a looping
+    // replay starting over), replayed alike.
+    std::ostringstream text;
+    text << "device,t,study\n";
+    for (const HapticDevice* device : devicesOf(simulation))
+      for (const double t : device->recordedResets())
+        text << device->path() << ',' << number(t) << ',' << options.studyId << '\n';
+    AtomicFile file(out / kMotionResetsFile);
+    file.write(text.str());
+    file.commit();
   }
   for (const HapticDevice* device : devicesOf(simulation)) {
     const std::span<const DeviceSample> input = device->recorded();
@@ -338,17 +415,40 @@ void writeMotion(const Simulation& simulation, const std::filesystem::path& out)
   }
 }
 
+// The times the reference run's `device` took a sample without the jump test.
+std::vector<double> referenceResets(const StudyOptions& options, const HapticDevice& device) {
+  const std::filesystem::path file = options.out / kMotionResetsFile;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return {};
+  Table table;
+  try {
+    table = readTable(file);
+  } catch (const std::exception& e) {
+    throw SettingError(e.what());
+  }
+  std::vector<double> times;
+  const size_t path = column(table, "device", file), t = column(table, "t", file),
+               study = column(table, "study", file);
+  for (size_t r = 1; r < table.size(); ++r)
+    if (table[r][path] == device.path() && table[r][study] == options.studyId) times.push_back(toNumber(table[r][t]));
+  return times;
+}
+
 // Every device of this setting reads the reference run's input instead of
 // its own: one motion for every setting, whatever path a device would plan
-// against this setting's model.
-void replayReferenceMotion(Simulation& simulation, const std::filesystem::path& out) {
+// against this setting's model. But for a device whose own field the study
+// varies (its path, its speed): there the motion is what is compared, and
+// each setting keeps the device's own input.
+void replayReferenceMotion(Simulation& simulation, const StudySetting& setting, const StudyOptions& options) {
+  const std::filesystem::path& out = options.out;
   for (HapticDevice* device : devicesOf(simulation)) {
+    if (variesDevice(device->path(), setting)) continue;
     std::error_code ec;
     if (!std::filesystem::exists(motionFile(out, *device), ec)) continue;  // it read nothing in the reference's run
     DeviceStreamReadResult read = readDeviceStream(motionFile(out, *device));
     if (!read.error.empty()) throw SettingError("the reference run's motion of " + device->path() + ": " + read.error);
     if (read.samples.empty()) throw SettingError("the reference run's motion of " + device->path() + " has no sample");
-    device->replaceInput(std::move(read.samples));
+    device->replaceInput(std::move(read.samples), referenceResets(options, *device));
   }
 }
 
@@ -505,7 +605,7 @@ bool runTimingRun(const StudyOptions& options, const StudySetting& setting, int 
   const std::filesystem::path& directory = *found;
   try {
     auto simulation = load(options, setting);
-    replayReferenceMotion(*simulation, options.out);
+    replayReferenceMotion(*simulation, setting, options);
     simulation->run();
     if (!simulation->complete()) throw SettingError("run incomplete: " + simulation->incompleteReason());
     const RateGroup* group = hapticGroup(*simulation);
@@ -574,7 +674,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
         if (!description.empty()) references += pair.tool + " on " + pair.target + ": " + description + "\n";
         poses.insert(poses.end(), ofPair.begin(), ofPair.end());
       }
-      writeMotion(*simulation, options.out);
+      writeMotion(*simulation, options);
       writePoses(posesFile, poses, options.studyId);
       std::filesystem::remove(options.out / kNoExactShapeFile, ec);
       std::filesystem::remove(options.out / kReferencesFile, ec);
@@ -595,7 +695,7 @@ bool runStudySetting(const StudyOptions& options, const StudySetting& setting) {
         throw SettingError(posesFile.string() + " is not this study's (an earlier study's, left in the same folder)");
       probe(*probed, readPoses(posesFile), directory / kProbeFile);
       probed.reset();
-      replayReferenceMotion(*simulation, options.out);
+      replayReferenceMotion(*simulation, setting, options);
       simulation->run();
     }
     std::vector<std::string> errors;

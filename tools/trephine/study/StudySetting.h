@@ -44,6 +44,10 @@ inline constexpr const char* kProbeFile = "probe.csv";
 // The reference run's device input, replayed by every other setting:
 // motion.<device path with / as .>.csv in the study's folder.
 inline constexpr const char* kMotionFilePrefix = "motion";
+// And its simulated duration, which the other settings run for too.
+inline constexpr const char* kMotionDurationFile = "motion_duration.csv";
+// And the times a device took a sample without its jump test (device,t,study).
+inline constexpr const char* kMotionResetsFile = "motion_resets.csv";
 // Written by the reference's run when a tool and target it studies have no
 // exact contact: a line "TOOL on TARGET: why" for each such pair.
 inline constexpr const char* kNoExactShapeFile = "no_exact_shape.txt";
