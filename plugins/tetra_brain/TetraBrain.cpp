@@ -142,6 +142,11 @@ std::optional<std::string> TetraBrain::followDeformation(const Component& deform
   return std::nullopt;
 }
 
+std::optional<std::string> TetraBrain::declareTissue(const TissueSpec& tissue) {
+  if (m_mesh.tetCount() == 0) return std::nullopt;  // the mesh did not load: its own error says why
+  return m_tissues.declare(tissue, m_mesh.labels);
+}
+
 std::optional<std::string> TetraBrain::followGridRebuild(const Component& rebuilder, ChannelHub& channels) {
   if (m_grids) return std::string("another component already rebuilds the grids of ") + path();
   m_grids = channels.subscribe<TetGridSet>(rebuilder, kGridsChannelName);

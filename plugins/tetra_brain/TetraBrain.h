@@ -19,6 +19,7 @@
 #include "framework/data/MeshDeformation.h"
 #include "framework/geometry/DeformableMesh.h"
 #include "plugins/tetra_brain/TetBackend.h"
+#include "plugins/tetra_brain/TissueTable.h"
 #include "framework/data/TetMesh.h"
 #include "framework/data/TetTopology.h"
 
@@ -70,6 +71,12 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   // Called by a TetGridRebuild in its init(): from then on the grids it
   // publishes on its "grids" channel are adopted at the start of a frame.
   std::optional<std::string> followGridRebuild(const Component& rebuilder, ChannelHub& channels);
+
+  // A Tissue component in its init(): the tetrahedra of its label are that
+  // tissue. An error when the mesh has no tetrahedron of that label, or
+  // another tissue has the label or the name.
+  std::optional<std::string> declareTissue(const TissueSpec& tissue);
+  const TissueTable& tissues() const { return m_tissues; }
 
   // Replaces the mesh (tests and tools): validates, reorients and binds the
   // back-end to it (the native one when init() chose none, nor setBackend()).
@@ -235,6 +242,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   std::vector<int32_t> m_spreadNodes;
   std::vector<double> m_spreadWeights;
   NodeForces m_spreadValue;
+  TissueTable m_tissues;  // declared by the scene's Tissue components
   uint64_t m_contactFrames = 0;
   uint64_t m_largestNodeForceCount = 0;  // entries of the largest node-force frame published
   mutable uint64_t m_queries = 0;  // counted by the const queries too

@@ -5,7 +5,9 @@
 #include "plugins/tetra_brain/MeshTetBackend.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/ScriptedDeformation.h"
+#include "plugins/tetra_brain/Resection.h"
 #include "plugins/tetra_brain/TetGridRebuild.h"
+#include "plugins/tetra_brain/Tissue.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "plugins/tetra_brain/TetraBrain.h"
 #include "plugins/tetra_brain/cell_size/CellSizeCommands.h"
@@ -24,6 +26,12 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   });
   registrar.add<trephine::tetra::ScriptedDeformation>(
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
+  registrar.add<trephine::tetra::Tissue>(
+      "Tissue", "One tissue of a brain (the tetrahedra of one label): its resistance to removal, its vascularity, "
+                "whether it is critical");
+  registrar.add<trephine::tetra::Resection>(
+      "Resection", "Resection of a brain's tissues: checks the tissues declared against the mesh's labels and "
+                   "measures what is removed");
   registrar.add<trephine::tetra::TetGridRebuild>(
       "TetGridRebuild",
       "Builds the native back-end's grids again on the deformed shape, off the haptic thread, when the nodes drift "

@@ -1,0 +1,137 @@
+// Tissues of a brain, by label, and the Resection that reads them: what a
+// scene declares is checked against the mesh's own labels at load, each
+// mistake located at the attribute that made it. The mesh: two tetrahedra
+// sharing a face, Medit references 1 and 2 (brain and tumour), so the volume
+// of each tissue is known exactly: 1/6 and 1/6 of a unit cube's corner,
+// scaled to 10 mm (166.67 mm^3 each).
+#include <gtest/gtest.h>
+
+#include "framework/core/Diagnostics.h"
+#include "tests/support/TestSupport.h"
+
+namespace trephine {
+namespace {
+
+constexpr const char* kTwoTissues = R"(MeshVersionFormatted 2
+Dimension 3
+Vertices
+5
+0 0 0 0
+10 0 0 0
+0 10 0 0
+0 0 10 0
+0 0 -10 0
+Tetrahedra
+2
+1 2 3 4 1
+1 3 2 5 2
+End
+)";
+
+std::string scene(const std::filesystem::path& mesh, const std::string& tissues) {
+  return R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file=")" +
+         mesh.string() + R"("/>
+    )" + tissues +
+         R"(
+  </Node>
+</Node>)";
+}
+
+struct Loaded {
+  std::unique_ptr<Simulation> simulation;
+  std::string messages;
+};
+
+Loaded load(const std::string& xml) {
+  Diagnostics d;
+  SimulationOptions options;
+  options.duration = 0.01;
+  Loaded loaded;
+  loaded.simulation = test::loadScene(xml, d, options);
+  loaded.messages = test::messages(d);
+  return loaded;
+}
+
+class TissueTest : public testing::Test {
+ protected:
+  test::TempDir dir{"trephine-tissue"};
+  std::filesystem::path mesh = dir.write("two.mesh", kTwoTissues);
+};
+
+TEST_F(TissueTest, EachTissueIsMeasuredFromItsOwnTetrahedra) {
+  const Loaded loaded = load(scene(mesh, R"(<Tissue name="brain_matter" mesh="@brain" label="1" vascularity="0.03"/>
+    <Tissue name="tumour" mesh="@brain" label="2" vascularity="0.12" removalEnergy="0.08"/>
+    <Resection name="resection" mesh="@brain"/>)"));
+  ASSERT_TRUE(loaded.simulation) << loaded.messages;
+  EXPECT_EQ(loaded.messages.find("warning"), std::string::npos) << loaded.messages;
+  const double corner = 1000.0 / 6;  // mm^3
+  EXPECT_NEAR(test::componentCounter(*loaded.simulation, "Resection", "volume_mm3.brain_matter"), corner, 1e-9);
+  EXPECT_NEAR(test::componentCounter(*loaded.simulation, "Resection", "volume_mm3.tumour"), corner, 1e-9);
+}
+
+TEST_F(TissueTest, ALabelTheMeshDoesNotHoldIsAnErrorThatListsItsLabels) {
+  const Loaded loaded = load(scene(mesh, R"(<Tissue name="vessel" mesh="@brain" label="7" critical="true"/>)"));
+  EXPECT_FALSE(loaded.simulation);
+  EXPECT_NE(loaded.messages.find("label of Tissue 'vessel'"), std::string::npos) << loaded.messages;
+  EXPECT_NE(loaded.messages.find("no tetrahedron of the mesh has label 7; its labels are 1 (1 tetrahedron), 2 (1 "
+                                 "tetrahedron)"),
+            std::string::npos)
+      << loaded.messages;
+}
+
+TEST_F(TissueTest, TwoTissuesOfOneLabelAreRefused) {
+  const Loaded loaded = load(scene(mesh, R"(<Tissue name="tumour" mesh="@brain" label="2"/>
+    <Tissue name="necrosis" mesh="@brain" label="2"/>)"));
+  EXPECT_FALSE(loaded.simulation);
+  EXPECT_NE(loaded.messages.find("label 2 is already the tissue 'tumour'"), std::string::npos) << loaded.messages;
+}
+
+TEST_F(TissueTest, LabelsNoTissueDeclaresAreWarnedOfByNumber) {
+  const Loaded loaded = load(scene(mesh, R"(<Tissue name="tumour" mesh="@brain" label="2"/>
+    <Resection name="resection" mesh="@brain"/>)"));
+  ASSERT_TRUE(loaded.simulation) << loaded.messages;
+  EXPECT_NE(loaded.messages.find("warning: mesh of Resection 'resection'"), std::string::npos) << loaded.messages;
+  EXPECT_NE(loaded.messages.find("the mesh's labels 1 (1) (tetrahedra) are no declared tissue"), std::string::npos)
+      << loaded.messages;
+}
+
+TEST_F(TissueTest, AResectionWithNoTissueBeforeItIsAnError) {
+  // The tissue placed after the Resection is not seen there: said so.
+  const Loaded loaded = load(scene(mesh, R"(<Resection name="resection" mesh="@brain"/>
+    <Tissue name="tumour" mesh="@brain" label="2"/>)"));
+  EXPECT_FALSE(loaded.simulation);
+  EXPECT_NE(loaded.messages.find("no tissue of /patient/brain is declared before this component"), std::string::npos)
+      << loaded.messages;
+}
+
+TEST_F(TissueTest, UnitSlipsAreCaughtAtTheirAttribute) {
+  // A vascularity given as a percentage; a removal energy in J/cm^3 read as J/mm^3.
+  const Loaded percent = load(scene(mesh, R"(<Tissue name="tumour" mesh="@brain" label="2" vascularity="12"/>)"));
+  EXPECT_FALSE(percent.simulation);
+  EXPECT_NE(percent.messages.find("vascularity of Tissue 'tumour'"), std::string::npos) << percent.messages;
+  EXPECT_NE(percent.messages.find("not a percentage: 12 is 1200%; 0.12 if a percentage was meant"), std::string::npos)
+      << percent.messages;
+  const Loaded hard = load(scene(mesh, R"(<Tissue name="tumour" mesh="@brain" label="2" removalEnergy="50"/>)"));
+  ASSERT_TRUE(hard.simulation) << hard.messages;
+  EXPECT_NE(hard.messages.find("warning: removalEnergy of Tissue 'tumour'"), std::string::npos) << hard.messages;
+  EXPECT_NE(hard.messages.find("harder to remove than cortical bone is to cut"), std::string::npos) << hard.messages;
+}
+
+TEST_F(TissueTest, AMeshWithoutLabelsSaysWhereLabelsComeFrom) {
+  const Loaded loaded = load(R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <TetraBrain name="brain" file="phantom:cube?cells=2"/>
+  <Tissue name="tumour" mesh="@brain" label="2"/>
+</Node>)");
+  EXPECT_FALSE(loaded.simulation);
+  EXPECT_NE(loaded.messages.find("the mesh holds no tissue labels (its file gives none): a tissue is the tetrahedra "
+                                 "of one label (TetGen region attributes, Medit references"),
+            std::string::npos)
+      << loaded.messages;
+}
+
+}  // namespace
+}  // namespace trephine
