@@ -15,8 +15,8 @@
 // of the target on the brain phantom. Deterministic: the same input gives
 // identical nodes and tetrahedra on every call of the same build. Every
 // tetrahedron has positive signedVolume(), every node belongs to a
-// tetrahedron; an implicit solid's labels are all 1, a labelled image's
-// tetrahedra keep the label of the region they fill.
+// tetrahedron; an implicit solid's labels are all 1 (or its regions'), a
+// labelled image's tetrahedra keep the label of the region they fill.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -41,6 +41,14 @@ struct ImplicitSolid {
   // volume and 4.3 times the area for a smooth solid).
   double volumeTerm = 1, surfaceTerm = 0;
   double leastFacetDistance = 0;  // mm: surface facets lie within max(this, size / 10) of the surface
+  // Optional: the solid's regions (a tumour in the brain), the label (1 and
+  // up) of a point inside; the mesh's surfaces between regions then conform
+  // to them and each tetrahedron keeps its region's label. Without it every
+  // label is 1.
+  std::function<int32_t(const Vec3&)> region;
+  // Optional: finer cells and facets at a point (a factor in (0, 1] of the
+  // size the count asks for): a small region resolved finer than the rest.
+  std::function<double(const Vec3&)> sizeFactor;
 };
 
 // A ball of `radius` (mm) at the origin.

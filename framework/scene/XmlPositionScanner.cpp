@@ -144,6 +144,24 @@ class Scanner {
     while (!m_cursor.done() && m_cursor.peek() != '<') m_cursor.advance();
   }
 
+  // After "<!--": to the comment's end. XML allows "--" nowhere in a
+  // comment but in its end "-->" (a comment ending in "--->" included); the
+  // XML library would take such a comment, which other readers of the scene
+  // (a schema check, an editor) refuse.
+  void comment(TextPosition start) {
+    while (!m_cursor.done()) {
+      if (m_cursor.startsWith("-->")) {
+        m_cursor.advance(3);
+        return;
+      }
+      if (m_cursor.startsWith("--"))
+        fail(m_cursor.position(), "'--' inside a comment: XML allows it only in the comment's end '-->' (write "
+                                  "a single '-', or '- -')");
+      m_cursor.advance();
+    }
+    fail(start, "comment is not closed with '-->'");
+  }
+
   void markup() {
     const TextPosition start = m_cursor.position();
     const bool pastProlog = std::exchange(m_pastProlog, true);
@@ -154,7 +172,7 @@ class Scanner {
       return true;
     };
     if (opens("<!--")) {
-      if (!m_cursor.skipPast("-->")) fail(start, "comment is not closed with '-->'");
+      comment(start);
     } else if (opens("<![CDATA[")) {
       bool blank = true;
       if (!m_cursor.skipPast("]]>", &blank)) fail(start, "CDATA section is not closed with ']]>'");

@@ -70,6 +70,20 @@ struct MeshingProblem {
   // initialisation (random rays from the centre).
   std::function<void(Complex&, const Domain&, const Criteria&)> initialize;
   bool labelled = false;          // tetrahedra keep their subdomain index; else all 1
+  std::function<double(const Vec3&)> sizeFactor;  // optional, in (0, 1]: finer where it is smaller
+};
+
+// A size that varies over the domain (CGAL's MeshDomainField_3): `base`
+// (mm) times the problem's factor at the point.
+struct ScaledSize {
+  using FT = Kernel::FT;
+  using Point_3 = Point;
+  double base = 1;
+  std::function<double(const Vec3&)> factor;
+  template <class Index>
+  FT operator()(const Point& p, const int, const Index&) const {
+    return base * std::clamp(factor(Vec3(p.x(), p.y(), p.z())), 0.05, 1.0);
+  }
 };
 
 struct SeededDomain {
@@ -80,16 +94,31 @@ struct SeededDomain {
 
 MeshingProblem implicitProblem(const ImplicitSolid& solid) {
   MeshingProblem problem;
-  problem.makeDomain = [solid](CGAL::Random& random) {
-    return Domain::create_implicit_mesh_domain(
-        [distance = solid.distance](const Point& p) { return distance(Vec3(p.x(), p.y(), p.z())); },
-        Kernel::Sphere_3(Point(solid.centre.x(), solid.centre.y(), solid.centre.z()),
-                         solid.boundingRadius * solid.boundingRadius),
-        CGAL::parameters::relative_error_bound = kRelativeErrorBound, CGAL::parameters::p_rng = &random);
-  };
+  const Kernel::Sphere_3 bounds(Point(solid.centre.x(), solid.centre.y(), solid.centre.z()),
+                                solid.boundingRadius * solid.boundingRadius);
+  if (solid.region) {
+    // Regions: the label of each point (0 outside the solid); the surfaces
+    // are found between labels by bisection, so they conform to every region.
+    problem.makeDomain = [solid, bounds](CGAL::Random& random) {
+      const std::function<int(const Point&)> labelOf = [distance = solid.distance,
+                                                         region = solid.region](const Point& p) {
+        const Vec3 q(p.x(), p.y(), p.z());
+        return distance(q) < 0 ? std::max(1, int(region(q))) : 0;
+      };
+      return Domain(labelOf, bounds, kRelativeErrorBound, CGAL::Null_subdomain_index(), &random);
+    };
+    problem.labelled = true;
+  } else {
+    problem.makeDomain = [solid, bounds](CGAL::Random& random) {
+      return Domain::create_implicit_mesh_domain(
+          [distance = solid.distance](const Point& p) { return distance(Vec3(p.x(), p.y(), p.z())); }, bounds,
+          CGAL::parameters::relative_error_bound = kRelativeErrorBound, CGAL::parameters::p_rng = &random);
+    };
+  }
   problem.volumeTerm = solid.volumeTerm;
   problem.surfaceTerm = solid.surfaceTerm;
   problem.leastFacetDistance = solid.leastFacetDistance;
+  problem.sizeFactor = solid.sizeFactor;
   return problem;
 }
 
@@ -102,8 +131,13 @@ Complex refine(const MeshingProblem& problem, double size) {
   // size^-3 (a fixed one would set a floor of surface tets); a tenth of the
   // size keeps the brain phantom's fissure open down to 3500 tets.
   const double facetDistance = std::max(problem.leastFacetDistance, 0.1 * size);
-  const Criteria criteria(params::facet_angle = 25.0, params::facet_size = size, params::facet_distance = facetDistance,
-                          params::cell_radius_edge_ratio = 3.0, params::cell_size = size);
+  const Criteria criteria =
+      problem.sizeFactor
+          ? Criteria(params::facet_angle = 25.0, params::facet_size = ScaledSize{size, problem.sizeFactor},
+                     params::facet_distance = ScaledSize{facetDistance, problem.sizeFactor},
+                     params::cell_radius_edge_ratio = 3.0, params::cell_size = ScaledSize{size, problem.sizeFactor})
+          : Criteria(params::facet_angle = 25.0, params::facet_size = size, params::facet_distance = facetDistance,
+                     params::cell_radius_edge_ratio = 3.0, params::cell_size = size);
   if (!problem.initialize)
     return CGAL::make_mesh_3<Complex>(seeded.domain, criteria, params::no_perturb(), params::no_exude());
   Complex complex;

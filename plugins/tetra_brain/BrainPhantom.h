@@ -38,4 +38,27 @@ double brainPhantomDistance(const Vec3& p);
 // Throws std::invalid_argument when targetTets is outside [100, 2000000].
 TetMesh makeBrainPhantom(int targetTets);
 
+// Regions the phantom can hold, for resection (labels): the brain 1, a
+// tumour 2 (a ball), a vessel 3 (a tube along y, the whole brain's length);
+// a radius of 0 leaves one out. The defaults put a tumour of the given
+// radius in the right hemisphere, its centre 25 mm below the top of the
+// cortex, and the vessel beside it, 3 mm from its side.
+struct BrainPhantomRegions {
+  double tumourRadius = 0;               // mm
+  Vec3 tumourCentre = Vec3(25, 10, 30);  // mm
+  double vesselRadius = 0;               // mm
+  double vesselX = 0, vesselZ = 30;      // mm, the tube's axis (0 for x: beside the tumour)
+  bool any() const { return tumourRadius > 0 || vesselRadius > 0; }
+  // mm: the vessel's axis's x (vesselX, or beside the tumour when 0).
+  double vesselAxisX() const { return vesselX != 0 ? vesselX : tumourCentre.x() + tumourRadius + 3.0 + vesselRadius; }
+};
+inline constexpr int32_t kBrainLabel = 1, kTumourLabel = 2, kVesselLabel = 3;
+
+// The label of a point inside the phantom: the vessel's over the tumour's over the brain's.
+int32_t brainPhantomRegion(const Vec3& p, const BrainPhantomRegions& regions);
+
+// The phantom with its regions, their surfaces conforming (the tumour's and
+// the vessel's faces lie on the ball and the tube).
+TetMesh makeBrainPhantom(int targetTets, const BrainPhantomRegions& regions);
+
 }  // namespace trephine::tetra

@@ -46,9 +46,29 @@ TetPhantomDefinition defineTetPhantom(const std::string& specification) {
             }};
   }
   if (name == "brain") {
-    const SourceSpec k(name, query, {{"tets", 22000}});
+    const SourceSpec k(name, query,
+                       {{"tets", 22000},
+                        {"tumour", 0},
+                        {"tumourX", 25},
+                        {"tumourY", 10},
+                        {"tumourZ", 30},
+                        {"vessel", 0},
+                        {"vesselX", 0},
+                        {"vesselZ", 30}});
     const int tets = k.wholeNumber("tets", 100, 2000000);
-    return {[=] { return makeBrainPhantom(tets); }, brainPhantomDistance};
+    BrainPhantomRegions regions;
+    regions.tumourRadius = k.number("tumour");
+    regions.tumourCentre = Vec3(k.number("tumourX"), k.number("tumourY"), k.number("tumourZ"));
+    regions.vesselRadius = k.number("vessel");
+    regions.vesselX = k.number("vesselX");
+    regions.vesselZ = k.number("vesselZ");
+    if (regions.tumourRadius < 0 || regions.vesselRadius < 0)
+      throw std::invalid_argument("phantom:brain: tumour and vessel are radii (mm), 0 for none; got " +
+                                  std::to_string(regions.tumourRadius) + " and " + std::to_string(regions.vesselRadius));
+    if (regions.tumourRadius > 0 && !(brainPhantomDistance(regions.tumourCentre) < -regions.tumourRadius))
+      throw std::invalid_argument("phantom:brain: the tumour (radius " + std::to_string(regions.tumourRadius) +
+                                  " mm) does not lie inside the brain at (tumourX, tumourY, tumourZ)");
+    return {[=] { return makeBrainPhantom(tets, regions); }, brainPhantomDistance};
   }
   if (name == "sphere") {
     // A ball at the origin (the thesis's Table 5.1 meshes: 41937, 52326,
@@ -81,6 +101,10 @@ std::string tetPhantomHelp() {
   return "  cube?cells=22&size=200   cube of cells^3 cells, 5 tetrahedra each (Table 4.1: 7, 13, 22, 30, 40, 50, 60)\n"
          "  bar?length=100&width=10&cells=4   bar of square section along x from x = 0, cells across its width\n"
          "  brain?tets=22000         brain-shaped mesh (CGAL Mesh_3; Table 4.2: 3500, 12500, 22000, 40500, 50000)\n"
+         "    &tumour=10             with a tumour of this radius (mm, label 2; the brain is label 1), centred at\n"
+         "    &tumourX=25&tumourY=10&tumourZ=30   (mm; the default 25 mm below the right hemisphere's top)\n"
+         "    &vessel=1.5            with a vessel of this radius (mm, label 3), a tube along y at vesselZ=30 and\n"
+         "                           vesselX (0: 3 mm beside the tumour)\n"
          "  sphere?tets=41937&radius=50   ball (CGAL Mesh_3; Table 5.1: 41937, 52326, 60688, 72631, 80927)\n";
 }
 

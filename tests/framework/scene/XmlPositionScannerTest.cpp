@@ -110,6 +110,11 @@ TEST(XmlPositionScannerTest, ReportsTheFirstWellFormednessProblemWithItsPosition
   EXPECT_EQ(problemOf("<a><!-- x </a>"), "1:4 comment is not closed with '-->'");
   EXPECT_EQ(problemOf("<a><![CDATA[ x </a>"), "1:4 CDATA section is not closed with ']]>'");
   EXPECT_EQ(problemOf("<a><!--></a>"), "1:4 comment is not closed with '-->'");
+  EXPECT_EQ(problemOf("<a><!-- --set x --></a>"),
+            "1:9 '--' inside a comment: XML allows it only in the comment's end '-->' (write a single '-', or '- -')");
+  EXPECT_EQ(problemOf("<a><!-- x ---></a>"),
+            "1:11 '--' inside a comment: XML allows it only in the comment's end '-->' (write a single '-', or '- -')");
+  EXPECT_EQ(problemOf("<a><!-- a - b --></a>"), "none");
   EXPECT_EQ(problemOf("<a><?></a>"), "1:4 processing instruction is not closed with '?>'");
   EXPECT_EQ(problemOf("<?xml version=\"1.0\""), "1:1 processing instruction is not closed with '?>'");
   EXPECT_EQ(problemOf("<!DOCTYPE a [ <!ELEMENT a ANY> "), "1:1 declaration is not closed with '>'");

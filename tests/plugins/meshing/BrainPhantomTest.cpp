@@ -144,6 +144,49 @@ TEST(BrainPhantom, RefusesTargetsOutsideTheRange) {
   EXPECT_GT(coarsest.tetCount(), 50u);
 }
 
+// A tumour and a vessel in the phantom (labels 2 and 3), meshed as regions
+// whose surfaces conform: each region's tetrahedra fill its own solid
+// (volumes within the facets' error of the ball's 4/3 pi r^3 and of the
+// tube's section times its length in the brain), every tetrahedron's
+// centroid lies in the region its label names, and the brain's outer
+// volume is the same as without them.
+TEST(BrainPhantom, ATumourAndAVesselAreRegionsOfTheirOwn) {
+  BrainPhantomRegions regions;
+  regions.tumourRadius = 10;
+  regions.vesselRadius = 2;
+  const TetMesh mesh = makeBrainPhantom(22000, regions);
+  double volume[4] = {0, 0, 0, 0};
+  size_t misplaced = 0;
+  ASSERT_EQ(mesh.labels.size(), mesh.tetCount());
+  for (size_t t = 0; t < mesh.tetCount(); ++t) {
+    const int32_t label = mesh.labels[t];
+    ASSERT_TRUE(label >= 1 && label <= 3) << label;
+    const TetIndices& tet = mesh.tets[t];
+    volume[label] += tetVolume(mesh, tet);
+    const Vec3 centroid =
+        0.25 * (mesh.nodes[tet[0]] + mesh.nodes[tet[1]] + mesh.nodes[tet[2]] + mesh.nodes[tet[3]]);
+    // A tetrahedron beside a curved interface may have its centroid a little
+    // across it (its face is a chord of the ball): misplaced only farther.
+    const double fromBall = std::abs((centroid - regions.tumourCentre).norm() - regions.tumourRadius);
+    const double fromTube = std::abs(
+        std::hypot(centroid.x() - regions.vesselAxisX(), centroid.z() - regions.vesselZ) - regions.vesselRadius);
+    if (fromBall > 1.0 && fromTube > 1.0) misplaced += brainPhantomRegion(centroid, regions) != label;
+  }
+  RecordProperty("misplaced_tets", std::to_string(misplaced));
+  EXPECT_EQ(misplaced, 0u) << "tetrahedra more than 1 mm into another region than their label's";
+  const double ball = 4.0 / 3.0 * std::numbers::pi * std::pow(regions.tumourRadius, 3);
+  EXPECT_NEAR(volume[kTumourLabel], ball, 0.05 * ball);
+  EXPECT_GT(volume[kVesselLabel], 0.0);
+  // The vessel's length in the brain is some 120 to 170 mm at its height.
+  const double section = std::numbers::pi * regions.vesselRadius * regions.vesselRadius;
+  EXPECT_GT(volume[kVesselLabel], 100 * section);
+  EXPECT_LT(volume[kVesselLabel], 180 * section);
+  const TetMesh plain = makeBrainPhantom(22000);
+  double plainVolume = 0;
+  for (const TetIndices& t : plain.tets) plainVolume += tetVolume(plain, t);
+  EXPECT_NEAR(volume[1] + volume[2] + volume[3], plainVolume, 0.01 * plainVolume);
+}
+
 }  // namespace
 }  // namespace trephine::tetra
 
