@@ -59,11 +59,21 @@ def main(argv):
     if not points:
         sys.exit(f"plot_study.py: {source}: no setting with both a time and an error")
     fig, ax = plt.subplots(figsize=(8, 7.0))
+    # Labels of settings at about the same error and time would overprint:
+    # each takes the first of a few heights (points) clear of those placed.
+    errors = [p[2] for p in points]
+    span = (max(errors) - min(errors)) or max(abs(errors[0]), 1e-9)
+    placed = []  # (log10 time, error, height of the label)
     for t50, t99, err, label, on_front, itself in points:
         ax.errorbar([t50], [err], xerr=[[0], [max(0.0, t99 - t50)]], fmt="x" if itself else "o",
                     color="C0" if on_front else "C3" if itself else "C7", mfc="C0" if on_front else "white",
                     capsize=3)
-        ax.annotate(label, (t50, err), textcoords="offset points", xytext=(5, 4), fontsize=7)
+        where = math.log10(max(t50, 1e-12))
+        height = next(h for h in (4, -11, 15, -22, 26, -33)
+                      if not any(abs(where - w) < 0.8 and abs(err - e) < 0.05 * span and h == d
+                                 for w, e, d in placed))
+        placed.append((where, err, height))
+        ax.annotate(label, (t50, err), textcoords="offset points", xytext=(5, height), fontsize=7)
     front = sorted((p for p in points if p[4]), key=lambda p: p[0])
     if len(front) > 1:
         ax.plot([p[0] for p in front], [p[2] for p in front], "-", color="C0", label="Pareto front")
