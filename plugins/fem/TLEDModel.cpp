@@ -135,17 +135,61 @@ TLEDModel::TLEDModel(std::span<const Vec3> restNodes, std::span<const TetIndices
     for (int a = 0; a < 3; ++a) gradientSquared += Dinv.row(a).squaredNorm();
     m_length[k] = 1 / std::sqrt(gradientSquared);
   }
+  m_elementRemoved.assign(el.count, 0);
+  m_nodeElements.assign(n, 0);
+  for (size_t k = 0; k < el.count; ++k)
+    for (int a = 0; a < 4; ++a) ++m_nodeElements[size_t(el.nodeOffset[a][k]) / kNodeStride];
   findCriticalStep();
   m_stepScale.assign(n, 0.0);
+  // Every axis of every node held at most once: removing elements (which
+  // holds the nodes it frees) never allocates.
+  m_held.reserve(3 * n);
   // A node no element holds has no mass: it stays where it is.
   for (size_t k = 0; k < n; ++k)
     if (m_mass[k] == 0)
       for (size_t axis = 0; axis < 3; ++axis) m_held.push_back({kNodeStride * k + axis, 0.0});
 }
 
+size_t TLEDModel::removeElements(std::span<const int32_t> elements) {
+  TLEDElements& el = m_elements;
+  const bool single = el.precision == ElementPrecision::kSingle;
+  const double denominator = 1 + m_damping * m_dt / 2;
+  size_t count = 0;
+  for (const int32_t e : elements) {
+    if (e < 0 || size_t(e) >= m_elementInternal.size()) continue;
+    const size_t k = size_t(m_elementInternal[size_t(e)]);
+    if (m_elementRemoved[k]) continue;
+    m_elementRemoved[k] = 1;
+    ++count;
+    el.muVolume[k] = el.kappaVolume[k] = 0;
+    if (single) el.single.muVolume[k] = el.single.kappaVolume[k] = 0;
+    const double share = 0.25 * m_density[k] * m_volume[k];
+    m_density[k] = m_materialDensity[k] = 0;
+    for (int a = 0; a < 4; ++a) {
+      const size_t node = size_t(el.nodeOffset[a][k]) / kNodeStride;
+      if (--m_nodeElements[node] == 0) {
+        // Nothing holds it any more: out of the model, at rest.
+        m_mass[node] = 0;
+        m_stepScale[node] = 0;
+        for (size_t axis = 0; axis < 3; ++axis) {
+          const size_t index = kNodeStride * node + axis;
+          auto held = std::find_if(m_held.begin(), m_held.end(), [&](const HeldAxis& h) { return h.index == index; });
+          if (held == m_held.end()) m_held.push_back({index, 0.0});  // within the reserve
+        }
+        continue;
+      }
+      m_mass[node] -= share;
+      if (m_dt > 0) m_stepScale[node] = m_dt * m_dt / (m_mass[node] * denominator);
+    }
+  }
+  m_removedCount += count;
+  return count;
+}
+
 void TLEDModel::findCriticalStep() {
   m_criticalStep = INFINITY;
   for (size_t k = 0; k < m_elements.count; ++k) {
+    if (m_elementRemoved[k]) continue;
     const ElasticModuli moduli{m_elements.muVolume[k] / m_volume[k], m_elements.kappaVolume[k] / m_volume[k]};
     const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_density[k]);
     if (step < m_criticalStep) {
@@ -164,6 +208,7 @@ void TLEDModel::findCriticalStep() {
 size_t TLEDModel::elementsBelowStep(double dt) const {
   size_t count = 0;
   for (size_t k = 0; k < m_elements.count; ++k) {
+    if (m_elementRemoved[k]) continue;
     const ElasticModuli moduli{m_elements.muVolume[k] / m_volume[k], m_elements.kappaVolume[k] / m_volume[k]};
     if (m_length[k] / moduli.dilatationalWaveSpeed(m_density[k]) < dt) ++count;
   }
@@ -176,6 +221,7 @@ void TLEDModel::assignMaterial(std::span<const int32_t> elements, const ElementM
   TLEDElements& el = m_elements;
   for (int32_t e : elements) {
     const size_t k = size_t(m_elementInternal[e]);
+    if (m_elementRemoved[k]) continue;  // resected: stays out
     const double change = 0.25 * (material.density - m_density[k]) * m_volume[k];
     for (int a = 0; a < 4; ++a) m_mass[size_t(el.nodeOffset[a][k]) / kNodeStride] += change;
     m_density[k] = m_materialDensity[k] = material.density;
@@ -213,6 +259,7 @@ size_t TLEDModel::scaleMassForStep(double dt) {
   size_t scaled = 0;
   const TLEDElements& el = m_elements;
   for (size_t k = 0; k < el.count; ++k) {
+    if (m_elementRemoved[k]) continue;
     const ElasticModuli moduli{el.muVolume[k] / m_volume[k], el.kappaVolume[k] / m_volume[k]};
     const double step = m_length[k] / moduli.dilatationalWaveSpeed(m_materialDensity[k]);
     const double density = step < dt ? m_materialDensity[k] * (dt / step) * (dt / step) : m_materialDensity[k];
@@ -230,6 +277,7 @@ double TLEDModel::unscaledCriticalTimeStep() const {
   double smallest = std::numeric_limits<double>::infinity();
   const TLEDElements& el = m_elements;
   for (size_t k = 0; k < el.count; ++k) {
+    if (m_elementRemoved[k]) continue;
     const ElasticModuli moduli{el.muVolume[k] / m_volume[k], el.kappaVolume[k] / m_volume[k]};
     smallest = std::min(smallest, m_length[k] / moduli.dilatationalWaveSpeed(m_materialDensity[k]));
   }

@@ -141,6 +141,18 @@ class TLEDModel {
   // as it was before any mass scaling.
   double unscaledCriticalTimeStep() const;
 
+  // Takes `elements` (the mesh's indices) out of the model, as resection
+  // removes them: their forces leave the element loop (their moduli become
+  // 0; the loop's arrays keep their shape) and their share of the lumped
+  // masses leaves their nodes; a node left with no element belongs to
+  // nothing and is held at its rest position. Indices out of range or
+  // already removed are skipped; returns how many went. Does not allocate:
+  // the FEM's thread calls it between steps. Every state of the model
+  // follows at its next step.
+  size_t removeElements(std::span<const int32_t> elements);
+  bool removed(int32_t element) const { return m_elementRemoved[size_t(m_elementInternal[size_t(element)])] != 0; }
+  size_t removedCount() const { return m_removedCount; }
+
   // The element loop's arithmetic (double by default). Allocates: at setup.
   void setElementPrecision(ElementPrecision precision);
   ElementPrecision elementPrecision() const { return m_elements.precision; }
@@ -190,6 +202,9 @@ class TLEDModel {
   // Per internal element: mm^3, kg/mm^3 (effective, and the material's), 1 / |grad N| mm.
   std::vector<double> m_volume, m_density, m_materialDensity, m_length;
   std::vector<double> m_mass;                         // kg, lumped, per internal node
+  std::vector<uint8_t> m_elementRemoved;              // per internal element: taken out (removeElements)
+  std::vector<uint32_t> m_nodeElements;               // per internal node: elements of the model using it
+  size_t m_removedCount = 0;
   ElementLoopIsa m_isa = bestElementLoopIsa();
   std::vector<double> m_stepScale;   // dt^2 / (m (1 + a dt / 2)) per internal node, mm / mN
   struct HeldAxis {
