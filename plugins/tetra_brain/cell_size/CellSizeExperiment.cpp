@@ -68,9 +68,16 @@ double cellSizeError(double optimal, double zoneLow, double zoneHigh, double del
   // per axis of its scene): a small cell is a large n.
   const double nOpt = 1 / optimal, n = 1 / delta;
   if (n == nOpt) return 0;
+  // The zone's width on each side of the optimum. An optimum at an end of the
+  // sampled range (timings a loaded machine bends) leaves the zone no width
+  // on that side: it is taken as wide as on the other (the error was
+  // infinite, written as null).
+  double larger = nOpt - 1 / zoneHigh, smaller = 1 / zoneLow - nOpt;
+  if (!(larger > 0)) larger = smaller;
+  if (!(smaller > 0)) smaller = larger;
   // n below the optimum (a larger cell): against the zone's larger cell.
-  if (n < nOpt) return (nOpt - n) / (nOpt - 1 / zoneHigh);
-  return (n - nOpt) / (1 / zoneLow - nOpt);
+  if (n < nOpt) return (nOpt - n) / larger;
+  return (n - nOpt) / smaller;
 }
 
 CellSizeExperimentResult runCellSizeExperiment(const TetMesh& mesh, const CellSizeInputs& inputs,

@@ -98,6 +98,12 @@ TEST(CellSizeModelTest, TheErrorMeasureReproducesTheThesissTables) {
   EXPECT_EQ(cellSizeError(2.0, 1.0, 3.0, 2.0), 0.0);
   EXPECT_NEAR(cellSizeError(2.0, 1.0, 3.0, 3.0), 1.0, 1e-15);  // the zone's edges
   EXPECT_NEAR(cellSizeError(2.0, 1.0, 3.0, 1.0), 1.0, 1e-15);
+  // An optimum at the end of the sampled range (the zone's larger cell is the
+  // optimum itself): that side is taken as wide as the other, not infinite.
+  // In cells per mm the zone is then [1/2, 1] around 1/2: width 1/2 on the
+  // smaller-cell side.
+  EXPECT_NEAR(cellSizeError(2.0, 1.0, 2.0, 4.0), (0.5 - 0.25) / 0.5, 1e-15);
+  EXPECT_NEAR(cellSizeError(2.0, 1.0, 2.0, 1.0), (1.0 - 0.5) / 0.5, 1e-15);
 }
 
 }  // namespace
