@@ -58,7 +58,9 @@ inline ImplicitSolid ballSolid(double radius) {
           1.2 * radius,
           4.2 * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius,
           4.3 * 4.0 * std::numbers::pi * radius * radius,
-          0.0};
+          0.0,
+          {},
+          {}};
 }
 
 struct LabelledImage {

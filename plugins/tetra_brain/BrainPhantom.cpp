@@ -98,7 +98,7 @@ int32_t brainPhantomRegion(const Vec3& p, const BrainPhantomRegions& regions) {
 
 TetMesh makeBrainPhantom(int targetTets, const BrainPhantomRegions& regions) {
   ImplicitSolid solid{brainPhantomDistance, Vec3::Zero(), kBoundingRadius, kVolumeTerm, kSurfaceTerm,
-                      kLeastFacetDistance};
+                      kLeastFacetDistance, {}, {}};
   if (regions.any()) {
     solid.region = [regions](const Vec3& p) { return brainPhantomRegion(p, regions); };
     // The regions, small beside the brain, resolved at a third of its size
