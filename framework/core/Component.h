@@ -3,6 +3,7 @@
 // the registry from its XML tag, initialised once, and, when it has a `rate`
 // field, ticked by the scheduler in the rate group of that rate.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +53,17 @@ struct Fact {
   std::string value;
 };
 
+// A block of its own at the top of summary.json (a contract of the brief, such
+// as `resection`): its figures by dotted path ("removed_mm3.tumour" is
+// "removed_mm3": {"tumour": ...}); with `toolsOn`, a "tools" object gives,
+// for each tool whose frames touched that target (HapticFrame::target), its
+// path length, its time in contact and its forces on it.
+struct SummaryBlock {
+  std::string name;
+  std::vector<Counter> figures;
+  const void* toolsOn = nullptr;
+};
+
 class Component : public FieldOwner {
  public:
   static constexpr std::string_view kTypeName = "Component";
@@ -88,6 +100,8 @@ class Component : public FieldOwner {
   virtual void reportCounters(std::vector<Counter>& counters) const;
   // Texts for the same entry, e.g. {"backend", "native"}.
   virtual void reportFacts(std::vector<Fact>& facts) const { (void)facts; }
+  // A block of summary.json of its own, or none (the default).
+  virtual std::optional<SummaryBlock> summaryBlock() const { return std::nullopt; }
   // The files finish() will write, checked after init (plain names, none of the
   // run's own, no two alike) so that a bad name fails the load, not the end of a run.
   virtual void declareOutputs(std::vector<OutputFile>& outputs) const;

@@ -49,7 +49,8 @@ struct ShellContact {
   Vec3 normal = Vec3::Zero();  // unit, out of the target towards the tool; zero if undefined
   double penetration = 0;      // mm, depth of the tool in the target as the target measures it
   std::span<const ContactSite> sites;  // deformable target: where the tool presses
-  std::span<const int64_t> touched;    // drillable target, asked for a cut: the primitives it lowers
+  std::span<const int64_t> touched;    // the primitives a cut lowers (drillable target, asked for a cut) or
+                                       // the tool touches (a target that resects)
 };
 
 // What one tool keeps for its queries of one target, from frame to frame:
@@ -78,6 +79,7 @@ struct CuttingLoad {
   double dt = 0;                 // s, duration of the frame
   double t = 0;                  // s, time of the frame (for events)
   CuttingBurr burr;
+  TissueAction action;  // the tool's action on tissue (a target that resects reads it)
 };
 
 // What one tool does to the target in one haptic frame, once its force is
@@ -176,6 +178,11 @@ class ShellContactTarget : public SurfaceTarget {
   // ever leaves it, so the space free of it only grows, and its cut surface is
   // rough at the scale of its primitives.
   virtual bool drills() const { return false; }
+  // Whether tools remove this target's primitives as they touch it
+  // (resection of a tetrahedral brain): its surface then recedes from under a
+  // tool a primitive at a time, and the tool's spring follows at the pace the
+  // device's own motion explains.
+  virtual bool resects() const { return false; }
   // How far the proxy is placed into the target when a sweep stops it (mm):
   // enough for the shell points to register contact at the stop.
   virtual double contactDepth() const = 0;

@@ -26,6 +26,30 @@ struct CuttingBurr {
   double sharpness = 0;         // tangential over normal force at the cutting edge (dimensionless)
 };
 
+// What a tool does to the brain tissue it touches while its pedal is held
+// (resection; a target that resects reads it, others ignore it). An
+// ultrasonic aspirator removes tissue: its tip, vibrating along its axis with
+// a stroke of amplitude A at frequency f, moves at a mean speed of 4 A f, and
+// a share (the coupling) of the contact force times that speed goes into the
+// tissue, up to the handpiece's rated power. A bipolar forceps coagulates the
+// tissue it touches with its power: coagulated tissue does not bleed when it
+// is removed.
+struct TissueAction {
+  enum class Kind { kNone, kAspirate, kCoagulate };
+  Kind kind = Kind::kNone;
+  double tipSpeed_mm_per_s = 0;  // aspirator: the mean speed of the vibrating tip, 4 A f
+  double coupling = 0;           // aspirator: share of force times tip speed that goes into the tissue
+  double power_W = 0;            // aspirator: rated power (the most it puts in); bipolar: power into the tissue
+  int pedal = 0;                 // device button that engages it; 0: always engaged
+  // W: the power a contact force of `force_N` puts into the tissue.
+  double powerAt(double force_N) const {
+    if (kind == Kind::kCoagulate) return power_W;
+    if (kind != Kind::kAspirate || !(force_N > 0)) return 0;
+    const double mechanical = coupling * force_N * tipSpeed_mm_per_s * 1e-3;  // N * m/s
+    return mechanical < power_W ? mechanical : power_W;
+  }
+};
+
 // The solid a tool's shell samples, for targets whose back-ends test
 // primitives rather than points (Bullet): a sphere of `radius` at the
 // reference point and, when shaftLength > 0, a cylinder of shaftRadius from
@@ -56,6 +80,8 @@ class ShellTool {
   // The burr at the reference point, a sphere of leadingRadius(); a tool that
   // does not spin keeps the default (cuts nothing under the force law).
   virtual CuttingBurr cuttingBurr() const { return {}; }
+  // What it does to brain tissue (an aspirator, a bipolar forceps); none by default.
+  virtual TissueAction tissueAction() const { return {}; }
   // The solid the shell samples: by default the sphere of leadingRadius().
   virtual ToolSolid solid() const { return {leadingRadius(), 0, 0, Vec3::UnitZ()}; }
   // What the tool looks like (tool frame, mm), for the files and the viewer:

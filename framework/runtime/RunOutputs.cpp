@@ -1,5 +1,6 @@
 #include "framework/runtime/RunOutputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -79,6 +80,58 @@ void printHapticFigures(std::ostream& out, const HapticStats& h) {
     out << "\n          with the device's damping " << std::defaultfloat << h.deviceDamping << std::fixed
         << " N s/mm: energy in " << h.energyInWithDevice_mJ << " mJ, min " << h.minEnergyInWithDevice_mJ << " mJ";
   out << "\n";
+}
+
+// Figures by dotted path as nested objects: "a.b" and "a.c" in one "a".
+// Figures of one prefix are written together, in their first one's place.
+void writeNestedFigures(JsonWriter& json, const std::vector<Counter>& figures, const std::string& prefix) {
+  std::vector<std::string> written;
+  for (const Counter& figure : figures) {
+    if (figure.name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = figure.name.substr(prefix.size());
+    const size_t dot = rest.find('.');
+    const std::string key = rest.substr(0, dot);
+    if (std::find(written.begin(), written.end(), key) != written.end()) continue;
+    written.push_back(key);
+    if (dot == std::string::npos) {
+      json.field(key, figure.value);
+    } else {
+      json.key(key).beginObject();
+      writeNestedFigures(json, figures, prefix + key + ".");
+      json.endObject();
+    }
+  }
+}
+
+// The tools whose frames touched `target`: path length of the displayed
+// tool (the proxy) over the whole run, time in contact with the target, and
+// the force while in contact with it (max, mean).
+void writeToolsOn(JsonWriter& json, const Simulation& simulation, const void* target) {
+  json.key("tools").beginObject();
+  for (const Simulation::ToolLog& tool : simulation.toolLogs()) {
+    const HapticFrameLog& log = *tool.log;
+    double path = 0, contact = 0, forceMax = 0, forceSum = 0;
+    size_t contactFrames = 0;
+    bool touched = false;
+    for (size_t i = 0; i < log.size(); ++i) {
+      const HapticFrame& f = log[i];
+      if (i > 0 && f.proxy.allFinite() && log[i - 1].proxy.allFinite()) path += (f.proxy - log[i - 1].proxy).norm();
+      if (f.target != target || f.contacts <= 0) continue;
+      touched = true;
+      ++contactFrames;
+      if (i + 1 < log.size()) contact += log[i + 1].t - f.t;
+      const double force = f.force.allFinite() ? f.force.norm() : 0.0;
+      forceMax = std::max(forceMax, force);
+      forceSum += force;
+    }
+    if (!touched) continue;
+    json.key(tool.renderer->path()).beginObject();
+    json.field("path_length_mm", path).field("contact_s", contact);
+    json.key("force_N").beginObject().field("max", forceMax);
+    json.field("mean", contactFrames ? forceSum / double(contactFrames) : 0.0).endObject();
+    json.endObject();
+  }
+  json.endObject();
 }
 
 }  // namespace
@@ -169,6 +222,15 @@ void writeSummaryJson(const Simulation& simulation, const FinishContext* finish,
   }
   json.endObject();
   json.key("drilling").beginObject().field("voxels_removed", totals["voxels_removed"]).endObject();
+  for (const Component* c : simulation.scene().components()) {
+    const std::optional<SummaryBlock> block = c->summaryBlock();
+    if (!block) continue;
+    json.key(block->name).beginObject();
+    json.field("source", c->path());
+    writeNestedFigures(json, block->figures, "");
+    if (block->toolsOn) writeToolsOn(json, simulation, block->toolsOn);
+    json.endObject();
+  }
 
   const EventLog& events = simulation.events();
   json.key("events").beginArray();

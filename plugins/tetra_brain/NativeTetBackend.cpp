@@ -24,7 +24,7 @@ void NativeTetBackend::bind(const TetData& data) {
 void NativeTetBackend::buildAccelerations() {
   const TetMesh& mesh = *m_mesh;
   const size_t n = mesh.tetCount();
-  m_degenerate.assign(n, 0);
+  m_holdsNoPoint.assign(n, 0);
   double edges = 0, volumes = 0;
   for (const TetIndices& k : mesh.tets)
     volumes += std::abs(signedVolume(mesh.nodes[k[0]], mesh.nodes[k[1]], mesh.nodes[k[2]], mesh.nodes[k[3]]));
@@ -34,7 +34,7 @@ void NativeTetBackend::buildAccelerations() {
     const TetIndices& k = mesh.tets[t];
     edges += (mesh.nodes[k[0]] - mesh.nodes[k[1]]).norm() + (mesh.nodes[k[2]] - mesh.nodes[k[3]]).norm();
     const double v = signedVolume(mesh.nodes[k[0]], mesh.nodes[k[1]], mesh.nodes[k[2]], mesh.nodes[k[3]]);
-    m_degenerate[t] = !(std::abs(v) > volumeTolerance);
+    m_holdsNoPoint[t] = std::abs(v) > volumeTolerance ? 0 : kDegenerateTet;
   }
   m_averageEdge = edges / (2.0 * double(n));
   // Auto margin: a quarter of the average edge. Each cell then lists about
@@ -54,19 +54,9 @@ void NativeTetBackend::buildAccelerations() {
                                                        : 0.5 * m_averageEdge;
   if (m_options.cellSize <= 0 && m_options.cellSizeRule == Rule::kToolCost)
     m_boxMoments = measureBoxMoments(mesh, m_margin);
+  buildFaceSets();
   buildRestGrids();
-  const auto& faces = m_topology->boundaryFaces();
   m_tetVisits.resize(n);
-  m_faceVisits.resize(faces.size());
-  // Node -> boundary faces, compressed rows.
-  m_nodeFaceStart.assign(mesh.nodeCount() + 1, 0);
-  for (const BoundaryFace& f : faces)
-    for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) ++m_nodeFaceStart[i + 1];
-  for (size_t i = 0; i < mesh.nodeCount(); ++i) m_nodeFaceStart[i + 1] += m_nodeFaceStart[i];
-  m_nodeFaces.resize(m_nodeFaceStart.back());
-  std::vector<uint32_t> fill(m_nodeFaceStart.begin(), m_nodeFaceStart.end() - 1);
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (int32_t i : faceNodes(mesh.tets[faces[f].tet], faces[f].face)) m_nodeFaces[fill[i]++] = int32_t(f);
   // Node -> tets, compressed rows, for the thesis's refresh of the moved tetrahedra.
   m_nodeTetStart.clear();
   m_nodeTets.clear();
@@ -84,9 +74,66 @@ void NativeTetBackend::buildAccelerations() {
   }
 }
 
+void NativeTetBackend::buildFaceSets() {
+  // The faces the face grid lists: the boundary faces; when removals are
+  // followed, every face of every tetrahedron (entry tet * 4 + face), each
+  // flagged on the boundary or not, so a removal flips flags in place.
+  const TetMesh& mesh = *m_mesh;
+  const size_t n = mesh.tetCount();
+  m_boundaryMask.resize(n);
+  for (size_t t = 0; t < n; ++t) m_boundaryMask[t] = m_topology->boundaryMask(int32_t(t));
+  if (m_followsRemovals) {
+    m_faces.resize(4 * n);
+    m_faceOnBoundary.resize(4 * n);
+    for (size_t t = 0; t < n; ++t)
+      for (int f = 0; f < 4; ++f) {
+        m_faces[4 * t + f] = {int32_t(t), int8_t(f)};
+        m_faceOnBoundary[4 * t + f] = (m_boundaryMask[t] >> f) & 1u;
+      }
+  } else {
+    m_faces = m_topology->boundaryFaces();
+    m_faceOnBoundary.assign(m_faces.size(), 1);
+  }
+  m_removedTets = m_exposedFaces = 0;
+  m_faceVisits.resize(m_faces.size());
+  // Node -> faces, compressed rows.
+  m_nodeFaceStart.assign(mesh.nodeCount() + 1, 0);
+  for (const BoundaryFace& f : m_faces)
+    for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) ++m_nodeFaceStart[i + 1];
+  for (size_t i = 0; i < mesh.nodeCount(); ++i) m_nodeFaceStart[i + 1] += m_nodeFaceStart[i];
+  m_nodeFaces.resize(m_nodeFaceStart.back());
+  std::vector<uint32_t> fill(m_nodeFaceStart.begin(), m_nodeFaceStart.end() - 1);
+  for (size_t f = 0; f < m_faces.size(); ++f)
+    for (int32_t i : faceNodes(mesh.tets[m_faces[f].tet], m_faces[f].face)) m_nodeFaces[fill[i]++] = int32_t(f);
+}
+
+std::optional<std::string> NativeTetBackend::followRemovals() {
+  if (m_followsRemovals) return std::nullopt;
+  m_followsRemovals = true;
+  if (!m_mesh) return std::nullopt;  // bind() builds them
+  buildFaceSets();
+  buildRestGrids();
+  return std::nullopt;
+}
+
+void NativeTetBackend::removeTets(const RemainingMesh::Change& change) {
+  if (!m_followsRemovals) return;
+  for (int32_t tet : change.removedTets) {
+    m_holdsNoPoint[size_t(tet)] = kRemovedTet;
+    m_boundaryMask[size_t(tet)] = 0;
+  }
+  for (const BoundaryFace& f : change.takenAway) m_faceOnBoundary[size_t(f.tet) * 4 + size_t(f.face)] = 0;
+  for (const BoundaryFace& f : change.exposed) {
+    m_faceOnBoundary[size_t(f.tet) * 4 + size_t(f.face)] = 1;
+    m_boundaryMask[size_t(f.tet)] |= uint8_t(1u << f.face);
+  }
+  m_removedTets += change.removedTets.size();
+  m_exposedFaces += change.exposed.size();
+}
+
 void NativeTetBackend::buildRestGrids() {
   // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
-  buildTetGrids(*m_mesh, *m_topology, m_mesh->nodes, m_margin, m_cellSize, faceCellSize(), m_restGrids);
+  buildTetGrids(*m_mesh, m_faces, m_mesh->nodes, m_margin, m_cellSize, faceCellSize(), m_restGrids);
   m_grids = &m_restGrids;
   m_tetBoxes = m_restGrids.boxes;
   m_bounds = m_restGrids.bounds;
@@ -186,6 +233,7 @@ void NativeTetBackend::reserveShell(std::span<const ShellPoint> shell) {
     m_depths.resize(shell.size());
     m_normals.resize(shell.size());
     m_sites.resize(shell.size());
+    m_hitTets.resize(shell.size());
     m_points.resize(shell.size());
     m_pointTets.resize(shell.size());
     m_insetPoints.resize(shell.size());
@@ -212,6 +260,11 @@ void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
     counters.push_back({"locate_point_tests_per_query", double(m_locateWork.pointTests) / q});
   }
   if (m_options.search != Search::kGrid) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
+  if (m_followsRemovals) {
+    counters.push_back({"removed_tetrahedra", double(m_removedTets)});
+    counters.push_back({"exposed_faces", double(m_exposedFaces)});
+    counters.push_back({"face_grid_entries", double(m_grids->faceGrid.entryCount())});
+  }
   if (m_options.deformable) {
     counters.push_back({"displacement_margin_mm", m_margin});
     counters.push_back({"adopted_grids", double(m_adoptedGrids)});

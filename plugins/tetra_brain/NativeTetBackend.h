@@ -50,6 +50,15 @@ class NativeTetBackend final : public TetBackend {
   // are not this mesh's (another node count or margin). Allocation-free.
   void adoptGrids(const TetGridSet& grids) override;
   bool adoptsGrids() const override { return true; }
+  // From now on the back-end follows removals (removeTets): its face grid
+  // lists every face of the mesh, each flagged on the boundary or not, so that
+  // a removal flips flags instead of rebuilding the grid.
+  std::optional<std::string> followRemovals() override;
+  // Allocation-free: O(tetrahedra removed).
+  void removeTets(const RemainingMesh::Change& change) override;
+  // The faces the face grid lists (its items index this): the boundary faces,
+  // or every face of every tetrahedron (tet * 4 + face) once removals are followed.
+  std::span<const BoundaryFace> faces() const { return m_faces; }
   // mm; with cellSizeRule="tool-cost", final once the tools reserved their shells (initialisation)
   double cellSize() const { return m_cellSize; }
   // mm, of the boundary faces' grid: the tetrahedra's cell, at least half an
@@ -112,6 +121,7 @@ class NativeTetBackend final : public TetBackend {
  private:
   using Search = TetQueryOptions::Search;
   void buildAccelerations();
+  void buildFaceSets();
   void buildRestGrids();
   // cellSizeRule="tool-cost": the cell that minimises the queries of every
   // shell reserved so far; the grids are rebuilt when it changes.
@@ -158,8 +168,15 @@ class NativeTetBackend final : public TetBackend {
   std::vector<std::pair<const void*, size_t>> m_modelShellKeys;
   uint64_t m_adoptedGrids = 0;
   std::vector<Box3> m_tetBoxes;           // per tet, current: maintained only for the thesis's scans
-  std::vector<uint8_t> m_degenerate;      // 1: zero-volume tetrahedron, never contains a point
-  std::vector<uint32_t> m_nodeFaceStart;  // node -> boundary faces holding it (compressed rows)
+  // Per tet: 0, or why it never contains a point (zero volume, removed).
+  static constexpr uint8_t kDegenerateTet = 1, kRemovedTet = 2;
+  std::vector<uint8_t> m_holdsNoPoint;
+  bool m_followsRemovals = false;
+  std::vector<BoundaryFace> m_faces;      // what the face grid lists (faces())
+  std::vector<uint8_t> m_faceOnBoundary;  // per entry of m_faces: on the boundary now
+  std::vector<uint8_t> m_boundaryMask;    // per tet, bit f: face f on the boundary now
+  uint64_t m_removedTets = 0, m_exposedFaces = 0;
+  std::vector<uint32_t> m_nodeFaceStart;  // node -> faces of m_faces holding it (compressed rows)
   std::vector<int32_t> m_nodeFaces;
   double m_averageEdge = 0;  // mm
 
@@ -183,6 +200,7 @@ class NativeTetBackend final : public TetBackend {
   std::vector<double> m_depths;      // per hit, mm
   std::vector<Vec3> m_normals;       // per hit, outward unit normal of the face it measures to
   std::vector<ContactSite> m_sites;  // per hit
+  std::vector<int32_t> m_hitTets;    // the contact's tetrahedra, each once (TetContact::tets)
   // Scratch of the const queries (the haptic thread only).
   mutable ShellLocator m_locator;
   mutable VisitStamps m_tetVisits, m_faceVisits;  // blocks of cells: each item tested once

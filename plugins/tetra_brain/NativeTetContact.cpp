@@ -10,6 +10,29 @@
 
 namespace trephine::tetra {
 
+namespace {
+
+// The nearest of the faces offered. Faces as near as the nearest within
+// round-off (a point nearest an edge or a node of the surface is as near
+// several faces) go to the lowest (tetrahedron, face): the answer then does
+// not depend on the order the faces are visited in, which the grid's cells
+// and a removal change.
+struct NearestFace {
+  double distance = std::numeric_limits<double>::infinity();
+  BoundaryFace face{-1, 0};
+  bool found() const { return face.tet >= 0; }
+  void offer(double d, const BoundaryFace& candidate) {
+    const double tie = 1e-12 * (1.0 + d);
+    if (d < distance - tie || (d <= distance + tie && key(candidate) < key(face))) {
+      if (d < distance) distance = d;
+      face = candidate;
+    }
+  }
+  static int64_t key(const BoundaryFace& f) { return f.tet < 0 ? INT64_MAX : int64_t(f.tet) * 4 + f.face; }
+};
+
+}  // namespace
+
 Vec3 NativeTetBackend::faceNormal(const BoundaryFace& face) const {
   const auto n = faceNodes(m_mesh->tets[face.tet], face.face);
   const Vec3 normal = (m_nodes[n[1]] - m_nodes[n[0]]).cross(m_nodes[n[2]] - m_nodes[n[0]]);
@@ -21,20 +44,17 @@ double NativeTetBackend::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& 
   // A tet that touches the surface only at a node or an edge: the nearest of
   // the boundary faces around its nodes (a handful), instead of a search of
   // the whole neighbourhood. Infinite when no node of the tet is on the surface.
-  double best = std::numeric_limits<double>::infinity();
-  const auto& faces = m_topology->boundaryFaces();
+  NearestFace nearest;
   for (int32_t node : m_mesh->tets[tet]) {
     for (uint32_t e = m_nodeFaceStart[node]; e < m_nodeFaceStart[node + 1]; ++e) {
-      const BoundaryFace& face = faces[m_nodeFaces[e]];
+      if (!m_faceOnBoundary[size_t(m_nodeFaces[e])]) continue;
+      const BoundaryFace& face = m_faces[size_t(m_nodeFaces[e])];
       const auto n = faceNodes(m_mesh->tets[face.tet], face.face);
-      const double distance = (closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm();
-      if (distance < best) {
-        best = distance;
-        normal = faceNormal(face);
-      }
+      nearest.offer((closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm(), face);
     }
   }
-  return best;
+  if (nearest.found()) normal = faceNormal(nearest.face);
+  return nearest.distance;
 }
 
 double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
@@ -51,13 +71,13 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   const int32_t ci = std::clamp(int32_t(std::floor(g.x())), 0, dims[0] - 1);
   const int32_t cj = std::clamp(int32_t(std::floor(g.y())), 0, dims[1] - 1);
   const int32_t ck = std::clamp(int32_t(std::floor(g.z())), 0, dims[2] - 1);
-  double best = std::numeric_limits<double>::infinity();
+  NearestFace nearest;
   normal.setZero();
   const int32_t maxRing = std::max({dims[0], dims[1], dims[2]});
-  const auto& faces = m_topology->boundaryFaces();
+  const auto& faces = m_faces;
   m_faceVisits.begin();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
-    if ((ring - 1) * m_grids->faceGrid.cellSide() - slack > best) break;
+    if ((ring - 1) * m_grids->faceGrid.cellSide() - slack > nearest.distance) break;
     for (int32_t k = std::max(0, ck - ring); k <= std::min(dims[2] - 1, ck + ring); ++k)
       for (int32_t j = std::max(0, cj - ring); j <= std::min(dims[1] - 1, cj + ring); ++j) {
         // The ring's shell only: a whole row where j or k is on it, else its two ends.
@@ -66,19 +86,16 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
         for (int32_t i = ci - ring; i <= ci + ring; i += step) {
           if (i < 0 || i >= dims[0]) continue;
           for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
-            if (!m_faceVisits.firstVisit(f)) continue;
+            if (!m_faceOnBoundary[size_t(f)] || !m_faceVisits.firstVisit(f)) continue;
             const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
-            const Vec3 q = closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]);
-            const double distance = (q - p).norm();
-            if (distance < best) {
-              best = distance;
-              normal = faceNormal(faces[f]);
-            }
+            nearest.offer((closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm(), faces[f]);
           }
         }
       }
   }
-  return std::isfinite(best) ? best : 0.0;
+  if (!nearest.found()) return 0.0;
+  normal = faceNormal(nearest.face);
+  return nearest.distance;
 }
 
 bool NativeTetBackend::surfaceWithin(const Vec3& p, double radius) const {
@@ -86,9 +103,10 @@ bool NativeTetBackend::surfaceWithin(const Vec3& p, double radius) const {
   // the displacement bound of p; the cells hold the boxes grown by the
   // margin, so the cells within radius plus the excess hold it.
   const Vec3 reach = Vec3::Constant(radius + m_queryGrowth);
-  const auto& faces = m_topology->boundaryFaces();
+  const auto& faces = m_faces;
   const Box3 ball(p - Vec3::Constant(radius), p + Vec3::Constant(radius));
   return anyFaceInCells(Box3(p - reach, p + reach), [&](int32_t f) {
+    if (!m_faceOnBoundary[size_t(f)]) return false;
     const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
     const Vec3 &a = m_nodes[n[0]], &b = m_nodes[n[1]], &c = m_nodes[n[2]];
     const Box3 face(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
@@ -113,8 +131,10 @@ TetContact NativeTetBackend::contactOfHits(const Pose& X_WT, std::span<const She
                                  : contactNearestFace(R, X_WT.position, shell, hits);
   contact.points = int(hits.size());
   int tets = 0;
-  for (size_t h = 0; h < hits.size(); ++h) tets += h == 0 || hits[h].tet != hits[h - 1].tet;
+  for (size_t h = 0; h < hits.size(); ++h)
+    if (h == 0 || hits[h].tet != hits[h - 1].tet) m_hitTets[size_t(tets++)] = hits[h].tet;
   contact.primitives = tets;
+  result.tets = {m_hitTets.data(), size_t(tets)};
   m_maxCollidingTets = std::max<uint64_t>(m_maxCollidingTets, tets);
   if (wantSites) {
     // Each colliding point presses on its tetrahedron's nodes by its
@@ -138,7 +158,7 @@ ShellContact NativeTetBackend::contactNearestFace(const Eigen::Matrix3d& R, cons
   for (size_t h = 0; h < hits.size(); ++h) {
     const int32_t tet = hits[h].tet;
     const Vec3 p = R * shell[hits[h].point].position + t;
-    const uint8_t mask = m_topology->boundaryMask(tet);
+    const uint8_t mask = m_boundaryMask[size_t(tet)];
     double depth = std::numeric_limits<double>::infinity();
     Vec3 normal = Vec3::Zero();
     for (int f = 0; f < 4; ++f) {
@@ -183,7 +203,7 @@ ShellContact NativeTetBackend::contactAlgorithm2(const Eigen::Matrix3d& R, const
     size_t last = first;
     while (last < hits.size() && hits[last].tet == hits[first].tet) ++last;
     const int32_t tet = hits[first].tet;
-    const uint8_t mask = m_topology->boundaryMask(tet);
+    const uint8_t mask = m_boundaryMask[size_t(tet)];
     for (int f = 0; f < 4; ++f) {
       if (!(mask & (1u << f))) continue;
       const Vec3 n = faceNormal({tet, int8_t(f)});

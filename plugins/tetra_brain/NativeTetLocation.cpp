@@ -8,7 +8,7 @@
 namespace trephine::tetra {
 
 bool NativeTetBackend::inside(int32_t tet, const Vec3& p) const {
-  if (m_degenerate[tet]) return false;
+  if (m_holdsNoPoint[tet]) return false;
   const TetIndices& k = m_mesh->tets[tet];
   const Vec3 &a = m_nodes[k[0]], &b = m_nodes[k[1]], &c = m_nodes[k[2]], &d = m_nodes[k[3]];
   // Barycentric coordinates as sub-volumes; all of them non-negative inside (the
@@ -180,7 +180,8 @@ size_t NativeTetBackend::findHitsByScan(const Eigen::Matrix3d& R, const Vec3& t,
     for (size_t c = ringStart; c < ringEnd; ++c)
       for (int f = 0; f < 4; ++f) {
         const int32_t nb = m_topology->neighbour(m_candidates[c], f);
-        if (nb < 0 || std::find(m_candidates.begin(), m_candidates.begin() + count, nb) != m_candidates.begin() + count)
+        if (nb < 0 || m_holdsNoPoint[size_t(nb)] == kRemovedTet ||
+            std::find(m_candidates.begin(), m_candidates.begin() + count, nb) != m_candidates.begin() + count)
           continue;
         m_candidates[count++] = nb;
       }

@@ -39,10 +39,11 @@ double NativeTetBackend::firstEntry(const Vec3& a, const Vec3& b, bool skipIniti
   box.extend(a);
   box.extend(b);
   box = Box3(box.min() - Vec3::Constant(m_queryGrowth), box.max() + Vec3::Constant(m_queryGrowth));
-  const auto& faces = m_topology->boundaryFaces();
+  const auto& faces = m_faces;
   const Vec3 direction = b - a;
   double first = 2.0;
   anyFaceInCells(box, [&](int32_t f) {
+    if (!m_faceOnBoundary[size_t(f)]) return false;
     const Vec3 n = faceNormal(faces[f]);
     if (direction.dot(n) >= 0) return false;  // leaving, or grazing
     const auto v = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);

@@ -9,7 +9,10 @@
 #include <optional>
 #include <span>
 
+#include <string>
+
 #include "framework/core/CollisionBackend.h"
+#include "framework/data/RemainingMesh.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "plugins/tetra_brain/TetGridSet.h"
 #include "framework/data/TetMesh.h"
@@ -52,10 +55,12 @@ struct NodeFrame {
   double largestMove = INFINITY;        // mm, no node moved farther since the previous frame; infinite when unknown
 };
 
-// A contact, and when asked for, its sites (valid until the back-end's next query).
+// A contact, and when asked for, its sites and the tetrahedra it touches
+// (valid until the back-end's next query).
 struct TetContact {
   ShellContact contact;
   std::span<const ContactSite> sites;
+  std::span<const int32_t> tets;  // the tetrahedra holding its shell points, each once (resection)
 };
 
 class TetBackend : public CollisionBackend {
@@ -81,6 +86,15 @@ class TetBackend : public CollisionBackend {
   virtual void adoptGrids(const TetGridSet& grids) { (void)grids; }
   // Whether adoptGrids() is used (TetGridRebuild refuses a back-end that ignores it).
   virtual bool adoptsGrids() const { return false; }
+  // Resection: from now on tetrahedra are removed during the run (called at
+  // init, before the run). An error message when this back-end cannot follow.
+  virtual std::optional<std::string> followRemovals() {
+    return std::string("cannot follow removed tetrahedra");
+  }
+  // The tetrahedra a resection removed (RemainingMesh::remove's answer),
+  // before the next query: the queries then answer as on the mesh without
+  // them. In the haptic frame: no allocation.
+  virtual void removeTets(const RemainingMesh::Change& change) { (void)change; }
   // `searchStart`: the asking tool's (ContactMemory::searchStart), for a
   // search that starts at the tool's last contact; others leave it.
   virtual TetContact collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites,

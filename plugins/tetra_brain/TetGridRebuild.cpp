@@ -27,7 +27,6 @@ void TetGridRebuild::init(InitContext& context) {
     return;
   }
   m_mesh = &brain.mesh();
-  m_topology = &brain.topology();
   m_native = native;
   m_margin = native->displacementMargin();
   if (!(m_margin > 0)) {
@@ -50,7 +49,7 @@ void TetGridRebuild::tick(const TickContext&) {
   const auto start = std::chrono::steady_clock::now();
   // The back-end's cell, final once initialisation ended (the tools' shells
   // may change it after this component's init).
-  buildTetGrids(*m_mesh, *m_topology, frame.positions, m_margin, m_native->cellSize(), m_native->faceCellSize(),
+  buildTetGrids(*m_mesh, m_native->faces(), frame.positions, m_margin, m_native->cellSize(), m_native->faceCellSize(),
                 m_set);
   ++m_set.version;
   m_channel->publish(m_set);

@@ -50,7 +50,6 @@ class TetGridRebuild final : public Component {
   RateField d_rate{this, 100.0, "Rate of the check (a rebuild takes milliseconds: keep it off the haptic group)"};
 
   const TetMesh* m_mesh = nullptr;
-  const TetTopology* m_topology = nullptr;
   std::optional<ChannelReader<NodePositions>> m_positions;
   Channel<TetGridSet>* m_channel = nullptr;
   TetGridSet m_set;  // the grids last published (their reference is the shape the brain uses)

@@ -5,8 +5,8 @@
 
 namespace trephine::tetra {
 
-void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<const Vec3> positions, double margin,
-                   double cellSize, double faceCellSize, TetGridSet& out) {
+void buildTetGrids(const TetMesh& mesh, std::span<const BoundaryFace> faces, std::span<const Vec3> positions,
+                   double margin, double cellSize, double faceCellSize, TetGridSet& out) {
   const size_t n = mesh.tetCount();
   out.reference.assign(positions.begin(), positions.end());
   out.margin = margin;
@@ -23,7 +23,6 @@ void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<c
   std::vector<Box3> boxes(n);
   for (size_t t = 0; t < n; ++t) boxes[t] = grown(out.boxes[t]);
   out.tetGrid.build(grown(out.bounds), cellSize, boxes);
-  const auto& faces = topology.boundaryFaces();
   boxes.clear();
   boxes.reserve(faces.size());
   for (const BoundaryFace& f : faces) {

@@ -27,10 +27,11 @@ struct TetGridSet {
 };
 
 // Builds the grids on `positions` (one per node of `mesh`), cells of side
-// `cellSize` for the tetrahedra and `faceCellSize` for the boundary faces,
-// boxes grown by `margin` (mm). Allocates: never on the haptic thread.
-void buildTetGrids(const TetMesh& mesh, const TetTopology& topology, std::span<const Vec3> positions, double margin,
-                   double cellSize, double faceCellSize, TetGridSet& out);
+// `cellSize` for the tetrahedra and `faceCellSize` for `faces` (the boundary
+// faces, or every face that may become boundary: faceGrid lists indices into
+// it), boxes grown by `margin` (mm). Allocates: never on the haptic thread.
+void buildTetGrids(const TetMesh& mesh, std::span<const BoundaryFace> faces, std::span<const Vec3> positions,
+                   double margin, double cellSize, double faceCellSize, TetGridSet& out);
 
 // The largest distance of a node from its position in `set.reference` (mm).
 double driftFromReference(const TetGridSet& set, std::span<const Vec3> positions);
