@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "framework/channels/ChangeQueue.h"
 #include "framework/core/Interface.h"
 #include "framework/data/MeshDeformation.h"
 #include "framework/data/TetMesh.h"
@@ -30,6 +31,10 @@ class TREPHINE_INTERFACE DeformableMesh {
   virtual std::optional<std::string> followDeformation(const Component& deformer, ChannelHub& channels) = 0;
   // The component that deforms this mesh, or null.
   virtual const Component* deformer() const = 0;
+  // A reader of the tetrahedra a resection removes (by index in mesh()), in
+  // its init: each is pushed once to the reader's own queue, which has room
+  // for every tetrahedron. Nothing is pushed to a mesh no tool resects.
+  virtual ChangeQueue<int32_t>& subscribeRemovals() = 0;
 };
 
 }  // namespace trephine

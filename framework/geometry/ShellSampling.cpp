@@ -48,4 +48,15 @@ double largestGapAngle(const std::vector<Vec3>& directions) {
   return worst;
 }
 
+double shellSag(std::span<const ShellPoint> shell, double radius) {
+  if (shell.empty()) return 0;
+  double sag = 0;
+  for (const Vec3& d : evenDirections(4096)) {
+    double support = -INFINITY;
+    for (const ShellPoint& p : shell) support = std::max(support, p.position.dot(d));
+    sag = std::max(sag, radius - support);
+  }
+  return sag;
+}
+
 }  // namespace trephine

@@ -70,6 +70,8 @@ void TLEDForceField::init(InitContext& context) {
       context.note(d_massScaling, added);
   }
 
+  // Tetrahedra a resection removes (none unless the brain is resected).
+  m_removals = &brain.subscribeRemovals();
   m_channel = &context.channels().publish<NodePositions>(*this, kNodePositionsChannel);
   m_stressChannel = &context.channels().publish<ElementStress>(*this, kElementStressChannel);
   if (auto error = brain.followDeformation(*this, context.channels())) {
@@ -94,7 +96,8 @@ void TLEDForceField::init(InitContext& context) {
 void TLEDForceField::scaleMass() {
   if (!d_massScaling.value()) return;
   // Damping lowers the stable step by about a factor 1 - damping dt / 4: aim a little above dt.
-  m_massScaledElements = m_model->scaleMassForStep(d_dt.value() * (1 + d_damping.value() * d_dt.value()));
+  m_massScaledElements =
+      m_model->scaleMassForStep(d_stepMargin.value() * d_dt.value() * (1 + d_damping.value() * d_dt.value()));
 }
 
 double TLEDForceField::addedMassFraction() const {
@@ -153,6 +156,8 @@ void TLEDForceField::prepare(const RunPlan&) {
   m_applying.assign(n, 0);
   m_targetNodes.reserve(n);
   m_appliedNodes.reserve(n);
+  m_removedBatch.clear();
+  m_removedBatch.reserve(m_model->elementCount());
   // Stresses only for a reader (every reader subscribed at init).
   m_stress = {};
   if (m_stressChannel->readerCount() > 0) {
@@ -192,6 +197,16 @@ void TLEDForceField::publishStress(double t, double period) {
 
 void TLEDForceField::tick(const TickContext& context) {
   ++m_ticks;
+  // Elements a resection removed since the last tick leave the model before
+  // this step (their forces and their mass share; nodes left without an
+  // element are held): the model follows within the frame, without a rebuild.
+  if (m_removals) {
+    m_removedBatch.clear();
+    m_removals->drain([&](int32_t tet) {
+      if (m_removedBatch.size() < m_removedBatch.capacity()) m_removedBatch.push_back(tet);
+    });
+    if (!m_removedBatch.empty()) m_removedElements += m_model->removeElements(m_removedBatch);
+  }
   // Forces measured on a shape from before the last reset belong to a contact
   // that is gone (the haptic side lets go when it sees the reset): dropped.
   if (m_forces->fetch() && m_forces->read().resetsSeen == m_frame.resets) {
@@ -305,6 +320,7 @@ void TLEDForceField::dropToolLoad() {
 void TLEDForceField::reportCounters(std::vector<Counter>& counters) const {
   if (!m_model) return;
   counters.push_back({"elements", double(m_model->elementCount())});
+  if (m_removedElements) counters.push_back({"removed_elements", double(m_removedElements)});
   counters.push_back({"critical_dt_s", m_model->criticalTimeStep(d_damping.value())});
   if (d_massScaling.value()) {
     counters.push_back({"mass_scaled_elements", double(m_massScaledElements)});

@@ -135,6 +135,16 @@ class TLEDForceField final : public Component {
       {.help = "Selective mass scaling: the elements whose own critical time step is below dt get the density that "
                "makes it dt (the rest keep theirs), so that dt is stable on a mesh with a few small or flat "
                "elements. The added mass is reported (added_mass_fraction)"}};
+  Field<double> d_stepMargin{
+      this,
+      "stepMargin",
+      1.0,
+      {.help = "With massScaling: the critical time step the scaled elements reach, as a multiple of dt. At 1 they "
+               "are stable at rest only: an element squeezed under a tool stiffens, its step falls below dt and "
+               "the integration diverges within a few steps. 1.5 to 2 leaves room for the compression a small "
+               "tissue's elements see under a tool (resection)",
+       .min = 1.0,
+       .max = 10.0}};
   Field<double> d_maxAddedMass{
       this,
       "maxAddedMass",
@@ -171,6 +181,9 @@ class TLEDForceField final : public Component {
   std::vector<Vec3> m_target, m_applied;
   std::vector<char> m_applying;                    // 1: the node is in m_appliedNodes
   std::vector<int32_t> m_targetNodes, m_appliedNodes;
+  ChangeQueue<int32_t>* m_removals = nullptr;  // the brain's removed tetrahedra (resection)
+  std::vector<int32_t> m_removedBatch;          // capacity: every element
+  uint64_t m_removedElements = 0;
   Channel<NodePositions>* m_channel = nullptr;
   NodePositions m_frame;
   Channel<ElementStress>* m_stressChannel = nullptr;

@@ -22,6 +22,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include <Eigen/SVD>
+
 #include "plugins/fem/TLEDModel.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -42,6 +44,8 @@ namespace {
 
 constexpr size_t kChunk = 64;  // elements per pass: the scratch below stays in L1 (about 30 KB)
 constexpr double kFastLow = 0.65, kFastHigh = 1.5;
+// The least principal stretch an element's stress is taken at (invertibleForcesOfChunk).
+constexpr double kLeastStretch = 0.25;
 static_assert(kChunk == TLEDElements::kLanes && kChunk % 16 == 0);  // whole chunks, whole vectors
 
 // T: the precision of the element arithmetic (double or float).
@@ -189,6 +193,55 @@ template <typename T>
   }
 }
 
+// Elements far from rest again, in double precision: the forces of the
+// singular values of F, each at least kLeastStretch (Irving, Teran and Fedkiw,
+// "Invertible finite elements for robust simulation of large deformation",
+// 2004). F = U diag(s) V^T with U and V rotations (a reflection turns the
+// smallest singular value negative: an inverted element); P = U diag(p) V^T,
+// p_i = mu J^(-2/3) (s_i - I1 / (3 s_i)) + kappa (J - 1) J / s_i, the same
+// neo-Hookean stress as above where every s_i >= kLeastStretch. An element
+// squeezed flat or inverted then pushes back as hard as one squeezed to
+// kLeastStretch, in the direction that restores it, instead of having a
+// clamped isochoric stress that lets a tool drag its node through it.
+template <typename T>
+void invertibleForcesOfChunk(const ElementArrays<T>& el, size_t base, ChunkScratch<T>& s) {
+  const T* g[9];
+  for (int k = 0; k < 9; ++k) g[k] = el.grad[k] + base;
+  for (size_t e = 0; e < kChunk; ++e) {
+    const T Jfast = s.J[e];
+    if (Jfast >= T(kFastLow) && Jfast <= T(kFastHigh)) continue;
+    const double mu = double(el.muVolume[base + e]), kappa = double(el.kappaVolume[base + e]);
+    if (mu == 0 && kappa == 0) continue;  // removed, or padding
+    Mat3 F;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) F(i, j) = double(s.F[3 * i + j][e]);
+    if (!F.allFinite()) continue;
+    const Eigen::JacobiSVD<Mat3> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat3 U = svd.matrixU(), V = svd.matrixV();
+    Vec3 stretch = svd.singularValues();
+    if (U.determinant() < 0) {
+      U.col(2) *= -1;
+      stretch(2) *= -1;
+    }
+    if (V.determinant() < 0) {
+      V.col(2) *= -1;
+      stretch(2) *= -1;
+    }
+    if (stretch.minCoeff() >= kLeastStretch) continue;  // the formula above holds
+    for (int i = 0; i < 3; ++i) stretch(i) = std::max(stretch(i), kLeastStretch);
+    const double J = stretch.prod(), I1 = stretch.squaredNorm();
+    const double isochoric = mu * std::pow(J, -2.0 / 3.0);
+    Vec3 principal;
+    for (int i = 0; i < 3; ++i)
+      principal(i) = isochoric * (stretch(i) - I1 / (3 * stretch(i))) + kappa * (J - 1) * J / stretch(i);
+    const Mat3 P = U * principal.asDiagonal() * V.transpose();
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i)
+        s.f[3 * a + i][e] = T(P(i, 0) * double(g[3 * a][e]) + P(i, 1) * double(g[3 * a + 1][e]) +
+                              P(i, 2) * double(g[3 * a + 2][e]));
+  }
+}
+
 // The arithmetic of a gathered chunk, the same in every version; adds the chunk's counts.
 template <typename T>
 [[gnu::always_inline]] inline void forcesOfGatheredChunk(const ElementArrays<T>& arrays, size_t base,
@@ -197,6 +250,7 @@ template <typename T>
   counts.inverted += chunk.inverted;
   counts.farFromRest += chunk.farFromRest;
   forcesOfChunk(arrays, base, s);
+  if (chunk.farFromRest > 0) invertibleForcesOfChunk(arrays, base, s);
 }
 
 // ---- the versions: baseline, AVX2, AVX-512 ---------------------------------------

@@ -1,14 +1,12 @@
 #pragma once
-// A burr on a shaft: a sphere of `radius` at the tool's reference point and a
-// cylinder of `shaftRadius` running `shaftLength` along `axis` (device frame)
-// from the burr centre. Shell points cover the sphere (except where the shaft
-// covers it) and the shaft wall, so a shaft touching a bone edge pushes back too.
-// One component is all a new tool shape needs: see ShellTool.
+// A burr on a shaft (CapsuleShape.h): the ball is a spinning burr that drills
+// a drillable target. One component is all a new tool shape needs: see ShellTool.
 #include <vector>
 
 #include "framework/devices/HapticDevice.h"
 #include "framework/geometry/ShellTool.h"
 #include "plugins/haptics/BurrFields.h"
+#include "plugins/haptics/CapsuleShape.h"
 
 namespace trephine::haptics {
 
@@ -16,36 +14,22 @@ class CapsuleTool final : public Component, public ShellTool {
  public:
   static constexpr std::string_view kTypeName = "CapsuleTool";
 
-  void init(InitContext& context) override;
-  void reportCounters(std::vector<Counter>& counters) const override;
+  void init(InitContext& context) override { d_shape.build(context, m_points, m_boundingRadius); }
+  void reportCounters(std::vector<Counter>& counters) const override {
+    counters.push_back({"shell_points", static_cast<double>(m_points.size())});
+  }
 
   std::span<const ShellPoint> shellPoints() const override { return m_points; }
   HapticDevice& device() const override { return *l_device; }
-  Pose toolPose(const Pose& X_WD) const override;
-  double leadingRadius() const override { return d_radius.value(); }
+  Pose toolPose(const Pose& X_WD) const override { return d_shape.toolPose(X_WD); }
+  double leadingRadius() const override { return d_shape.radius.value(); }
   CuttingBurr cuttingBurr() const override { return d_burr.value(); }
   double boundingRadius() const override { return m_boundingRadius; }
-  ToolSolid solid() const override {
-    return {d_radius.value(), d_shaftRadius.value(), d_shaftLength.value(), d_axis.value().normalized()};
-  }
+  ToolSolid solid() const override { return d_shape.solid(); }
 
  private:
   Link<HapticDevice> l_device{this, "device", {.help = "Device that moves the tool", .required = true}};
-  Field<double> d_radius{this, "radius", 2.5, {.help = "Burr radius", .unit = "mm", .min = 0.0, .minExclusive = true}};
-  Field<double> d_shaftRadius{
-      this,
-      "shaftRadius",
-      1.0,
-      {.help = "Shaft radius (at most the burr radius)", .unit = "mm", .min = 0.0, .minExclusive = true}};
-  Field<double> d_shaftLength{
-      this, "shaftLength", 20.0, {.help = "Shaft length from the burr centre", .unit = "mm", .min = 0.0}};
-  Field<Vec3> d_axis{this, "axis", Vec3::UnitZ(), {.help = "Shaft direction from the burr, device frame (normalised)"}};
-  Field<double> d_pointSpacing{
-      this,
-      "pointSpacing",
-      0.4,
-      {.help = "Distance between neighbouring shell points", .unit = "mm", .min = 0.0, .minExclusive = true}};
-  Field<Vec3> d_offset{this, "offset", Vec3::Zero(), {.help = "Burr centre in the device frame", .unit = "mm"}};
+  CapsuleFields d_shape{this, {2.5, 1.0, 20.0, 0.4}};
   BurrFields d_burr{this};
 
   std::vector<ShellPoint> m_points;

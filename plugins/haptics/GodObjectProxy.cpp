@@ -1,6 +1,7 @@
 #include "plugins/haptics/GodObjectProxy.h"
 
 #include "framework/core/Lifecycle.h"
+#include "framework/geometry/ShellSampling.h"
 
 namespace trephine::haptics {
 
@@ -23,6 +24,13 @@ void GodObjectProxy::init(InitContext& context) {
     if (l_nextTool) context.error(l_nextTool, "has no effect without a toolChange");
     if (l_nextTarget) context.error(l_nextTarget, "has no effect without a toolChange");
   }
+  checkTissueAction(context, *m_tool, *m_target, l_tool);
+  if (l_toolChange && (l_nextTool || l_nextTarget))
+    checkTissueAction(context, l_nextTool ? *l_nextTool : *l_tool, l_nextTarget ? *l_nextTarget : *l_target,
+                      l_nextTool ? static_cast<const BaseField&>(l_nextTool) : l_tool);
+  m_shellSag = shellSag(m_tool->shellPoints(), m_tool->leadingRadius());
+  if (l_nextTool) m_nextShellSag = shellSag(l_nextTool->shellPoints(), l_nextTool->leadingRadius());
+  else m_nextShellSag = m_shellSag;
   m_memory.restart(m_target->shapeFailures());
   m_settings.sweeps = !d_sweep.is("none");
   m_settings.probe = d_sweep.is("cylinder")  ? SweepProbe::Cylinder
@@ -30,6 +38,21 @@ void GodObjectProxy::init(InitContext& context) {
                                              : SweepProbe::Line;
   m_settings.rectify = d_rectify.value();
   m_settings.godObject = d_godObject.value();
+}
+
+void GodObjectProxy::checkTissueAction(InitContext& context, const ShellTool& tool, const ShellContactTarget& target,
+                                       const BaseField& at) {
+  // A tool that removes or coagulates tissue acts only on a target that is
+  // resected; on any other it would touch and do nothing, silently.
+  const TissueAction action = tool.tissueAction();
+  if (action.kind == TissueAction::Kind::kNone) return;
+  if (!target.resects())
+    context.error(at, "this tool removes or coagulates tissue, but its target cannot be resected: aim it at a "
+                      "TetraBrain with a <Resection mesh=\"@BRAIN\"/> placed before this component (after the "
+                      "brain's Tissue components)");
+  if (action.pedal > 0 && d_drillButton.value() > 0)
+    context.error(d_drillButton, "the tool has a pedal of its own (button " + std::to_string(action.pedal) +
+                                     "): set one of the two");
 }
 
 void GodObjectProxy::joinContactFrame(ContactFrame& frame) {
@@ -50,17 +73,20 @@ ContactResponse GodObjectProxy::response(const Vec3& forceOnTool_N, double t) {
   if (state.contact) {
     response.forceOnTarget_N = -forceOnTool_N;
     response.sites = m_frame.contact.sites;
+    // The load, in every contact frame: a target that resects counts the
+    // time tools touch critical tissue whether their action runs or not.
+    CuttingLoad& load = response.load;
+    load.center_W = state.proxy;
+    load.radius = m_tool->leadingRadius();
+    load.overlap = state.overlap;
+    load.force_N = -forceOnTool_N;
+    load.dt = 1.0 / d_rate.value();
+    load.t = t;
+    load.burr = m_tool->cuttingBurr();
+    load.action = m_tool->tissueAction();
+    response.touched = m_frame.contact.touched;
     if (state.cutting) {
       response.cutting = true;
-      CuttingLoad& load = response.load;
-      load.center_W = state.proxy;
-      load.radius = m_tool->leadingRadius();
-      load.overlap = state.overlap;
-      load.force_N = -forceOnTool_N;
-      load.dt = 1.0 / d_rate.value();
-      load.t = t;
-      load.burr = m_tool->cuttingBurr();
-      response.touched = m_frame.contact.touched;
       response.stoppedAt = m_frame.stoppedAt;
     }
   }
@@ -91,9 +117,13 @@ void GodObjectProxy::tick(const TickContext& context) {
     input.toolPose = m_tool->toolPose(device.pose);
     m_orientation = input.toolPose.orientation;
   }
-  input.cutting = d_drillButton.value() == 0 || (device.buttons >> (d_drillButton.value() - 1)) & 1u;
+  // The drill, or the tool's action on tissue, runs while its pedal is held
+  // (the tool's own pedal, else drillButton), or always without one.
+  const int pedal = m_tool->tissueAction().pedal > 0 ? m_tool->tissueAction().pedal : d_drillButton.value();
+  input.cutting = pedal == 0 || (device.buttons >> (pedal - 1)) & 1u;
   input.shell = m_tool->shellPoints();
   input.leadingRadius = m_tool->leadingRadius();
+  input.shellSag = m_changedTools ? m_nextShellSag : m_shellSag;
   m_frame = stepProxy(m_settings, m_memory, input, *m_target);
   if (m_frame.startedInside && context.events)
     context.events->log(context.t, "tool_starts_inside",
@@ -121,6 +151,8 @@ void GodObjectProxy::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"releases", double(c.releases)});
   counters.push_back({"held_anchor_frames", double(c.heldAnchors)});
   counters.push_back({"faded_release_frames", double(c.fadedReleases)});
+  counters.push_back({"settled_frames", double(c.settledFrames)});
+  counters.push_back({"shell_sag_mm", m_shellSag});
   counters.push_back({"starts_inside", double(c.startsInside)});
   counters.push_back({"held_outside_frames", double(c.heldOutside)});
   if (c.nonFiniteFrames) counters.push_back({"non_finite_frames", double(c.nonFiniteFrames)});

@@ -49,6 +49,8 @@ class GodObjectProxy final : public Component, public ContactFrameMember {
 
  private:
   void changeTools(const TickContext& context);
+  void checkTissueAction(InitContext& context, const ShellTool& tool, const ShellContactTarget& target,
+                         const BaseField& at);
 
   Link<ShellTool> l_tool{this, "tool", {.help = "Pointshell tool moved by the device", .required = true}};
   Link<ShellContactTarget> l_target{this, "target", {.help = "What the tool collides with", .required = true}};
@@ -88,6 +90,7 @@ class GodObjectProxy final : public Component, public ContactFrameMember {
   Quat m_orientation = Quat::Identity();
 
   ProxySettings m_settings;  // the fields, read once at init
+  double m_shellSag = 0, m_nextShellSag = 0;  // mm, shellSag() of the tool and the next tool
   ProxyMemory m_memory;
   // The tool's memory for its queries of the target (reserveShell()), the
   // first tool's against the first target, then the next ones'.

@@ -10,6 +10,7 @@
 #include "plugins/haptics/ScriptedDevice.h"
 #include "plugins/haptics/SphereTool.h"
 #include "plugins/haptics/SpringForce.h"
+#include "plugins/haptics/TissueTools.h"
 #include "plugins/haptics/ToolChange.h"
 
 TREPHINE_PLUGIN_ENTRY(registrar) {
@@ -23,6 +24,12 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   registrar.add<SphereTool>("SphereTool", "Sphere tool following a device");
   registrar.add<PointshellTool>("PointshellTool", "Spherical burr covered by a pointshell (angle-step or even points)");
   registrar.add<CapsuleTool>("CapsuleTool", "Spherical burr on a cylindrical shaft, covered by a pointshell");
+  registrar.add<AspiratorTool>("AspiratorTool",
+                               "Ultrasonic aspirator on a tube: removes the brain tissue it touches while its pedal "
+                               "is held, at a rate its power, the contact force and the tissue set");
+  registrar.add<BipolarForceps>("BipolarForceps",
+                                "Bipolar forceps: coagulates the brain tissue it touches while its pedal is held "
+                                "(coagulated tissue does not bleed when removed)");
   registrar.add<GodObjectProxy>("GodObjectProxy",
                                 "God-object proxy of a pointshell tool: sweep, detection, constraint-plane projection");
   registrar.add<ForceFeedback>("ForceFeedback", "Viscoelastic force F = k p n - b (v.n) n of a proxy contact");

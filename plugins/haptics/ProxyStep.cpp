@@ -63,6 +63,7 @@ class Frame {
   ProxyFrame contactFrame();
   void sweepTowardsDevice();                        // 1
   ShellContact detectContact();                     // 2
+  ShellContact settleOntoShell();                   // 2: the sweep stopped the sphere, but no point
   Vec3 contactNormal(const ShellContact& contact);  // 2: the last one when the contact's cancels out
   // 3 to 5, with the surface in contact: projection, relaxation, rectifying sweep, spring.
   void followSurface(const ShellContact& contact, const Vec3& normal);
@@ -152,7 +153,8 @@ ProxyFrame Frame::contactFrame() {
   m_start = m_memory.state.proxy;
   m_out.state.device = m_device;
   sweepTowardsDevice();
-  const ShellContact c = detectContact();
+  ShellContact c = detectContact();
+  if (c.points == 0 && m_blocked && m_input.shellSag > 0) c = settleOntoShell();
   const Vec3 normal = contactNormal(c);
   if (c.points > 0 && normal.squaredNorm() > 0.5) {
     followSurface(c, normal);
@@ -161,7 +163,8 @@ ProxyFrame Frame::contactFrame() {
   } else if (m_blocked || m_heldBack) {
     springToDevice();
   }
-  if (m_out.state.contact && m_out.state.penetration > 0 && m_memory.hadDevice && !m_target.deforms())
+  if (m_out.state.contact && m_out.state.penetration > 0 && m_memory.hadDevice &&
+      (!m_target.deforms() || m_target.resects()))
     holdAnchorToDeviceMotion();
   fadeEndedContact();
   if (m_out.state.contact) ++m_memory.counters.contactFrames;
@@ -231,6 +234,22 @@ ShellContact Frame::detectContact() {
   s.primitives = c.primitives;
   s.rawPenetration = c.penetration;
   return c;
+}
+
+ShellContact Frame::settleOntoShell() {
+  // The sweep stopped the sphere's leading point contactDepth into the
+  // surface, but no shell point is there: the shell has no point right at
+  // its front and the surface curves away from it. Left so, the proxy would
+  // stay blocked with nothing in contact each frame (a force with no site on
+  // the target, a deforming target never pressed). It goes on towards the
+  // device by the shell's sag, no farther than the device, and detects again.
+  const Vec3 toDevice = m_device - m_swept;
+  const double distance = toDevice.norm();
+  if (!(distance > kSamePlace)) return m_out.contact;
+  m_swept += std::min(m_input.shellSag, distance) / distance * toDevice;
+  m_proxy = m_swept;
+  ++m_memory.counters.settledFrames;
+  return detectContact();
 }
 
 Vec3 Frame::contactNormal(const ShellContact& c) {
@@ -395,8 +414,10 @@ void Frame::holdAnchorToDeviceMotion() {
   // skin) moves no farther from the device than last frame's anchor now is
   // (PassiveAnchor.h): a re-projection on the cut surface never pushes harder
   // than the device's own move explains. Elsewhere the anchor may have to
-  // move out: a deforming target pushes the tool (not called for it), and a
-  // proxy that a sweep left inside a rigid target is lifted out of it.
+  // move out: a deforming target pushes the tool (not called for it, unless
+  // it is resected: tissue removed from under the tool would otherwise drop
+  // the force by the depth of a tetrahedron at once), and a proxy that a
+  // sweep left inside a rigid target is lifted out of it.
   // The spring (anchor less device) also changes by no more than the
   // device's own move plus kCatchUp in a frame: bone cut from under the burr,
   // or a contact normal that swings as its points enter and leave a rough

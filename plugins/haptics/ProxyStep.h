@@ -32,9 +32,12 @@
 // constraint plane, the proxy goes to the nearest point on both planes (the
 // god-object with two constraints, Zilles and Salisbury) and the force points
 // from the device to it.
-// When the sweep stopped the proxy but no shell point collides there (the two
-// conflicting cases of the rigid method), the normal is against the sweep
-// direction and the penetration is the device-proxy distance.
+// When the sweep stopped the sphere's leading point but no shell point
+// collides there (a shell without a point right at its front, on a surface
+// curving away), the proxy settles towards the device by the shell's sag
+// (the largest gap between its sphere and its points) and detects again.
+// Still none (the two conflicting cases of the rigid method), the normal is
+// against the sweep direction and the penetration is the device-proxy distance.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -80,6 +83,7 @@ struct ProxyInput {
   std::span<const ShellPoint> shell;  // the tool's shell, tool frame
   ContactMemory* contactMemory = nullptr;  // the tool's, for its queries of this target (reserveShell())
   double leadingRadius = 0;           // mm
+  double shellSag = 0;                // mm, shellSag() of the shell (ShellSampling.h)
 };
 
 // Running totals, reported as the proxy's counters.
@@ -96,6 +100,7 @@ struct ProxyCounters {
   uint64_t startsInside = 0;   // starts (first valid device frame, tool changes) with the tool in the target
   uint64_t heldOutside = 0;    // frames whose new place was inside the target: held at the last free one
   uint64_t fadedReleases = 0;  // frames whose ended contact's spring faded at the pace it may change
+  uint64_t settledFrames = 0;  // a sweep stopped the sphere but no shell point: settled by the shell's sag
 };
 
 // What the proxy keeps from one frame to the next.

@@ -48,6 +48,7 @@ struct BrainPhantomRegions {
   Vec3 tumourCentre = Vec3(25, 10, 30);  // mm
   double vesselRadius = 0;               // mm
   double vesselX = 0, vesselZ = 30;      // mm, the tube's axis (0 for x: beside the tumour)
+  double detail = 3;                     // the regions' cells are this many times smaller than the brain's
   bool any() const { return tumourRadius > 0 || vesselRadius > 0; }
   // mm: the vessel's axis's x (vesselX, or beside the tumour when 0).
   double vesselAxisX() const { return vesselX != 0 ? vesselX : tumourCentre.x() + tumourRadius + 3.0 + vesselRadius; }

@@ -75,36 +75,8 @@ void NativeTetBackend::buildAccelerations() {
 }
 
 void NativeTetBackend::buildFaceSets() {
-  // The faces the face grid lists: the boundary faces; when removals are
-  // followed, every face of every tetrahedron (entry tet * 4 + face), each
-  // flagged on the boundary or not, so a removal flips flags in place.
-  const TetMesh& mesh = *m_mesh;
-  const size_t n = mesh.tetCount();
-  m_boundaryMask.resize(n);
-  for (size_t t = 0; t < n; ++t) m_boundaryMask[t] = m_topology->boundaryMask(int32_t(t));
-  if (m_followsRemovals) {
-    m_faces.resize(4 * n);
-    m_faceOnBoundary.resize(4 * n);
-    for (size_t t = 0; t < n; ++t)
-      for (int f = 0; f < 4; ++f) {
-        m_faces[4 * t + f] = {int32_t(t), int8_t(f)};
-        m_faceOnBoundary[4 * t + f] = (m_boundaryMask[t] >> f) & 1u;
-      }
-  } else {
-    m_faces = m_topology->boundaryFaces();
-    m_faceOnBoundary.assign(m_faces.size(), 1);
-  }
-  m_removedTets = m_exposedFaces = 0;
-  m_faceVisits.resize(m_faces.size());
-  // Node -> faces, compressed rows.
-  m_nodeFaceStart.assign(mesh.nodeCount() + 1, 0);
-  for (const BoundaryFace& f : m_faces)
-    for (int32_t i : faceNodes(mesh.tets[f.tet], f.face)) ++m_nodeFaceStart[i + 1];
-  for (size_t i = 0; i < mesh.nodeCount(); ++i) m_nodeFaceStart[i + 1] += m_nodeFaceStart[i];
-  m_nodeFaces.resize(m_nodeFaceStart.back());
-  std::vector<uint32_t> fill(m_nodeFaceStart.begin(), m_nodeFaceStart.end() - 1);
-  for (size_t f = 0; f < m_faces.size(); ++f)
-    for (int32_t i : faceNodes(mesh.tets[m_faces[f].tet], m_faces[f].face)) m_nodeFaces[fill[i]++] = int32_t(f);
+  m_live.build(*m_mesh, *m_topology, m_followsRemovals);
+  m_faceVisits.resize(m_topology->boundaryFaces().size());
 }
 
 std::optional<std::string> NativeTetBackend::followRemovals() {
@@ -112,28 +84,18 @@ std::optional<std::string> NativeTetBackend::followRemovals() {
   m_followsRemovals = true;
   if (!m_mesh) return std::nullopt;  // bind() builds them
   buildFaceSets();
-  buildRestGrids();
   return std::nullopt;
 }
 
 void NativeTetBackend::removeTets(const RemainingMesh::Change& change) {
   if (!m_followsRemovals) return;
-  for (int32_t tet : change.removedTets) {
-    m_holdsNoPoint[size_t(tet)] = kRemovedTet;
-    m_boundaryMask[size_t(tet)] = 0;
-  }
-  for (const BoundaryFace& f : change.takenAway) m_faceOnBoundary[size_t(f.tet) * 4 + size_t(f.face)] = 0;
-  for (const BoundaryFace& f : change.exposed) {
-    m_faceOnBoundary[size_t(f.tet) * 4 + size_t(f.face)] = 1;
-    m_boundaryMask[size_t(f.tet)] |= uint8_t(1u << f.face);
-  }
-  m_removedTets += change.removedTets.size();
-  m_exposedFaces += change.exposed.size();
+  for (int32_t tet : change.removedTets) m_holdsNoPoint[size_t(tet)] = kRemovedTet;
+  m_live.apply(change);
 }
 
 void NativeTetBackend::buildRestGrids() {
   // The grids hold the rest boxes grown by the displacement margin (0 for a rigid mesh).
-  buildTetGrids(*m_mesh, m_faces, m_mesh->nodes, m_margin, m_cellSize, faceCellSize(), m_restGrids);
+  buildTetGrids(*m_mesh, faces(), m_mesh->nodes, m_margin, m_cellSize, faceCellSize(), m_restGrids);
   m_grids = &m_restGrids;
   m_tetBoxes = m_restGrids.boxes;
   m_bounds = m_restGrids.bounds;
@@ -261,9 +223,9 @@ void NativeTetBackend::reportCounters(std::vector<Counter>& counters) const {
   }
   if (m_options.search != Search::kGrid) counters.push_back({"scanned_tetrahedra", double(m_scannedTets)});
   if (m_followsRemovals) {
-    counters.push_back({"removed_tetrahedra", double(m_removedTets)});
-    counters.push_back({"exposed_faces", double(m_exposedFaces)});
-    counters.push_back({"face_grid_entries", double(m_grids->faceGrid.entryCount())});
+    counters.push_back({"removed_tetrahedra", double(m_live.removedTets())});
+    counters.push_back({"exposed_faces", double(m_live.exposedEver())});  // inside faces a removal exposed
+    counters.push_back({"most_cavity_faces", double(m_live.mostExposed())});  // of those, the most on the boundary at once
   }
   if (m_options.deformable) {
     counters.push_back({"displacement_margin_mm", m_margin});

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "plugins/tetra_brain/DriftBound.h"
+#include "plugins/tetra_brain/LiveFaces.h"
 #include "plugins/tetra_brain/ShellLocator.h"
 #include "plugins/tetra_brain/TetBackend.h"
 #include "plugins/tetra_brain/TetGridSet.h"
@@ -50,15 +51,15 @@ class NativeTetBackend final : public TetBackend {
   // are not this mesh's (another node count or margin). Allocation-free.
   void adoptGrids(const TetGridSet& grids) override;
   bool adoptsGrids() const override { return true; }
-  // From now on the back-end follows removals (removeTets): its face grid
-  // lists every face of the mesh, each flagged on the boundary or not, so that
-  // a removal flips flags instead of rebuilding the grid.
+  // From now on the back-end follows removals (removeTets): the boundary
+  // faces now are kept by LiveFaces (flags, node rows, the cavity's faces),
+  // so a removal changes no grid.
   std::optional<std::string> followRemovals() override;
-  // Allocation-free: O(tetrahedra removed).
+  // Allocation-free: O(faces changed).
   void removeTets(const RemainingMesh::Change& change) override;
-  // The faces the face grid lists (its items index this): the boundary faces,
-  // or every face of every tetrahedron (tet * 4 + face) once removals are followed.
-  std::span<const BoundaryFace> faces() const { return m_faces; }
+  // The faces the face grid lists (its items index this): the mesh's
+  // boundary faces at first (those a removal took away fail LiveFaces's flag).
+  std::span<const BoundaryFace> faces() const { return m_topology->boundaryFaces(); }
   // mm; with cellSizeRule="tool-cost", final once the tools reserved their shells (initialisation)
   double cellSize() const { return m_cellSize; }
   // mm, of the boundary faces' grid: the tetrahedra's cell, at least half an
@@ -172,12 +173,7 @@ class NativeTetBackend final : public TetBackend {
   static constexpr uint8_t kDegenerateTet = 1, kRemovedTet = 2;
   std::vector<uint8_t> m_holdsNoPoint;
   bool m_followsRemovals = false;
-  std::vector<BoundaryFace> m_faces;      // what the face grid lists (faces())
-  std::vector<uint8_t> m_faceOnBoundary;  // per entry of m_faces: on the boundary now
-  std::vector<uint8_t> m_boundaryMask;    // per tet, bit f: face f on the boundary now
-  uint64_t m_removedTets = 0, m_exposedFaces = 0;
-  std::vector<uint32_t> m_nodeFaceStart;  // node -> faces of m_faces holding it (compressed rows)
-  std::vector<int32_t> m_nodeFaces;
+  LiveFaces m_live;  // the boundary faces now
   double m_averageEdge = 0;  // mm
 
   // Deformation.

@@ -46,9 +46,8 @@ double NativeTetBackend::depthToIncidentFaces(int32_t tet, const Vec3& p, Vec3& 
   // the whole neighbourhood. Infinite when no node of the tet is on the surface.
   NearestFace nearest;
   for (int32_t node : m_mesh->tets[tet]) {
-    for (uint32_t e = m_nodeFaceStart[node]; e < m_nodeFaceStart[node + 1]; ++e) {
-      if (!m_faceOnBoundary[size_t(m_nodeFaces[e])]) continue;
-      const BoundaryFace& face = m_faces[size_t(m_nodeFaces[e])];
+    for (int32_t slot : m_live.aroundNode(node)) {
+      const BoundaryFace face = LiveFaces::faceOf(slot);
       const auto n = faceNodes(m_mesh->tets[face.tet], face.face);
       nearest.offer((closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm(), face);
     }
@@ -73,8 +72,13 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
   const int32_t ck = std::clamp(int32_t(std::floor(g.z())), 0, dims[2] - 1);
   NearestFace nearest;
   normal.setZero();
+  // The cavity's faces (a resection's), a list; then the first boundary's, by rings.
+  for (const BoundaryFace& face : m_live.exposed()) {
+    const auto n = faceNodes(m_mesh->tets[face.tet], face.face);
+    nearest.offer((closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm(), face);
+  }
   const int32_t maxRing = std::max({dims[0], dims[1], dims[2]});
-  const auto& faces = m_faces;
+  const auto faces = this->faces();
   m_faceVisits.begin();
   for (int32_t ring = 0; ring <= maxRing; ++ring) {
     if ((ring - 1) * m_grids->faceGrid.cellSide() - slack > nearest.distance) break;
@@ -86,7 +90,7 @@ double NativeTetBackend::depthBelowSurface(const Vec3& p, Vec3& normal) const {
         for (int32_t i = ci - ring; i <= ci + ring; i += step) {
           if (i < 0 || i >= dims[0]) continue;
           for (int32_t f : m_grids->faceGrid.items(m_grids->faceGrid.cellIndex(i, j, k))) {
-            if (!m_faceOnBoundary[size_t(f)] || !m_faceVisits.firstVisit(f)) continue;
+            if (!m_faceVisits.firstVisit(f) || !m_live.onBoundary(faces[f])) continue;
             const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
             nearest.offer((closestOnTriangle(p, m_nodes[n[0]], m_nodes[n[1]], m_nodes[n[2]]) - p).norm(), faces[f]);
           }
@@ -103,15 +107,18 @@ bool NativeTetBackend::surfaceWithin(const Vec3& p, double radius) const {
   // the displacement bound of p; the cells hold the boxes grown by the
   // margin, so the cells within radius plus the excess hold it.
   const Vec3 reach = Vec3::Constant(radius + m_queryGrowth);
-  const auto& faces = m_faces;
+  const auto faces = this->faces();
   const Box3 ball(p - Vec3::Constant(radius), p + Vec3::Constant(radius));
-  return anyFaceInCells(Box3(p - reach, p + reach), [&](int32_t f) {
-    if (!m_faceOnBoundary[size_t(f)]) return false;
-    const auto n = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
+  auto within = [&](const BoundaryFace& f) {
+    const auto n = faceNodes(m_mesh->tets[f.tet], f.face);
     const Vec3 &a = m_nodes[n[0]], &b = m_nodes[n[1]], &c = m_nodes[n[2]];
     const Box3 face(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
     return face.intersects(ball) && (closestOnTriangle(p, a, b, c) - p).squaredNorm() <= radius * radius;
-  });
+  };
+  for (const BoundaryFace& f : m_live.exposed())
+    if (within(f)) return true;
+  return anyFaceInCells(Box3(p - reach, p + reach),
+                        [&](int32_t f) { return m_live.onBoundary(faces[f]) && within(faces[f]); });
 }
 
 TetContact NativeTetBackend::collide(const Pose& X_WT, std::span<const ShellPoint> shell, bool wantSites,
@@ -158,7 +165,7 @@ ShellContact NativeTetBackend::contactNearestFace(const Eigen::Matrix3d& R, cons
   for (size_t h = 0; h < hits.size(); ++h) {
     const int32_t tet = hits[h].tet;
     const Vec3 p = R * shell[hits[h].point].position + t;
-    const uint8_t mask = m_boundaryMask[size_t(tet)];
+    const uint8_t mask = m_live.mask(tet);
     double depth = std::numeric_limits<double>::infinity();
     Vec3 normal = Vec3::Zero();
     for (int f = 0; f < 4; ++f) {
@@ -203,7 +210,7 @@ ShellContact NativeTetBackend::contactAlgorithm2(const Eigen::Matrix3d& R, const
     size_t last = first;
     while (last < hits.size() && hits[last].tet == hits[first].tet) ++last;
     const int32_t tet = hits[first].tet;
-    const uint8_t mask = m_boundaryMask[size_t(tet)];
+    const uint8_t mask = m_live.mask(tet);
     for (int f = 0; f < 4; ++f) {
       if (!(mask & (1u << f))) continue;
       const Vec3 n = faceNormal({tet, int8_t(f)});

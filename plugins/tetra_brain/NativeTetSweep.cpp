@@ -39,16 +39,25 @@ double NativeTetBackend::firstEntry(const Vec3& a, const Vec3& b, bool skipIniti
   box.extend(a);
   box.extend(b);
   box = Box3(box.min() - Vec3::Constant(m_queryGrowth), box.max() + Vec3::Constant(m_queryGrowth));
-  const auto& faces = m_faces;
+  const auto faces = this->faces();
   const Vec3 direction = b - a;
   double first = 2.0;
-  anyFaceInCells(box, [&](int32_t f) {
-    if (!m_faceOnBoundary[size_t(f)]) return false;
-    const Vec3 n = faceNormal(faces[f]);
-    if (direction.dot(n) >= 0) return false;  // leaving, or grazing
-    const auto v = faceNodes(m_mesh->tets[faces[f].tet], faces[f].face);
+  auto cross = [&](const BoundaryFace& f) {
+    const Vec3 n = faceNormal(f);
+    if (direction.dot(n) >= 0) return;  // leaving, or grazing
+    const auto v = faceNodes(m_mesh->tets[f.tet], f.face);
     const double t = segmentTriangle(a, b, m_nodes[v[0]], m_nodes[v[1]], m_nodes[v[2]]);
     if (t < first && !(startsInside && t == 0)) first = t;
+  };
+  // The cavity's faces (a resection's), a list, with the box's test first.
+  for (const BoundaryFace& f : m_live.exposed()) {
+    const auto v = faceNodes(m_mesh->tets[f.tet], f.face);
+    Box3 faceBox;
+    for (int32_t i : v) faceBox.extend(m_nodes[i]);
+    if (faceBox.intersects(box)) cross(f);
+  }
+  anyFaceInCells(box, [&](int32_t f) {
+    if (m_live.onBoundary(faces[f])) cross(faces[f]);
     return false;  // every face: the first entry is the smallest t
   });
   return first;

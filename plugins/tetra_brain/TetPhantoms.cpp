@@ -54,7 +54,8 @@ TetPhantomDefinition defineTetPhantom(const std::string& specification) {
                         {"tumourZ", 30},
                         {"vessel", 0},
                         {"vesselX", 0},
-                        {"vesselZ", 30}});
+                        {"vesselZ", 30},
+                        {"detail", 3}});
     const int tets = k.wholeNumber("tets", 100, 2000000);
     BrainPhantomRegions regions;
     regions.tumourRadius = k.number("tumour");
@@ -62,12 +63,18 @@ TetPhantomDefinition defineTetPhantom(const std::string& specification) {
     regions.vesselRadius = k.number("vessel");
     regions.vesselX = k.number("vesselX");
     regions.vesselZ = k.number("vesselZ");
+    regions.detail = k.number("detail");
+    if (!(regions.detail >= 1 && regions.detail <= 10))
+      throw std::invalid_argument("phantom:brain: detail (how many times finer the tumour and vessel are meshed "
+                                  "than the brain) must be within [1, 10]; got " + std::to_string(regions.detail));
     if (regions.tumourRadius < 0 || regions.vesselRadius < 0)
       throw std::invalid_argument("phantom:brain: tumour and vessel are radii (mm), 0 for none; got " +
                                   std::to_string(regions.tumourRadius) + " and " + std::to_string(regions.vesselRadius));
-    if (regions.tumourRadius > 0 && !(brainPhantomDistance(regions.tumourCentre) < -regions.tumourRadius))
-      throw std::invalid_argument("phantom:brain: the tumour (radius " + std::to_string(regions.tumourRadius) +
-                                  " mm) does not lie inside the brain at (tumourX, tumourY, tumourZ)");
+    // A tumour may break the cortex (its part outside the brain is not
+    // meshed), but its centre is in the brain.
+    if (regions.tumourRadius > 0 && !(brainPhantomDistance(regions.tumourCentre) < 0))
+      throw std::invalid_argument("phantom:brain: the tumour's centre (tumourX, tumourY, tumourZ) lies outside the "
+                                  "brain; a tumour may break the cortex, but its centre must be inside");
     return {[=] { return makeBrainPhantom(tets, regions); }, brainPhantomDistance};
   }
   if (name == "sphere") {

@@ -9,6 +9,7 @@
 
 #include "framework/geometry/BackendBinding.h"
 #include "framework/core/Lifecycle.h"
+#include "framework/logs/EventLog.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/TetPhantoms.h"
 #include "framework/formats/mesh/TetMeshReader.h"
@@ -147,13 +148,45 @@ std::optional<std::string> TetraBrain::declareTissue(const TissueSpec& tissue) {
   return m_tissues.declare(tissue, m_mesh.labels);
 }
 
+std::optional<std::string> TetraBrain::enableResection(EventLog& events) {
+  if (m_resection) return std::string("another Resection already resects ") + path();
+  if (!m_bound) return std::nullopt;  // the mesh or the back-end did not load: their own errors say why
+  if (auto why = m_backend->followRemovals())
+    return "backend=\"" + d_backend.value() + "\" " + *why + ": resection needs backend=\"native\"";
+  m_resection = std::make_unique<BrainResection>(m_mesh, m_topology, m_tissues);
+  m_events = &events;
+  return std::nullopt;
+}
+
+ChangeQueue<int32_t>& TetraBrain::subscribeRemovals() {
+  m_removalReaders.push_back(std::make_unique<ChangeQueue<int32_t>>(std::max<size_t>(m_mesh.tetCount(), 1)));
+  return *m_removalReaders.back();
+}
+
+int TetraBrain::applyRemovals(double t) {
+  // The tetrahedra due to go, then the pieces they cut loose: each change
+  // reaches the back-end and every reader before the next is made.
+  int removed = 0;
+  for (RemainingMesh::Change change = m_resection->removeNext(); !change.removedTets.empty();
+       change = m_resection->removeNext()) {
+    askBackend(*this, d_backend, [&] { m_backend->removeTets(change); });
+    for (auto& reader : m_removalReaders)
+      for (int32_t tet : change.removedTets) reader->push(tet);
+    removed += int(change.removedTets.size());
+  }
+  if (removed > 0 && m_resection->remaining().aliveCount() == 0 && m_events)
+    m_events->log(t, "brain_resected_entirely", "no tetrahedron of the brain remains", this);
+  return removed;
+}
+
 std::optional<std::string> TetraBrain::followGridRebuild(const Component& rebuilder, ChannelHub& channels) {
   if (m_grids) return std::string("another component already rebuilds the grids of ") + path();
   m_grids = channels.subscribe<TetGridSet>(rebuilder, kGridsChannelName);
   return std::nullopt;
 }
 
-void TetraBrain::prepare(const RunPlan&) {
+void TetraBrain::prepare(const RunPlan& plan) {
+  if (m_resection) m_resection->reserveRecord(plan.duration);
   m_nodeSlot.assign(m_mesh.nodeCount(), -1);  // only read when a component takes the node forces
   if (!m_nodeForces || m_nodeForces->readerCount() == 0) m_nodeSlot.clear();
   if (!m_nodeSlot.empty() && d_forceSpread.value() > 0) buildForceSpread();
@@ -164,8 +197,11 @@ void TetraBrain::buildForceSpread() {
   // an x window. Weights (1 - (d / R)^2)^2, normalised per node, so each
   // share keeps its sum; a node with no boundary node within R keeps its own.
   const double R = d_forceSpread.value();
+  // A resected brain's surface moves inwards as tissue goes: every node may
+  // come to the surface, and those on it when a force is shared are chosen
+  // then (publishNodeForces).
   std::vector<int32_t> boundary;
-  std::vector<char> onBoundary(m_mesh.nodeCount(), 0);
+  std::vector<char> onBoundary(m_mesh.nodeCount(), m_resection ? 1 : 0);
   for (const BoundaryFace& f : m_topology.boundaryFaces())
     for (int32_t n : faceNodes(m_mesh.tets[f.tet], f.face)) onBoundary[n] = 1;
   for (size_t n = 0; n < onBoundary.size(); ++n)
@@ -225,9 +261,12 @@ void TetraBrain::bindBackend() {
   m_bound = true;
 }
 
-TargetFrame TetraBrain::beginFrame(double) {
+TargetFrame TetraBrain::beginFrame(double t) {
   takeLatestShape();
-  return {m_shapeFailures, 0};
+  // The tetrahedra the last frame's tools took go now: every tool of this
+  // frame sees the mesh without them.
+  const int removed = m_resection ? applyRemovals(t) : 0;
+  return {m_shapeFailures, removed};
 }
 
 void TetraBrain::takeLatestShape() {
@@ -277,6 +316,7 @@ ContactMemory TetraBrain::reserveShell(std::span<const ShellPoint> shell) {
   // The tool's sites may take the back-end's largest contact, and the node
   // forces the sites of every tool at once.
   memory.sites.reserve(m_backend->siteCapacity());
+  memory.touched.reserve(m_backend->siteCapacity());  // the tetrahedra a contact touches (resection)
   m_reservedSites += memory.sites.capacity();
   if (m_nodeForceValue.forces.capacity() < 4 * m_reservedSites) reserveNodeForces(4 * m_reservedSites);
   return memory;
@@ -302,6 +342,13 @@ ShellContact TetraBrain::collide(const Pose& X_WT, std::span<const ShellPoint> s
   memory.sites.assign(result.sites.begin(), result.sites.begin() + kept);
   ShellContact contact = result.contact;
   contact.sites = memory.sites;
+  if (m_resection) {
+    // What the removal law reads in the response: the tetrahedra touched.
+    memory.touched.clear();
+    for (int32_t tet : result.tets)
+      if (memory.touched.size() < memory.touched.capacity()) memory.touched.push_back(tet);
+    contact.touched = memory.touched;
+  }
   return contact;
 }
 
@@ -324,6 +371,12 @@ std::optional<SurfaceHit> TetraBrain::raycast(const Vec3& origin, const Vec3& di
 }
 
 void TetraBrain::respond(double t, std::span<const ContactResponse> responses) {
+  if (m_resection) {
+    const uint64_t stretches = m_resection->totals().criticalContacts;
+    m_resection->act(t, responses);
+    if (m_resection->totals().criticalContacts > stretches && m_events)
+      m_events->log(t, "critical_tissue_contact", "a tool touches tissue declared critical", this);
+  }
   if (m_nodeSlot.empty()) return;  // no component reads the node forces
   publishNodeForces(t, responses);
 }
@@ -395,16 +448,32 @@ void TetraBrain::publishNodeForces(double t, std::span<const ContactResponse> re
   // only the entries in use are written.
   std::vector<NodeForce>& spread = m_spreadValue.forces;
   spread.clear();
-  for (const NodeForce& f : forces)
-    for (uint32_t e = m_spreadStart[f.node]; e < m_spreadStart[f.node + 1]; ++e) {
-      int32_t& slot = m_nodeSlot[m_spreadNodes[e]];
-      if (slot < 0) {
-        if (spread.size() == spread.capacity()) continue;  // cannot happen: the capacity covers every node touched
-        slot = int32_t(spread.size());
-        spread.push_back({m_spreadNodes[e], Vec3::Zero()});
-      }
-      spread[slot].force += m_spreadWeights[e] * f.force;
+  auto shareTo = [&](int32_t node, const Vec3& force) {
+    int32_t& slot = m_nodeSlot[node];
+    if (slot < 0) {
+      if (spread.size() == spread.capacity()) return;  // cannot happen: the capacity covers every node touched
+      slot = int32_t(spread.size());
+      spread.push_back({node, Vec3::Zero()});
     }
+    spread[slot].force += force;
+  };
+  for (const NodeForce& f : forces) {
+    // On a resected brain, among the row's nodes on the surface now, their
+    // weights renormalised; none there: the node keeps its force.
+    double weight = 1;
+    if (m_resection) {
+      weight = 0;
+      for (uint32_t e = m_spreadStart[f.node]; e < m_spreadStart[f.node + 1]; ++e)
+        if (m_resection->onSurface(m_spreadNodes[e])) weight += m_spreadWeights[e];
+      if (!(weight > 0)) {
+        shareTo(f.node, f.force);
+        continue;
+      }
+    }
+    for (uint32_t e = m_spreadStart[f.node]; e < m_spreadStart[f.node + 1]; ++e)
+      if (!m_resection || m_resection->onSurface(m_spreadNodes[e]))
+        shareTo(m_spreadNodes[e], (m_spreadWeights[e] / weight) * f.force);
+  }
   for (const NodeForce& f : spread) m_nodeSlot[f.node] = -1;
   m_spreadValue.t = t;
   m_spreadValue.resetsSeen = m_deformationResets;
@@ -421,9 +490,28 @@ void TetraBrain::finish(FinishContext& context) {
   if (!context.claimOutput(*this, d_saveDeformed.value())) return;
   takeLatestShape();  // the deformation's last shape, also when no tool asked for it during the run
   TetMesh deformed;
-  deformed.nodes.assign(m_nodes, m_nodes + m_mesh.nodeCount());
-  deformed.tets = m_mesh.tets;
-  deformed.labels = m_mesh.labels;
+  if (m_resection) {
+    // What remains: its tetrahedra with their labels, on the nodes they use.
+    const RemainingMesh& left = m_resection->remaining();
+    std::vector<int32_t> renumbered(m_mesh.nodeCount(), -1);
+    for (size_t t = 0; t < m_mesh.tetCount(); ++t) {
+      if (!left.alive(int32_t(t))) continue;
+      TetIndices tet = m_mesh.tets[t];
+      for (int32_t& node : tet) {
+        if (renumbered[size_t(node)] < 0) {
+          renumbered[size_t(node)] = int32_t(deformed.nodes.size());
+          deformed.nodes.push_back(m_nodes[node]);
+        }
+        node = renumbered[size_t(node)];
+      }
+      deformed.tets.push_back(tet);
+      if (!m_mesh.labels.empty()) deformed.labels.push_back(m_mesh.labels[t]);
+    }
+  } else {
+    deformed.nodes.assign(m_nodes, m_nodes + m_mesh.nodeCount());
+    deformed.tets = m_mesh.tets;
+    deformed.labels = m_mesh.labels;
+  }
   try {
     formats::writeTetMeshFile(deformed, context.outputDirectory() / d_saveDeformed.value());
   } catch (const std::exception& e) {
@@ -440,6 +528,13 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
   counters.push_back({"unused_nodes", double(m_report.unusedNodes)});
   counters.push_back({"non_manifold_faces", double(m_report.nonManifoldFaces)});
   counters.push_back({"contact_frames", double(m_contactFrames)});
+  if (m_resection) {
+    counters.push_back({"removed_tetrahedra", double(m_resection->totals().removedTets)});
+    counters.push_back({"remaining_tetrahedra", double(m_resection->remaining().aliveCount())});
+    counters.push_back({"loose_pieces_removed", double(m_resection->loosePieces())});
+    counters.push_back({"loose_tetrahedra_removed", double(m_resection->looseTets())});
+    counters.push_back({"fragments_removed", double(m_resection->fragments())});
+  }
   counters.push_back({"queries", double(m_queries)});  // contact, sweep, overlap and broad-phase queries of the run
   if (m_positions) {
     counters.push_back({"deformation_frames", double(m_deformationFrames)});

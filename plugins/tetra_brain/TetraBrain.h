@@ -12,12 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "framework/channels/ChangeQueue.h"
 #include "framework/core/ChannelHub.h"
 #include "framework/core/Component.h"
 #include "framework/geometry/ExactShape.h"
 #include "framework/geometry/ShellContactTarget.h"
 #include "framework/data/MeshDeformation.h"
 #include "framework/geometry/DeformableMesh.h"
+#include "plugins/tetra_brain/BrainResection.h"
 #include "plugins/tetra_brain/TetBackend.h"
 #include "plugins/tetra_brain/TissueTable.h"
 #include "framework/data/TetMesh.h"
@@ -52,6 +54,7 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   double resolution() const override;  // mm, the median edge of the tetrahedra at rest
   TargetFrame beginFrame(double t) override;
   uint64_t shapeFailures() const override { return m_shapeFailures; }
+  bool resects() const override { return m_resection != nullptr; }
   // The node forces: the sum of the frame's responses, in their order,
   // published once a frame (when they change).
   void respond(double t, std::span<const ContactResponse> responses) override;
@@ -77,6 +80,17 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   // another tissue has the label or the name.
   std::optional<std::string> declareTissue(const TissueSpec& tissue);
   const TissueTable& tissues() const { return m_tissues; }
+  // A Resection component in its init, after the tissues: from now on tools
+  // with a tissue action remove and coagulate this brain's tissues
+  // (BrainResection). An error message when the back-end cannot follow
+  // removals, or resection is enabled twice.
+  std::optional<std::string> enableResection(EventLog& events);
+  // Null unless resection is enabled.
+  const BrainResection* resection() const { return m_resection.get(); }
+  // A reader of the removed tetrahedra (the FEM, an exporter), in its init:
+  // every tetrahedron removed from then on is pushed, once, to its own queue
+  // (room for every tetrahedron: it never overflows).
+  ChangeQueue<int32_t>& subscribeRemovals() override;
 
   // Replaces the mesh (tests and tools): validates, reorients and binds the
   // back-end to it (the native one when init() chose none, nor setBackend()).
@@ -243,6 +257,12 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   std::vector<double> m_spreadWeights;
   NodeForces m_spreadValue;
   TissueTable m_tissues;  // declared by the scene's Tissue components
+  std::unique_ptr<BrainResection> m_resection;
+  std::vector<std::unique_ptr<ChangeQueue<int32_t>>> m_removalReaders;
+  EventLog* m_events = nullptr;
+  // Removes the tetrahedra the frame before's responses took (beginFrame):
+  // the back-end and every reader follow. Returns how many.
+  int applyRemovals(double t);
   uint64_t m_contactFrames = 0;
   uint64_t m_largestNodeForceCount = 0;  // entries of the largest node-force frame published
   mutable uint64_t m_queries = 0;  // counted by the const queries too
