@@ -133,5 +133,86 @@ TEST_F(TissueTest, AMeshWithoutLabelsSaysWhereLabelsComeFrom) {
       << loaded.messages;
 }
 
+// A tissue tool's node on the two-tissue mesh: its proxy aims at /patient/brain.
+std::string tissueTool(const std::string& tool, const std::string& proxyFields = "") {
+  return R"(<Node name="hand">
+    <ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1" center="2 2 0"
+                    tipOffset="1" standoff="3" depth="1" rate="1000"/>
+    )" + tool + R"(
+    <GodObjectProxy name="proxy" tool="@tool" target="@/patient/brain" )" +
+         proxyFields + R"( rate="1000"/>
+  </Node>)";
+}
+
+std::string sceneWithTools(const std::filesystem::path& mesh, const std::string& patient, const std::string& tools,
+                           const std::string& brainFields = "") {
+  return R"(<Node name="root">
+  <RequiredPlugin name="tetra_brain"/>
+  <RequiredPlugin name="haptics"/>
+  <RequiredPlugin name="bullet"/>
+  <Node name="patient">
+    <TetraBrain name="brain" file=")" +
+         mesh.string() + "\" " + brainFields + R"(/>
+    )" + patient + R"(
+  </Node>
+  )" + tools + R"(
+</Node>)";
+}
+
+constexpr const char* kTissues = R"(<Tissue name="brain_matter" mesh="@brain" label="1"/>
+    <Tissue name="tumour" mesh="@brain" label="2"/>)";
+
+TEST_F(TissueTest, ATissueToolAimedAtABrainNoResectionResectsIsRefused) {
+  for (const char* tool : {R"(<AspiratorTool name="tool" device="@device"/>)", R"(<BipolarForceps name="tool" device="@device"/>)"}) {
+    const Loaded loaded = load(sceneWithTools(mesh, kTissues, tissueTool(tool)));
+    EXPECT_FALSE(loaded.simulation) << tool;
+    EXPECT_NE(loaded.messages.find("tool of GodObjectProxy 'proxy'"), std::string::npos) << loaded.messages;
+    EXPECT_NE(loaded.messages.find("this tool removes or coagulates tissue, but its target cannot be resected: aim it "
+                                   "at a TetraBrain with a <Resection mesh=\"@BRAIN\"/> placed before this component"),
+              std::string::npos)
+        << loaded.messages;
+  }
+  // With the Resection before the tools, the same scene loads.
+  const Loaded resected = load(sceneWithTools(mesh, std::string(kTissues) + R"(<Resection name="resection" mesh="@brain"/>)",
+                                              tissueTool(R"(<AspiratorTool name="tool" device="@device"/>)")));
+  EXPECT_TRUE(resected.simulation) << resected.messages;
+}
+
+TEST_F(TissueTest, ResectionOnAMeshBackEndIsRefusedAtTheBrain) {
+  const Loaded loaded = load(sceneWithTools(mesh, std::string(kTissues) + R"(<Resection name="resection" mesh="@brain"/>)",
+                                            "", R"(backend="bullet")"));
+  EXPECT_FALSE(loaded.simulation);
+  EXPECT_NE(loaded.messages.find("mesh of Resection 'resection'"), std::string::npos) << loaded.messages;
+  EXPECT_NE(loaded.messages.find("backend=\"bullet\" cannot follow removed tetrahedra: resection needs "
+                                 "backend=\"native\""),
+            std::string::npos)
+      << loaded.messages;
+}
+
+TEST_F(TissueTest, ATissueToolHasOnePedal) {
+  const Loaded loaded =
+      load(sceneWithTools(mesh, std::string(kTissues) + R"(<Resection name="resection" mesh="@brain"/>)",
+                          tissueTool(R"(<AspiratorTool name="tool" device="@device" pedal="1"/>)", R"(drillButton="2")")));
+  EXPECT_FALSE(loaded.simulation);
+  EXPECT_NE(loaded.messages.find("drillButton of GodObjectProxy 'proxy'"), std::string::npos) << loaded.messages;
+  EXPECT_NE(loaded.messages.find("the tool has a pedal of its own (button 1): set one of the two"), std::string::npos)
+      << loaded.messages;
+}
+
+TEST_F(TissueTest, AnAspiratorsUnitSlipsAreWarnedOf) {
+  const std::string patient = std::string(kTissues) + R"(<Resection name="resection" mesh="@brain"/>)";
+  const Loaded khz = load(sceneWithTools(mesh, patient, tissueTool(R"(<AspiratorTool name="tool" device="@device" frequency="23"/>)")));
+  ASSERT_TRUE(khz.simulation) << khz.messages;
+  EXPECT_NE(khz.messages.find("warning: frequency of AspiratorTool 'tool'"), std::string::npos) << khz.messages;
+  EXPECT_NE(khz.messages.find("kHz typed as Hz?"), std::string::npos) << khz.messages;
+  const Loaded milli = load(sceneWithTools(mesh, patient, tissueTool(R"(<BipolarForceps name="tool" device="@device" power="5000"/>)")));
+  ASSERT_TRUE(milli.simulation) << milli.messages;
+  EXPECT_NE(milli.messages.find("warning: power of BipolarForceps 'tool'"), std::string::npos) << milli.messages;
+  // An amplitude in micrometres is out of the field's range (at most 1 mm).
+  const Loaded micro = load(sceneWithTools(mesh, patient, tissueTool(R"(<AspiratorTool name="tool" device="@device" amplitude="150"/>)")));
+  EXPECT_FALSE(micro.simulation);
+  EXPECT_NE(micro.messages.find("amplitude of AspiratorTool 'tool'"), std::string::npos) << micro.messages;
+}
+
 }  // namespace
 }  // namespace trephine
