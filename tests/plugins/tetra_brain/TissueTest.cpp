@@ -146,10 +146,10 @@ std::string tissueTool(const std::string& tool, const std::string& proxyFields =
 
 std::string sceneWithTools(const std::filesystem::path& mesh, const std::string& patient, const std::string& tools,
                            const std::string& brainFields = "") {
-  return R"(<Node name="root">
+  return std::string(R"(<Node name="root">
   <RequiredPlugin name="tetra_brain"/>
   <RequiredPlugin name="haptics"/>
-  )" + (brainFields.find("bullet") != std::string::npos ? R"(<RequiredPlugin name="bullet"/>)" : "") + R"(
+  )") + (brainFields.find("bullet") != std::string::npos ? R"(<RequiredPlugin name="bullet"/>)" : "") + R"(
   <Node name="patient">
     <TetraBrain name="brain" file=")" +
          mesh.string() + "\" " + brainFields + R"(/>
