@@ -212,6 +212,9 @@ void invertibleForcesOfChunk(const ElementArrays<T>& el, size_t base, ChunkScrat
     if (Jfast >= T(kFastLow) && Jfast <= T(kFastHigh)) continue;
     const double mu = double(el.muVolume[base + e]), kappa = double(el.kappaVolume[base + e]);
     if (mu == 0 && kappa == 0) continue;  // removed, or padding
+    // No SVD where the smallest stretch is surely above the least: it is at
+    // least J / (s_max s_mid) >= 2 J / I1 (as s_max s_mid <= (s_max^2 + s_mid^2) / 2).
+    if (Jfast > 0 && 2 * double(Jfast) >= kLeastStretch * double(s.I1[e])) continue;
     Mat3 F;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) F(i, j) = double(s.F[3 * i + j][e]);
