@@ -158,8 +158,10 @@ template <typename T>
   for (size_t e = 0; e < kChunk; ++e) {
     const T J = s.J[e];
     if (J >= T(kFastLow) && J <= T(kFastHigh)) continue;
-    ++counts.farFromRest;
-    if (!(J > 0)) ++counts.inverted;
+    // A removed element (resection) has no moduli: its shape is no one's.
+    const bool counted = el.muVolume[base + e] != T(0) || el.kappaVolume[base + e] != T(0);
+    counts.farFromRest += counted;
+    if (!(J > 0)) counts.inverted += counted;
     s.y[e] = T(1) / std::cbrt(std::max(J, T(kMinIsochoricJ)));
   }
   return counts;
