@@ -56,7 +56,7 @@ class AspiratorTool final : public Component, public ShellTool {
                            "coupling",
                            0.1,
                            {.help = "Share of the contact force times the tip's mean speed (4 amplitude frequency) "
-                                    "that goes into the tissue (calibrated: 0.1 removes about 15 mm^3/s of "
+                                    "that goes into the tissue (calibrated: 0.1 removes about 14 mm^3/s of "
                                     "0.05 J/mm^3 tissue at 0.5 N)",
                             .min = 0.0,
                             .max = 1.0}};
