@@ -48,10 +48,13 @@ void VtkExporter::init(InitContext& context) {
     }
   }
   if (l_brain) {
-    const DeformableMesh& brain = *l_brain;
+    DeformableMesh& brain = *l_brain;
     const TetMesh& mesh = brain.mesh();
     m_cells.emplace(std::span<const std::array<int32_t, 4>>(mesh.tets), std::span<const int32_t>(mesh.labels),
                     mesh.nodeCount());
+    // A resected brain's files hold what remains (nothing is pushed otherwise).
+    m_removals = &brain.subscribeRemovals();
+    m_removedTets.assign(mesh.tetCount(), 0);
     m_displacement.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
     m_force.values.assign(3 * brain.mesh().nodeCount(), 0.0f);
     if (brain.deformer())
@@ -162,16 +165,30 @@ bool VtkExporter::updateBrain() {
   const std::vector<Vec3>& rest = brain.mesh().nodes;
   const bool moved = m_positions && (m_positions->fetch(), m_positions->read().positions.size() == rest.size());
   const bool newForces = m_nodeForces->fetch();  // every frame: a deforming brain's files carry them too
+  bool removed = false;
+  if (m_removals)
+    m_removals->drain([&](int32_t tet) {
+      if (tet >= 0 && size_t(tet) < m_removedTets.size() && !m_removedTets[size_t(tet)]) {
+        m_removedTets[size_t(tet)] = 1;
+        removed = true;
+      }
+    });
+  if (removed) compressRemainingCells();
   bool newStress = false;
   if (m_elementStress && m_elementStress->fetch() &&
-      m_elementStress->read().vonMises.size() == m_vonMises.values.size()) {
-    newStress = m_elementStress->read().vonMises != m_vonMises.values;
-    m_vonMises.values = m_elementStress->read().vonMises;
+      m_elementStress->read().vonMises.size() == m_removedTets.size()) {
+    newStress = m_elementStress->read().vonMises != m_vonMisesAll || m_cellsChanged;
+    m_vonMisesAll = m_elementStress->read().vonMises;
+    // Per cell written: the remaining tetrahedra's.
+    m_vonMises.values.clear();
+    for (size_t t = 0; t < m_vonMisesAll.size(); ++t)
+      if (!m_removedTets[t]) m_vonMises.values.push_back(m_vonMisesAll[t]);
   }
   const std::vector<Vec3>& nodes = moved ? m_positions->read().positions : rest;
   // A brain at rest between touches (the FEM still publishes) is not written
   // again: its last file stands.
-  if (m_brainWritten && !newForces && !newStress && nodes == m_writtenNodes) return false;
+  if (m_brainWritten && !newForces && !newStress && !m_cellsChanged && nodes == m_writtenNodes) return false;
+  m_cellsChanged = false;
   m_writtenNodes = nodes;
   for (size_t i = 0; i < nodes.size(); ++i)
     for (int a = 0; a < 3; ++a) m_displacement.values[3 * i + a] = float(nodes[i][a] - rest[i][a]);
@@ -181,6 +198,24 @@ bool VtkExporter::updateBrain() {
       for (int a = 0; a < 3; ++a) m_force.values[3 * size_t(f.node) + a] += float(f.force[a]);
   m_brainWritten = true;
   return true;
+}
+
+void VtkExporter::compressRemainingCells() {
+  const TetMesh& mesh = l_brain->mesh();
+  std::vector<std::array<int32_t, 4>> tets;
+  std::vector<int32_t> labels;
+  for (size_t t = 0; t < mesh.tetCount(); ++t) {
+    if (m_removedTets[t]) continue;
+    tets.push_back(mesh.tets[t]);
+    if (!mesh.labels.empty()) labels.push_back(mesh.labels[t]);
+  }
+  m_cells.emplace(std::span<const std::array<int32_t, 4>>(tets), std::span<const int32_t>(labels), mesh.nodeCount());
+  if (!m_vonMisesAll.empty()) {
+    m_vonMises.values.clear();
+    for (size_t t = 0; t < m_vonMisesAll.size(); ++t)
+      if (!m_removedTets[t]) m_vonMises.values.push_back(m_vonMisesAll[t]);
+  }
+  m_cellsChanged = true;
 }
 
 void VtkExporter::writeBrain(double t) {

@@ -126,7 +126,13 @@ class VtkExporter final : public Component {
   std::optional<ChannelReader<NodePositions>> m_positions;  // none: a rigid brain
   std::optional<ChannelReader<NodeForces>> m_nodeForces;
   std::optional<ChannelReader<ElementStress>> m_elementStress;  // none: the deformer computes none
-  std::optional<formats::VtkTetCells> m_cells;  // compressed once
+  std::optional<formats::VtkTetCells> m_cells;  // compressed once, again after a resection removed tetrahedra
+  ChangeQueue<int32_t>* m_removals = nullptr;   // the brain's removed tetrahedra
+  std::vector<uint8_t> m_removedTets;           // per tetrahedron of the mesh
+  std::vector<float> m_vonMisesAll;             // kPa, per tetrahedron of the mesh
+  bool m_cellsChanged = false;
+  // The cells of the tetrahedra that remain (and their labels), compressed.
+  void compressRemainingCells();
   formats::VtkDataArray m_displacement{"displacement", 3, {}}, m_force{"force", 3, {}};
   formats::VtkDataArray m_vonMises{"von_mises", 1, {}};  // kPa, per element
   bool m_brainWritten = false;

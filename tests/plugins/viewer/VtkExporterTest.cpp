@@ -454,5 +454,40 @@ TEST(VtkExporterTest, TheFemsStressesReachTheBrainFilesOnlyWhenExported) {
   EXPECT_EQ(stressUpdates(none / "run"), 0.0);
 }
 
+// The tumour resection on a coarser phantom (5,000 tetrahedra), exported:
+// the brain's files follow the removal, the last one holding exactly the
+// tetrahedra that remain (the brain's counter), fewer than the mesh had.
+TEST(VtkExporterTest, AResectedBrainsFilesHoldWhatRemains) {
+  test::TempDir dir;
+  std::string xml = test::readFile(test::sourceDir() / "scenes" / "resection.xml");
+  xml.replace(xml.find("tets=22000"), std::string("tets=22000").size(), "tets=5000");
+  xml.insert(xml.rfind("</Node>"), R"(<Node name="out"><VtkExporter name="vtk" brain="@/patient/brain" rate="10"/></Node>
+)");
+  xml.insert(xml.find("<RequiredPlugin"), R"(<RequiredPlugin name="viewer"/>
+  )");
+  runInto(dir, xml, "10");
+  const std::string summary = test::readFile(dir / "run" / "summary.json");
+  const size_t at = summary.find("\"remaining_tetrahedra\":", summary.find("\"resection\": {"));
+  ASSERT_NE(at, std::string::npos) << summary.substr(0, 400);
+  const size_t remaining = size_t(std::stod(summary.substr(at + 24)));
+  std::filesystem::path first, last;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "run" / "vtk")) {
+    if (!entry.path().filename().string().starts_with("brain_")) continue;
+    if (first.empty() || entry.path() < first) first = entry.path();
+    if (last.empty() || entry.path() > last) last = entry.path();
+  }
+  ASSERT_FALSE(last.empty());
+  const TetMesh brain = formats::readTetMesh(last);
+  const TetMesh whole = formats::readTetMesh(first);  // written at the start, before any removal
+  EXPECT_LT(remaining, whole.tetCount());
+  EXPECT_EQ(brain.tetCount(), remaining);
+  // Each cell keeps its label: the tumour's are fewer than at first.
+  size_t tumourNow = 0, tumourAtFirst = 0;
+  for (int32_t label : brain.labels) tumourNow += label == 2;
+  for (int32_t label : whole.labels) tumourAtFirst += label == 2;
+  EXPECT_LT(tumourNow, tumourAtFirst);
+  EXPECT_GT(tumourNow, 0u);
+}
+
 }  // namespace
 }  // namespace trephine
