@@ -56,25 +56,51 @@ void IGTLinkExporter::init(InitContext& context) {
   }
   if (l_brain) {
     const TetMesh& mesh = l_brain->mesh();
-    const TetTopology topology(mesh);
-    // Only the nodes on the boundary are sent, numbered in the order they are met.
-    std::vector<int32_t> surfaceIndex(mesh.nodeCount(), -1);
-    const auto surface = [&](int32_t node) {
-      if (surfaceIndex[size_t(node)] < 0) {
-        surfaceIndex[size_t(node)] = int32_t(m_surfaceNodes.size());
-        m_surfaceNodes.push_back(node);
-      }
-      return surfaceIndex[size_t(node)];
-    };
-    for (const BoundaryFace& f : topology.boundaryFaces()) {
-      const auto& tet = mesh.tets[size_t(f.tet)];
-      m_triangles.push_back({surface(tet[(f.face + 1) % 4]), surface(tet[(f.face + 2) % 4]),
-                             surface(tet[(f.face + 3) % 4])});
-    }
+    m_topology = TetTopology(mesh);
+    m_remaining.emplace(mesh, m_topology);
+    // A resected brain's surface is what remains (nothing is pushed otherwise).
+    m_removals = &l_brain->subscribeRemovals();
+    collectSurface();
     m_nodes = mesh.nodes;
     if (l_brain->deformer())
       m_positions = context.channels().subscribe<NodePositions>(*l_brain->deformer(), kNodePositionsChannel);
   }
+}
+
+void IGTLinkExporter::collectSurface() {
+  // Only the nodes on the boundary are sent, numbered in the order they are met.
+  const TetMesh& mesh = l_brain->mesh();
+  m_triangles.clear();
+  m_surfaceNodes.clear();
+  std::vector<int32_t> surfaceIndex(mesh.nodeCount(), -1);
+  const auto surface = [&](int32_t node) {
+    if (surfaceIndex[size_t(node)] < 0) {
+      surfaceIndex[size_t(node)] = int32_t(m_surfaceNodes.size());
+      m_surfaceNodes.push_back(node);
+    }
+    return surfaceIndex[size_t(node)];
+  };
+  const auto add = [&](int32_t t, int f) {
+    const auto& tet = mesh.tets[size_t(t)];
+    m_triangles.push_back({surface(tet[(f + 1) % 4]), surface(tet[(f + 2) % 4]), surface(tet[(f + 3) % 4])});
+  };
+  // The first boundary's faces that remain, in its order; then the faces a
+  // resection exposed (inside the mesh at first).
+  for (const BoundaryFace& f : m_topology.boundaryFaces())
+    if (m_remaining->onBoundary(f.tet, f.face)) add(f.tet, f.face);
+  if (m_remaining->aliveCount() == mesh.tetCount()) return;
+  for (int32_t t = 0; t < int32_t(mesh.tetCount()); ++t)
+    for (int f = 0; f < 4; ++f)
+      if (!m_topology.isBoundary(t, f) && m_remaining->onBoundary(t, f)) add(t, f);
+}
+
+bool IGTLinkExporter::applyRemovals() {
+  if (!m_removals) return false;
+  m_removedBatch.clear();
+  m_removals->drain([&](int32_t tet) { m_removedBatch.push_back(tet); });
+  if (m_removedBatch.empty() || m_remaining->remove(m_removedBatch).removedTets.empty()) return false;
+  collectSurface();
+  return true;
 }
 
 void IGTLinkExporter::prepare(const RunPlan& plan) {
@@ -168,6 +194,7 @@ void IGTLinkExporter::sendSurface(bool toNewOnly, double t) {
 
 void IGTLinkExporter::tick(const TickContext& context) {
   applySkullEdits();
+  if (applyRemovals()) m_brainMoved = true;  // sent as the moved surface is
   if (m_positions && m_positions->fetch()) {
     const NodePositions& p = m_positions->read();
     if (p.step != m_nodesStep && p.positions.size() == m_nodes.size()) {

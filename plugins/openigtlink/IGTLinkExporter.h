@@ -26,6 +26,8 @@
 #include "framework/core/Component.h"
 #include "framework/core/SampleSource.h"
 #include "framework/data/MeshDeformation.h"
+#include "framework/data/RemainingMesh.h"
+#include "framework/data/TetTopology.h"
 #include "framework/geometry/DeformableMesh.h"
 #include "framework/geometry/DrillableVolume.h"
 #include "plugins/openigtlink/IgtlBroadcaster.h"
@@ -97,6 +99,15 @@ class IGTLinkExporter final : public Component {
   std::vector<Vec3> m_surfacePoints;                // those on the boundary
   uint64_t m_nodesStep = 0;
   bool m_brainMoved = false;
+  // A resected brain: what remains, followed from its removals (this
+  // component's thread); the surface sent is its boundary now.
+  ChangeQueue<int32_t>* m_removals = nullptr;
+  TetTopology m_topology;
+  std::optional<RemainingMesh> m_remaining;
+  std::vector<int32_t> m_removedBatch;
+  // The boundary triangles and their nodes, of what remains.
+  void collectSurface();
+  bool applyRemovals();
   double m_lastSurface = -INFINITY;
   // A new client gets the skull in slabs of slices, a budget of bytes a tick
   // across all of them (continueWelcomes), so that clients that come and go

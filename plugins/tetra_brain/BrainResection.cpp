@@ -28,6 +28,7 @@ BrainResection::BrainResection(const TetMesh& mesh, const TetTopology& topology,
   m_surfaceFaces.assign(mesh.nodeCount(), 0);
   for (const BoundaryFace& f : topology.boundaryFaces())
     for (int32_t node : faceNodes(mesh.tets[size_t(f.tet)], f.face)) ++m_surfaceFaces[size_t(node)];
+  m_boundaryFaces = topology.boundaryFaces().size();
   m_mesh = &mesh;
 }
 
@@ -83,6 +84,8 @@ RemainingMesh::Change BrainResection::removeNext() {
     }
   for (const BoundaryFace& f : change.takenAway)
     for (int32_t node : faceNodes(m_mesh->tets[size_t(f.tet)], f.face)) --m_surfaceFaces[size_t(node)];
+  m_boundaryFaces += change.exposed.size();
+  m_boundaryFaces -= change.takenAway.size();
   for (const BoundaryFace& f : change.exposed)
     for (int32_t node : faceNodes(m_mesh->tets[size_t(f.tet)], f.face)) ++m_surfaceFaces[size_t(node)];
   return change;

@@ -48,6 +48,8 @@ class BrainResection {
   const RemainingMesh& remaining() const { return m_remaining; }
   // Whether a node is on the surface now (a boundary face of what remains holds it).
   bool onSurface(int32_t node) const { return m_surfaceFaces[size_t(node)] > 0; }
+  // Boundary faces of what remains.
+  size_t boundaryFaces() const { return m_boundaryFaces; }
   const TissueRemoval& law() const { return m_law; }
   const ResectionTotals& totals() const { return m_law.totals(); }
   // The record: rows of recordColumns() values (t s, removed mm^3, blood ml,
@@ -69,6 +71,7 @@ class BrainResection {
   std::vector<int32_t> m_piece;    // a flood fill's tetrahedra (capacity: m_pieceLimit)
   size_t m_pieceLimit = 0;
   std::vector<uint32_t> m_surfaceFaces;  // per node: boundary faces holding it now
+  size_t m_boundaryFaces = 0;
   std::vector<uint32_t> m_seen;    // per tetrahedron: the search that reached it
   std::vector<uint8_t> m_holds;    // per tetrahedron: that search found it holds to the rest
   uint32_t m_search = 0;

@@ -158,6 +158,43 @@ std::optional<std::string> TetraBrain::enableResection(EventLog& events) {
   return std::nullopt;
 }
 
+TetraBrain::PlacedRegion TetraBrain::labelBall(const Vec3& centre, double radius, int32_t label) {
+  PlacedRegion placed;
+  if (!m_tissues.empty() || m_deformer || m_resection) {
+    placed.error = "the labels of " + path() +
+                   " were read already: place this before the brain's Tissue, Resection and deformation components";
+    return placed;
+  }
+  for (int32_t l : m_mesh.labels)
+    if (l == label) {
+      placed.error = "label " + std::to_string(label) + " is in use in " + path() + ": give the tumour a label of its own";
+      placed.atLabel = true;
+      return placed;
+    }
+  std::vector<size_t> inside;
+  for (size_t t = 0; t < m_mesh.tetCount(); ++t) {
+    Vec3 c = Vec3::Zero();
+    for (int32_t n : m_mesh.tets[t]) c += m_mesh.nodes[size_t(n)];
+    if ((c / 4 - centre).norm() < radius) inside.push_back(t);
+  }
+  if (inside.empty()) {
+    placed.error = "no tetrahedron of " + path() + " has its centre within " + std::to_string(radius) +
+                   " mm of (" + std::to_string(centre.x()) + ", " + std::to_string(centre.y()) + ", " +
+                   std::to_string(centre.z()) + ") mm: the tumour lies outside the brain";
+    return placed;
+  }
+  if (m_mesh.labels.empty()) m_mesh.labels.assign(m_mesh.tetCount(), 1);  // the rest: label 1
+  for (size_t t : inside) {
+    m_mesh.labels[t] = label;
+    const auto& k = m_mesh.tets[t];
+    placed.volume +=
+        std::abs(signedVolume(m_mesh.nodes[size_t(k[0])], m_mesh.nodes[size_t(k[1])], m_mesh.nodes[size_t(k[2])],
+                              m_mesh.nodes[size_t(k[3])]));
+  }
+  placed.tets = inside.size();
+  return placed;
+}
+
 ChangeQueue<int32_t>& TetraBrain::subscribeRemovals() {
   m_removalReaders.push_back(std::make_unique<ChangeQueue<int32_t>>(std::max<size_t>(m_mesh.tetCount(), 1)));
   return *m_removalReaders.back();
@@ -531,6 +568,7 @@ void TetraBrain::reportCounters(std::vector<Counter>& counters) const {
   if (m_resection) {
     counters.push_back({"removed_tetrahedra", double(m_resection->totals().removedTets)});
     counters.push_back({"remaining_tetrahedra", double(m_resection->remaining().aliveCount())});
+    counters.push_back({"boundary_faces_now", double(m_resection->boundaryFaces())});
     counters.push_back({"loose_pieces_removed", double(m_resection->loosePieces())});
     counters.push_back({"loose_tetrahedra_removed", double(m_resection->looseTets())});
     counters.push_back({"fragments_removed", double(m_resection->fragments())});

@@ -80,6 +80,16 @@ class TetraBrain final : public Component, public ShellContactTarget, public Exa
   // another tissue has the label or the name.
   std::optional<std::string> declareTissue(const TissueSpec& tissue);
   const TissueTable& tissues() const { return m_tissues; }
+  // A PlacedTumour in its init: the tetrahedra whose centre (at rest) lies
+  // in the ball take `label`. An error (and nothing changed) when none does,
+  // the label is in use, or a tissue or a deformation already read the labels.
+  struct PlacedRegion {
+    size_t tets = 0;
+    double volume = 0;  // mm^3
+    std::string error;
+    bool atLabel = false;  // the error is the label's
+  };
+  PlacedRegion labelBall(const Vec3& centre, double radius, int32_t label);
   // A Resection component in its init, after the tissues: from now on tools
   // with a tissue action remove and coagulate this brain's tissues
   // (BrainResection). An error message when the back-end cannot follow

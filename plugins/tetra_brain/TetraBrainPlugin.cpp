@@ -5,6 +5,7 @@
 #include "plugins/tetra_brain/MeshTetBackend.h"
 #include "plugins/tetra_brain/NativeTetBackend.h"
 #include "plugins/tetra_brain/ScriptedDeformation.h"
+#include "plugins/tetra_brain/PlacedTumour.h"
 #include "plugins/tetra_brain/Resection.h"
 #include "plugins/tetra_brain/TetGridRebuild.h"
 #include "plugins/tetra_brain/Tissue.h"
@@ -26,6 +27,8 @@ TREPHINE_PLUGIN_ENTRY(registrar) {
   });
   registrar.add<trephine::tetra::ScriptedDeformation>(
       "ScriptedDeformation", "Moves a TetraBrain's nodes by a prescribed wave or bump (tests and benchmarks)");
+  registrar.add<trephine::tetra::PlacedTumour>(
+      "PlacedTumour", "A tumour placed in a brain mesh that has none: the tetrahedra of a ball take a label of their own");
   registrar.add<trephine::tetra::Tissue>(
       "Tissue", "One tissue of a brain (the tetrahedra of one label): its resistance to removal, its vascularity, "
                 "whether it is critical");

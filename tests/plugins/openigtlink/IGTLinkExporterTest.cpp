@@ -74,6 +74,7 @@ struct Received {
   int polygons = 0, points = 0;
   std::array<float, 3> firstPoint{};
   std::vector<std::vector<std::array<float, 3>>> surfaces;  // the points of every POLYDATA
+  std::vector<int> polygonCounts;                           // the triangles of every POLYDATA
   float lastDevice[3] = {0, 0, 0};
 };
 
@@ -159,6 +160,7 @@ void readAll(igtl::ClientSocket* socket, Received& r) {
       ++r.polydata;
       r.points = poly->GetPoints()->GetNumberOfPoints();
       r.polygons = static_cast<int>(poly->GetPolygons()->GetNumberOfCells());
+      r.polygonCounts.push_back(r.polygons);
       poly->GetPoints()->GetPoint(0, r.firstPoint.data());
       auto& points = r.surfaces.emplace_back(size_t(r.points));
       for (int i = 0; i < r.points; ++i) poly->GetPoints()->GetPoint(unsigned(i), points[size_t(i)].data());
@@ -408,6 +410,39 @@ TEST(IGTLinkExporterTest, AClientThatDoesNotReadIsLetGoAfterTheTimeout) {
   EXPECT_EQ(refused, 0);
   EXPECT_EQ(received.wholeImages, 1) << "the reader was served throughout";
   EXPECT_GT(received.sensors, kTimingChecked ? 30 : 10) << "45 in 1.5 s at 30 Hz; a sanitizer's are fewer";
+}
+
+// The tumour resection on a coarser phantom, streamed: once the aspirator
+// removed tissue, the POLYDATA's surface is what remains (the cavity's walls
+// with it), as many triangles as the brain's boundary then has; before,
+// every surface sent was the first boundary.
+TEST(IGTLinkExporterTest, AResectedBrainsSurfaceShowsTheCavity) {
+  std::string xml = readFile(sourceDir() / "scenes" / "resection.xml");
+  xml.replace(xml.find("tets=22000"), std::string("tets=22000").size(), "tets=5000");
+  // The aspirator feeds straight into the tumour (it removes within a second).
+  const size_t device = xml.find(R"(<ScriptedDevice name="device" path="waypoints")");
+  xml.replace(device, xml.find("/>", device) + 2 - device,
+              R"(<ScriptedDevice name="device" path="drill-in" target="@/patient/brain" direction="0 0 -1"
+                    center="25 10 0" tipOffset="1.2" standoff="2" speed="20" depth="5" feedSpeed="2" rate="1000"/>)");
+  xml.insert(xml.find("<RequiredPlugin"), R"(<RequiredPlugin name="openigtlink"/>
+  )");
+  xml.insert(xml.rfind("</Node>"), R"(<Node name="stream">
+    <IGTLinkExporter name="slicer" port="0" brain="@/patient/brain" rate="30" surfaceInterval="0.1"/>
+  </Node>
+)");
+  double firstBoundary = 0, removed = 0, boundaryNow = 0;
+  const Received received = runStreamed(xml, 4.0, [&](const Simulation& simulation) {
+    firstBoundary = componentCounterAt(simulation, "/patient/brain", "boundary_faces");
+    removed = componentCounterAt(simulation, "/patient/brain", "removed_tetrahedra");
+    boundaryNow = componentCounterAt(simulation, "/patient/brain", "boundary_faces_now");
+  });
+  ASSERT_GT(removed, 0.0) << "the aspirator removed nothing in 4 s";
+  ASSERT_FALSE(received.polygonCounts.empty());
+  EXPECT_EQ(received.polygonCounts.front(), int(firstBoundary));  // at rest when the client came
+  EXPECT_NE(boundaryNow, firstBoundary);
+  // A surface with the cavity went out: one of those sent has the boundary's count now.
+  EXPECT_NE(std::find(received.polygonCounts.begin(), received.polygonCounts.end(), int(boundaryNow)),
+            received.polygonCounts.end());
 }
 
 }  // namespace

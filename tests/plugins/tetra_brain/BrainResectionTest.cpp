@@ -104,6 +104,18 @@ void resectUntilEmpty(Batches batches, uint32_t seed) {
     }
     const RemainingMesh& left = resection.remaining();
     ASSERT_EQ(left.validate(), "") << "round " << rounds;
+    size_t boundary = 0;
+    for (int32_t t = 0; t < int32_t(mesh.tetCount()); ++t)
+      for (int f = 0; f < 4; ++f) boundary += left.onBoundary(t, f);
+    ASSERT_EQ(resection.boundaryFaces(), boundary) << "round " << rounds;
+    for (size_t n = 0; n < mesh.nodeCount(); ++n) {
+      bool held = false;
+      for (int32_t t = 0; t < int32_t(mesh.tetCount()) && !held; ++t)
+        for (int f = 0; f < 4 && !held; ++f)
+          if (left.onBoundary(t, f))
+            for (int32_t m : faceNodes(mesh.tets[size_t(t)], f)) held = held || m == int32_t(n);
+      ASSERT_EQ(resection.onSurface(int32_t(n)), held) << "node " << n << ", round " << rounds;
+    }
     for (int32_t t : removedNow) ASSERT_FALSE(left.alive(t));
     // Beside this round's removal: no flap, no spike, no small loose piece.
     for (int32_t t : removedNow)
@@ -143,7 +155,9 @@ void resectUntilEmpty(Batches batches, uint32_t seed) {
     const auto shape = state.writePositions(positions);
     ASSERT_TRUE(std::isfinite(shape.largestDisplacement)) << "round " << rounds;
     for (size_t n = 0; n < mesh.nodeCount(); ++n)
-      if (left.nodeUse(int32_t(n)) == 0) ASSERT_LT((positions[n] - mesh.nodes[n]).norm(), 1e-12) << "node " << n;
+      if (left.nodeUse(int32_t(n)) == 0) {
+        ASSERT_LT((positions[n] - mesh.nodes[n]).norm(), 1e-12) << "node " << n;
+      }
     fragmentsSeen = resection.fragments() + resection.looseTets();
   }
   EXPECT_EQ(resection.remaining().aliveCount(), 0u);

@@ -87,7 +87,9 @@ void compareQueries(NativeTetBackend& following, NativeTetBackend& fresh, const 
     const Vec3 direction = (sweep.to - sweep.from).normalized();
     const auto ra = following.raycast(sweep.from, direction, 80.0), rb = fresh.raycast(sweep.from, direction, 80.0);
     ASSERT_EQ(ra.has_value(), rb.has_value()) << where;
-    if (ra) ASSERT_NEAR(ra->distance, rb->distance, 1e-9) << where;
+    if (ra) {
+      ASSERT_NEAR(ra->distance, rb->distance, 1e-9) << where;
+    }
   }
 }
 

@@ -217,5 +217,35 @@ TEST_F(TissueTest, AnAspiratorsUnitSlipsAreWarnedOf) {
   EXPECT_NE(micro.messages.find("amplitude of AspiratorTool 'tool'"), std::string::npos) << micro.messages;
 }
 
+TEST_F(TissueTest, ATumourPlacedInAMeshTakesTheTetrahedraOfItsBall) {
+  // The second tetrahedron's centre is (2.5, 2.5, -2.5): a ball of 3 mm there takes it alone.
+  const Loaded loaded = load(scene(mesh, R"(<PlacedTumour name="lesion" mesh="@brain" center="2.5 2.5 -2.5" radius="3" label="9"/>
+    <Tissue name="tumour" mesh="@brain" label="9"/>
+    <Resection name="resection" mesh="@brain"/>)"));
+  ASSERT_TRUE(loaded.simulation) << loaded.messages;
+  EXPECT_EQ(test::componentCounter(*loaded.simulation, "PlacedTumour", "tetrahedra"), 1.0);
+  EXPECT_NEAR(test::componentCounter(*loaded.simulation, "PlacedTumour", "volume_mm3"), 1000.0 / 6, 1e-9);
+  EXPECT_NEAR(test::componentCounter(*loaded.simulation, "Resection", "volume_mm3.tumour"), 1000.0 / 6, 1e-9);
+  // The other tetrahedron keeps its label (1): undeclared, warned of.
+  EXPECT_NE(loaded.messages.find("the mesh's labels 1 (1)"), std::string::npos) << loaded.messages;
+}
+
+TEST_F(TissueTest, ATumourPlacedOutsideInAUsedLabelOrTooLateIsRefused) {
+  const Loaded outside = load(scene(mesh, R"(<PlacedTumour name="lesion" mesh="@brain" center="100 0 0" radius="3" label="9"/>)"));
+  EXPECT_FALSE(outside.simulation);
+  EXPECT_NE(outside.messages.find("center of PlacedTumour 'lesion'"), std::string::npos) << outside.messages;
+  EXPECT_NE(outside.messages.find("the tumour lies outside the brain"), std::string::npos) << outside.messages;
+  const Loaded used = load(scene(mesh, R"(<PlacedTumour name="lesion" mesh="@brain" center="2.5 2.5 2.5" radius="3" label="2"/>)"));
+  EXPECT_FALSE(used.simulation);
+  EXPECT_NE(used.messages.find("label of PlacedTumour 'lesion'"), std::string::npos) << used.messages;
+  EXPECT_NE(used.messages.find("label 2 is in use"), std::string::npos) << used.messages;
+  const Loaded late = load(scene(mesh, R"(<Tissue name="tumour" mesh="@brain" label="2"/>
+    <PlacedTumour name="lesion" mesh="@brain" center="2.5 2.5 2.5" radius="3" label="9"/>)"));
+  EXPECT_FALSE(late.simulation);
+  EXPECT_NE(late.messages.find("place this before the brain's Tissue, Resection and deformation components"),
+            std::string::npos)
+      << late.messages;
+}
+
 }  // namespace
 }  // namespace trephine
