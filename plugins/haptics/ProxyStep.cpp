@@ -163,8 +163,10 @@ ProxyFrame Frame::contactFrame() {
   } else if (m_blocked || m_heldBack) {
     springToDevice();
   }
-  if (m_out.state.contact && m_out.state.penetration > 0 && m_memory.hadDevice &&
-      (!m_target.deforms() || m_target.resects()))
+  // (Also a contact whose spring measures nothing now, where last frame's
+  // pressed: a lone point grazing a wall at an angle must not drop the force.)
+  if (m_out.state.contact && (m_out.state.penetration > 0 || m_memory.state.penetration > 0) &&
+      m_memory.hadDevice && (!m_target.deforms() || m_target.resects()))
     holdAnchorToDeviceMotion();
   fadeEndedContact();
   if (m_out.state.contact) ++m_memory.counters.contactFrames;
