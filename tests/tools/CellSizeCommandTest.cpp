@@ -14,10 +14,10 @@ namespace {
 
 using test::runProgram;
 
-// The number after "key": in a one-line JSON object.
+// The number after "key": in a one-line JSON object; NaN when missing or null.
 double jsonNumber(const std::string& json, const std::string& key) {
   const size_t at = json.find("\"" + key + "\": ");
-  if (at == std::string::npos) return NAN;
+  if (at == std::string::npos || json.compare(at + key.size() + 4, 4, "null") == 0) return NAN;
   return std::stod(json.substr(at + key.size() + 4));
 }
 
@@ -44,8 +44,19 @@ TEST(CellSizeCommandTest, TheExperimentWritesItsTableAndReportsTheZone) {
       << out;
   const double optimal = jsonNumber(out, "delta_opt");
   EXPECT_GT(optimal, 0.0) << out;
-  EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_a"))) << out;
-  EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_trad"))) << out;
+  // The errors are in widths of the zone around the optimum. Two frames on a
+  // loaded machine can leave it no width at all (every neighbour of the
+  // optimum more than 10% slower): then any other cell is infinitely many
+  // widths away, written as null. Otherwise they are numbers.
+  const size_t zone = out.find("\"zone\": [");
+  ASSERT_NE(zone, std::string::npos) << out;
+  const double low = std::stod(out.substr(zone + 9)), high = std::stod(out.substr(out.find(',', zone) + 1));
+  EXPECT_LE(low, optimal) << out;
+  EXPECT_GE(high, optimal) << out;
+  if (low < optimal || high > optimal) {
+    EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_a"))) << out;
+    EXPECT_TRUE(std::isfinite(jsonNumber(out, "epsilon_trad"))) << out;
+  }
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "cellsize.json"));
   const std::string csv = test::readFile(dir.path() / "cellsize.csv");
   EXPECT_TRUE(csv.starts_with("cell_size_mm,cells_per_mm,time_us,fitted_us,")) << csv;
