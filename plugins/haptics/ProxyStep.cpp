@@ -457,10 +457,17 @@ void Frame::fadeEndedContact() {
   // belongs to no contact: the plane stands for the surface only over the
   // contact patch); a drilled target's breakthrough and a deforming target's
   // surface moving away are real and drop at once.
+  // On a resected target, tissue removed from in front of the tool ends the
+  // contact too (the removal the frame began with, or one this fade goes on
+  // from): its spring fades the same way, however long it was and although
+  // the target deforms, since nothing in the hand's motion explains the drop.
   ProxyState& s = m_out.state;
-  const ProxyMemory& m = m_memory;
-  if (s.contact || !m.state.contact || !(m.state.penetration > 0) || m.state.penetration > m_input.leadingRadius ||
-      !m.hadDevice || m_target.deforms() || m_target.drills())
+  ProxyMemory& m = m_memory;
+  const bool tissueWent = m_target.resects() && (m_input.frame.removed > 0 || m.fadingRemoval);
+  m.fadingRemoval = false;
+  if (s.contact || !m.state.contact || !(m.state.penetration > 0) || !m.hadDevice) return;
+  if (!tissueWent &&
+      (m.state.penetration > m_input.leadingRadius || m_target.deforms() || m_target.drills()))
     return;
   const double fade = m.state.penetration - ((m_device - m.lastDevice).norm() + kCatchUp);
   if (fade > 0) {
@@ -468,6 +475,7 @@ void Frame::fadeEndedContact() {
     s.normal = m.state.normal;
     s.penetration = fade;
     m_proxy = m_device + fade * s.normal;
+    m.fadingRemoval = tissueWent;
     ++m_memory.counters.fadedReleases;
   }
 }

@@ -114,6 +114,10 @@ struct ProxyMemory {
   bool hadPlane = false;
   bool started = false;            // the proxy has been placed (on the device's first valid frame)
   bool released = false;           // let go after a shape failure, until the tool is clear
+  // A contact that ended because the tissue in front of the tool was removed
+  // (a resected target): its spring fades at the pace it may change, over
+  // the frames after, until it is gone or a contact comes back.
+  bool fadingRemoval = false;
   uint64_t seenShapeFailures = 0;  // the target's shapeFailures last seen
   ProxyCounters counters;
 
